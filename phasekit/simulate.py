@@ -1,0 +1,244 @@
+"""The hybrid simulator: smooth modes, switching only at located events.
+
+One run integrates the current mode with a backend (:mod:`phasekit.backends`) until
+the end time or the first guard, applies the switch (:mod:`phasekit.modes`), records an
+:class:`~phasekit.result.EventRecord`, and continues. It stops at the first lift-off
+(R = 0 with dR/dt < 0) unless told otherwise.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from .backends import get_backend
+from .errors import Status, check_choice, check_finite, check_open_interval, check_positive, check_vector
+from .model import STICK_SLIP, Model
+from .modes import Mode, after_slip, after_stick, mode_events, zero_slip_start
+from .result import EventRecord, SimulationResult
+
+__all__ = ["simulate", "DEFAULT_RTOL", "BACKEND_CHOICES"]
+
+DEFAULT_RTOL = 1e-9
+#: slip speed given to a body that starts sliding from zero slip (just above the stick guard)
+SLIP_ONSET = 4 * STICK_SLIP
+
+
+BACKEND_CHOICES = ("auto", "taylor", "cvodes", "cvodes-adams")
+
+
+def _engine_name(backend: str, near_stick: bool) -> str:
+    """``auto``: the Taylor method everywhere except where the field is stiff, i.e. while a
+    regularised Coulomb law holds the slip below ~10 eps (relaxation rate ~mu/eps); there
+    CVODES BDF takes over until the slip grows past 100 eps again."""
+    if backend != "auto":
+        return backend
+    return "cvodes" if near_stick else "taylor"
+
+
+def simulate(
+    model: Model,
+    x0,
+    t_end: float,
+    *,
+    t0: float = 0.0,
+    rtol: float = DEFAULT_RTOL,
+    stop_at: str = "jump",
+    backend: str = "auto",
+    t_eval=None,
+    track_minima: bool = True,
+    rise_theta: float | None = None,
+    max_steps: int = 5_000_000,
+    max_switches: int = 10_000,
+) -> SimulationResult:
+    """Integrate the contact dynamics from ``x0`` (a state of ``model.chart``).
+
+    Parameters
+    ----------
+    model : Model
+    x0 : array (6,) for the euler chart, (8,) for the vector chart
+    t_end : float
+        End time (> t0).
+    rtol : float in (0, 1)
+        Tolerance (heyoka's mixed tolerance for ``taylor``, CVODES reltol for ``cvodes``).
+    stop_at : {"jump", "none"}
+        "jump" stops at the first lift-off. "none" records lift-offs and continues with
+        the contact equations (the constraint R >= 0 is then not enforced: a monitoring
+        mode, as in the paper's figures, until flight is modelled).
+    backend : {"auto", "taylor", "cvodes", "cvodes-adams"}
+        ``auto`` (default) is heyoka's Taylor method, handing over to CVODES BDF only
+        where a regularised Coulomb law has stuck (the one stiff regime).
+    t_eval : array or None
+        Times at which to return states (dense output costs only when asked for).
+    track_minima : bool
+        Locate every local minimum of R exactly (for R_min and envelope studies).
+    rise_theta : float or None
+        Stop with status ``completed`` when theta passes this angle in the direction of
+        the rise (toward 0 for a prolate body, toward pi/2 for an oblate one).
+
+    Returns
+    -------
+    SimulationResult
+    """
+    x0 = check_vector("state", x0, model.n_states)
+    t0 = check_finite("t0", t0)
+    t_end = check_finite("t_end", t_end)
+    if not t_end > t0:
+        raise ValueError(f"`t_end` must be > t0 = {t0!r}, got {t_end!r}.")
+    rtol = check_open_interval("rtol", rtol, 0.0, 1.0)
+    check_choice("stop_at", stop_at, ("jump", "none"))
+    check_choice("backend", backend, BACKEND_CHOICES)
+    check_positive("max_steps", max_steps)
+    if t_eval is not None:
+        t_eval = np.sort(np.asarray(t_eval, dtype=float).ravel())
+        if not np.all(np.isfinite(t_eval)):
+            raise ValueError("`t_eval` must be finite times.")
+    p = model.p.copy()
+    if rise_theta is not None:
+        rise_theta = check_open_interval("rise_theta", rise_theta, 0.0, np.pi, "(0, pi)")
+        # prolate rises toward theta = 0 (cos increasing), oblate toward pi/2 (cos decreasing)
+        p[-2] = np.cos(rise_theta)
+        p[-1] = 1.0 if model.body.shape_params[0] > 1 else -1.0
+
+    wall0 = time.perf_counter()
+    engines: dict[str, object] = {}
+    used: list[str] = []
+    near_stick = False
+    events: list[EventRecord] = []
+    minima: list[tuple[float, float]] = []
+    ts_all, ys_all = [], []
+    n_steps = n_rhs = 0
+    t, x = t0, x0.copy()
+    status, reason = None, None
+    t_jump = x_jump = rdot_jump = None
+
+    # Initial mode: zero slip under exact Coulomb is rolling (or sliding in the consistent direction).
+    mode = Mode.SLIDING
+    if Mode.ROLLING in model.modes and float(model.function("slip_speed2")(x, p)) <= STICK_SLIP**2:
+        try:
+            mode, x, detail = zero_slip_start(model, x, p, SLIP_ONSET)
+        except RuntimeError as exc:
+            status, reason = Status.FAILED, str(exc)
+        else:
+            kind = "stick" if mode is Mode.ROLLING else "slip"
+            events.append(EventRecord(kind, t, "start", mode.value, x.copy(), detail))
+    R_start = float(model.function(f"R_{mode.value}")(x, p))
+    R_min = R_start
+    if status is None and R_start <= 0.0:
+        t_jump, x_jump = t, x.copy()
+        if stop_at == "jump":
+            status, reason = Status.JUMPED, "R <= 0 at the start: the state cannot stay in contact"
+        events.append(EventRecord("lift-off", t, mode.value, "flight" if stop_at == "jump" else mode.value, x.copy(), "R <= 0 at start"))
+
+    resume = False
+    while status is None:
+        name = _engine_name(backend, near_stick)
+        if name not in engines:
+            engines[name] = get_backend(name, model, rtol)
+        engine = engines[name]
+        if name not in used:
+            used.append(name)
+        evs = mode_events(model, mode, pointwise=engine.name == "cvodes", rise=rise_theta is not None, near_stick=near_stick)
+        prop = engine.propagate(
+            mode, x, t, t_end, evs, p,
+            max_steps=max_steps - n_steps, t_eval=t_eval, minima=track_minima, resume=resume,
+        )
+        resume = False
+        n_steps += prop.n_steps
+        n_rhs += prop.n_rhs
+        if prop.ts is not None:
+            ts_all.append(prop.ts)
+            ys_all.append(prop.ys)
+        if prop.minima:
+            Rf = model.function(f"R_{mode.value}")
+            minima.extend((tm, float(Rf(xm, p))) for tm, xm in prop.minima)
+        t, x = prop.t, prop.x
+        if not np.all(np.isfinite(x)):
+            status, reason = Status.FAILED, f"non-finite state at t = {t:.6g}"
+            break
+        R_here = float(model.function(f"R_{mode.value}")(x, p))
+        R_min = min(R_min, R_here)
+        if prop.outcome == "failed":
+            status, reason = Status.FAILED, prop.reason
+            break
+        if prop.outcome == "time":
+            status = Status.COMPLETED
+            break
+        if len(events) >= max_switches:
+            status, reason = Status.FAILED, f"more than {max_switches} mode switches by t = {t:.6g} (chattering)"
+            break
+        if prop.event == "lift-off":
+            rdot = float(model.function(f"Rdot_{mode.value}")(x, p))
+            events.append(EventRecord("lift-off", t, mode.value, "flight" if stop_at == "jump" else mode.value, x.copy()))
+            R_min = min(R_min, 0.0)
+            if t_jump is None:
+                t_jump, x_jump, rdot_jump = t, x.copy(), rdot
+            if stop_at == "jump":
+                status = Status.JUMPED
+                break
+            resume = True
+        elif prop.event == "rise-complete":
+            status, reason = Status.COMPLETED, f"rise complete: theta passed {rise_theta:.6g}"
+            break
+        elif prop.event == "stick":
+            if Mode.ROLLING not in model.modes:
+                # regularised law: the slip fell below ~10 eps; record it, no mode change
+                events.append(EventRecord("stick", t, mode.value, mode.value, x.copy(), "slip < 10 eps (regularised)"))
+                near_stick = True
+                continue
+            try:
+                out = after_stick(model, x, p, SLIP_ONSET)
+            except RuntimeError as exc:
+                status, reason = Status.FAILED, f"at t = {t:.6g}: {exc}"
+                break
+            if out is None:  # the guard was grazed, the slip is not vanishing
+                resume = True
+                continue
+            dt, new_mode, x, detail = out
+            t = t + dt
+            events.append(EventRecord("stick" if new_mode is Mode.ROLLING else "slip", t, mode.value, new_mode.value, x.copy(), detail))
+            mode = new_mode
+        elif prop.event == "unstick":
+            events.append(EventRecord("slip", t, mode.value, mode.value, x.copy(), "slip > 100 eps (regularised)"))
+            near_stick = False
+        elif prop.event == "slip":
+            try:
+                new_mode, x, detail = after_slip(model, x, p, SLIP_ONSET)
+            except RuntimeError as exc:
+                status, reason = Status.FAILED, f"at t = {t:.6g}: {exc}"
+                break
+            events.append(EventRecord("slip", t, mode.value, new_mode.value, x.copy(), detail))
+            mode = new_mode
+        else:  # pragma: no cover - a guard without a handler is a programming error
+            raise RuntimeError(f"unhandled event {prop.event!r}")
+
+    if status is Status.JUMPED:
+        R_min = 0.0  # R reached zero at the located lift-off (to the event tolerance)
+    ts = ys = None
+    if ts_all:
+        ts, ys = np.concatenate(ts_all), np.vstack(ys_all)
+        ts, idx = np.unique(ts, return_index=True)
+        ys = ys[idx]
+    return SimulationResult(
+        status=status,
+        chart=model.chart,
+        backend="+".join(used) or backend,
+        rtol=rtol,
+        t0=t0,
+        t=t,
+        x=x,
+        mode=mode.value,
+        t_jump=t_jump,
+        x_jump=x_jump,
+        Rdot_jump=rdot_jump,
+        R_min=R_min,
+        reason=reason,
+        events=tuple(events),
+        n_steps=n_steps,
+        n_rhs=n_rhs,
+        wall_s=time.perf_counter() - wall0,
+        ts=ts,
+        ys=ys,
+        minima=np.array(minima) if track_minima else None,
+    )

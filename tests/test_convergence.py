@@ -1,0 +1,47 @@
+"""The standard prolate workload jumps, and its jump time converges in eps and rtol."""
+
+import numpy as np
+import pytest
+
+import phasekit as pk
+
+
+@pytest.fixture(scope="module")
+def runs(prolate, standard_start):
+    out = {}
+    for label, law in [("exact", pk.Coulomb(0.1)), ("eps1e-6", pk.RegularisedCoulomb(0.1, 1e-6)), ("eps1e-8", pk.RegularisedCoulomb(0.1, 1e-8))]:
+        m = pk.Model(prolate, law)
+        for rtol in (1e-9, 1e-11):
+            out[label, rtol] = pk.simulate(m, standard_start, 200.0, rtol=rtol)
+    return out
+
+
+def test_standard_workload_jumps(runs):
+    r = runs["exact", 1e-9]
+    assert r.status is pk.Status.JUMPED
+    assert 40 < r.t_jump < 50
+    assert r.Rdot_jump < 0  # R crosses zero downwards
+    assert not r.stuck  # slides throughout (slip stays >= 0.03)
+    assert r.events_named("lift-off")[0].t == r.t_jump
+
+
+def test_t_jump_converges_in_eps_and_rtol(runs):
+    ref = runs["exact", 1e-11].t_jump
+    for key, r in runs.items():
+        assert r.status is pk.Status.JUMPED, key
+        assert abs(r.t_jump - ref) / ref < 1e-7, (key, r.t_jump, ref)
+    # eps 1e-6 -> 1e-8 at fixed rtol
+    for rtol in (1e-9, 1e-11):
+        a, b = runs["eps1e-6", rtol].t_jump, runs["eps1e-8", rtol].t_jump
+        assert abs(a - b) / b < 1e-7
+    # the exact stick-slip law agrees with the regularised one
+    assert abs(runs["exact", 1e-11].t_jump - runs["eps1e-8", 1e-11].t_jump) / ref < 1e-9
+
+
+def test_euler_and_vector_and_cvodes_agree_on_t_jump(prolate, standard_start):
+    ref = pk.simulate(pk.Model(prolate, pk.Coulomb(0.1)), standard_start, 200.0, rtol=1e-12).t_jump
+    rv = pk.simulate(pk.Model(prolate, pk.Coulomb(0.1), "vector"), pk.to_chart("vector", standard_start), 200.0, rtol=1e-12)
+    rc = pk.simulate(pk.Model(prolate, pk.Coulomb(0.1)), standard_start, 200.0, rtol=1e-11, backend="cvodes")
+    assert abs(rv.t_jump - ref) / ref < 1e-9
+    assert abs(rc.t_jump - ref) / ref < 1e-7
+    assert rc.backend == "cvodes"
