@@ -13,9 +13,10 @@ from .errors import check_choice
 from .friction import friction_law
 from .model import Model
 from .simulate import simulate
+from .charts import EULER_NAMES, vector_to_euler
 from .starts import gyroscopic_start, raw_start, to_chart
 
-__all__ = ["make_model", "choose_formulation", "simulate_start", "POLE_MARGIN"]
+__all__ = ["make_model", "choose_formulation", "simulate_start", "fixed_points_report", "POLE_MARGIN"]
 
 #: within this angle of theta = 0 or pi the vector chart is the default. Measured (oblate
 #: a = 0.6, n0 = 12, viscous mu = 0.1, rtol 1e-9, to t = 40): away from the pole the Euler
@@ -47,16 +48,32 @@ def simulate_start(
     """Run one simulation described by plain parameters; returns the JSON dict."""
     body = Spheroid(a, A=A, C=C)
     law = friction_law(friction, mu, slip_eps)
-    if start["kind"] == "gyroscopic":
-        y0 = gyroscopic_start(body, start["theta0"], omega0=start.get("omega0"), n0=start.get("n0"))
+    seed_info = None
+    if start["kind"] == "unstable-manifold":
+        from .manifolds import unstable_manifold_start
+
+        check_choice("formulation", formulation, ("auto", "euler", "vector"))
+        model, x0, fp = unstable_manifold_start(
+            body, law, state=start["state"], delta=start["delta"], omega0=start.get("omega0"), n0=start.get("n0"),
+            branch=start.get("branch", "+0"), seed_law=start.get("seed_law", "viscous"),
+        )
+        if formulation not in ("auto", model.chart):
+            raise ValueError(f"`formulation` {formulation!r} cannot start on the {start['state']} state; use {model.chart} or auto.")
+        seed_info = {"fixed_point": fp.to_dict(), "delta": start["delta"], "branch": start.get("branch", "+0"),
+                     "seed_law": fp.law}
+        res = simulate(model, x0, t_end, rtol=rtol, stop_at=stop_at, backend=backend)
     else:
-        chart_hint = "vector" if formulation == "vector" else "euler"
-        y0 = raw_start(start["state"], chart=chart_hint)
-    chart = choose_formulation(float(y0[4]), formulation)
-    if chart == "euler":
-        raw_start(y0, chart="euler")  # theta strictly inside (0, pi)
-    model = Model(body, law, chart)
-    res = simulate(model, to_chart(chart, y0), t_end, rtol=rtol, stop_at=stop_at, backend=backend)
+        if start["kind"] == "gyroscopic":
+            y0 = gyroscopic_start(body, start["theta0"], omega0=start.get("omega0"), n0=start.get("n0"))
+        else:
+            chart_hint = "vector" if formulation == "vector" else "euler"
+            y0 = raw_start(start["state"], chart=chart_hint)
+        chart = choose_formulation(float(y0[4]), formulation)
+        if chart == "euler":
+            raw_start(y0, chart="euler")  # theta strictly inside (0, pi)
+        model = Model(body, law, chart)
+        x0 = to_chart(chart, y0)
+        res = simulate(model, x0, t_end, rtol=rtol, stop_at=stop_at, backend=backend)
     out = res.to_dict()
     out["model"] = {
         "body": repr(body),
@@ -67,5 +84,21 @@ def simulate_start(
         "mu": law.mu,
         "slip_eps": law.eps if law.eps > 0 else None,
     }
-    out["start"] = {k: float(v) for k, v in zip(("U", "V", "Omega", "Lambda", "theta", "n"), y0)}
+    y_start = x0 if model.chart == "euler" else vector_to_euler(x0)
+    out["start"] = {k: float(v) for k, v in zip(EULER_NAMES, y_start)}
+    if seed_info is not None:
+        out["seed"] = seed_info
     return out
+
+
+def fixed_points_report(*, a, mu, friction="viscous", slip_eps=None, A=None, C=None, omega0=None, n0=None) -> dict:
+    """All steady states at the given Omega0 or n0 with their linear stability (JSON dict)."""
+    from .fixedpoints import fixed_points
+
+    if (omega0 is None) == (n0 is None):
+        raise ValueError("give exactly one of `omega0` or `n0`.")
+    body = Spheroid(a, A=A, C=C)
+    law = friction_law(friction, mu, slip_eps)
+    pts = fixed_points(Model(body, law, "euler"), Model(body, law, "vector"), omega0=omega0, n0=n0)
+    return {"fixed_points": [p.to_dict() for p in pts], "model": {"body": repr(body), "friction": law.describe()},
+            "note": "the inverted vertical (theta = pi) is the vertical with k reversed: the same state for a flip-symmetric body"}

@@ -80,6 +80,11 @@ def _build_parser() -> _Parser:
     start = sim.add_mutually_exclusive_group(required=True)
     start.add_argument("--state", type=float, nargs=6, metavar=("U", "V", "Omega", "Lambda", "theta", "n"))
     start.add_argument("--gyroscopic", action="store_true", help="start on the slow manifold")
+    start.add_argument("--unstable-manifold", choices=None, metavar="horizontal|vertical",
+                       help="start at fixed point + delta * unstable eigenvector")
+    sim.add_argument("--delta", type=float, default=0.01, help="seed amplitude on the unstable manifold")
+    sim.add_argument("--branch", default="+0", help="which unstable direction and sign (+0, -0, ...)")
+    sim.add_argument("--seed-law", default="viscous", help="linearisation giving the direction: viscous | same")
     sim.add_argument("--theta0", type=float, default=None)
     sim.add_argument("--omega0", type=float, default=None)
     sim.add_argument("--n0", type=float, default=None)
@@ -89,13 +94,26 @@ def _build_parser() -> _Parser:
     sim.add_argument("--formulation", default="auto", help="euler | vector | auto")
     sim.add_argument("--backend", default="auto", help="auto | taylor | cvodes | cvodes-adams")
     sim.add_argument("--json", action="store_true")
+
+    fx = sub.add_parser("fixed-points", help="steady states and their linear stability")
+    _add_body(fx)
+    _add_friction(fx, default="viscous")
+    grp = fx.add_mutually_exclusive_group(required=True)
+    grp.add_argument("--omega0", type=float)
+    grp.add_argument("--n0", type=float)
+    fx.add_argument("--json", action="store_true")
     return parser
 
 
 def _cmd_simulate(args) -> dict:
     from .api import simulate_start
 
-    if args.gyroscopic:
+    if args.unstable_manifold is not None:
+        if args.theta0 is not None:
+            raise ValueError("`theta0` does not go with --unstable-manifold (the fixed point fixes theta).")
+        start = dict(kind="unstable-manifold", state=args.unstable_manifold, delta=args.delta, omega0=args.omega0,
+                     n0=args.n0, branch=args.branch, seed_law=args.seed_law)
+    elif args.gyroscopic:
         if args.theta0 is None:
             raise ValueError("`theta0` is required with --gyroscopic (a number in (0, pi)).")
         start = dict(kind="gyroscopic", theta0=args.theta0, omega0=args.omega0, n0=args.n0)
@@ -119,7 +137,19 @@ def _cmd_simulate(args) -> dict:
     )
 
 
+def _cmd_fixed_points(args) -> dict:
+    from .api import fixed_points_report
+
+    return fixed_points_report(a=args.a, mu=args.mu, friction=args.friction, slip_eps=args.slip_eps, A=args.A, C=args.C,
+                               omega0=args.omega0, n0=args.n0)
+
+
 def _print_human(out: dict) -> None:
+    if "fixed_points" in out:
+        for fp in out["fixed_points"]:
+            st = ", ".join(f"{k}={'undefined' if v is None else f'{v:.8g}'}" for k, v in fp["state"].items())
+            print(f"{fp['kind']:<13s} {fp['classification']:<45s} residual {fp['residual']:.1e}  [{st}]")
+        return
     for key, val in out.items():
         if key == "events":
             print("events:")
@@ -131,7 +161,7 @@ def _print_human(out: dict) -> None:
             print(f"{key}: {val}")
 
 
-COMMANDS = {"simulate": _cmd_simulate}
+COMMANDS = {"simulate": _cmd_simulate, "fixed-points": _cmd_fixed_points}
 
 
 def main(argv=None) -> int:

@@ -1,0 +1,417 @@
+"""Steady states, their exact linearisation and stability (part I of the series).
+
+Classes of steady states of (2.7) for a flip-symmetric body
+-----------------------------------------------------------
+vertical       theta = 0, spin n0 about the vertical, U = V = 0. The Euler chart is
+               singular there, so it is found and linearised in the vector chart
+               (k = e_Z, w = n0 e_Z, v = 0).
+horizontal     steady precession with the axis horizontal: U = V = Lambda = n = 0,
+               theta = pi/2, any Omega0 (rotating frame of the Euler chart).
+intermediate   steady precession at 0 < theta* < pi: Lambda = U = V = 0, zero slip
+               V_P = 0, i.e. n = Omega (cos theta - h_theta / x_P), and the torque balance
+               (2.7d) with R = 1:
+                   Omega^2 = h_theta / (sin theta [(A - C) cos theta + C h_theta / x_P]),
+               a family in theta* where the right-hand side is positive.
+inverted vertical (theta = pi) is the vertical with k reversed: for a flip-symmetric body
+               it is the same physical state, so it is not reported separately.
+All of them have zero slip, so friction does no work on them and they exist for every law.
+
+Linearisation
+-------------
+CasADi's exact Jacobian of the mode's vector field. For viscous friction the field is
+smooth at zero slip. The Coulomb law is not differentiable at u = 0, so "the linearisation
+of Coulomb friction" needs a meaning:
+* regularised Coulomb (eps > 0): the smooth field, whose slip modes relax at rates ~mu/eps;
+* exact Coulomb: near a zero-slip state that static friction can hold (|F_req| <= mu R,
+  here F_req = 0), any small slip dies in a finite time ~|u|/(mu g) and the motion is the
+  rolling mode's, so stability is that of the ROLLING field restricted to the no-slip
+  manifold (velocity of O slaved to u = 0). Rolling does no work: the rolling spectrum has
+  no friction-induced decay or growth of the kind viscous friction gives, and the
+  regularised spectrum tends to it, plus two fast slip modes, as eps -> 0 (tested).
+
+Families have a structural zero eigenvalue (the family parameter), and in the vector chart
+a second one (|k|, which the field leaves invariant); these count as neutral.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import casadi as ca
+import numpy as np
+
+from .charts import EULER_NAMES, vector_to_euler
+from .errors import ConvergenceError, check_finite
+from .model import Model
+from .modes import Mode, velocity_slots
+
+__all__ = [
+    "FixedPoint",
+    "Branch",
+    "find_fixed_point",
+    "fixed_points",
+    "horizontal_state",
+    "vertical_state",
+    "intermediate_state",
+    "intermediate_omega",
+    "continue_family",
+    "linearise",
+]
+
+#: a real part within NEUTRAL_TOL * max(1, max |lambda|) of zero counts as neutral
+NEUTRAL_TOL = 1e-8
+
+
+@dataclass(frozen=True)
+class FixedPoint:
+    """A steady state with its linearisation.
+
+    Attributes
+    ----------
+    kind : "vertical", "horizontal" or "intermediate"
+    chart : the chart of ``x`` ("euler" or "vector")
+    x : chart state; ``y`` the same in the paper's variables (Omega is NaN at theta = 0)
+    eigenvalues : complex, sorted by descending real part
+    eigenvectors : columns in the coordinates of ``space`` (the chart's state, or for
+        exact Coulomb the no-slip manifold coordinates, lifted to the chart state)
+    residual : max |f(x)| of the mode's vector field at x
+    law : the linearised law ("viscous", "coulomb-regularised", "coulomb-rolling")
+    """
+
+    kind: str
+    chart: str
+    x: np.ndarray
+    y: np.ndarray
+    eigenvalues: np.ndarray
+    eigenvectors: np.ndarray
+    residual: float
+    law: str
+    parameter: dict = field(default_factory=dict)
+
+    @property
+    def scale(self) -> float:
+        return max(1.0, float(np.max(np.abs(self.eigenvalues)))) if self.eigenvalues.size else 1.0
+
+    def _unstable_mask(self) -> np.ndarray:
+        return self.eigenvalues.real > NEUTRAL_TOL * self.scale
+
+    @property
+    def n_unstable(self) -> int:
+        """Dimension of the unstable subspace (a complex pair counts 2)."""
+        return int(np.sum(self._unstable_mask()))
+
+    @property
+    def n_neutral(self) -> int:
+        return int(np.sum(np.abs(self.eigenvalues.real) <= NEUTRAL_TOL * self.scale))
+
+    @property
+    def stable(self) -> bool:
+        """Linearly (spectrally) stable: no eigenvalue with positive real part."""
+        return self.n_unstable == 0
+
+    @property
+    def classification(self) -> str:
+        lam = self.eigenvalues[self._unstable_mask()]
+        n_real = int(np.sum(np.abs(lam.imag) <= NEUTRAL_TOL * self.scale))
+        n_osc = (lam.size - n_real) // 2
+        if lam.size == 0:
+            return "stable" if self.n_neutral <= 2 else "neutral (spectrally stable)"
+        parts = []
+        if n_real:
+            parts.append(f"{n_real} real unstable")
+        if n_osc:
+            parts.append(f"{n_osc} oscillatory unstable pair" + ("s" if n_osc > 1 else ""))
+        return "unstable: " + ", ".join(parts)
+
+    def unstable_directions(self) -> list[np.ndarray]:
+        """Real unit vectors spanning the unstable subspace (Re and Im of complex ones),
+        normalised in the Euclidean norm of the chart state."""
+        out = []
+        for k in np.flatnonzero(self._unstable_mask()):
+            lam, v = self.eigenvalues[k], self.eigenvectors[:, k]
+            if abs(lam.imag) <= NEUTRAL_TOL * self.scale:
+                vecs = [v.real]
+            elif lam.imag > 0:
+                vecs = [v.real, v.imag]
+            else:
+                continue
+            for w in vecs:
+                if np.linalg.norm(w) > 0:
+                    out.append(w / np.linalg.norm(w))
+        return out
+
+    def to_dict(self) -> dict:
+        y = self.y
+        state = {k: (None if not np.isfinite(v) else float(v)) for k, v in zip(EULER_NAMES, y)}
+        return {
+            "kind": self.kind,
+            "state": state,
+            "residual": float(self.residual),
+            "eigenvalues": [[float(l.real), float(l.imag)] for l in self.eigenvalues],
+            "n_unstable": self.n_unstable,
+            "n_neutral": self.n_neutral,
+            "stable": self.stable,
+            "classification": self.classification,
+            "linearised_law": self.law,
+            "chart": self.chart,
+            **({"parameter": self.parameter} if self.parameter else {}),
+        }
+
+    def __repr__(self) -> str:
+        return f"FixedPoint({self.kind}, {self.classification}, residual={self.residual:.1e})"
+
+
+@dataclass(frozen=True)
+class Branch:
+    """A family of fixed points followed in a parameter: one row per step."""
+
+    kind: str
+    parameter: str
+    values: np.ndarray
+    points: tuple[FixedPoint, ...]
+    newton_iterations: tuple[int, ...] = ()
+
+    @property
+    def n_unstable(self) -> np.ndarray:
+        return np.array([p.n_unstable for p in self.points])
+
+    @property
+    def stable(self) -> np.ndarray:
+        return np.array([p.stable for p in self.points])
+
+    def table(self) -> list[dict]:
+        return [
+            {self.parameter: float(v), "n_unstable": p.n_unstable, "stable": p.stable, "residual": p.residual,
+             "max_re": float(p.eigenvalues.real.max())}
+            for v, p in zip(self.values, self.points)
+        ]
+
+
+# -- the states --------------------------------------------------------------------------
+
+
+def horizontal_state(omega0: float) -> np.ndarray:
+    """(U, V, Omega, Lambda, theta, n) = (0, 0, Omega0, 0, pi/2, 0)."""
+    return np.array([0.0, 0.0, check_finite("omega0", omega0), 0.0, np.pi / 2, 0.0])
+
+
+def vertical_state(n0: float) -> np.ndarray:
+    """Vector-chart state k = e_Z, w = n0 e_Z, v = 0."""
+    return np.array([0.0, 0.0, 1.0, 0.0, 0.0, check_finite("n0", n0), 0.0, 0.0])
+
+
+def _geometry(body, theta):
+    h, ht, _ = body.h(theta)
+    s, c = np.sin(theta), np.cos(theta)
+    return h, ht, s, c, h * s + ht * c
+
+
+def intermediate_omega(body, theta: float) -> float | None:
+    """Omega of the intermediate steady precession at theta, or None where it does not exist."""
+    h, ht, s, c, xP = _geometry(body, theta)
+    denom = s * ((body.A - body.C) * c + body.C * ht / xP)
+    if denom == 0.0 or ht / denom <= 0.0:
+        return None
+    return float(np.sqrt(ht / denom))
+
+
+def intermediate_state(body, theta: float) -> np.ndarray | None:
+    """The intermediate steady precession at theta (Omega > 0 root), or None."""
+    om = intermediate_omega(body, theta)
+    if om is None:
+        return None
+    h, ht, s, c, xP = _geometry(body, theta)
+    return np.array([0.0, 0.0, om, 0.0, theta, om * (c - ht / xP)])
+
+
+# -- Newton -----------------------------------------------------------------------------
+
+
+def _mode_for(model: Model) -> Mode:
+    return Mode.ROLLING if Mode.ROLLING in model.modes else Mode.SLIDING
+
+
+_SOLVERS: dict = {}
+
+
+def _newton_system(model: Model, kind: str, fixed: str):
+    """CasADi rootfinder for a square system: the chart's field with one redundant equation
+    replaced by the family constraint (fixed Omega or n), or, at the vertical, the tilt
+    coordinates of k and w with |k| = 1 and w.k = n0 imposed."""
+    key = (model.compiled.key, kind, fixed)
+    if key in _SOLVERS:
+        return _SOLVERS[key]
+    # The steady states have zero slip, so they are the same for every law: locate them with
+    # the smooth sliding field (for exact Coulomb the rolling field slaves U, V and its
+    # Jacobian is singular in them). The law's own field is used for the linearisation.
+    f = model.function("rhs_sliding")
+    p = ca.SX.sym("p", len(model.p))
+    val = ca.SX.sym("val")
+    if model.chart == "euler":
+        x = ca.SX.sym("x", 6)
+        r = f(x, p)
+        # At a fixed point Lambda = 0 and F_y = 0 make (2.7c) hold identically when Omega
+        # is fixed, and (2.7f) when n is fixed: drop that equation, add the constraint.
+        drop, idx = (2, 2) if fixed == "Omega" else (5, 5)
+        eqs = ca.vertcat(*[r[i] for i in range(6) if i != drop], x[idx] - val)
+        z = x
+        lift = ca.Function("lift", [z, p, val], [x])
+    else:
+        # vertical family: unknown tilt coordinates, k_z and w_z from |k| = 1, w.k = n0
+        z = ca.SX.sym("z", 6)  # k_x, k_y, w_x, w_y, v_x, v_y
+        kz = ca.sqrt(1 - z[0] ** 2 - z[1] ** 2)
+        wz = (val - z[0] * z[2] - z[1] * z[3]) / kz
+        x = ca.vertcat(z[0], z[1], kz, z[2], z[3], wz, z[4], z[5])
+        r = f(x, p)
+        eqs = ca.vertcat(r[0], r[1], r[3], r[4], r[6], r[7])
+        lift = ca.Function("lift", [z, p, val], [x])
+    G = ca.Function("G", [z, ca.vertcat(p, val)], [eqs])
+    solver = ca.rootfinder("fixed_point_newton", "newton", G, {"abstol": 1e-14, "max_iter": 50, "error_on_fail": False})
+    _SOLVERS[key] = (solver, lift, z.shape[0])
+    return _SOLVERS[key]
+
+
+def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str | None = None) -> FixedPoint:
+    """Newton-solve for a steady state near ``guess`` (a chart state) with the family
+    parameter held at ``value`` (Omega for the Euler chart unless ``fixed="n"``; the spin
+    n0 for the vertical in the vector chart), then linearise it.
+
+    Raises ConvergenceError (with the last iterate's residual) if Newton fails.
+    """
+    value = check_finite("value", value)
+    fixed = fixed or ("Omega" if model.chart == "euler" else "n")
+    newton_model = model
+    if Mode.ROLLING in model.modes:  # exact Coulomb: any smooth law has the same zero-slip states
+        from .friction import Viscous
+
+        newton_model = Model(model.body, Viscous(1.0), model.chart)
+    solver, lift, nz = _newton_system(newton_model, kind, fixed)
+    guess = np.asarray(guess, dtype=float)
+    z0 = guess if model.chart == "euler" else guess[[0, 1, 3, 4, 6, 7]]
+    pv = np.concatenate([newton_model.p, [value]])
+    z = np.asarray(solver(z0, pv)).ravel()
+    x = np.asarray(lift(z, newton_model.p, value)).ravel()
+    fp = linearise(model, x, kind=kind)
+    if not np.all(np.isfinite(x)) or fp.residual > 1e-10:
+        raise ConvergenceError(f"Newton did not converge to a {kind} fixed point (residual {fp.residual:.2e})", fp)
+    return fp
+
+
+# -- linearisation -------------------------------------------------------------------------
+
+
+def _rolling_reduced_jacobian(model: Model, x: np.ndarray):
+    """Jacobian of the rolling field on the no-slip manifold, in coordinates that omit the
+    velocity of O (it is slaved to u = 0), and the map lifting tangent vectors back."""
+    n = model.n_states
+    i, j = velocity_slots(model.chart)
+    keep = [k for k in range(n) if k not in (i, j)]
+    r = ca.SX.sym("r", len(keep))
+    p = ca.SX.sym("p", len(model.p))
+    base = [None] * n
+    for k, kk in enumerate(keep):
+        base[kk] = r[k]
+    base[i] = ca.SX(0)
+    base[j] = ca.SX(0)
+    x0 = ca.vertcat(*base)
+    u = model.function("slip")(x0, p)  # the slip is (velocity slots) + u(rest)
+    full = [base[k] for k in range(n)]
+    full[i], full[j] = -u[0], -u[1]
+    xr = ca.vertcat(*full)
+    fr = model.function("rhs_rolling")(xr, p)
+    red = ca.vertcat(*[fr[k] for k in keep])
+    J = ca.Function("Jr", [r, p], [ca.jacobian(red, r), ca.jacobian(xr, r)])
+    Jr, L = J(x[keep], model.p)
+    return np.asarray(Jr), np.asarray(L)
+
+
+def linearise(model: Model, x, *, kind: str = "state") -> FixedPoint:
+    """Eigen-decomposition of the exact Jacobian at ``x`` (see the module notes for Coulomb)."""
+    x = np.asarray(x, dtype=float)
+    mode = _mode_for(model)
+    residual = float(np.max(np.abs(model.rhs(x, mode))))
+    if mode is Mode.ROLLING:
+        Jr, L = _rolling_reduced_jacobian(model, x)
+        lam, V = np.linalg.eig(Jr)
+        V = L @ V  # tangent vectors of the no-slip manifold, in chart coordinates
+        law = "coulomb-rolling"
+    else:
+        lam, V = np.linalg.eig(model.jacobian(x, mode))
+        law = model.friction.name
+    order = np.lexsort((-lam.imag, -lam.real))
+    y = vector_to_euler(x) if model.chart == "vector" else x.copy()
+    if model.chart == "vector" and np.hypot(x[0], x[1]) == 0.0:
+        y[2] = np.nan  # Omega is undefined at theta = 0
+    return FixedPoint(kind, model.chart, x, y, lam[order], V[:, order], residual, law)
+
+
+# -- all fixed points for a family parameter ---------------------------------------------
+
+
+def fixed_points(model_euler: Model, model_vector: Model | None = None, *, omega0: float | None = None, n0: float | None = None) -> list[FixedPoint]:
+    """Every class of steady state at the given family parameter.
+
+    ``omega0``: the horizontal precession and the intermediate precessions with that
+    Omega. ``n0``: the vertical spin (needs ``model_vector``) and the intermediate
+    precessions with that spin.
+    """
+    if (omega0 is None) == (n0 is None):
+        raise ValueError("give exactly one of `omega0` or `n0`.")
+    body = model_euler.body
+    out: list[FixedPoint] = []
+    thetas = np.linspace(1e-3, np.pi / 2 - 1e-3, 400)
+    if omega0 is not None:
+        omega0 = check_finite("omega0", omega0)
+        out.append(find_fixed_point(model_euler, horizontal_state(omega0), kind="horizontal", value=omega0))
+        target = lambda st: st[2] - abs(omega0)  # noqa: E731
+        sign = np.sign(omega0) or 1.0
+    else:
+        n0 = check_finite("n0", n0)
+        if model_vector is not None:
+            out.append(find_fixed_point(model_vector, vertical_state(n0), kind="vertical", value=n0))
+        target = lambda st: st[5] - abs(n0)  # noqa: E731
+        sign = np.sign(n0) or 1.0
+    # intermediate family: bracket the parameter along theta*, then Newton from the bracket
+    vals = []
+    for th in thetas:
+        st = intermediate_state(body, th)
+        vals.append(np.nan if st is None else target(st))
+    vals = np.array(vals)
+    for k in range(len(thetas) - 1):
+        if np.isfinite(vals[k]) and np.isfinite(vals[k + 1]) and vals[k] * vals[k + 1] < 0:
+            frac = vals[k] / (vals[k] - vals[k + 1])
+            guess = intermediate_state(body, thetas[k] + frac * (thetas[k + 1] - thetas[k]))
+            guess = guess * np.array([1, 1, sign, 1, 1, sign])  # reversal: (Omega, n) -> -(Omega, n)
+            fixed, value = ("Omega", omega0) if omega0 is not None else ("n", n0)
+            try:
+                out.append(find_fixed_point(model_euler, guess, kind="intermediate", value=value, fixed=fixed))
+            except ConvergenceError:
+                continue
+    return out
+
+
+def continue_family(model: Model, kind: str, values, *, start=None) -> Branch:
+    """Natural-parameter continuation: Newton at each value from the previous solution.
+
+    ``kind``: "horizontal" (values of Omega0), "vertical" (values of n0; vector chart) or
+    "intermediate" (values of Omega0; ``start`` is a state on the family near values[0]).
+    """
+    values = np.asarray(values, dtype=float)
+    pts = []
+    if kind == "horizontal":
+        guess = horizontal_state(values[0])
+    elif kind == "vertical":
+        guess = vertical_state(values[0])
+    else:
+        if start is None:
+            raise ValueError("`start` is required to continue the intermediate family.")
+        guess = np.asarray(start, dtype=float)
+    prev = None
+    for v in values:
+        if prev is not None and kind == "intermediate" and len(pts) >= 2:
+            # secant predictor along the branch
+            guess = 2 * pts[-1].x - pts[-2].x
+        fp = find_fixed_point(model, guess, kind=kind, value=float(v))
+        pts.append(fp)
+        guess, prev = fp.x, v
+    return Branch(kind, "n0" if kind == "vertical" else "Omega0", values, tuple(pts))
