@@ -225,8 +225,9 @@ class CvodesBackend:
     name = "cvodes"
     _lock = threading.Lock()
     _memory: dict = {}
-    #: output points per chunk; the chunk length adapts to the rotation rate
-    n_grid = 40
+    #: output points per chunk (the chunk length adapts to the rotation rate). Measured: 100
+    #: is 2x faster than 40 (fewer restarts of CVODES) and no slower than 200.
+    n_grid = 100
 
     def __init__(self, model: Model, rtol: float, method: str = "bdf"):
         self.model = model
@@ -237,7 +238,7 @@ class CvodesBackend:
         import casadi as ca
 
         m = self.model
-        key = (m.compiled.key, mode, self.rtol, self.method, int(max_steps))
+        key = (m.compiled.key, mode, self.rtol, self.method, int(max_steps), self.n_grid)
         with self._lock:
             if key in self._memory:
                 return self._memory[key]
@@ -270,18 +271,41 @@ class CvodesBackend:
             return float(max(1.0, abs(x[2]), abs(x[5]), abs(x[3])))
         return float(max(1.0, np.linalg.norm(x[3:6])))
 
+    def _monitor(self, mode, events):
+        """One CasADi function giving, on a whole output grid at once, every guard, every
+        guard rate (zeros where none), R and dR/dt: one call per chunk instead of many."""
+        import casadi as ca
+
+        key = (self.model.compiled.key, mode, events, self.n_grid)
+        with self._lock:
+            if key in self._memory:
+                return self._memory[key]
+        m = self.model
+        x = ca.SX.sym("x", m.n_states)
+        p = ca.SX.sym("p", len(m.p))
+        outs = [m.function(ev.function)(x, p) for ev in events]
+        outs += [m.function(ev.rate)(x, p) if ev.rate else ca.SX(0) for ev in events]
+        outs += [m.function(f"R_{mode.value}")(x, p), m.function(f"Rdot_{mode.value}")(x, p)]
+        f = ca.Function("monitor", [x, p], [ca.vertcat(*outs)]).map(self.n_grid + 1)
+        with self._lock:
+            self._memory[key] = f
+        return f
+
     def propagate(self, mode, x0, t0, t_end, events, p, *, max_steps, t_eval=None, minima=False, resume=False) -> Propagation:
         """As :meth:`TaylorBackend.propagate`; a guard exactly at zero at t0 does not fire."""
         m = self.model
+        events = tuple(events)
         chunk, single = self._functions(mode, max_steps)
+        monitor = self._monitor(mode, events)
         p = np.asarray(p, dtype=float)
+        ng, ne = self.n_grid, len(events)
+        P = np.tile(p[:, None], (1, ng + 1))
         t, x = float(t0), np.asarray(x0, dtype=float).copy()
-        guards = [(ev, m.function(ev.function)) for ev in events]
-        Rf, Rdf = m.function(f"R_{mode.value}"), m.function(f"Rdot_{mode.value}")
         prop = Propagation(t=t, x=x, outcome="time")
         te = None if t_eval is None else np.asarray(t_eval, dtype=float)
         ts_out, ys_out = [], []
-        ng = self.n_grid
+        guard_fn = [m.function(ev.function) for ev in events]
+        rate_fn = [m.function(ev.rate) if ev.rate else None for ev in events]
 
         def run(xa, T):
             return np.asarray(single(x0=xa, p=np.concatenate([p, [T]]))["xf"]).ravel() if T > 0 else xa
@@ -302,35 +326,35 @@ class CvodesBackend:
             if not np.all(np.isfinite(X)):
                 prop.outcome, prop.reason = "failed", f"non-finite state near t = {t:.6g}"
                 break
-            P = np.tile(p[:, None], (1, ng + 1))
-            G = [np.asarray(f.map(ng + 1)(X.T, P)).ravel() for _, f in guards]
-            Gd = [np.asarray(m.function(ev.rate).map(ng + 1)(X.T, P)).ravel() if ev.rate else None for ev, _ in guards]
-            Rs = np.asarray(Rf.map(ng + 1)(X.T, P)).ravel()
-            Rds = np.asarray(Rdf.map(ng + 1)(X.T, P)).ravel()
+            M = np.asarray(monitor(X.T, P))  # (2 ne + 2, ng + 1)
+            G, Gd, Rs, Rds = M[:ne], M[ne:2 * ne], M[2 * ne], M[2 * ne + 1]
+            # candidate intervals, vectorised: sign changes, or a Hermite dip below zero
+            cand = np.zeros((ne, ng), dtype=bool)
+            dips = np.zeros((ne, ng), dtype=bool)
+            for i, ev in enumerate(events):
+                a, b = G[i, :-1], G[i, 1:]
+                down = (a > 0) & (b <= 0)
+                up = (a < 0) & (b >= 0)
+                cross = down if ev.direction < 0 else up if ev.direction > 0 else down | up
+                if ev.rate and ev.direction <= 0:
+                    dips[i] = ~cross & (a > 0) & (b > 0) & _hermite_dips(dt / ng, a, b, Gd[i, :-1], Gd[i, 1:])
+                cand[i] = cross | dips[i]
             last = ng
-            for j in range(1, ng + 1):
+            for j in np.flatnonzero(cand.any(axis=0)):
                 found = None
-                for (ev, gf), g, gd in zip(guards, G, Gd):
-                    a, b = g[j - 1], g[j]
-                    crossed = (ev.direction <= 0 and a > 0 >= b) or (ev.direction >= 0 and a < 0 <= b)
-                    dip = False
-                    if not crossed and gd is not None and ev.direction <= 0 and a > 0 and b > 0:
-                        dip = _hermite_dip(tk[j] - tk[j - 1], a, b, gd[j - 1], gd[j])
-                    if crossed or dip:
-                        rate = m.function(ev.rate) if ev.rate else None
-                        hit = _refine(run, gf, rate, p, X[j - 1], tk[j] - tk[j - 1], dip)
-                        if hit is not None and (found is None or hit[0] < found[0]):
-                            found = (hit[0], hit[1], ev.name)
+                for i in np.flatnonzero(cand[:, j]):
+                    hit = _refine(run, guard_fn[i], rate_fn[i], p, X[j], tk[j + 1] - tk[j], bool(dips[i, j]))
+                    if hit is not None and (found is None or hit[0] < found[0]):
+                        found = (hit[0], hit[1], events[i].name)
                 if found is not None:
-                    last = j - 1
-                    t, x = tk[j - 1] + found[0], found[1]
+                    last = j
+                    t, x = tk[j] + found[0], found[1]
                     prop.outcome, prop.event = "event", found[2]
                     break
             if minima:
-                for j in range(1, last + 1):
-                    if Rds[j - 1] < 0 <= Rds[j]:  # bottom of a dip, to grid accuracy
-                        k = j if Rs[j] < Rs[j - 1] else j - 1
-                        prop.minima.append((float(tk[k]), X[k].copy()))
+                for j in np.flatnonzero((Rds[:-1] < 0) & (Rds[1:] >= 0))[: max(last, 0)]:
+                    k = j + 1 if Rs[j + 1] < Rs[j] else j  # bottom of a dip, to grid accuracy
+                    prop.minima.append((float(tk[k]), X[k].copy()))
             if te is not None:
                 hi = t if prop.outcome == "event" else tk[-1]
                 for tt in te[(te > tk[0]) & (te <= hi)]:
@@ -375,11 +399,15 @@ def _refine(run, gf, rate, p, xa, T, dip):
     return tau, run(xa, tau)
 
 
-def _hermite_dip(h, R0, R1, d0, d1) -> bool:
-    """Does the cubic Hermite interpolant of R (values R0, R1, slopes d0, d1) dip below 0?"""
-    s = np.linspace(0, 1, 33)
-    v = (2 * s**3 - 3 * s**2 + 1) * R0 + (s**3 - 2 * s**2 + s) * h * d0 + (-2 * s**3 + 3 * s**2) * R1 + (s**3 - s**2) * h * d1
-    return bool(np.min(v) < 0)
+_S = np.linspace(0.0, 1.0, 33)[:, None]
+_H00, _H10, _H01, _H11 = 2 * _S**3 - 3 * _S**2 + 1, _S**3 - 2 * _S**2 + _S, -2 * _S**3 + 3 * _S**2, _S**3 - _S**2
+
+
+def _hermite_dips(h, g0, g1, d0, d1) -> np.ndarray:
+    """For each interval, does the cubic Hermite interpolant (values g0, g1, slopes d0, d1,
+    interval length h) dip below zero inside? Vectorised over intervals."""
+    v = _H00 * g0 + _H10 * (h * d0) + _H01 * g1 + _H11 * (h * d1)
+    return v.min(axis=0) < 0
 
 
 def _hermite_state(seg_t, seg_x, j, tt, m, mode):

@@ -1,0 +1,271 @@
+"""Jump thresholds against aspect ratio (Figure 6b,c): Omega0(a) for prolate, n0(a) for oblate.
+
+For each aspect ratio, the smallest precession rate Omega0 (prolate, from the horizontal
+steady precession) or spin n0 (oblate, from the vertical spin) whose trajectory loses
+contact (R = 0, dR/dt < 0) before its rise completes, under three definitions side by side
+(see phasekit.threshold): (i) viscous friction; (ii) exact Coulomb friction with starts on
+the sliding (gyroscopic-balance) branch at d = 0.01 from the fixed point, the DEFAULT;
+(iii) the paper's literal recipe, the viscous unstable eigenvector (delta = 0.01)
+integrated with Coulomb friction regularised with eps = 1e-3, 1e-4, or exact.
+
+Each threshold is bracketed by a coarse scan (seeded by the previous aspect ratio) and
+bisected to 1e-3 relative, then checked: 1.02 x threshold must jump, 0.98 x must not.
+Sensitivity at a = 1.5 and 2/3: d or delta in {0.005, 0.01, 0.02}, eps in {1e-4, 1e-6,
+1e-8, exact}, rtol in {1e-8, 1e-10}.
+
+Runs on Dask (LocalCluster with one single-threaded worker per core, or --scheduler ADDRESS),
+the compiled model shipped to each worker once. Every finished point is appended to
+figures/threshold_vs_aspect.csv (manifest: figures/threshold_vs_aspect.json) at once, and
+a rerun skips finished points, so a killed sweep resumes. Writes
+figures/threshold_vs_aspect.png.
+
+    python studies/threshold_vs_aspect.py [--quick] [--serial] [--scheduler ADDRESS] [--fresh]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+from dataclasses import asdict, replace
+from pathlib import Path
+
+import numpy as np
+
+from phasekit.sweep import ModelPack, ResultStore, TaskSpec, make_client, provenance, run_tasks
+from phasekit.threshold import DEFAULT_DEFINITIONS, Definition, find_threshold
+
+FIGURES = Path(__file__).resolve().parents[1] / "figures"
+STEM = "threshold_vs_aspect"
+
+SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5)
+PROLATE = [3.0, 2.5, 2.0, 1.75, 1.5, 1.4, 1.3, 1.2, 1.15, 1.1, 1.075, 1.05]
+OBLATE = [0.3, 0.4, 0.5, 0.6, 2 / 3, 0.7, 0.75, 0.8, 0.85, 0.9, 0.925, 0.95]
+QUICK_PROLATE = [2.0, 1.5, 1.2]
+QUICK_OBLATE = [0.5, 2 / 3, 0.8]
+DEFAULT_NAME = "sliding"
+# The paper's own brackets from single trajectories: Fig. 4 (a = 1.5, start (5.2), which is the
+# viscous eigenvector with delta ~ 0.02): Omega0 = 10.2 no jump, 10.5 jump. Fig. 3 (a = 2/3,
+# start (5.1), delta ~ 1e-5): n0 = 10 no jump, 10.5 jump.
+PAPER_BRACKETS = {1.5: (10.2, 10.5), 2 / 3: (10.0, 10.5)}
+
+FIELDS = ["key", "branch", "a", "threshold", "bracket_lo", "bracket_hi", "n_sims", "status", "definition", "default",
+          "group", "name", "seed", "amplitude", "eps", "mu", "rtol", "transitions", "stuck_near",
+          "check_above_jumped", "check_below_jumped", "consistent", "n_check_sims", "wall_s"]
+
+
+def sensitivity_definitions(quick: bool) -> list[Definition]:
+    base = next(d for d in DEFAULT_DEFINITIONS if d.name == DEFAULT_NAME)
+    lit = Definition("literal-eps1e-4", "literal", eps=1e-4)
+    out = [replace(base, name="sliding-d0.005", amplitude=0.005), replace(base, name="sliding-d0.02", amplitude=0.02),
+           replace(base, name="sliding-rtol1e-8", rtol=1e-8), replace(base, name="sliding-rtol1e-10", rtol=1e-10)]
+    if quick:
+        return out
+    out += [replace(base, name=f"sliding-eps{e:g}", eps=e) for e in (1e-4, 1e-6, 1e-8)]
+    out += [replace(lit, name="literal-eps1e-4-delta0.005", amplitude=0.005), replace(lit, name="literal-eps1e-4-delta0.02", amplitude=0.02),
+            replace(lit, name="literal-eps1e-4-rtol1e-8", rtol=1e-8), replace(lit, name="literal-eps1e-4-rtol1e-10", rtol=1e-10),
+            replace(lit, name="literal-eps1e-6", eps=1e-6), replace(lit, name="literal-eps1e-8", eps=1e-8)]
+    return out
+
+
+def row_key(defn: Definition, a: float) -> str:
+    return f"{defn.key()}|a={a:.10g}|search={json.dumps(SEARCH, sort_keys=True)}"
+
+
+def threshold_task(prev, defn_fields: dict, a: float, group: str, is_default: bool) -> dict:
+    """One aspect ratio: find the threshold (seeded by the previous point), then check it."""
+    defn = Definition(**defn_fields)
+    t0 = time.perf_counter()
+    guess = None
+    if prev and prev.get("threshold") not in (None, ""):
+        guess = float(prev["threshold"])
+    try:
+        th = find_threshold(defn, a, guess=guess, **SEARCH)
+    except Exception as exc:  # a sweep tabulates failures instead of stopping
+        return dict(key=row_key(defn, a), branch="prolate" if a > 1 else "oblate", a=a, status="failed",
+                    definition=defn.label, name=defn.name, group=group, default=is_default, wall_s=time.perf_counter() - t0,
+                    transitions=f"error: {exc}")
+    above = below = consistent = None
+    n_check = 0
+    if th.value is not None and th.status in ("converged", "non_monotone"):  # not for bracket_only
+        above, below = defn.outcome(a, 1.02 * th.value), defn.outcome(a, 0.98 * th.value)
+        n_check = 2
+        consistent = bool(above.jumped) and below.jumped is False
+        above, below = above.jumped, below.jumped
+    return dict(
+        key=row_key(defn, a), branch="prolate" if a > 1 else "oblate", a=a, threshold=th.value,
+        bracket_lo=th.bracket[0], bracket_hi=th.bracket[1], n_sims=th.n_sims, status=th.status,
+        definition=defn.label, default=is_default, group=group, name=defn.name, seed=defn.seed,
+        amplitude=defn.amplitude, eps=defn.eps if defn.eps else "exact" if defn.seed != "viscous" else "",
+        mu=defn.mu, rtol=defn.rtol, transitions=json.dumps([list(t) for t in th.transitions]),
+        stuck_near=th.stuck_near, check_above_jumped=above, check_below_jumped=below, consistent=consistent,
+        n_check_sims=n_check, wall_s=time.perf_counter() - t0,
+    )
+
+
+def build_tasks(quick: bool, sensitivity: bool) -> list[TaskSpec]:
+    prolate, oblate = (QUICK_PROLATE, QUICK_OBLATE) if quick else (PROLATE, OBLATE)
+    specs: list[TaskSpec] = []
+    main_keys = {}
+    for defn in DEFAULT_DEFINITIONS:
+        for a_list in (prolate, oblate):
+            prev = None
+            for a in a_list:  # ordered from far to near a = 1: thresholds grow along the chain
+                key = row_key(defn, a)
+                specs.append(TaskSpec(key, threshold_task, (asdict(defn), a, "main", defn.name == DEFAULT_NAME), after=prev))
+                main_keys[defn.name, a] = key
+                prev = key
+    if sensitivity:
+        for defn in sensitivity_definitions(quick):
+            parent = "literal-eps1e-4" if defn.seed == "literal" else DEFAULT_NAME
+            for a in (1.5, 2 / 3):
+                specs.append(TaskSpec(row_key(defn, a), threshold_task, (asdict(defn), a, "sensitivity", False),
+                                      after=main_keys.get((parent, a))))
+    return specs
+
+
+def warm_up() -> None:
+    """Touch every model and integrator the sweep uses, so the pack carries them compiled."""
+    defs = list(DEFAULT_DEFINITIONS) + sensitivity_definitions(False)
+    for d in defs:
+        for a, v in ((1.5, 12.0), (2 / 3, 12.0)):
+            d2 = replace(d, t_max=1.0)
+            try:
+                d2.outcome(a, v)
+            except Exception:
+                pass
+
+
+def _f(x):
+    return None if x in (None, "", "None") else float(x)
+
+
+def plot(rows: list[dict], quick: bool, png: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5.6))
+    styles = {"sliding": dict(color="k", lw=2.2, marker="o", ms=4, zorder=5),
+              "literal-eps1e-3": dict(color="C0", lw=1, marker="s", ms=3),
+              "literal-eps1e-4": dict(color="C1", lw=1, marker="^", ms=3),
+              "literal-exact": dict(color="C3", lw=1, marker="v", ms=3),
+              "viscous": dict(color="C2", lw=1, marker="x", ms=3)}
+    main = [r for r in rows if r["group"] == "main"]
+    for ax, branch in zip(axes, ("prolate", "oblate")):
+        for defn in DEFAULT_DEFINITIONS:
+            pts = sorted((float(r["a"]), r) for r in main if r["name"] == defn.name and r["branch"] == branch)
+            if not pts:
+                continue
+            ok = [(a, _f(r["threshold"])) for a, r in pts if _f(r["threshold"]) is not None]
+            label = defn.label + (" [default]" if defn.name == DEFAULT_NAME else "")
+            none = [a for a, r in pts if r["status"] == "no_jump_in_range"]
+            if ok:
+                ax.plot(*zip(*ok), label=label, **styles.get(defn.name, {}))
+            if none:
+                ax.plot(none, [SEARCH["hi"]] * len(none), ls="none", marker=r"$\uparrow$", ms=10, color=styles[defn.name]["color"],
+                        label=(label + f": no jump up to {SEARCH['hi']:g}") if not ok else None)
+        for a, (lo, hi) in PAPER_BRACKETS.items():
+            if (a > 1) == (branch == "prolate"):
+                ax.errorbar([a], [0.5 * (lo + hi)], yerr=[[0.5 * (hi - lo)]], fmt="D", color="m", ms=5, capsize=3,
+                            label="paper Fig. %s: bracket from two runs" % ("4" if a > 1 else "3"))
+        ax.set_yscale("log")
+        ax.axvline(1.0, color="0.7", ls=":")
+        ax.set_xlabel(r"aspect ratio $a$")
+        ax.grid(alpha=0.3, which="both")
+    axes[0].set_ylabel(r"threshold precession rate $\Omega_0$ (units $\sqrt{g/b}$)")
+    axes[1].set_ylabel(r"threshold spin $n_0$ (units $\sqrt{g/b}$)")
+    axes[0].set_title(r"prolate, from the horizontal precession (cf. Fig. 6b)", fontsize=10)
+    axes[1].set_title(r"oblate, from the vertical spin (cf. Fig. 6c)", fontsize=10)
+    for ax in axes:
+        ax.set_ylim(4.0, 1.6 * SEARCH["hi"])
+    handles, labels = {}, []
+    for ax in axes:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(lab, h)
+    fig.legend(list(handles.values()), list(handles.keys()), loc="lower center", ncol=2, fontsize=8, frameon=False)
+    fig.suptitle(r"Smallest $\Omega_0$ / $n_0$ that leads to loss of contact, $\mu=0.1$" + (" (quick run)" if quick else ""), fontsize=11)
+    fig.tight_layout(rect=(0, 0.17, 1, 1))
+    fig.savefig(png, dpi=130)
+    plt.close(fig)
+
+
+def report(rows: list[dict], wall: float, n_new: int, mode: str) -> dict:
+    main = [r for r in rows if r["group"] == "main"]
+    print(f"\nFigure {STEM}.png: jump thresholds against aspect ratio, mu = 0.1, 5 definitions; table {STEM}.csv.")
+    print(f"{'definition':<58s} {'branch':<8s} {'a':>6s} {'threshold':>10s} {'status':<17s} {'sims':>4s} {'check':>5s}")
+    for r in sorted(main, key=lambda r: (r["name"] != DEFAULT_NAME, r["name"], r["branch"], float(r["a"]))):
+        th = _f(r["threshold"])
+        print(f"{r['definition'][:58]:<58s} {r['branch']:<8s} {float(r['a']):6.3f} {('%.4f' % th) if th else '-':>10s} "
+              f"{r['status']:<17s} {r['n_sims']:>4s} {('ok' if r['consistent'] == 'True' else 'FAIL' if r['consistent'] == 'False' else '-'):>5s}")
+    bad = [r for r in main if r["consistent"] == "False"]
+    checked = [r for r in main if r["consistent"] in ("True", "False")]
+    print(f"self-consistency (1.02 x jumps, 0.98 x does not): {len(checked) - len(bad)} of {len(checked)} points pass")
+    sens = [r for r in rows if r["group"] == "sensitivity"]
+    if sens:
+        print("\nSensitivity at a = 1.5 (Omega0) and a = 2/3 (n0):")
+        ref = {(r["name"], r["a"]): _f(r["threshold"]) for r in main}
+        for r in sorted(sens, key=lambda r: (r["name"], float(r["a"]))):
+            parent = "literal-eps1e-4" if r["seed"] == "literal" else DEFAULT_NAME
+            base = ref.get((parent, r["a"]))
+            th = _f(r["threshold"])
+            rel = f"{(th / base - 1):+.2e}" if th and base else "-"
+            print(f"  {r['name']:<30s} a={float(r['a']):.4f} threshold={('%.4f' % th) if th else r['status']:<18s} "
+                  f"vs {parent}: {rel}  stuck near threshold: {r['stuck_near']}")
+    n_sims = sum(int(r["n_sims"] or 0) + int(r["n_check_sims"] or 0) for r in rows)
+    sim_wall = sum(float(r["wall_s"] or 0) for r in rows)
+    print(f"\n{len(rows)} points ({n_new} computed now, {mode}); {n_sims} simulations, {sim_wall:.1f} s of task time, "
+          f"{wall:.1f} s wall; {n_sims / max(sim_wall, 1e-9):.0f} simulations per second per worker.")
+    return {"n_sims": n_sims, "task_s": sim_wall}
+
+
+def main(argv=None) -> dict:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true", help="3 aspect ratios per branch, reduced sensitivity")
+    ap.add_argument("--serial", action="store_true", help="run in this process, without Dask")
+    ap.add_argument("--scheduler", default=None, help="address of a running Dask scheduler")
+    ap.add_argument("--workers", type=int, default=None, help="LocalCluster workers (default: one per core)")
+    ap.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
+    ap.add_argument("--no-sensitivity", action="store_true")
+    ap.add_argument("--no-progress", action="store_true")
+    ap.add_argument("--out", default=str(FIGURES), help="directory for the csv, json manifest and png (default figures/)")
+    args = ap.parse_args(argv)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    csv_path, manifest_path, png = out / f"{STEM}.csv", out / f"{STEM}.json", out / f"{STEM}.png"
+    t0 = time.perf_counter()
+    specs = build_tasks(args.quick, not args.no_sensitivity)
+    meta = provenance({"study": "threshold_vs_aspect", "search": SEARCH,
+                       "definitions": {d.name: asdict(d) for d in list(DEFAULT_DEFINITIONS) + sensitivity_definitions(args.quick)},
+                       "default_definition": DEFAULT_NAME, "jump": "R reaches 0 with dR/dt < 0 before the rise completes",
+                       "rise_complete": "theta within rise_margin of the final state (0 prolate, pi/2 oblate), or t_max reached"})
+    store = ResultStore(csv_path, manifest_path, FIELDS, meta, fresh=args.fresh)
+    pending = [s for s in specs if s.key not in store]
+    client = cluster = None
+    pack = None
+    mode = "serial"
+    if pending:
+        pack = ModelPack.build(warm_up)
+        if not args.serial:
+            client, cluster = make_client(args.scheduler, args.workers)
+            mode = f"dask: {len(client.scheduler_info()['workers'])} workers, model pack {pack.size_mb:.1f} MB shipped once"
+    try:
+        run_tasks(specs, store_get=store.get, on_result=lambda s, r: store.add(r), client=client, pack=pack,
+                  progress=not args.no_progress)
+    finally:
+        if client is not None:
+            client.close()
+        if cluster is not None:
+            cluster.close()
+    keys = {s.key for s in specs}
+    rows = [r for r in store.rows() if r["key"] in keys]
+    plot(rows, args.quick, png)
+    wall = time.perf_counter() - t0
+    stats = report(rows, wall, len(pending), mode)
+    return {"rows": rows, "wall_s": wall, "n_computed": len(pending), **stats}
+
+
+if __name__ == "__main__":
+    main()

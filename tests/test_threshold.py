@@ -1,0 +1,141 @@
+"""Issue 7: threshold search (bracketing, bisection, non-monotone detection), resumable sweeps."""
+
+import csv
+import json
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+import phasekit as pk
+from phasekit.sweep import ModelPack, ResultStore, TaskSpec, run_tasks
+from phasekit.threshold import Definition, Outcome, find_threshold
+
+
+@dataclass(frozen=True)
+class Synthetic(Definition):
+    """A definition whose 'trajectory' jumps on a known set of intervals (no simulation)."""
+
+    intervals: tuple = ((9.3, math.inf),)
+
+    def outcome(self, a, value):
+        jumped = any(lo <= value < hi for lo, hi in self.intervals)
+        return Outcome(value, jumped, "jumped" if jumped else "rise-complete", 0.0, False, None, 0.0)
+
+    def lower_bound(self, a):
+        return 2.0
+
+
+def synthetic(intervals):
+    return Synthetic("synthetic", "sliding", intervals=intervals)
+
+
+def test_bisection_converges_to_known_threshold():
+    th = find_threshold(synthetic(((9.3, math.inf),)), 1.5, hi=60.0, tol=1e-4)
+    assert th.status == "converged"
+    assert th.bracket[0] < 9.3 <= th.bracket[1] and th.bracket[1] / th.bracket[0] - 1 <= 1e-4
+    assert abs(th.value / 9.3 - 1) < 1e-4
+    assert th.n_sims == len(th.outcomes) < 30
+
+
+def test_continuation_guess_saves_simulations_and_widens_when_needed():
+    d = synthetic(((9.3, math.inf),))
+    cold = find_threshold(d, 1.5, hi=60.0)
+    warm = find_threshold(d, 1.5, hi=60.0, guess=9.0)
+    far = find_threshold(d, 1.5, hi=60.0, guess=3.0)  # the window must widen upward to find it
+    assert warm.n_sims <= cold.n_sims
+    for th in (cold, warm, far):
+        assert th.status == "converged" and abs(th.value / 9.3 - 1) < 1e-3
+
+
+def test_non_monotone_answer_reports_every_transition():
+    th = find_threshold(synthetic(((5.0, 7.0), (20.0, math.inf))), 1.5, hi=60.0)
+    assert th.status == "non_monotone"
+    assert len(th.transitions) == 3
+    edges = sorted(b for br in th.transitions for b in br)
+    for x in (5.0, 7.0, 20.0):
+        assert any(lo <= x <= hi for lo, hi in th.transitions)
+    assert abs(th.value / 5.0 - 1) < 1e-3  # the smallest value that jumps
+
+
+@pytest.mark.parametrize("intervals, status", [((), "no_jump_in_range"), (((0.0, math.inf),), "jumps_at_lower_bound")])
+def test_no_transition(intervals, status):
+    th = find_threshold(synthetic(intervals), 1.5, hi=60.0, guess=10.0)
+    assert th.status == status and th.value is None
+
+
+def test_default_definition_threshold_at_a_1_5_and_its_self_consistency():
+    d = Definition("sliding", "sliding")
+    th = find_threshold(d, 1.5, hi=60.0, guess=9.5)
+    assert th.status == "converged" and 9.6 < th.value < 9.9
+    assert d.outcome(1.5, 1.02 * th.value).jumped is True
+    assert d.outcome(1.5, 0.98 * th.value).jumped is False
+
+
+def test_viscous_definition_does_not_jump():
+    """(i): under viscous friction the R oscillations do not grow enough to lose contact."""
+    d = Definition("viscous", "viscous")
+    for om in (10.0, 30.0):
+        o = d.outcome(1.5, om)
+        assert o.jumped is False and o.how == "rise-complete"
+
+
+def test_literal_recipe_sticks_under_exact_coulomb():
+    d = Definition("literal-exact", "literal")
+    o = d.outcome(1.5, 12.0)
+    assert o.jumped is False and o.stuck
+    o3 = Definition("literal-eps1e-3", "literal", eps=1e-3).outcome(1.5, 12.0)
+    assert o3.jumped is True  # the regularised law slides and jumps: the answer depends on eps
+
+
+FIELDS = ["key", "value"]
+
+
+def _task(prev, value):
+    return {"key": f"k{value}", "value": value + (float(prev["value"]) if prev else 0.0)}
+
+
+def test_store_resumes_without_recomputing(tmp_path):
+    csv_path, man = tmp_path / "r.csv", tmp_path / "r.json"
+    specs = [TaskSpec(f"k{v}", _task, (v,), after=f"k{v - 1}" if v > 0 else None) for v in range(5)]
+    store = ResultStore(csv_path, man, FIELDS, {"study": "test"})
+    calls = []
+
+    def on_result(s, r):
+        calls.append(s.key)
+        store.add(r)
+        if len(calls) == 3:
+            raise KeyboardInterrupt  # the sweep is killed after three points
+
+    with pytest.raises(KeyboardInterrupt):
+        run_tasks(specs, store_get=store.get, on_result=on_result, progress=False)
+    assert len(list(csv.DictReader(open(csv_path)))) == 3  # nothing lost
+    store2 = ResultStore(csv_path, man, FIELDS, {"study": "test"})
+    again = []
+    res = run_tasks(specs, store_get=store2.get, on_result=lambda s, r: (again.append(s.key), store2.add(r)), progress=False)
+    assert again == ["k3", "k4"]  # finished points are skipped
+    assert float(res["k4"]["value"]) == 0 + 1 + 2 + 3 + 4  # continuation used the stored results
+    meta = json.loads(man.read_text())
+    assert meta["n_rows"] == 5 and meta["study"] == "test"
+
+
+def _pack_task(prev, a):
+    from phasekit import model as M
+
+    return {"key": f"a{a}", "value": len(M._CACHE)}
+
+
+@pytest.mark.slow
+def test_dask_local_cluster_runs_chains_with_the_model_pack(tmp_path):
+    from phasekit.sweep import make_client
+
+    pack = ModelPack.build(lambda: pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)))
+    client, cluster = make_client(workers=2)
+    try:
+        specs = [TaskSpec(f"a{a}", _pack_task, (a,), after=None) for a in range(4)]
+        res = run_tasks(specs, store_get=lambda k: None, on_result=lambda s, r: None, client=client, pack=pack, progress=False)
+    finally:
+        client.close()
+        cluster.close()
+    assert all(r["value"] >= 1 for r in res.values())  # the pack's compiled model was installed
