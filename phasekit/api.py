@@ -16,7 +16,7 @@ from .simulate import simulate
 from .charts import EULER_NAMES, vector_to_euler
 from .starts import gyroscopic_start, raw_start, to_chart
 
-__all__ = ["make_model", "choose_formulation", "simulate_start", "fixed_points_report", "POLE_MARGIN"]
+__all__ = ["make_model", "choose_formulation", "simulate_start", "fixed_points_report", "gyroscopic_report", "POLE_MARGIN"]
 
 #: within this angle of theta = 0 or pi the vector chart is the default. Measured (oblate
 #: a = 0.6, n0 = 12, viscous mu = 0.1, rtol 1e-9, to t = 40): away from the pole the Euler
@@ -102,3 +102,18 @@ def fixed_points_report(*, a, mu, friction="viscous", slip_eps=None, A=None, C=N
     pts = fixed_points(Model(body, law, "euler"), Model(body, law, "vector"), omega0=omega0, n0=n0)
     return {"fixed_points": [p.to_dict() for p in pts], "model": {"body": repr(body), "friction": law.describe()},
             "note": "the inverted vertical (theta = pi) is the vertical with k reversed: the same state for a flip-symmetric body"}
+
+
+def gyroscopic_report(*, a, mu, theta0, t, omega0=None, n0=None, A=None, C=None) -> dict:
+    """Gyroscopic mean solution (3.16)-(3.19) at times t (slow time T = mu t)."""
+    from .errors import check_positive
+    from .gyroscopic import gyroscopic_solution
+
+    body = Spheroid(a, A=A, C=C)
+    mu = check_positive("mu", mu)
+    t = np.atleast_1d(np.asarray(t, dtype=float))
+    if t.size == 0 or not np.all(np.isfinite(t)) or np.any(t < 0):
+        raise ValueError("`t` must be one or more finite times >= 0.")
+    sol = gyroscopic_solution(body, theta0, omega0=omega0, n0=n0, T=mu * t)
+    return {"t": t.tolist(), "T": (mu * t).tolist(), "theta": sol["theta"].tolist(), "Omega": sol["Omega"].tolist(),
+            "J": sol["J"], "J_definition": "A Omega h (3.17)", "Omega0": sol["Omega0"], "method": sol["method"]}

@@ -102,6 +102,16 @@ def _build_parser() -> _Parser:
     grp.add_argument("--omega0", type=float)
     grp.add_argument("--n0", type=float)
     fx.add_argument("--json", action="store_true")
+
+    gy = sub.add_parser("gyroscopic", help="gyroscopic mean solution theta-bar(t), Omega-bar(t) and J")
+    _add_body(gy)
+    gy.add_argument("--mu", type=float, required=True)
+    g2 = gy.add_mutually_exclusive_group(required=True)
+    g2.add_argument("--omega0", type=float)
+    g2.add_argument("--n0", type=float)
+    gy.add_argument("--theta0", type=float, required=True)
+    gy.add_argument("--t", type=float, nargs="+", required=True, help="times (units sqrt(b/g))")
+    gy.add_argument("--json", action="store_true")
     return parser
 
 
@@ -144,11 +154,22 @@ def _cmd_fixed_points(args) -> dict:
                                omega0=args.omega0, n0=args.n0)
 
 
+def _cmd_gyroscopic(args) -> dict:
+    from .api import gyroscopic_report
+
+    return gyroscopic_report(a=args.a, mu=args.mu, theta0=args.theta0, t=args.t, omega0=args.omega0, n0=args.n0, A=args.A, C=args.C)
+
+
 def _print_human(out: dict) -> None:
     if "fixed_points" in out:
         for fp in out["fixed_points"]:
             st = ", ".join(f"{k}={'undefined' if v is None else f'{v:.8g}'}" for k, v in fp["state"].items())
             print(f"{fp['kind']:<13s} {fp['classification']:<45s} residual {fp['residual']:.1e}  [{st}]")
+        return
+    if "theta" in out and "Omega" in out:
+        print(f"J = {out['J']:.10g} ({out['J_definition']}), {out['method']}")
+        for t, th, om in zip(out["t"], out["theta"], out["Omega"]):
+            print(f"t = {t:12.6g}   theta = {th:.12f}   Omega = {om:.12f}")
         return
     for key, val in out.items():
         if key == "events":
@@ -161,7 +182,7 @@ def _print_human(out: dict) -> None:
             print(f"{key}: {val}")
 
 
-COMMANDS = {"simulate": _cmd_simulate, "fixed-points": _cmd_fixed_points}
+COMMANDS = {"simulate": _cmd_simulate, "fixed-points": _cmd_fixed_points, "gyroscopic": _cmd_gyroscopic}
 
 
 def main(argv=None) -> int:

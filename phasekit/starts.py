@@ -51,7 +51,7 @@ def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, 
     if (omega0 is None) == (n0 is None):
         raise ValueError("give exactly one of `omega0` (prolate) or `n0` (oblate).")
     A, C = body.A, body.C
-    s, c = np.sin(theta0), np.cos(theta0)
+    c = np.cos(theta0)
     q = _q(body, theta0)
     if omega0 is not None:
         omega0 = check_finite("omega0", omega0)

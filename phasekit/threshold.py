@@ -28,9 +28,10 @@ body that stuck and rolls) also counts as no jump and is flagged.
 
 from __future__ import annotations
 
+import json
 import math
 import time
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
@@ -42,7 +43,16 @@ from .model import Model
 from .simulate import simulate
 from .starts import gyroscopic_start, to_chart
 
-__all__ = ["Definition", "Outcome", "Threshold", "find_threshold", "continue_threshold", "DEFAULT_DEFINITIONS"]
+__all__ = [
+    "Definition",
+    "Outcome",
+    "Threshold",
+    "find_threshold",
+    "continue_threshold",
+    "threshold_key",
+    "threshold_row",
+    "DEFAULT_DEFINITIONS",
+]
 
 
 @dataclass(frozen=True)
@@ -258,3 +268,43 @@ DEFAULT_DEFINITIONS = (
     Definition("literal-eps1e-4", "literal", eps=1e-4),
     Definition("literal-exact", "literal"),
 )
+
+
+def threshold_key(defn: Definition, a: float, search: dict) -> str:
+    """Key of a stored threshold row: every input that changes the answer."""
+    return f"{defn.key()}|a={a:.10g}|search={json.dumps(search, sort_keys=True)}"
+
+
+def threshold_row(prev, defn_fields: dict, a: float, group: str, is_default: bool, search: dict) -> dict:
+    """One sweep task: the threshold at aspect ratio ``a`` (the search seeded by the previous
+    point's row ``prev``), then the self-consistency check (1.02 x jumps, 0.98 x does not).
+
+    Returns a flat row for the results table; errors become a row with status "failed".
+    Lives in the library (not in a study script) so that every Dask worker can import it.
+    """
+    defn = Definition(**defn_fields)
+    t0 = time.perf_counter()
+    key = threshold_key(defn, a, search)
+    base = dict(key=key, branch="prolate" if a > 1 else "oblate", a=a, definition=defn.label, default=is_default,
+                group=group, name=defn.name, seed=defn.seed, amplitude=defn.amplitude, mu=defn.mu, rtol=defn.rtol,
+                eps=defn.eps if defn.eps else ("exact" if defn.seed != "viscous" else ""))
+    guess = None
+    if prev and prev.get("threshold") not in (None, ""):
+        guess = float(prev["threshold"])
+    try:
+        th = find_threshold(defn, a, guess=guess, **search)
+    except Exception as exc:  # a sweep tabulates failures instead of stopping
+        return dict(base, status="failed", transitions=f"error: {exc}", wall_s=time.perf_counter() - t0)
+    above = below = consistent = None
+    n_check = 0
+    if th.value is not None and th.status in ("converged", "non_monotone"):  # not for bracket_only
+        o_above, o_below = defn.outcome(a, 1.02 * th.value), defn.outcome(a, 0.98 * th.value)
+        n_check = 2
+        above, below = o_above.jumped, o_below.jumped
+        consistent = bool(above) and below is False
+    return dict(
+        base, threshold=th.value, bracket_lo=th.bracket[0], bracket_hi=th.bracket[1], n_sims=th.n_sims, status=th.status,
+        transitions=json.dumps([list(t) for t in th.transitions]), stuck_near=th.stuck_near,
+        check_above_jumped=above, check_below_jumped=below, consistent=consistent, n_check_sims=n_check,
+        wall_s=time.perf_counter() - t0,
+    )

@@ -25,16 +25,13 @@ figures/threshold_vs_aspect.png.
 from __future__ import annotations
 
 import argparse
-import json
-import math
 import time
 from dataclasses import asdict, replace
 from pathlib import Path
 
-import numpy as np
 
 from phasekit.sweep import ModelPack, ResultStore, TaskSpec, make_client, provenance, run_tasks
-from phasekit.threshold import DEFAULT_DEFINITIONS, Definition, find_threshold
+from phasekit.threshold import DEFAULT_DEFINITIONS, Definition, threshold_key, threshold_row
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "threshold_vs_aspect"
@@ -70,38 +67,7 @@ def sensitivity_definitions(quick: bool) -> list[Definition]:
 
 
 def row_key(defn: Definition, a: float) -> str:
-    return f"{defn.key()}|a={a:.10g}|search={json.dumps(SEARCH, sort_keys=True)}"
-
-
-def threshold_task(prev, defn_fields: dict, a: float, group: str, is_default: bool) -> dict:
-    """One aspect ratio: find the threshold (seeded by the previous point), then check it."""
-    defn = Definition(**defn_fields)
-    t0 = time.perf_counter()
-    guess = None
-    if prev and prev.get("threshold") not in (None, ""):
-        guess = float(prev["threshold"])
-    try:
-        th = find_threshold(defn, a, guess=guess, **SEARCH)
-    except Exception as exc:  # a sweep tabulates failures instead of stopping
-        return dict(key=row_key(defn, a), branch="prolate" if a > 1 else "oblate", a=a, status="failed",
-                    definition=defn.label, name=defn.name, group=group, default=is_default, wall_s=time.perf_counter() - t0,
-                    transitions=f"error: {exc}")
-    above = below = consistent = None
-    n_check = 0
-    if th.value is not None and th.status in ("converged", "non_monotone"):  # not for bracket_only
-        above, below = defn.outcome(a, 1.02 * th.value), defn.outcome(a, 0.98 * th.value)
-        n_check = 2
-        consistent = bool(above.jumped) and below.jumped is False
-        above, below = above.jumped, below.jumped
-    return dict(
-        key=row_key(defn, a), branch="prolate" if a > 1 else "oblate", a=a, threshold=th.value,
-        bracket_lo=th.bracket[0], bracket_hi=th.bracket[1], n_sims=th.n_sims, status=th.status,
-        definition=defn.label, default=is_default, group=group, name=defn.name, seed=defn.seed,
-        amplitude=defn.amplitude, eps=defn.eps if defn.eps else "exact" if defn.seed != "viscous" else "",
-        mu=defn.mu, rtol=defn.rtol, transitions=json.dumps([list(t) for t in th.transitions]),
-        stuck_near=th.stuck_near, check_above_jumped=above, check_below_jumped=below, consistent=consistent,
-        n_check_sims=n_check, wall_s=time.perf_counter() - t0,
-    )
+    return threshold_key(defn, a, SEARCH)
 
 
 def build_tasks(quick: bool, sensitivity: bool) -> list[TaskSpec]:
@@ -113,14 +79,14 @@ def build_tasks(quick: bool, sensitivity: bool) -> list[TaskSpec]:
             prev = None
             for a in a_list:  # ordered from far to near a = 1: thresholds grow along the chain
                 key = row_key(defn, a)
-                specs.append(TaskSpec(key, threshold_task, (asdict(defn), a, "main", defn.name == DEFAULT_NAME), after=prev))
+                specs.append(TaskSpec(key, threshold_row, (asdict(defn), a, "main", defn.name == DEFAULT_NAME, SEARCH), after=prev))
                 main_keys[defn.name, a] = key
                 prev = key
     if sensitivity:
         for defn in sensitivity_definitions(quick):
             parent = "literal-eps1e-4" if defn.seed == "literal" else DEFAULT_NAME
             for a in (1.5, 2 / 3):
-                specs.append(TaskSpec(row_key(defn, a), threshold_task, (asdict(defn), a, "sensitivity", False),
+                specs.append(TaskSpec(row_key(defn, a), threshold_row, (asdict(defn), a, "sensitivity", False, SEARCH),
                                       after=main_keys.get((parent, a))))
     return specs
 
@@ -181,7 +147,7 @@ def plot(rows: list[dict], quick: bool, png: Path) -> None:
     axes[1].set_title(r"oblate, from the vertical spin (cf. Fig. 6c)", fontsize=10)
     for ax in axes:
         ax.set_ylim(4.0, 1.6 * SEARCH["hi"])
-    handles, labels = {}, []
+    handles = {}
     for ax in axes:
         for h, lab in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(lab, h)

@@ -1,7 +1,6 @@
 """Backends: the on-disk cache round trip, event guards ~0 at events, bounded work."""
 
 import numpy as np
-import pytest
 
 import phasekit as pk
 from phasekit.backends import TaylorBackend

@@ -1,6 +1,5 @@
 """The standard prolate workload jumps, and its jump time converges in eps and rtol."""
 
-import numpy as np
 import pytest
 
 import phasekit as pk

@@ -1,0 +1,129 @@
+"""The gyroscopic mean solution (section 3b): slow rise on the time scale T = mu t.
+
+Under Coulomb friction the mean friction is F_y = -mu Vhat_P, with Vhat_P the sign of the
+mean slip. At leading order in 1/Omega the mean slip of the contact point is, for any
+flip-symmetric body (n from the balance A Omega cos = C n),
+
+    Vbar_P = Omega [h_theta + (A - C) cos(theta) x_P / C],          x_P = h sin + h_theta cos,
+
+which for the spheroid is (3.10), (A - a^2 C)/(C h) Omega sin cos. Then (3.16):
+
+    dOmega/dT = -h_theta Vhat_P / A,        Omega dtheta/dT = h Vhat_P / A,
+
+whose first integral is the Jellett constant J = A Omega h (3.17). For the uniform (or any)
+spheroid the solution is (3.18)-(3.19): tan(theta) = -a tan(q (T - T0)),
+q = a (a - 1) / (J |a - 1|), a tan(q T0) = tan(theta0).
+
+Jellett constant: J = A Omega h here (3.17). The paper quotes J = 4 and 4.2 in Fig. 3
+(oblate a = 2/3, n0 = 10, 10.5); those equal C n0, not A Omega h = C n0 a (= 2.67, 2.8):
+see ../shared/NOTES.md pitfall 4. The prolate values of Fig. 4 (6.63, 6.83) do equal A Omega0 h.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .body import Body, Spheroid
+from .errors import check_open_interval, check_positive
+from .starts import gyroscopic_start
+
+__all__ = ["mean_slip", "jellett_constant", "gyroscopic_numeric", "gyroscopic_closed", "gyroscopic_solution", "rise_time"]
+
+
+def mean_slip(body: Body, theta, omega):
+    """Leading-order mean slip velocity Vbar_P of the gyroscopic state (generalised (3.10))."""
+    h, ht, _ = body.h(theta)
+    c, s = np.cos(theta), np.sin(theta)
+    xP = h * s + ht * c
+    return omega * (ht + (body.A - body.C) * c * xP / body.C)
+
+
+def jellett_constant(body: Body, theta, omega):
+    """J = A Omega h (3.17)."""
+    return body.A * omega * body.h(theta)[0]
+
+
+def _rhs(T, y, body):
+    om, th = y
+    h, ht, _ = body.h(th)
+    v = np.sign(mean_slip(body, th, om))
+    return [-ht * v / body.A, h * v / (body.A * om)]
+
+
+def gyroscopic_numeric(body: Body, theta0: float, omega0: float, T, *, rtol: float = 1e-13):
+    """Integrate (3.16) numerically (any body): returns (theta(T), Omega(T)).
+
+    Stops where the mean slip vanishes (theta reaches 0 or pi/2, the end of the rise) and
+    holds the state there.
+    """
+    from scipy.integrate import solve_ivp
+
+    theta0 = check_open_interval("theta0", theta0, 0.0, np.pi, "(0, pi)")
+    T = np.atleast_1d(np.asarray(T, dtype=float))
+    if np.any(T < 0):
+        raise ValueError("`T` must be >= 0.")
+
+    def end(T_, y, body_):
+        return mean_slip(body_, y[1], y[0])
+
+    end.terminal = True
+    sol = solve_ivp(_rhs, (0.0, float(T.max()) if T.size else 0.0), [omega0, theta0], args=(body,), method="DOP853",
+                    rtol=rtol, atol=1e-14, dense_output=True, events=end)
+    th, om = np.empty_like(T), np.empty_like(T)
+    for k, t in enumerate(T):
+        tt = min(t, sol.t[-1])
+        om[k], th[k] = sol.sol(tt)
+    return th, om
+
+
+def gyroscopic_closed(a: float, J: float, theta0: float, T, *, A: float | None = None):
+    """Closed form (3.18)-(3.19) for a spheroid of aspect ratio a: returns (theta(T), Omega(T)).
+
+    theta0 may lie in (0, pi/2) or (pi/2, pi) (flip symmetry); after the rise ends
+    (q (T - T0) reaches 0 or -pi/2) the state is held at the end of the rise.
+    """
+    a = check_positive("a", a)
+    if a == 1.0:
+        raise ValueError("`a` must differ from 1: a sphere does not rise (h_theta = 0).")
+    theta0 = check_open_interval("theta0", theta0, 0.0, np.pi, "(0, pi)")
+    flip = theta0 > np.pi / 2
+    th0 = np.pi - theta0 if flip else theta0
+    T = np.asarray(T, dtype=float)
+    q = a * (a - 1) / (J * abs(a - 1))
+    T0 = np.arctan(np.tan(th0) / a) / q
+    arg = q * (T - T0)
+    # the rise runs while q (T - T0) is in (-pi/2, 0): theta -> 0 (prolate) or pi/2 (oblate)
+    arg = np.clip(arg, -np.pi / 2 + 1e-300, 0.0)
+    th = np.arctan(-a * np.tan(arg))
+    th = np.where(arg <= -np.pi / 2, np.pi / 2, th)
+    if flip:
+        th = np.pi - th
+    body = Spheroid(a) if A is None else Spheroid(a, A=A)
+    h = body.h(th)[0]
+    return th, J / (body.A * h)
+
+
+def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()) -> dict:
+    """Mean theta and Omega at slow times T from a gyroscopic start (Omega0 given, or n0 with
+    Omega on the fast branch); the closed form for spheroids, (3.16) numerically otherwise.
+
+    Returns {"theta", "Omega", "J", "method"}.
+    """
+    y0 = gyroscopic_start(body, theta0, omega0=omega0, n0=n0)
+    om0 = float(y0[2])
+    J = float(jellett_constant(body, theta0, om0))
+    if isinstance(body, Spheroid):
+        th, om = gyroscopic_closed(body.a, J, theta0, T, A=body.A)
+        method = "closed form (3.18)"
+    else:  # pragma: no cover - only spheroids exist today
+        th, om = gyroscopic_numeric(body, theta0, om0, T)
+        method = "numerical (3.16)"
+    return {"theta": np.atleast_1d(th), "Omega": np.atleast_1d(om), "J": J, "Omega0": om0, "method": method}
+
+
+def rise_time(a: float, J: float, theta0: float) -> float:
+    """Slow time T at which the closed-form rise ends (theta reaches 0 or pi/2)."""
+    q = a * (a - 1) / (J * abs(a - 1))
+    th0 = min(theta0, np.pi - theta0)
+    T0 = np.arctan(np.tan(th0) / a) / q
+    return float(T0) if q > 0 else float(T0 + np.pi / (2 * abs(q)))

@@ -1,0 +1,88 @@
+"""Figure 2: the envelope Sigma (3.64) of the minima of R against the mean inclination.
+
+Uniform prolate spheroid a = 1.5, c = -0.00054, theta-bar0 = pi/2 - 0.0001, Jellett constant
+J in {6.20, 6.50, 6.63, 6.70, 6.83, 7.15, 8.45, 13}, Sigma from (3.64) with the closed forms
+(3.47) and (3.58) as in the paper; dashed after Sigma first reaches 0 (the jump, beyond which
+the envelope no longer applies). Also prints, for each J, the inclination of the predicted
+jump with the closed form and with the quadrature form of I (exact I2 instead of its
+dominant part (3.57)). Writes figures/figure2_envelope.png.
+
+    python studies/figure2_envelope.py
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+import numpy as np
+
+import phasekit as pk
+from phasekit.multiscale import Sigma
+
+FIGURES = Path(__file__).resolve().parents[1] / "figures"
+J_VALUES = (6.20, 6.50, 6.63, 6.70, 6.83, 7.15, 8.45, 13.0)
+A_RATIO, C_AMP, THETA0 = 1.5, -0.00054, np.pi / 2 - 0.0001
+
+
+def first_zero(theta, sig):
+    """theta-bar where Sigma first reaches 0 along the rise (theta decreasing), or None."""
+    k = np.flatnonzero(sig <= 0)
+    if k.size == 0:
+        return None
+    k = k[0]
+    if k == 0:
+        return float(theta[0])
+    return float(theta[k - 1] + (theta[k] - theta[k - 1]) * sig[k - 1] / (sig[k - 1] - sig[k]))
+
+
+def main(argv=None) -> dict:
+    argparse.ArgumentParser(description=__doc__).parse_args(argv)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    t0 = time.perf_counter()
+    body = pk.Spheroid(A_RATIO)
+    theta = np.linspace(THETA0, 0.02, 1500)
+    coarse = np.linspace(THETA0, 0.02, 120)
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    out = {}
+    for k, J in enumerate(J_VALUES):
+        sig = Sigma(body, J, THETA0, theta, C_AMP, form="closed")
+        z = first_zero(theta, sig)
+        zq = first_zero(coarse, Sigma(body, J, THETA0, coarse, C_AMP, form="gyro"))
+        out[J] = (z, zq)
+        thick = J >= 8.0
+        col = plt.get_cmap("viridis")(k / (len(J_VALUES) - 1))
+        if z is None:
+            ax.plot(theta, sig, color=col, lw=2.2 if thick else 1.0, label=f"({k + 1}) J = {J:g}")
+        else:
+            cut = theta >= z
+            ax.plot(theta[cut], sig[cut], color=col, lw=2.2 if thick else 1.0, label=f"({k + 1}) J = {J:g}")
+            ax.plot(theta[~cut], sig[~cut], color=col, lw=2.2 if thick else 1.0, ls="--")
+    ax.axhline(0, color="0.5", lw=0.8)
+    ax.set_ylim(-0.6, 1.05)
+    ax.set_xlim(0, np.pi / 2)
+    ax.invert_xaxis()  # the body rises from theta-bar = pi/2 toward 0
+    ax.set_xlabel(r"mean inclination $\bar\theta$ (rad); the rise runs right to left")
+    ax.set_ylabel(r"envelope $\Sigma$ of the minima of $R$ (units $Mg$)")
+    ax.set_title(r"Fig. 2: $a=1.5$, $c=-0.00054$, $\bar\theta_0=\pi/2-10^{-4}$; dashed after $\Sigma=0$ (jump)", fontsize=10)
+    ax.legend(fontsize=8, ncol=2, loc="lower left")
+    fig.tight_layout()
+    FIGURES.mkdir(exist_ok=True)
+    path = FIGURES / "figure2_envelope.png"
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+    print(f"Figure {path.name}: Sigma (3.64) against theta-bar, closed forms (3.47), (3.58); {time.perf_counter() - t0:.1f} s.")
+    print(f"{'J':>6s} {'theta-bar at Sigma = 0 (closed form)':>38s} {'(quadrature, exact I2)':>24s}")
+    for J, (z, zq) in out.items():
+        fmt = lambda v: "no jump" if v is None else f"{v:.4f}"  # noqa: E731
+        print(f"{J:6.2f} {fmt(z):>38s} {fmt(zq):>24s}")
+    return out
+
+
+if __name__ == "__main__":
+    main()
