@@ -43,7 +43,7 @@ def choose_formulation(theta0: float, requested: str = "auto") -> str:
 
 def simulate_start(
     *, a, mu, start, t_end, friction="coulomb", slip_eps=None, A=None, C=None,
-    rtol=1e-9, stop_at="jump", formulation="auto", backend="auto",
+    rtol=1e-9, stop_at="jump", restitution=0.0, formulation="auto", backend="auto",
 ) -> dict:
     """Run one simulation described by plain parameters; returns the JSON dict."""
     body = Spheroid(a, A=A, C=C)
@@ -61,7 +61,7 @@ def simulate_start(
             raise ValueError(f"`formulation` {formulation!r} cannot start on the {start['state']} state; use {model.chart} or auto.")
         seed_info = {"fixed_point": fp.to_dict(), "delta": start["delta"], "branch": start.get("branch", "+0"),
                      "seed_law": fp.law}
-        res = simulate(model, x0, t_end, rtol=rtol, stop_at=stop_at, backend=backend)
+        res = simulate(model, x0, t_end, rtol=rtol, stop_at=stop_at, restitution=restitution, backend=backend)
     else:
         if start["kind"] == "gyroscopic":
             y0 = gyroscopic_start(body, start["theta0"], omega0=start.get("omega0"), n0=start.get("n0"))
@@ -73,7 +73,7 @@ def simulate_start(
             raw_start(y0, chart="euler")  # theta strictly inside (0, pi)
         model = Model(body, law, chart)
         x0 = to_chart(chart, y0)
-        res = simulate(model, x0, t_end, rtol=rtol, stop_at=stop_at, backend=backend)
+        res = simulate(model, x0, t_end, rtol=rtol, stop_at=stop_at, restitution=restitution, backend=backend)
     out = res.to_dict()
     out["model"] = {
         "body": repr(body),

@@ -103,7 +103,7 @@ class TaylorBackend:
         self.model = model
         self.rtol = float(rtol)
 
-    def _integrator(self, mode: Mode, events: tuple[EventSpec, ...], minima: bool):
+    def _integrator(self, mode: Mode, events: tuple[EventSpec, ...], minima):
         m = self.model
         key = (m.compiled.key, mode, self.rtol, events, minima)
         with self._lock:
@@ -142,10 +142,11 @@ class TaylorBackend:
             hy.t_event(to_heyoka(m.function(ev.function), ins)[0][0], direction=direction[ev.direction]) for ev in events
         ]
         nt_events, recorder = [], None
-        if minima:
+        if minima:  # (function, direction): record where it crosses zero, e.g. dR/dt = 0 upward
+            fname, fdir = minima
             recorder = _MinimaRecorder()
-            rdot = to_heyoka(m.function(f"Rdot_{mode.value}"), ins)[0][0]
-            nt_events = [hy.nt_event(rdot, callback=recorder, direction=hy.event_direction.positive)]
+            rate = to_heyoka(m.function(fname), ins)[0][0]
+            nt_events = [hy.nt_event(rate, callback=recorder, direction=direction[fdir])]
         used = hy.get_params(list(rhs) + [e.expression for e in t_events] + [e.expression for e in nt_events])
         npar = 1 + max((int(str(q)[1:]) for q in used), default=-1)
         ta = hy.taylor_adaptive(
@@ -168,12 +169,15 @@ class TaylorBackend:
                 pass
         return ta, recorder, npar
 
-    def propagate(self, mode, x0, t0, t_end, events, p, *, max_steps, t_eval=None, minima=False, resume=False) -> Propagation:
+    def propagate(self, mode, x0, t0, t_end, events, p, *, max_steps, t_eval=None, minima=None, resume=False) -> Propagation:
         """Integrate ``mode`` from (t0, x0) to t_end or the first event of ``events``.
 
+        ``minima`` = (function, direction): also record (t, x) wherever that function crosses
+        zero in that direction (e.g. ("Rdot_sliding", +1): the minima of R).
         ``resume=True`` continues from where the last call stopped (same mode and events),
         keeping heyoka's event cooldowns so that the event just located does not fire again.
         """
+        minima = tuple(minima) if minima else None
         ta, recorder, npar = self._integrator(mode, tuple(events), minima)
         if not resume:
             ta.time = float(t0)
@@ -291,8 +295,9 @@ class CvodesBackend:
             self._memory[key] = f
         return f
 
-    def propagate(self, mode, x0, t0, t_end, events, p, *, max_steps, t_eval=None, minima=False, resume=False) -> Propagation:
-        """As :meth:`TaylorBackend.propagate`; a guard exactly at zero at t0 does not fire."""
+    def propagate(self, mode, x0, t0, t_end, events, p, *, max_steps, t_eval=None, minima=None, resume=False) -> Propagation:
+        """As :meth:`TaylorBackend.propagate`; a guard exactly at zero at t0 does not fire.
+        Only the minima of R can be recorded (``minima`` = (f"Rdot_{mode}", +1)), to grid accuracy."""
         m = self.model
         events = tuple(events)
         chunk, single = self._functions(mode, max_steps)

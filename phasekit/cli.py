@@ -90,7 +90,8 @@ def _build_parser() -> _Parser:
     sim.add_argument("--n0", type=float, default=None)
     sim.add_argument("--t-end", type=float, default=200.0)
     sim.add_argument("--rtol", type=float, default=1e-9)
-    sim.add_argument("--stop-at", default="jump", help="jump | none")
+    sim.add_argument("--stop-at", default="jump", help="jump | touchdown | none")
+    sim.add_argument("--restitution", type=float, default=0.0, help="Newton's e in [0, 1] at impacts (--stop-at none)")
     sim.add_argument("--formulation", default="auto", help="euler | vector | auto")
     sim.add_argument("--backend", default="auto", help="auto | taylor | cvodes | cvodes-adams")
     sim.add_argument("--json", action="store_true")
@@ -142,6 +143,7 @@ def _cmd_simulate(args) -> dict:
         t_end=args.t_end,
         rtol=args.rtol,
         stop_at=args.stop_at,
+        restitution=args.restitution,
         formulation=args.formulation,
         backend=args.backend,
     )

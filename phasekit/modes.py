@@ -3,6 +3,8 @@
 SLIDING  smooth while the slip u != 0 (Coulomb) or everywhere (viscous, regularised).
 ROLLING  exact Coulomb at zero slip: u = 0 is a constraint and the friction needed to keep
          it, F_req, is part of the solution. Valid while |F_req| <= mu R.
+FLIGHT   no contact (R = 0): gravity and torque-free rotation (:mod:`phasekit.flight`), until
+         the gap closes (touchdown); then the impact law (:mod:`phasekit.impact`).
 
 Switches (exact Coulomb only)
 -----------------------------
@@ -29,6 +31,7 @@ class Mode(str, enum.Enum):
 
     SLIDING = "sliding"
     ROLLING = "rolling"
+    FLIGHT = "flight"
 
     def __str__(self) -> str:
         return self.value
@@ -51,6 +54,8 @@ def mode_events(model, mode, *, pointwise: bool = False, rise: bool = False, nea
     """
     from .backends import EventSpec
 
+    if mode is Mode.FLIGHT:
+        return (EventSpec("touchdown", "gap", -1, rate="gap_rate"),)
     events = [EventSpec("lift-off", f"R_{mode.value}", -1, rate=f"Rdot_{mode.value}")]
     can_stick = "margin_rolling" in model.compiled.functions or model.friction.eps > 0
     if near_stick:

@@ -27,7 +27,7 @@ def _state_dict(chart, x) -> dict | None:
 
 @dataclass(frozen=True)
 class EventRecord:
-    """A located event: ``kind`` is one of stick, slip, lift-off, touchdown, impact."""
+    """A located event: ``kind`` is one of stick, slip, lift-off, touchdown, impact, rise-complete."""
 
     kind: str
     t: float
@@ -50,8 +50,9 @@ class SimulationResult:
     Attributes
     ----------
     status : Status
-        ``jumped`` (R reached 0 with dR/dt < 0), ``completed`` (reached ``t_end`` in
-        contact) or ``failed`` (see ``reason``).
+        ``jumped`` (R reached 0 with dR/dt < 0), ``touchdown`` (stopped at the first
+        re-contact), ``completed`` (reached ``t_end``, or the rise completed) or ``failed``
+        (see ``reason``).
     t_jump, x_jump
         Time and chart state of the first lift-off, or None.
     R_min : float or None
@@ -86,6 +87,7 @@ class SimulationResult:
     ys: np.ndarray | None = None
     minima: np.ndarray | None = None
     extra: dict = field(default_factory=dict)
+    flights: tuple = ()  # phasekit.flight.Flight, one per flight
 
     @property
     def success(self) -> bool:

@@ -1,9 +1,14 @@
 """The hybrid simulator: smooth modes, switching only at located events.
 
-One run integrates the current mode with a backend (:mod:`phasekit.backends`) until
-the end time or the first guard, applies the switch (:mod:`phasekit.modes`), records an
-:class:`~phasekit.result.EventRecord`, and continues. It stops at the first lift-off
-(R = 0 with dR/dt < 0) unless told otherwise.
+One run integrates the current mode with a backend (:mod:`phasekit.backends`) until the end
+time or the first guard, applies the switch (:mod:`phasekit.modes`), records an
+:class:`~phasekit.result.EventRecord`, and continues:
+
+    sliding <-> rolling (stick, slip)   contact -> flight (lift-off: R = 0, dR/dt < 0)
+    flight -> contact or flight (touchdown, then the impact law of :mod:`phasekit.impact`)
+
+``stop_at`` decides how far: the first lift-off ("jump"), the first touchdown
+("touchdown"), or the end time ("none": repeated flights and impacts).
 """
 
 from __future__ import annotations
@@ -18,20 +23,21 @@ from .model import STICK_SLIP, Model
 from .modes import Mode, after_slip, after_stick, mode_events, zero_slip_start
 from .result import EventRecord, SimulationResult
 
-__all__ = ["simulate", "DEFAULT_RTOL", "BACKEND_CHOICES"]
+__all__ = ["simulate", "DEFAULT_RTOL", "BACKEND_CHOICES", "STIFF_RATE", "BOUNCE_STOP"]
 
 DEFAULT_RTOL = 1e-9
 #: slip speed given to a body that starts sliding from zero slip (just above the stick guard)
 SLIP_ONSET = 4 * STICK_SLIP
-
-
-BACKEND_CHOICES = ("auto", "taylor", "cvodes", "cvodes-adams")
-
-
 #: ``auto`` hands a stuck regularised law to CVODES when its slip relaxation rate mu/eps
 #: exceeds this. Measured (prolate a = 1.5, mu = 0.1, literal seeds, t <= 3000): the Taylor
 #: method is faster for eps >= 1e-4 (rate 1e3) and runs out of steps at eps = 1e-5.
 STIFF_RATE = 2000.0
+#: after an impact, a normal rebound velocity below this (units sqrt(g b)) ends the bounce
+#: train and contact resumes: e < 1 would otherwise give infinitely many bounces in finite
+#: time. Such a hop lasts ~2e-4 and rises ~5e-9 b, still 20 times the unguarded start of a
+#: flight (flight.GUARD_DELAY), so every flight that is integrated is resolved.
+BOUNCE_STOP = 1e-4
+BACKEND_CHOICES = ("auto", "taylor", "cvodes", "cvodes-adams")
 
 
 def _engine_name(backend: str, near_stick: bool, model: Model) -> str:
@@ -44,6 +50,13 @@ def _engine_name(backend: str, near_stick: bool, model: Model) -> str:
     return "cvodes" if stiff else "taylor"
 
 
+def _contact_mode(model, x, p):
+    """Mode in which a contact state starts: rolling at zero slip if static friction can hold."""
+    if Mode.ROLLING in model.modes and float(model.function("slip_speed2")(x, p)) <= STICK_SLIP**2:
+        return zero_slip_start(model, x, p, SLIP_ONSET)
+    return Mode.SLIDING, x, ""
+
+
 def simulate(
     model: Model,
     x0,
@@ -52,6 +65,7 @@ def simulate(
     t0: float = 0.0,
     rtol: float = DEFAULT_RTOL,
     stop_at: str = "jump",
+    restitution: float = 0.0,
     backend: str = "auto",
     t_eval=None,
     track_minima: bool = True,
@@ -59,7 +73,7 @@ def simulate(
     max_steps: int = 5_000_000,
     max_switches: int = 10_000,
 ) -> SimulationResult:
-    """Integrate the contact dynamics from ``x0`` (a state of ``model.chart``).
+    """Integrate the dynamics from ``x0`` (a state of ``model.chart``, in contact).
 
     Parameters
     ----------
@@ -69,15 +83,16 @@ def simulate(
         End time (> t0).
     rtol : float in (0, 1)
         Tolerance (heyoka's mixed tolerance for ``taylor``, CVODES reltol for ``cvodes``).
-    stop_at : {"jump", "none"}
-        "jump" stops at the first lift-off. "none" records lift-offs and continues with
-        the contact equations (the constraint R >= 0 is then not enforced: a monitoring
-        mode, as in the paper's figures, until flight is modelled).
+    stop_at : {"jump", "touchdown", "none"}
+        Stop at the first lift-off, at the first touchdown (the flight is reported in
+        ``result.flights``), or run to t_end through every flight and impact.
+    restitution : float in [0, 1]
+        Newton's coefficient e of the impact law (``stop_at="none"``).
     backend : {"auto", "taylor", "cvodes", "cvodes-adams"}
         ``auto`` (default) is heyoka's Taylor method, handing over to CVODES BDF only
         where a regularised Coulomb law has stuck (the one stiff regime).
     t_eval : array or None
-        Times at which to return states (dense output costs only when asked for).
+        Times at which to return contact states (dense output costs only when asked for).
     track_minima : bool
         Locate every local minimum of R exactly (for R_min and envelope studies).
     rise_theta : float or None
@@ -88,13 +103,19 @@ def simulate(
     -------
     SimulationResult
     """
+    from .flight import FlightModel, contact_state, fly, from_rigid, rigid_velocities
+    from .impact import impact
+
     x0 = check_vector("state", x0, model.n_states)
     t0 = check_finite("t0", t0)
     t_end = check_finite("t_end", t_end)
     if not t_end > t0:
         raise ValueError(f"`t_end` must be > t0 = {t0!r}, got {t_end!r}.")
     rtol = check_open_interval("rtol", rtol, 0.0, 1.0)
-    check_choice("stop_at", stop_at, ("jump", "none"))
+    check_choice("stop_at", stop_at, ("jump", "touchdown", "none"))
+    restitution = float(restitution)
+    if not 0.0 <= restitution <= 1.0:
+        raise ValueError(f"`restitution` must lie in [0, 1], got {restitution!r}.")
     check_choice("backend", backend, BACKEND_CHOICES)
     check_positive("max_steps", max_steps)
     if t_eval is not None:
@@ -111,35 +132,95 @@ def simulate(
     wall0 = time.perf_counter()
     engines: dict[str, object] = {}
     used: list[str] = []
-    near_stick = False
     events: list[EventRecord] = []
+    flights: list = []
     minima: list[tuple[float, float]] = []
     ts_all, ys_all = [], []
     n_steps = n_rhs = 0
     t, x = t0, x0.copy()
     status, reason = None, None
     t_jump = x_jump = rdot_jump = None
+    near_stick = False
 
-    # Initial mode: zero slip under exact Coulomb is rolling (or sliding in the consistent direction).
-    mode = Mode.SLIDING
-    if Mode.ROLLING in model.modes and float(model.function("slip_speed2")(x, p)) <= STICK_SLIP**2:
-        try:
-            mode, x, detail = zero_slip_start(model, x, p, SLIP_ONSET)
-        except RuntimeError as exc:
-            status, reason = Status.FAILED, str(exc)
-        else:
-            kind = "stick" if mode is Mode.ROLLING else "slip"
-            events.append(EventRecord(kind, t, "start", mode.value, x.copy(), detail))
-    R_start = float(model.function(f"R_{mode.value}")(x, p))
-    R_min = R_start
-    if status is None and R_start <= 0.0:
+    try:
+        mode, x, detail = _contact_mode(model, x, p)
+    except RuntimeError as exc:
+        mode, status, reason = Mode.SLIDING, Status.FAILED, str(exc)
+    else:
+        if detail:
+            events.append(EventRecord("stick" if mode is Mode.ROLLING else "slip", t, "start", mode.value, x.copy(), detail))
+    R_min = float(model.function(f"R_{mode.value}")(x, p))
+    pending_flight = status is None and R_min <= 0.0
+    if pending_flight:
         t_jump, x_jump = t, x.copy()
+        events.append(EventRecord("lift-off", t, mode.value, "flight", x.copy(), "R <= 0 at start"))
         if stop_at == "jump":
             status, reason = Status.JUMPED, "R <= 0 at the start: the state cannot stay in contact"
-        events.append(EventRecord("lift-off", t, mode.value, "flight" if stop_at == "jump" else mode.value, x.copy(), "R <= 0 at start"))
 
     resume = False
     while status is None:
+        if len(events) >= max_switches:
+            status, reason = Status.FAILED, f"more than {max_switches} mode switches by t = {t:.6g} (chattering)"
+            break
+        if pending_flight:  # ---------------------------------------------------- flight
+            pending_flight = False
+            fl = fly(model, x, t, t_end, rtol=rtol, max_steps=max(max_steps - n_steps, 1))
+            flights.append(fl)
+            n_steps += fl.n_steps
+            if fl.status == "failed":
+                status, reason = Status.FAILED, f"flight: {fl.reason}"
+                break
+            if fl.status == "time":
+                t, x, mode, status = t_end, contact_state(model.chart, fl.x_end), Mode.FLIGHT, Status.COMPLETED
+                reason = "in flight at t_end"
+                break
+            t = fl.t_touchdown
+            events.append(EventRecord("touchdown", t, "flight", "impact", contact_state(model.chart, fl.x_end)))
+            if stop_at == "touchdown":
+                status, x, mode = Status.TOUCHDOWN, contact_state(model.chart, fl.x_end), Mode.FLIGHT
+                break
+            xf = fl.x_end
+            fm = FlightModel(model.body, model.friction)
+            while True:  # impacts and rebounds
+                k, w, v = rigid_velocities(fm, xf)
+                imp = impact(model.body, k, w, v, e=restitution, mu=model.friction.mu)
+                x_post = from_rigid(fm, k, imp.w, imp.v)
+                dE = imp.energy_after - imp.energy_before
+                bounce = imp.v_normal_after > BOUNCE_STOP
+                events.append(EventRecord("impact", t, "flight", "flight" if bounce else "contact", contact_state(model.chart, x_post),
+                                          f"e={restitution:g}, dE={dE:.3e}" + (", stick" if imp.sticking else "")
+                                          + (", friction limited" if imp.energy_limited else "")))
+                if not bounce:
+                    break
+                fl = fly(model, x_post, t, t_end, rtol=rtol, max_steps=max(max_steps - n_steps, 1), flight_state_given=True)
+                flights.append(fl)
+                n_steps += fl.n_steps
+                if fl.status != "touchdown":
+                    break
+                t, xf = fl.t_touchdown, fl.x_end
+                events.append(EventRecord("touchdown", t, "flight", "impact", contact_state(model.chart, xf)))
+                if len(events) >= max_switches:
+                    break
+            if fl.status == "failed":
+                status, reason = Status.FAILED, f"flight: {fl.reason}"
+                break
+            if fl.status == "time":
+                t, x, mode, status = t_end, contact_state(model.chart, fl.x_end), Mode.FLIGHT, Status.COMPLETED
+                reason = "in flight at t_end"
+                break
+            x = contact_state(model.chart, x_post)
+            try:
+                mode, x, _ = _contact_mode(model, x, p)
+            except RuntimeError as exc:
+                status, reason = Status.FAILED, f"at t = {t:.6g}: {exc}"
+                break
+            if float(model.function(f"R_{mode.value}")(x, p)) <= 0.0:
+                # contact cannot hold (it would need R < 0): the body flies on from rest
+                events.append(EventRecord("lift-off", t, mode.value, "flight", x.copy(), "R <= 0 after impact"))
+                pending_flight = True
+            continue
+
+        # ------------------------------------------------------------------------ contact
         name = _engine_name(backend, near_stick, model)
         if name not in engines:
             engines[name] = get_backend(name, model, rtol)
@@ -149,7 +230,8 @@ def simulate(
         evs = mode_events(model, mode, pointwise=engine.name == "cvodes", rise=rise_theta is not None, near_stick=near_stick)
         prop = engine.propagate(
             mode, x, t, t_end, evs, p,
-            max_steps=max_steps - n_steps, t_eval=t_eval, minima=track_minima, resume=resume,
+            max_steps=max_steps - n_steps, t_eval=t_eval,
+            minima=(f"Rdot_{mode.value}", 1) if track_minima else None, resume=resume,
         )
         resume = False
         n_steps += prop.n_steps
@@ -164,27 +246,23 @@ def simulate(
         if not np.all(np.isfinite(x)):
             status, reason = Status.FAILED, f"non-finite state at t = {t:.6g}"
             break
-        R_here = float(model.function(f"R_{mode.value}")(x, p))
-        R_min = min(R_min, R_here)
+        R_min = min(R_min, float(model.function(f"R_{mode.value}")(x, p)))
         if prop.outcome == "failed":
             status, reason = Status.FAILED, prop.reason
             break
         if prop.outcome == "time":
             status = Status.COMPLETED
             break
-        if len(events) >= max_switches:
-            status, reason = Status.FAILED, f"more than {max_switches} mode switches by t = {t:.6g} (chattering)"
-            break
         if prop.event == "lift-off":
-            rdot = float(model.function(f"Rdot_{mode.value}")(x, p))
-            events.append(EventRecord("lift-off", t, mode.value, "flight" if stop_at == "jump" else mode.value, x.copy()))
+            events.append(EventRecord("lift-off", t, mode.value, "flight", x.copy()))
             R_min = min(R_min, 0.0)
             if t_jump is None:
-                t_jump, x_jump, rdot_jump = t, x.copy(), rdot
+                t_jump, x_jump = t, x.copy()
+                rdot_jump = float(model.function(f"Rdot_{mode.value}")(x, p))
             if stop_at == "jump":
                 status = Status.JUMPED
                 break
-            resume = True
+            pending_flight = True
         elif prop.event == "rise-complete":
             status, reason = Status.COMPLETED, f"rise complete: theta passed {rise_theta:.6g}"
             break
@@ -227,6 +305,10 @@ def simulate(
         ts, ys = np.concatenate(ts_all), np.vstack(ys_all)
         ts, idx = np.unique(ts, return_index=True)
         ys = ys[idx]
+    extra = {}
+    if flights:
+        extra["flight"] = flights[0].to_dict()
+        extra["n_flights"] = len(flights)
     return SimulationResult(
         status=status,
         chart=model.chart,
@@ -248,4 +330,6 @@ def simulate(
         ts=ts,
         ys=ys,
         minima=np.array(minima) if track_minima else None,
+        extra=extra,
+        flights=tuple(flights),
     )

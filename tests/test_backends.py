@@ -17,7 +17,7 @@ def test_taylor_cache_reload_keeps_minima(tmp_path, monkeypatch, prolate, standa
     for _ in range(2):
         TaylorBackend._memory.clear()  # force a (re)load from the disk cache
         b = TaylorBackend(model, 3e-9)
-        prop = b.propagate(Mode.SLIDING, standard_start, 0.0, 30.0, evs, model.p, max_steps=10**6, minima=True)
+        prop = b.propagate(Mode.SLIDING, standard_start, 0.0, 30.0, evs, model.p, max_steps=10**6, minima=("Rdot_sliding", 1))
         counts.append(len(prop.minima))
     assert list(tmp_path.glob("taylor-*.pkl"))
     assert counts[0] == counts[1] > 20

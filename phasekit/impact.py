@@ -1,0 +1,131 @@
+"""The impact at touchdown: Newton restitution with a Coulomb-limited tangential impulse.
+
+Model (algebraic impact law of Brach, "Rigid body collisions", J. Appl. Mech. 56, 1989;
+see also Stronge, "Impact Mechanics", CUP 2000, ch. 4). At the contact point P (r_P from O,
+normal e_Z) the velocity change produced by an impulse P_imp = (P_t1, P_t2, P_n) is
+dv_P = K P_imp, with the collision matrix K = 1 + [r_P]x^T I^-1 [r_P]x (mass 1).
+
+1. Normal: Newton's law v_Pn+ = -e v_Pn- with 0 <= e <= 1.
+2. Tangential: the impulse that stops the tangential slip (sticking) is used if it lies in
+   the friction cone, |P_t| <= mu P_n; otherwise the slip continues and P_t = -mu P_n u_t
+   with u_t the pre-impact slip direction (sliding impact), P_n from step 1.
+3. Energy: Newton restitution with friction can create energy when the slip reverses during
+   the impact (Kane & Levinson, J. Appl. Mech. 52, 1985). The tangential impulse is scaled
+   back toward the frictionless one until the kinetic energy does not increase; such cases
+   are counted in ImpactResult.energy_limited.
+
+For e = 1 and mu = 0 the impact conserves kinetic energy exactly; for e < 1 it dissipates.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import check_nonnegative
+
+__all__ = ["ImpactResult", "impact", "contact_point", "collision_matrix"]
+
+
+def _skew(r):
+    return np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
+
+
+def contact_point(body, k) -> np.ndarray:
+    """r_P = -H'(c)(k - c e_Z) - H(c) e_Z for the lowest point, c = k_Z (vector form)."""
+    k = np.asarray(k, dtype=float) / np.linalg.norm(k)
+    c = k[2]
+    import casadi as ca
+
+    cs = ca.SX.sym("c")
+    Hs = type(body).height_c(cs, ca.DM(body.shape_params))
+    H, dH = (float(v) for v in ca.Function("H", [cs], [Hs, ca.jacobian(Hs, cs)])(c))
+    ez = np.array([0.0, 0.0, 1.0])
+    return -dH * (k - c * ez) - H * ez
+
+
+def inverse_inertia(body, k) -> np.ndarray:
+    k = np.asarray(k, dtype=float) / np.linalg.norm(k)
+    P = np.outer(k, k)
+    return (np.eye(3) - P) / body.A + P / body.C
+
+
+def collision_matrix(body, k) -> np.ndarray:
+    r = contact_point(body, k)
+    S = _skew(r)
+    return np.eye(3) + S.T @ inverse_inertia(body, k) @ S
+
+
+@dataclass(frozen=True)
+class ImpactResult:
+    w: np.ndarray  # post-impact angular velocity
+    v: np.ndarray  # post-impact velocity of O
+    impulse: np.ndarray  # (P_t1, P_t2, P_n)
+    v_normal_before: float
+    v_normal_after: float
+    energy_before: float
+    energy_after: float
+    sticking: bool  # the tangential slip was stopped
+    energy_limited: bool  # the friction impulse was reduced to avoid an energy gain
+
+
+def _kinetic(body, k, w, v) -> float:
+    kh = k / np.linalg.norm(k)
+    n = w @ kh
+    L = body.A * (w - n * kh) + body.C * n * kh
+    return 0.5 * v @ v + 0.5 * w @ L
+
+
+def impact(body, k, w, v, *, e: float, mu: float) -> ImpactResult:
+    """Apply the impact law at touchdown to the rigid-body velocities (k, w, v = velocity of O).
+
+    Returns the post-impact (w, v) in ``ImpactResult.w``, ``ImpactResult.v``."""
+    e = check_nonnegative("restitution", e)
+    if e > 1:
+        raise ValueError(f"`restitution` must lie in [0, 1], got {e!r}.")
+    mu = check_nonnegative("mu", mu)
+    k, w, v = (np.asarray(a, dtype=float) for a in (k, w, v))
+    r = contact_point(body, k)
+    Iinv = inverse_inertia(body, k)
+    K = collision_matrix(body, k)
+    vP = v + np.cross(w, r)
+    vn = vP[2]
+    target = np.array([0.0, 0.0, -e * vn])
+
+    def apply(P):
+        return w + Iinv @ np.cross(r, P), v + P
+
+    E0 = _kinetic(body, k, w, v)
+    if vn >= 0.0:  # not approaching: nothing to do
+        return ImpactResult(w.copy(), v.copy(), np.zeros(3), vn, vn, E0, E0, False, False)
+    P_stick = np.linalg.solve(K, target - vP)  # tangential slip stopped, normal restitution
+    if np.hypot(P_stick[0], P_stick[1]) <= mu * P_stick[2]:
+        P, sticking = P_stick, True
+    else:
+        ut = vP[:2] / max(np.hypot(vP[0], vP[1]), 1e-300)
+        d = np.array([-mu * ut[0], -mu * ut[1], 1.0])
+        Pn = (target[2] - vn) / (K @ d)[2]
+        P, sticking = Pn * d, False
+    limited = False
+    if _kinetic(body, k, *apply(P)) > E0 * (1 + 1e-14):
+        # scale the tangential part back (keeping normal restitution) until no energy gain
+        limited = True
+        lo, hi = 0.0, 1.0
+
+        def with_scale(s):
+            Pt = P.copy()
+            Pt[:2] *= s
+            Pt[2] = (target[2] - vn - K[2, :2] @ Pt[:2]) / K[2, 2]  # the normal impulse re-solved
+            return Pt
+
+        for _ in range(60):
+            s = 0.5 * (lo + hi)
+            if _kinetic(body, k, *apply(with_scale(s))) > E0 * (1 + 1e-14):
+                hi = s
+            else:
+                lo = s
+        P = with_scale(lo)
+    w_new, v_new = apply(P)
+    vn_after = (v_new + np.cross(w_new, r))[2]
+    return ImpactResult(w_new, v_new, P, vn, float(vn_after), E0, _kinetic(body, k, w_new, v_new), sticking, limited)

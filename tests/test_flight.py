@@ -1,0 +1,155 @@
+"""Issue 6: free flight (exact solution, t^3 gap, touchdown), continuity at lift-off, impacts."""
+
+import contextlib
+import io
+import json
+
+import numpy as np
+import pytest
+
+import phasekit as pk
+from phasekit.cli import main
+from phasekit.flight import (
+    FlightModel,
+    cos_theta_exact,
+    flight_constants,
+    flight_invariants,
+    flight_state,
+    fly,
+    gap_exact,
+    gap_max_series,
+    gap_series,
+)
+from phasekit.impact import impact
+
+
+@pytest.fixture(scope="module")
+def jump11():
+    body = pk.Spheroid(1.5)
+    m = pk.Model(body, pk.Coulomb(0.1))
+    y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0)
+    r = pk.simulate(m, y0, 300.0, rtol=1e-12)
+    assert r.status is pk.Status.JUMPED
+    return body, m, r
+
+
+def test_numerical_flight_equals_closed_form_4_12(jump11):
+    body, m, r = jump11
+    probe = fly(m, r.x_jump, r.t_jump, r.t_jump + 1.0, rtol=1e-14)
+    T = probe.t_touchdown - r.t_jump
+    te = r.t_jump + np.linspace(0, T, 200)
+    f = fly(m, r.x_jump, r.t_jump, r.t_jump + 1.0, rtol=1e-14, t_eval=te)
+    k = flight_constants(body, r.x_jump, f.W_star)
+    np.testing.assert_allclose(f.xs[:, 2] / np.linalg.norm(f.xs[:, :3], axis=1), cos_theta_exact(k, f.ts - r.t_jump), atol=1e-10)
+    euler = np.array([pk.vector_to_euler(x[:8]) for x in f.xs[1:]])
+    inv = flight_invariants(body, euler)
+    assert np.max(np.abs(inv - inv[0]) / np.maximum(np.abs(inv[0]), 1e-300)) < 1e-10  # (4.6)-(4.8)
+    fm = FlightModel(body)
+    E = fm.evaluate("energy", f.xs)
+    assert np.ptp(E) / abs(E[0]) < 1e-12
+
+
+def test_touchdown_located_to_1e_10(jump11):
+    from scipy.optimize import brentq
+
+    body, m, r = jump11
+    f = fly(m, r.x_jump, r.t_jump, r.t_jump + 1.0, rtol=1e-13)
+    k = flight_constants(body, r.x_jump, f.W_star)
+    T = f.t_touchdown - r.t_jump
+    t_exact = brentq(lambda s: gap_exact(body, k, s), 0.5 * T, 1.5 * T, xtol=1e-15)
+    assert abs(T - t_exact) < 1e-10
+    assert f.gap_max > 0 and abs(f.gap_max - gap_exact(body, k, f.t_gap_max - r.t_jump)) < 1e-14
+
+
+def test_gap_grows_like_t_cubed(jump11):
+    body, m, r = jump11
+    f0 = fly(m, r.x_jump, r.t_jump, r.t_jump + 1.0, rtol=1e-14)
+    W = f0.W_star
+    t = np.geomspace(1e-3 * W, 3e-2 * W, 30)
+    f = fly(m, r.x_jump, r.t_jump, r.t_jump + 1.0, rtol=1e-14, t_eval=r.t_jump + t)
+    slope = np.polyfit(np.log(f.ts - r.t_jump), np.log(f.gaps), 1)[0]
+    assert slope == pytest.approx(3.0, abs=0.05)
+
+
+def test_series_4_22_4_23_converge_in_the_gyroscopic_limit():
+    """Lift-off states obeying (4.15)-(4.16), W* ~ Omega*^(-7/4) as the bound of Fig. 5d implies:
+    the errors of (4.22) and (4.23) against the exact flight fall as Omega* grows."""
+    body = pk.Spheroid(1.5)
+    th = 1.0
+    ht = body.h(th)[1]
+    errs_max, errs_curve = [], []
+    for om in (11.0, 20.0, 30.0, 60.0):
+        W = 0.3 * om ** -1.75
+        # (4.16) printed Psi* = 1/(Omega* h_theta*); from its own middle expression and R = 0
+        # (free flight: thetaddot = Omega Psi, and d2h/dt2 = -1) it is -1/(Omega* h_theta*)
+        Psi = -1.0 / (om * ht)
+        n = (body.A * om * np.cos(th) - body.A * Psi / np.sin(th)) / body.C  # (3.1)
+        y = np.array([0.0, 0.0, om, W / ht, th, n])
+        k = flight_constants(body, y, W)
+        t = np.linspace(0, 4 * W, 400)
+        ex = gap_exact(body, k, t)
+        gm, tm = gap_max_series(om, W)
+        errs_max.append(abs(gm / ex.max() - 1))
+        errs_curve.append(np.max(np.abs(gap_series(om, W, t) - ex)) / ex.max())
+    # the whole gap curve (4.22): 6.6%, 2.1%, 0.95%, 0.25% for Omega* = 11, 20, 30, 60
+    assert all(b < a for a, b in zip(errs_curve, errs_curve[1:])) and errs_curve[-1] < 0.005
+    # its maximum (4.23) is already within 1e-3 and keeps below that, ending ~10x smaller
+    assert max(errs_max) < 1e-3 and errs_max[-1] < errs_max[0] / 5
+
+
+def test_velocities_and_accelerations_continuous_through_lift_off(jump11):
+    body, m, r = jump11
+    mv = pk.Model(body, pk.Coulomb(0.1), "vector")
+    z = pk.euler_to_vector(r.x_jump)
+    fm = FlightModel(body)
+    xf = flight_state(m, r.x_jump)
+    a_contact = mv.rhs(z)  # (dk, dw, dv_h) in contact at R = 0
+    a_flight = fm.rhs(xf)
+    np.testing.assert_allclose(a_flight[:8], a_contact, atol=1e-9)
+    # vertical: in contact dW/dt = R - 1 = -1 at lift-off; in flight the gap has zero acceleration
+    assert abs(fm.evaluate("gap_acc", xf)) < 1e-9
+    assert xf[8] == 0.0 and xf[9] == 0.0  # gap and its rate start at zero: no jump in velocity
+
+
+@pytest.mark.parametrize("e, mu", [(0.0, 0.1), (0.5, 0.1), (0.9, 0.3), (1.0, 0.0)])
+def test_impacts_never_gain_energy(e, mu):
+    body = pk.Spheroid(1.5)
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        k = rng.standard_normal(3)
+        k /= np.linalg.norm(k)
+        w = rng.standard_normal(3) * 10
+        v = rng.standard_normal(3)
+        res = impact(body, k, w, v, e=e, mu=mu)
+        assert res.energy_after <= res.energy_before * (1 + 1e-12)
+        if res.v_normal_before < 0:
+            assert res.v_normal_after == pytest.approx(-e * res.v_normal_before, abs=1e-10)
+            if e < 1:
+                assert res.energy_after < res.energy_before
+            if e == 1.0 and mu == 0.0:
+                assert res.energy_after == pytest.approx(res.energy_before, rel=1e-12)
+
+
+def test_whole_rise_with_repeated_bouncing_records_every_event():
+    body = pk.Spheroid(1.5)
+    m = pk.Model(body, pk.Coulomb(0.1))
+    y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0)
+    r = pk.simulate(m, y0, 400.0, stop_at="none", restitution=0.5, rise_theta=0.05, max_switches=100_000)
+    assert r.status is pk.Status.COMPLETED and "rise complete" in r.reason
+    kinds = [e.kind for e in r.events]
+    assert kinds.count("touchdown") == kinds.count("impact") > kinds.count("lift-off") > 1
+    dE = [float(e.detail.split("dE=")[1].split(",")[0]) for e in r.events if e.kind == "impact"]
+    assert max(dE) < 0
+    assert all(b.t >= a.t for a, b in zip(r.events, r.events[1:]))
+
+
+def test_stop_at_touchdown_json():
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        code = main(["simulate", "--a", "1.5", "--mu", "0.1", "--gyroscopic", "--theta0", str(np.pi / 2 - 0.01),
+                     "--omega0", "11", "--t-end", "300", "--stop-at", "touchdown", "--json"])
+    d = json.loads(out.getvalue())
+    assert code == 0 and d["status"] == "touchdown"
+    fl = d["flight"]
+    assert set(fl) >= {"t_touchdown", "gap_max", "t_gap_max", "W_star", "Omega_star"}
+    assert d["t_jump"] < fl["t_gap_max"] < fl["t_touchdown"] < d["t_jump"] + 0.1
