@@ -73,7 +73,7 @@ def main(argv=None) -> dict:
     for stem, (data, info) in infos.items():
         print(f"Figure {stem}.png: {data.scene.branch} a = {data.scene.a:g}; {data.n_simulations} trajectories; "
               f"points drawn {info.n_points}")
-    print(f"\nrelative error in n of (6.3) at the simulated crossing (R = 0, dR/dt < 0):")
+    print("\nrelative error in n of (6.3) at the simulated crossing (R = 0, dR/dt < 0):")
     print(f"{'branch':<8s} {'start':>6s} {'t_cross':>8s} {'theta*':>7s} {'n*':>8s} {'Lambda*':>8s} {'rel err':>9s}")
     for row in table:
         print(f"{row[0]:<8s} {row[2]:6.1f} {row[3]:8.2f} {row[5]:7.4f} {row[6]:8.4f} {row[7]:8.4f} {row[9]:9.2e}")
