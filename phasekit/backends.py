@@ -233,16 +233,17 @@ class CvodesBackend:
     #: is 2x faster than 40 (fewer restarts of CVODES) and no slower than 200.
     n_grid = 100
 
-    def __init__(self, model: Model, rtol: float, method: str = "bdf"):
+    def __init__(self, model: Model, rtol: float, method: str = "bdf", plugin: str = "cvodes"):
         self.model = model
         self.rtol = float(rtol)
         self.method = method
+        self.plugin = plugin  # "cvodes", or "idas" (SUNDIALS' DAE solver on the same ODE)
 
     def _functions(self, mode, max_steps: int):
         import casadi as ca
 
         m = self.model
-        key = (m.compiled.key, mode, self.rtol, self.method, int(max_steps), self.n_grid)
+        key = (m.compiled.key, mode, self.rtol, self.method, self.plugin, int(max_steps), self.n_grid)
         with self._lock:
             if key in self._memory:
                 return self._memory[key]
@@ -251,18 +252,14 @@ class CvodesBackend:
         T = ca.SX.sym("T")
         rhs = m.function(f"rhs_{mode.value}")(x, p)
         dae = {"x": x, "p": ca.vertcat(p, T), "ode": T * rhs}
-        opts = {
-            "reltol": self.rtol,
-            "abstol": self.rtol * 1e-2,
-            "max_num_steps": int(max_steps),
-            "linear_multistep_method": self.method,
-            "max_step_size": 0.0,
-        }
-        if self.method == "adams":
-            opts["nonlinear_solver_iteration"] = "functional"
+        opts = {"reltol": self.rtol, "abstol": self.rtol * 1e-2, "max_num_steps": int(max_steps)}
+        if self.plugin == "cvodes":
+            opts["linear_multistep_method"] = self.method
+            if self.method == "adams":
+                opts["nonlinear_solver_iteration"] = "functional"
         grid = [k / self.n_grid for k in range(1, self.n_grid + 1)]
-        chunk = ca.integrator(f"cvodes_chunk_{mode.value}", "cvodes", dae, 0.0, grid, opts)
-        single = ca.integrator(f"cvodes_single_{mode.value}", "cvodes", dae, 0.0, 1.0, opts)
+        chunk = ca.integrator(f"{self.plugin}_chunk_{mode.value}", self.plugin, dae, 0.0, grid, opts)
+        single = ca.integrator(f"{self.plugin}_single_{mode.value}", self.plugin, dae, 0.0, 1.0, opts)
         out = (chunk, single)
         with self._lock:
             self._memory[key] = out
@@ -321,7 +318,7 @@ class CvodesBackend:
             try:
                 r = chunk(x0=x, p=np.concatenate([p, [dt]]))
             except RuntimeError as exc:
-                prop.outcome, prop.reason = "failed", f"cvodes: {str(exc).splitlines()[-1][:200]} near t = {t:.6g}"
+                prop.outcome, prop.reason = "failed", f"{self.plugin}: {_sundials_message(exc)} (chunk from t = {t:.6g})"
                 break
             st = chunk.stats()
             prop.n_steps += int(st.get("nsteps", 0))
@@ -377,6 +374,23 @@ class CvodesBackend:
         if ts_out:
             prop.ts, prop.ys = np.array(ts_out), np.array(ys_out)
         return prop
+
+
+def _sundials_message(exc) -> str:
+    """The informative part of a SUNDIALS error raised through CasADi (without C++ file paths),
+    e.g. 'CVode returned "CV_TOO_MUCH_WORK"' (the step limit was reached)."""
+    import re
+
+    lines = [re.sub(r"^.*\.cpp:\d+:\s*", "", ln).strip() for ln in str(exc).splitlines()]
+    lines = [ln for ln in lines if ln and not ln.startswith("Error in Function::call")]
+    for key in ("TOO_MUCH_WORK", "CV_", "IDA_", "mxstep", "convergence", "error test"):
+        for ln in lines:
+            if key in ln:
+                msg = ln.replace(" Consult CVODES documentation.", "").replace(" Consult IDAS documentation.", "")
+                if "TOO_MUCH_WORK" in msg:
+                    msg += " (step limit reached: the field is too stiff or the tolerance too tight for the step budget)"
+                return msg[:240]
+    return (lines[-1] if lines else "unknown failure")[:240]
 
 
 def _refine(run, gf, rate, p, xa, T, dip):
@@ -438,4 +452,6 @@ BACKENDS = {"taylor": TaylorBackend, "cvodes": CvodesBackend}
 def get_backend(name: str, model: Model, rtol: float):
     if name == "cvodes-adams":
         return CvodesBackend(model, rtol, method="adams")
+    if name == "idas":
+        return CvodesBackend(model, rtol, plugin="idas")
     return BACKENDS[name](model, rtol)

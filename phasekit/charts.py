@@ -131,9 +131,9 @@ def vector_to_euler(z) -> np.ndarray:
     k = z[0:3] / np.linalg.norm(z[0:3])
     w = z[3:6]
     v = np.array([z[6], z[7], 0.0])
+    kh = np.hypot(k[0], k[1])  # sin(theta), accurate near the pole (1 - cos^2 is not)
     c = float(np.clip(k[2], -1.0, 1.0))
-    th = float(np.arccos(c))
-    kh = np.hypot(k[0], k[1])
+    th = float(np.arctan2(kh, k[2]))
     n = float(w @ k)
     if kh == 0.0:
         eX, eY = np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
@@ -141,5 +141,9 @@ def vector_to_euler(z) -> np.ndarray:
     else:
         eX = np.array([k[0] / kh, k[1] / kh, 0.0])
         eY = np.array([-eX[1], eX[0], 0.0])
-        Om = (w[2] - n * c) / (1.0 - c * c)
+        if abs(c) > 0.5:
+            # w.e_X = (n - Omega cos) sin: both terms O(sin), no cancellation near the pole
+            Om = (n * kh - w @ eX) / (c * kh)
+        else:
+            Om = (w[2] - n * c) / (kh * kh)
     return np.array([v @ eX, v @ eY, Om, w @ eY, th, n])

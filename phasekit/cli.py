@@ -93,7 +93,7 @@ def _build_parser() -> _Parser:
     sim.add_argument("--stop-at", default="jump", help="jump | touchdown | none")
     sim.add_argument("--restitution", type=float, default=0.0, help="Newton's e in [0, 1] at impacts (--stop-at none)")
     sim.add_argument("--formulation", default="auto", help="euler | vector | auto")
-    sim.add_argument("--backend", default="auto", help="auto | taylor | cvodes | cvodes-adams")
+    sim.add_argument("--backend", default="auto", help="auto | taylor | cvodes | cvodes-adams | idas")
     sim.add_argument("--json", action="store_true")
 
     fx = sub.add_parser("fixed-points", help="steady states and their linear stability")

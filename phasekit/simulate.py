@@ -37,7 +37,7 @@ STIFF_RATE = 2000.0
 #: time. Such a hop lasts ~2e-4 and rises ~5e-9 b, still 20 times the unguarded start of a
 #: flight (flight.GUARD_DELAY), so every flight that is integrated is resolved.
 BOUNCE_STOP = 1e-4
-BACKEND_CHOICES = ("auto", "taylor", "cvodes", "cvodes-adams")
+BACKEND_CHOICES = ("auto", "taylor", "cvodes", "cvodes-adams", "idas")
 
 
 def _engine_name(backend: str, near_stick: bool, model: Model) -> str:
@@ -88,7 +88,7 @@ def simulate(
         ``result.flights``), or run to t_end through every flight and impact.
     restitution : float in [0, 1]
         Newton's coefficient e of the impact law (``stop_at="none"``).
-    backend : {"auto", "taylor", "cvodes", "cvodes-adams"}
+    backend : {"auto", "taylor", "cvodes", "cvodes-adams", "idas"}
         ``auto`` (default) is heyoka's Taylor method, handing over to CVODES BDF only
         where a regularised Coulomb law has stuck (the one stiff regime).
     t_eval : array or None
@@ -227,7 +227,7 @@ def simulate(
         engine = engines[name]
         if name not in used:
             used.append(name)
-        evs = mode_events(model, mode, pointwise=engine.name == "cvodes", rise=rise_theta is not None, near_stick=near_stick)
+        evs = mode_events(model, mode, pointwise=engine.name != "taylor", rise=rise_theta is not None, near_stick=near_stick)
         prop = engine.propagate(
             mode, x, t, t_end, evs, p,
             max_steps=max_steps - n_steps, t_eval=t_eval,
