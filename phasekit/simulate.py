@@ -168,25 +168,19 @@ def simulate(
             break
         if pending_flight:  # ---------------------------------------------------- flight
             pending_flight = False
-            fl = fly(model, x, t, t_end, rtol=rtol, max_steps=max(max_steps - n_steps, 1))
-            flights.append(fl)
-            n_steps += fl.n_steps
-            if fl.status == "failed":
-                status, reason = Status.FAILED, f"flight: {fl.reason}"
-                break
-            if fl.status == "time":
-                t, x, mode, status = t_end, contact_state(model.chart, fl.x_end), Mode.FLIGHT, Status.COMPLETED
-                reason = "in flight at t_end"
-                break
-            t = fl.t_touchdown
-            events.append(EventRecord("touchdown", t, "flight", "impact", contact_state(model.chart, fl.x_end)))
-            if stop_at == "touchdown":
-                status, x, mode = Status.TOUCHDOWN, contact_state(model.chart, fl.x_end), Mode.FLIGHT
-                break
-            xf = fl.x_end
             fm = FlightModel(model.body, model.friction)
-            while True:  # impacts and rebounds
-                k, w, v = rigid_velocities(fm, xf)
+            start, given, x_post = x, False, None
+            while True:  # a flight; at touchdown the impact; a rebound starts the next flight
+                fl = fly(model, start, t, t_end, rtol=rtol, max_steps=max(max_steps - n_steps, 1), flight_state_given=given)
+                flights.append(fl)
+                n_steps += fl.n_steps
+                if fl.status != "touchdown":
+                    break
+                t = fl.t_touchdown
+                events.append(EventRecord("touchdown", t, "flight", "impact", contact_state(model.chart, fl.x_end)))
+                if stop_at == "touchdown" or len(events) >= max_switches:
+                    break
+                k, w, v = rigid_velocities(fm, fl.x_end)
                 imp = impact(model.body, k, w, v, e=restitution, mu=model.friction.mu)
                 x_post = from_rigid(fm, k, imp.w, imp.v)
                 dE = imp.energy_after - imp.energy_before
@@ -196,15 +190,7 @@ def simulate(
                                           + (", friction limited" if imp.energy_limited else "")))
                 if not bounce:
                     break
-                fl = fly(model, x_post, t, t_end, rtol=rtol, max_steps=max(max_steps - n_steps, 1), flight_state_given=True)
-                flights.append(fl)
-                n_steps += fl.n_steps
-                if fl.status != "touchdown":
-                    break
-                t, xf = fl.t_touchdown, fl.x_end
-                events.append(EventRecord("touchdown", t, "flight", "impact", contact_state(model.chart, xf)))
-                if len(events) >= max_switches:
-                    break
+                start, given = x_post, True
             if fl.status == "failed":
                 status, reason = Status.FAILED, f"flight: {fl.reason}"
                 break
@@ -212,6 +198,11 @@ def simulate(
                 t, x, mode, status = t_end, contact_state(model.chart, fl.x_end), Mode.FLIGHT, Status.COMPLETED
                 reason = "in flight at t_end"
                 break
+            if stop_at == "touchdown":
+                status, x, mode = Status.TOUCHDOWN, contact_state(model.chart, fl.x_end), Mode.FLIGHT
+                break
+            if x_post is None:  # the switch budget ran out at a touchdown
+                continue
             x = contact_state(model.chart, x_post)
             try:
                 mode, x, _ = _contact_mode(model, x, p)
