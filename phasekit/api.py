@@ -16,7 +16,7 @@ from .simulate import simulate
 from .charts import EULER_NAMES, vector_to_euler
 from .starts import gyroscopic_start, raw_start, to_chart
 
-__all__ = ["make_model", "choose_formulation", "simulate_start", "fixed_points_report", "gyroscopic_report", "POLE_MARGIN"]
+__all__ = ["choose_formulation", "simulate_start", "fixed_points_report", "gyroscopic_report", "POLE_MARGIN"]
 
 #: within this angle of theta = 0 or pi the vector chart is the default. Measured (oblate
 #: a = 0.6, n0 = 12, viscous mu = 0.1, rtol 1e-9, to t = 40): away from the pole the Euler
@@ -24,13 +24,6 @@ __all__ = ["make_model", "choose_formulation", "simulate_start", "fixed_points_r
 #: follows the precession) with 10-100x smaller errors; at theta0 = 1e-6 the vector chart
 #: wins (382 vs 510 steps, error 8e-8 vs 1.6e-7). Exactly at the pole only it can start.
 POLE_MARGIN = 1e-5
-
-
-def make_model(*, a, mu, friction="coulomb", slip_eps=None, A=None, C=None, formulation="euler") -> Model:
-    """A spheroid model from plain parameters (validated, with errors naming the parameter)."""
-    body = Spheroid(a, A=A, C=C)
-    law = friction_law(friction, mu, slip_eps)
-    return Model(body, law, formulation)
 
 
 def choose_formulation(theta0: float, requested: str = "auto") -> str:
@@ -61,7 +54,6 @@ def simulate_start(
             raise ValueError(f"`formulation` {formulation!r} cannot start on the {start['state']} state; use {model.chart} or auto.")
         seed_info = {"fixed_point": fp.to_dict(), "delta": start["delta"], "branch": start.get("branch", "+0"),
                      "seed_law": fp.law}
-        res = simulate(model, x0, t_end, rtol=rtol, stop_at=stop_at, restitution=restitution, backend=backend)
     else:
         if start["kind"] == "gyroscopic":
             y0 = gyroscopic_start(body, start["theta0"], omega0=start.get("omega0"), n0=start.get("n0"))
@@ -73,7 +65,7 @@ def simulate_start(
             raw_start(y0, chart="euler")  # theta strictly inside (0, pi)
         model = Model(body, law, chart)
         x0 = to_chart(chart, y0)
-        res = simulate(model, x0, t_end, rtol=rtol, stop_at=stop_at, restitution=restitution, backend=backend)
+    res = simulate(model, x0, t_end, rtol=rtol, stop_at=stop_at, restitution=restitution, backend=backend)
     out = res.to_dict()
     out["model"] = {
         "body": repr(body),

@@ -27,7 +27,7 @@ import numpy as np
 from .body import Body
 from .charts import _cross, euler_to_vector, vector_to_euler
 from .friction import FrictionLaw, Viscous
-from .model import N_LAW_AND_RUN_PARAMS, CompiledModel
+from .model import N_LAW_AND_RUN_PARAMS, CompiledModel, evaluate_function
 
 __all__ = [
     "FlightModel",
@@ -129,13 +129,7 @@ class FlightModel:
         return self.compiled.functions[name]
 
     def evaluate(self, name: str, x):
-        X = np.asarray(x, dtype=float)
-        f = self.compiled.functions[name]
-        if X.ndim == 1:
-            r = np.asarray(f(X, self.p)).ravel()
-            return float(r[0]) if r.size == 1 else r
-        r = np.asarray(f.map(X.shape[0])(X.T, np.tile(self.p[:, None], (1, X.shape[0]))))
-        return r.T.squeeze(-1) if r.shape[0] == 1 else r.T
+        return evaluate_function(self.compiled.functions[name], self.p, x)
 
     def rhs(self, x, mode=None) -> np.ndarray:
         return np.asarray(self.compiled.functions["rhs_flight"](x, self.p)).ravel()

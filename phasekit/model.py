@@ -32,7 +32,7 @@ from .errors import check_choice
 from .friction import FrictionLaw
 from .modes import Mode
 
-__all__ = ["Mode", "Model", "compiled_model"]
+__all__ = ["Mode", "Model", "compiled_model", "evaluate_function"]
 
 
 #: slip speed (units sqrt(g b)) at which exact Coulomb sliding is taken to have stuck;
@@ -169,6 +169,16 @@ def _build(body_cls, law_cls, chart) -> CompiledModel:
     return out
 
 
+def evaluate_function(f: ca.Function, p: np.ndarray, x):
+    """f(x, p) for one state (d,) -> float or (k,), or for many states (m, d) -> (m,) or (m, k)."""
+    X = np.asarray(x, dtype=float)
+    if X.ndim == 1:
+        r = np.asarray(f(X, p))
+        return float(r.item()) if r.size == 1 else r.ravel()
+    r = np.asarray(f.map(X.shape[0])(X.T, np.tile(p[:, None], (1, X.shape[0]))))
+    return r.ravel() if r.shape[0] == 1 else r.T
+
+
 class Model:
     """A body, a friction law and a chart, with numeric parameters bound.
 
@@ -212,14 +222,7 @@ class Model:
 
     def evaluate(self, name: str, x) -> np.ndarray | float:
         """Evaluate a named quantity at a state (d,) or at many states (m, d)."""
-        f = self.compiled.f(name)
-        X = np.asarray(x, dtype=float)
-        if X.ndim == 1:
-            r = np.asarray(f(X, self.p))
-            return float(r[0, 0]) if r.size == 1 else r.reshape(r.shape[0], -1).squeeze(-1) if r.shape[1] == 1 else r
-        fm = f.map(X.shape[0])
-        r = np.asarray(fm(X.T, np.tile(self.p[:, None], (1, X.shape[0]))))
-        return r.T.squeeze(-1) if r.shape[0] == 1 else r.T
+        return evaluate_function(self.compiled.f(name), self.p, x)
 
     def rhs(self, x, mode: Mode = Mode.SLIDING) -> np.ndarray:
         return np.asarray(self.compiled.f(f"rhs_{Mode(mode).value}")(x, self.p)).ravel()
