@@ -65,12 +65,28 @@ class Body:
         """h(theta), h'(theta), h''(theta) as floats (or arrays): exact derivatives via CasADi."""
         return _h_functions(type(self))(np.asarray(theta, dtype=float), self.shape_params)
 
+    def height_slope(self, c: float) -> tuple[float, float]:
+        """(H(c), H'(c)) with c = cos(theta): the height and its slope, regular at the poles."""
+        H, dH = _H_slope_function(type(self))(float(c), self.shape_params)
+        return float(H), float(dH)
+
     def __repr__(self) -> str:
         shape = ", ".join(f"{v:g}" for v in self.shape_params)
         return f"{self.kind}({shape}, A={self.A:g}, C={self.C:g})"
 
 
 _H_CACHE: dict[type, object] = {}
+_SLOPE_CACHE: dict[type, object] = {}
+
+
+def _H_slope_function(cls: type[Body]):
+    """Compile (c, shape) -> (H, dH/dc) once per body class."""
+    if cls not in _SLOPE_CACHE:
+        c = ca.SX.sym("c")
+        sh = ca.SX.sym("shape", cls.n_shape)
+        H = cls.height_c(c, sh)
+        _SLOPE_CACHE[cls] = ca.Function("height_slope", [c, sh], [H, ca.jacobian(H, c)])
+    return _SLOPE_CACHE[cls]
 
 
 def _h_functions(cls: type[Body]):

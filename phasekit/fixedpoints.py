@@ -300,28 +300,33 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
 # -- linearisation -------------------------------------------------------------------------
 
 
+_REDUCED: dict = {}
+
+
 def _rolling_reduced_jacobian(model: Model, x: np.ndarray):
     """Jacobian of the rolling field on the no-slip manifold, in coordinates that omit the
-    velocity of O (it is slaved to u = 0), and the map lifting tangent vectors back."""
+    velocity of O (it is slaved to u = 0), and the map lifting tangent vectors back.
+    The CasADi function is built once per compiled model."""
     n = model.n_states
     i, j = velocity_slots(model.chart)
     keep = [k for k in range(n) if k not in (i, j)]
-    r = ca.SX.sym("r", len(keep))
-    p = ca.SX.sym("p", len(model.p))
-    base = [None] * n
-    for k, kk in enumerate(keep):
-        base[kk] = r[k]
-    base[i] = ca.SX(0)
-    base[j] = ca.SX(0)
-    x0 = ca.vertcat(*base)
-    u = model.function("slip")(x0, p)  # the slip is (velocity slots) + u(rest)
-    full = [base[k] for k in range(n)]
-    full[i], full[j] = -u[0], -u[1]
-    xr = ca.vertcat(*full)
-    fr = model.function("rhs_rolling")(xr, p)
-    red = ca.vertcat(*[fr[k] for k in keep])
-    J = ca.Function("Jr", [r, p], [ca.jacobian(red, r), ca.jacobian(xr, r)])
-    Jr, L = J(x[keep], model.p)
+    key = model.compiled.key
+    if key not in _REDUCED:
+        r = ca.SX.sym("r", len(keep))
+        p = ca.SX.sym("p", len(model.p))
+        base = [None] * n
+        for k, kk in enumerate(keep):
+            base[kk] = r[k]
+        base[i] = ca.SX(0)
+        base[j] = ca.SX(0)
+        u = model.function("slip")(ca.vertcat(*base), p)  # the slip is (velocity slots) + u(rest)
+        full = list(base)
+        full[i], full[j] = -u[0], -u[1]
+        xr = ca.vertcat(*full)
+        fr = model.function("rhs_rolling")(xr, p)
+        red = ca.vertcat(*[fr[k] for k in keep])
+        _REDUCED[key] = ca.Function("Jr", [r, p], [ca.jacobian(red, r), ca.jacobian(xr, r)])
+    Jr, L = _REDUCED[key](x[keep], model.p)
     return np.asarray(Jr), np.asarray(L)
 
 

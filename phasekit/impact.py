@@ -36,11 +36,7 @@ def contact_point(body, k) -> np.ndarray:
     """r_P = -H'(c)(k - c e_Z) - H(c) e_Z for the lowest point, c = k_Z (vector form)."""
     k = np.asarray(k, dtype=float) / np.linalg.norm(k)
     c = k[2]
-    import casadi as ca
-
-    cs = ca.SX.sym("c")
-    Hs = type(body).height_c(cs, ca.DM(body.shape_params))
-    H, dH = (float(v) for v in ca.Function("H", [cs], [Hs, ca.jacobian(Hs, cs)])(c))
+    H, dH = body.height_slope(c)
     ez = np.array([0.0, 0.0, 1.0])
     return -dH * (k - c * ez) - H * ez
 

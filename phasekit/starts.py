@@ -13,7 +13,6 @@ is regular at theta = 0, so the oblate start works down to the vertical.
 
 from __future__ import annotations
 
-import casadi as ca
 import numpy as np
 
 from .body import Body
@@ -25,9 +24,7 @@ __all__ = ["gyroscopic_start", "raw_start", "to_chart", "balance_residual"]
 
 def _q(body: Body, theta: float) -> float:
     """h_theta / sin(theta) = -H'(cos theta), evaluated without dividing by sin(theta)."""
-    c = ca.SX.sym("c")
-    H = body.height_c(c, ca.DM(body.shape_params))
-    return -float(ca.Function("dH", [c], [ca.jacobian(H, c)])(np.cos(theta)))
+    return -body.height_slope(np.cos(theta))[1]
 
 
 def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, n0: float | None = None) -> np.ndarray:
