@@ -1,74 +1,131 @@
-"""phasekit: the phase space of a rigid spheroid spinning on a table.
+"""phasekit: the phase space of an axisymmetric rigid body spinning on a table.
 
 Exact contact dynamics (equations (2.7) of Shimomura, Branicki & Moffatt, and an
-independent singularity-free Newton-Euler form), Coulomb stick-slip and viscous
-friction, located lift-off events, and the analysis built on them.
+independent singularity-free Newton-Euler form), Coulomb stick-slip and viscous friction,
+located lift-off events, free flight and impacts, and the analysis built on them. The
+hybrid system (modes, events, resets) is data: see :mod:`phasekit.system`.
 
-This module is the one place users import from.
+This module is the one place users import from; drawing is in :mod:`phasekit.viz`.
 """
 
-from .body import Body, Spheroid
-from .charts import EULER_NAMES, euler_to_vector, vector_to_euler
-from .errors import BracketError, ConvergenceError, PhasekitError, Status
+from .body import Body, CustomBody, EccentricSphere, Spheroid
+from .charts import EULER, FLIGHT, PAPER_NAMES, VECTOR, Chart, euler_to_vector, vector_to_euler
+from .errors import ConvergenceError, ParameterError, PhasekitError, Status
 from .friction import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous, friction_law
-from .model import STICK_SLIP, Model
-from .modes import Mode
-from .result import EventRecord, SimulationResult
-from .simulate import BACKEND_CHOICES, DEFAULT_RTOL, simulate
-from .starts import balance_residual, gyroscopic_start, raw_start, to_chart
-from .fixedpoints import Branch, FixedPoint, continue_family, find_fixed_point, fixed_points, linearise
+from .hybrid import Event, Mode
+from .model import OBSERVABLES, Model
+from .options import BACKENDS, SolverOptions
+from .simulate import simulate, taylor_integrator
+from .trajectory import EventRecord, Flight, Segment, Trajectory
+from .starts import gyroscopic_start, raw_start, to_chart, vertical_spin_start
+from .fixedpoints import (
+    Branch,
+    FixedPoint,
+    continue_family,
+    find_fixed_point,
+    fixed_points,
+    horizontal_state,
+    intermediate_omega,
+    intermediate_state,
+    linearise,
+    vertical_state,
+)
 from .manifolds import (
+    horizontal_is_unstable,
     horizontal_stability_threshold,
+    vertical_is_stable,
     unstable_manifold_start,
     unstable_seeds,
     vertical_stability_threshold,
 )
-from .threshold import Definition, Threshold, continue_threshold, find_threshold
-from .gyroscopic import gyroscopic_closed, gyroscopic_numeric, gyroscopic_solution, jellett_constant
-from .flight import Flight, FlightModel, fly
+from .threshold import DEFAULT_DEFINITIONS, Definition, Outcome, Threshold, continue_threshold, find_threshold
+from .gyroscopic import gyroscopic_closed, gyroscopic_numeric, gyroscopic_solution, jellett_constant, mean_slip, rise_time
+from .multiscale import (
+    Gamma,
+    Gamma_closed,
+    I1_closed,
+    I2_dominant,
+    I3_closed,
+    I_quadrature,
+    Sigma,
+    c_xi,
+    mean_over_periods,
+    omega2,
+    omega_gyro,
+    perturbation_from_c_xi,
+    slow_rates,
+    zeta,
+    zeta_gyro,
+)
+from .flight import (
+    FlightConstants,
+    cos_theta_exact,
+    flight_constants,
+    flight_invariants,
+    fly,
+    gap_exact,
+    gap_max_series,
+    gap_series,
+)
 from .impact import impact
 from .surface import Scene, compute_scene, exact_boundary, surface_n
+from .paper import PAPER_CASES, paper_start
+from .api import choose_formulation
+from .baseline import numpy_normal_reaction, numpy_rhs, solve_ivp_to_jump
+from .sweep import ModelPack, ResultStore, TaskSpec, ThresholdRow, make_client, provenance, run_tasks, threshold_key, threshold_task
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 __all__ = [
     "Body",
     "Spheroid",
+    "EccentricSphere",
+    "CustomBody",
     "FrictionLaw",
     "Coulomb",
     "RegularisedCoulomb",
     "Viscous",
     "friction_law",
     "Model",
+    "OBSERVABLES",
+    "Chart",
+    "EULER",
+    "VECTOR",
+    "FLIGHT",
+    "PAPER_NAMES",
     "Mode",
-    "STICK_SLIP",
+    "Event",
+    "SolverOptions",
+    "BACKENDS",
     "simulate",
-    "SimulationResult",
+    "Trajectory",
+    "Segment",
     "EventRecord",
+    "Flight",
     "Status",
     "PhasekitError",
     "ConvergenceError",
-    "BracketError",
+    "ParameterError",
     "gyroscopic_start",
+    "vertical_spin_start",
     "raw_start",
-    "balance_residual",
     "to_chart",
     "euler_to_vector",
     "vector_to_euler",
-    "EULER_NAMES",
-    "DEFAULT_RTOL",
-    "BACKEND_CHOICES",
     "FixedPoint",
     "Branch",
     "find_fixed_point",
     "fixed_points",
     "linearise",
     "continue_family",
+    "horizontal_state",
+    "vertical_state",
     "unstable_seeds",
     "unstable_manifold_start",
     "horizontal_stability_threshold",
     "vertical_stability_threshold",
     "Definition",
+    "Outcome",
     "Threshold",
     "find_threshold",
     "continue_threshold",
@@ -76,13 +133,56 @@ __all__ = [
     "gyroscopic_closed",
     "gyroscopic_numeric",
     "jellett_constant",
-    "Flight",
-    "FlightModel",
     "fly",
     "impact",
     "Scene",
     "compute_scene",
     "surface_n",
     "exact_boundary",
+    "taylor_integrator",
+    "DEFAULT_DEFINITIONS",
+    "mean_slip",
+    "rise_time",
+    "Gamma",
+    "Gamma_closed",
+    "I1_closed",
+    "I2_dominant",
+    "I3_closed",
+    "I_quadrature",
+    "Sigma",
+    "c_xi",
+    "mean_over_periods",
+    "omega2",
+    "omega_gyro",
+    "perturbation_from_c_xi",
+    "slow_rates",
+    "zeta",
+    "zeta_gyro",
+    "FlightConstants",
+    "cos_theta_exact",
+    "flight_constants",
+    "flight_invariants",
+    "gap_exact",
+    "gap_max_series",
+    "gap_series",
+    "PAPER_CASES",
+    "paper_start",
+    "choose_formulation",
+    "numpy_normal_reaction",
+    "numpy_rhs",
+    "solve_ivp_to_jump",
+    "ModelPack",
+    "ResultStore",
+    "TaskSpec",
+    "ThresholdRow",
+    "make_client",
+    "provenance",
+    "run_tasks",
+    "threshold_key",
+    "threshold_task",
+    "horizontal_is_unstable",
+    "vertical_is_stable",
+    "intermediate_omega",
+    "intermediate_state",
     "__version__",
 ]

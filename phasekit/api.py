@@ -1,22 +1,25 @@
-"""Parameter-level entry points shared by the CLI and the studies.
+"""Entry points by plain parameters, shared by the CLI: names and numbers in, JSON-ready dicts out.
 
-These take plain numbers and names (as typed on a command line), validate them, build
-the model and start, run, and return JSON-ready dicts in the paper's variables.
+These validate their arguments (ParameterError naming the parameter as the Python API
+spells it; the CLI rewords it with its own flag), build the body, law, model and start,
+run, and return dicts in the paper's variables.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .body import Spheroid
-from .errors import check_choice
+from .body import Body, EccentricSphere, Spheroid
+from .errors import ParameterError
 from .friction import friction_law
-from .model import Model
+from .hybrid import Event
+from .model import OBSERVABLES, Model
 from .simulate import simulate
-from .charts import EULER_NAMES, vector_to_euler
-from .starts import gyroscopic_start, raw_start, to_chart
+from .starts import RATE_MAX, gyroscopic_start, raw_start, to_chart, vertical_spin_start
+from .validate import check_choice, check_finite
 
-__all__ = ["choose_formulation", "simulate_start", "fixed_points_report", "gyroscopic_report", "POLE_MARGIN"]
+__all__ = ["choose_formulation", "make_body", "parse_stop", "simulate_start", "fixed_points_report", "gyroscopic_report",
+           "POLE_MARGIN", "BODIES"]
 
 #: within this angle of theta = 0 or pi the vector chart is the default. Measured (oblate
 #: a = 0.6, n0 = 12, viscous mu = 0.1, rtol 1e-9, to t = 40): away from the pole the Euler
@@ -24,6 +27,7 @@ __all__ = ["choose_formulation", "simulate_start", "fixed_points_report", "gyros
 #: follows the precession) with 10-100x smaller errors; at theta0 = 1e-6 the vector chart
 #: wins (382 vs 510 steps, error 8e-8 vs 1.6e-7). Exactly at the pole only it can start.
 POLE_MARGIN = 1e-5
+BODIES = ("spheroid", "tippe-top", "egg")
 
 
 def choose_formulation(theta0: float, requested: str = "auto") -> str:
@@ -34,78 +38,120 @@ def choose_formulation(theta0: float, requested: str = "auto") -> str:
     return "vector" if min(theta0, np.pi - theta0) < POLE_MARGIN else "euler"
 
 
-def simulate_start(
-    *, a, mu, start, t_end, friction="coulomb", slip_eps=None, A=None, C=None,
-    rtol=1e-9, stop_at="jump", restitution=0.0, formulation="auto", backend="auto",
-) -> dict:
-    """Run one simulation described by plain parameters; returns the JSON dict."""
-    body = Spheroid(a, A=A, C=C)
-    law = friction_law(friction, mu, slip_eps)
-    seed_info = None
-    if start["kind"] == "unstable-manifold":
+def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, A=None, C=None) -> Body:
+    """A built-in body by name: ``spheroid`` (a), ``tippe-top`` (offset), ``egg`` (a, w)."""
+    check_choice("body", kind, BODIES)
+    given = {"a": a, "offset": offset, "w": w}
+    allowed = {"spheroid": ("a",), "tippe-top": ("offset",), "egg": ("a", "w")}[kind]
+    for name, value in given.items():
+        if value is not None and name not in allowed:
+            raise ParameterError(name, f"does not apply to the {kind} body (its parameters: {', '.join(allowed)})", value)
+    if kind == "spheroid":
+        if a is None:
+            raise ParameterError("a", "is required for the spheroid body (aspect ratio, > 0)", show_value=False)
+        return Spheroid(a, A=A, C=C)
+    if kind == "tippe-top":
+        if offset is None:
+            raise ParameterError("offset", "is required for the tippe-top body (centre of mass below the centre, in [0, 1))",
+                                 show_value=False)
+        return EccentricSphere(offset, A=A, C=C)
+    from .egg import Egg
+
+    return Egg(1.3 if a is None else a, 0.0 if w is None else w, A=A, C=C)
+
+
+def parse_stop(stop: str) -> tuple[str, list[Event]]:
+    """``jump``, ``touchdown`` or ``none``, or ``NAME=VALUE`` (stop when the observable NAME
+    first reaches VALUE, e.g. ``theta=0.4``; the run then runs through flights)."""
+    if not isinstance(stop, str):
+        raise ParameterError("stop_at", "must be jump, touchdown, none or NAME=VALUE", stop)
+    if "=" not in stop:
+        return check_choice("stop_at", stop, ("jump", "touchdown", "none")), []
+    name, _, value = stop.partition("=")
+    if name not in OBSERVABLES or name in ("slip", "friction"):
+        raise ParameterError("stop_at", f"NAME=VALUE needs NAME among {', '.join(n for n in OBSERVABLES if n not in ('slip', 'friction'))}",
+                             stop)
+    try:
+        level = float(value)
+    except ValueError:
+        raise ParameterError("stop_at", "NAME=VALUE needs a number VALUE", stop) from None
+    check_finite("stop_at", level)
+    if name == "theta" and not 0.0 <= level <= np.pi:
+        raise ParameterError("stop_at", "theta=VALUE needs VALUE in [0, pi]", level)
+    return "none", [Event(name, level, direction=0, name=f"{name}={level:g}")]
+
+
+def _start(body, law, start: dict, formulation: str):
+    """(model, x0, seed info) for a start description."""
+    kind = start["kind"]
+    if kind == "unstable-manifold":
         from .manifolds import unstable_manifold_start
 
-        check_choice("formulation", formulation, ("auto", "euler", "vector"))
+        for key in ("omega0", "n0"):
+            if start.get(key) is not None and abs(start[key]) > RATE_MAX:
+                raise ParameterError(key, f"must satisfy |{key}| <= {RATE_MAX:g} for a simulation", start[key])
         model, x0, fp = unstable_manifold_start(
             body, law, state=start["state"], delta=start["delta"], omega0=start.get("omega0"), n0=start.get("n0"),
-            branch=start.get("branch", "+0"), seed_law=start.get("seed_law", "viscous"),
-        )
-        if formulation not in ("auto", model.chart):
-            raise ValueError(f"`formulation` {formulation!r} cannot start on the {start['state']} state; use {model.chart} or auto.")
-        seed_info = {"fixed_point": fp.to_dict(), "delta": start["delta"], "branch": start.get("branch", "+0"),
-                     "seed_law": fp.law}
+            branch=start.get("branch", "+0"), seed_law=start.get("seed_law", "viscous"))
+        if formulation not in ("auto", model.chart.name):
+            raise ParameterError("formulation", f"cannot start on the {start['state']} state (use {model.chart.name} or auto)",
+                                 formulation)
+        return model, x0, {"fixed_point": fp.to_dict(), "delta": start["delta"], "branch": start.get("branch", "+0"),
+                           "seed_law": fp.law}
+    if kind == "gyroscopic":
+        y0 = gyroscopic_start(body, start["theta0"], omega0=start.get("omega0"), n0=start.get("n0"))
+    elif kind == "spin-about-vertical":
+        y0 = vertical_spin_start(start["theta0"], start["n0"])
+    elif kind == "paper":
+        from .paper import paper_start
+
+        return (*paper_start(start["label"], n0=start.get("n0"), omega0=start.get("omega0"), friction=law), None)
     else:
-        if start["kind"] == "gyroscopic":
-            y0 = gyroscopic_start(body, start["theta0"], omega0=start.get("omega0"), n0=start.get("n0"))
-        else:
-            chart_hint = "vector" if formulation == "vector" else "euler"
-            y0 = raw_start(start["state"], chart=chart_hint)
-        chart = choose_formulation(float(y0[4]), formulation)
-        if chart == "euler":
-            raw_start(y0, chart="euler")  # theta strictly inside (0, pi)
-        model = Model(body, law, chart)
-        x0 = to_chart(chart, y0)
-    res = simulate(model, x0, t_end, rtol=rtol, stop_at=stop_at, restitution=restitution, backend=backend)
+        y0 = raw_start(start["state"], chart="vector" if formulation == "vector" else "euler")
+    chart = choose_formulation(float(y0[4]), formulation)
+    if chart == "euler":
+        raw_start(y0, chart="euler")  # theta strictly inside (0, pi)
+    return Model(body, law, chart), to_chart(chart, y0), None
+
+
+def simulate_start(*, body: Body, friction="coulomb", mu, slip_eps=None, start: dict, t_end=200.0, stop_at="jump",
+                   restitution=0.0, formulation="auto", options: dict | None = None) -> dict:
+    """Run one simulation described by plain parameters; returns the JSON dict (which
+    carries the model, the start and the solver options, so it can be rerun)."""
+    law = friction_law(friction, mu, slip_eps)
+    check_choice("formulation", formulation, ("auto", "euler", "vector"))
+    stop, events = parse_stop(stop_at)
+    model, x0, seed = _start(body, law, start, formulation)
+    res = simulate(model, x0, t_end, stop_at=stop, restitution=restitution, events=events, dense=False,
+                   **(options or {}))
     out = res.to_dict()
-    out["model"] = {
-        "body": repr(body),
-        "a": body.a,
-        "A": body.A,
-        "C": body.C,
-        "friction": law.describe(),
-        "mu": law.mu,
-        "slip_eps": law.eps if law.eps > 0 else None,
-    }
-    y_start = x0 if model.chart == "euler" else vector_to_euler(x0)
-    out["start"] = {k: float(v) for k, v in zip(EULER_NAMES, y_start)}
-    if seed_info is not None:
-        out["seed"] = seed_info
+    if seed is not None:
+        out["seed"] = seed
     return out
 
 
-def fixed_points_report(*, a, mu, friction="viscous", slip_eps=None, A=None, C=None, omega0=None, n0=None) -> dict:
+def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, omega0=None, n0=None) -> dict:
     """All steady states at the given Omega0 or n0 with their linear stability (JSON dict)."""
     from .fixedpoints import fixed_points
 
     if (omega0 is None) == (n0 is None):
-        raise ValueError("give exactly one of `omega0` or `n0`.")
-    body = Spheroid(a, A=A, C=C)
+        raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
     law = friction_law(friction, mu, slip_eps)
-    pts = fixed_points(Model(body, law, "euler"), Model(body, law, "vector"), omega0=omega0, n0=n0)
-    return {"fixed_points": [p.to_dict() for p in pts], "model": {"body": repr(body), "friction": law.describe()},
-            "note": "the inverted vertical (theta = pi) is the vertical with k reversed: the same state for a flip-symmetric body"}
+    pts = fixed_points(Model(body, law, "euler"), omega0=omega0, n0=n0)
+    note = ("the inverted vertical (theta = pi) is the vertical with k reversed: the same state for a flip-symmetric body"
+            if body.flip_symmetric else "theta = 0 and theta = pi are different states of this body")
+    return {"fixed_points": [p.to_dict() for p in pts], "model": Model(body, law).to_dict(), "note": note}
 
 
-def gyroscopic_report(*, a, mu, theta0, t, omega0=None, n0=None, A=None, C=None) -> dict:
+def gyroscopic_report(*, body: Body, mu, theta0, t, omega0=None, n0=None) -> dict:
     """Gyroscopic mean solution (3.16)-(3.19) at times t (slow time T = mu t)."""
-    from .errors import check_positive
     from .gyroscopic import gyroscopic_solution
+    from .validate import check_positive, check_times
 
-    body = Spheroid(a, A=A, C=C)
     mu = check_positive("mu", mu)
-    t = np.atleast_1d(np.asarray(t, dtype=float))
-    if t.size == 0 or not np.all(np.isfinite(t)) or np.any(t < 0):
-        raise ValueError("`t` must be one or more finite times >= 0.")
+    t = check_times("t", t)
+    if np.any(t < 0):
+        raise ParameterError("t", "must be times >= 0", t)
     sol = gyroscopic_solution(body, theta0, omega0=omega0, n0=n0, T=mu * t)
     return {"t": t.tolist(), "T": (mu * t).tolist(), "theta": sol["theta"].tolist(), "Omega": sol["Omega"].tolist(),
             "J": sol["J"], "J_definition": "A Omega h (3.17)", "Omega0": sol["Omega0"], "method": sol["method"]}

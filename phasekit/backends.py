@@ -1,19 +1,21 @@
-"""Integrator backends: integrate one smooth mode until a time or the first located event.
+"""Integrators: propagate one smooth flow until a time or the first located event.
 
 ``taylor`` (default)
     heyoka's adaptive Taylor method on the CasADi model translated to heyoka
-    expressions (:mod:`phasekit._translate`), LLVM-compiled once per (model, mode,
+    expressions (:mod:`phasekit._translate`), LLVM-compiled once per (flow, guards,
     tolerance) and cached in memory and on disk. Events are located by polynomial root
     finding on each step's Taylor expansion, i.e. to about machine precision in time.
-``cvodes``
-    SUNDIALS CVODES (BDF, or Adams) through CasADi. CasADi's event support is
-    experimental, so events are bracketed on an output grid fine enough to resolve the
-    fast oscillation (20 points per period of the fastest rotation) and refined by
-    Brent's method on re-integrations from the last grid point. This is the backend for
-    stiff fields, i.e. the regularised Coulomb law once the slip is below ~eps.
+    Dense output is heyoka's continuous output (the steps' Taylor polynomials).
+``cvodes`` / ``cvodes-adams`` / ``idas``
+    SUNDIALS through CasADi. CasADi's event support is experimental, so events are
+    bracketed on an output grid fine enough to resolve the fast oscillation (20 points per
+    period of the fastest rotation) and refined by Brent's method on re-integrations from
+    the last grid point. This is the backend for stiff fields (a regularised Coulomb law
+    once the slip is below ~eps). Dense output is cubic Hermite on that grid.
 
-Both return a :class:`Propagation`. Work is bounded by ``max_steps``; running out of
-steps or a non-finite state gives outcome "failed" with the reason, never an exception.
+Both take a :class:`phasekit.hybrid.CompiledFlow` and return a :class:`Propagation`.
+Work is bounded by a step budget and a wall-clock deadline; running out of either, or a
+non-finite state, gives outcome "failed" with the reason, never an exception.
 """
 
 from __future__ import annotations
@@ -21,46 +23,48 @@ from __future__ import annotations
 import hashlib
 import os
 import pickle
+import re
 import threading
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from .model import Model
-from .modes import Mode
+from .hybrid import CompiledFlow
 
-__all__ = ["EventSpec", "Propagation", "TaylorBackend", "CvodesBackend", "get_backend", "BACKENDS"]
+__all__ = ["Propagation", "Budget", "TaylorEngine", "CvodesEngine", "engine_for", "HermiteDense"]
+
+#: bump when the layout of the pickled cache entries changes
+CACHE_FORMAT = 3
+#: steps per call of heyoka's propagate: between calls the wall clock is checked
+STEP_CHUNK = 20_000
 
 
-@dataclass(frozen=True)
-class EventSpec:
-    """A guard function g(x) (a model output) whose zero in ``direction`` ends a segment."""
+@dataclass
+class Budget:
+    """What is left of a run's work allowance: steps and a wall-clock deadline."""
 
-    name: str
-    function: str
-    direction: int = -1  # -1: g goes from + to -; +1: from - to +; 0: either
-    rate: str | None = None  # dg/dt, lets pointwise backends find dips between grid points
+    steps: int
+    deadline: float  # time.perf_counter() value
+
+    def wall_exceeded(self) -> bool:
+        return time.perf_counter() > self.deadline
 
 
 @dataclass
 class Propagation:
-    """What one call of a backend produced."""
+    """What one call of an integrator produced."""
 
     t: float
     x: np.ndarray
     outcome: str  # "time", "event" or "failed"
-    event: str | None = None
+    event: int | None = None  # index into the flow's guards
     reason: str | None = None
     n_steps: int = 0
     n_rhs: int = 0
-    minima: list = field(default_factory=list)  # [(t, x)] at local minima of R
-    ts: np.ndarray | None = None
-    ys: np.ndarray | None = None
-
-
-#: bump when the layout of the pickled cache entries changes
-CACHE_FORMAT = 2
+    monitored: list = field(default_factory=list)  # [(t, x)] where the monitor crossed zero
+    dense: list = field(default_factory=list)  # callables t -> states, in time order, with their spans
 
 
 def _cache_dir() -> Path | None:
@@ -75,8 +79,8 @@ def _cache_dir() -> Path | None:
     return path
 
 
-class _MinimaRecorder:
-    """Non-terminal event callback storing (t, x) at each local minimum of R.
+class _MonitorRecorder:
+    """Non-terminal event callback storing (t, x) at each crossing of the monitor.
 
     heyoka deep-copies callbacks; returning self from __deepcopy__ keeps one shared list.
     """
@@ -92,35 +96,48 @@ class _MinimaRecorder:
         self.points.append((float(t), np.array(ta.d_output, copy=True)))
 
 
-class TaylorBackend:
+class _Span:
+    """A dense-output callable restricted to [t0, t1]."""
+
+    def __init__(self, f, t0: float, t1: float):
+        self.f, self.t0, self.t1 = f, float(t0), float(t1)
+
+    def __call__(self, ts) -> np.ndarray:
+        ts = np.asarray(ts, dtype=float)
+        return np.asarray(self.f(ts)).reshape(ts.size, -1)
+
+
+def _heyoka():
+    import heyoka as hy
+
+    # heyoka logs through spdlog to stdout; results go to stdout, so keep it quiet
+    hy.set_logger_level_critical()
+    return hy
+
+
+class TaylorEngine:
     """heyoka Taylor integrator; ``rtol`` is heyoka's (mixed absolute/relative) tolerance."""
 
     name = "taylor"
     _lock = threading.Lock()
     _memory: dict = {}
 
-    def __init__(self, model: Model, rtol: float):
-        self.model = model
+    def __init__(self, rtol: float, atol: float | None = None):
         self.rtol = float(rtol)
 
-    def _integrator(self, mode: Mode, events: tuple[EventSpec, ...], minima):
-        m = self.model
-        key = (m.compiled.key, mode, self.rtol, events, minima)
+    def _integrator(self, flow: CompiledFlow, n_params: int):
+        key = (flow.signature, self.rtol)
         with self._lock:
             entry = self._memory.get(key)
         if entry is None:
-            entry = self._load_or_build(mode, events, minima, key)
+            entry = self._load_or_build(flow, n_params, key)
             with self._lock:
                 self._memory[key] = entry
         return entry
 
-    def _load_or_build(self, mode, events, minima, key):
-        import heyoka as hy
-
-        m = self.model
-        digest = hashlib.sha256(
-            repr((CACHE_FORMAT, m.compiled.signature, mode.value, self.rtol, events, minima, hy.__version__)).encode()
-        ).hexdigest()[:24]
+    def _load_or_build(self, flow: CompiledFlow, n_params: int, key):
+        hy = _heyoka()
+        digest = hashlib.sha256(repr((CACHE_FORMAT, key, hy.__version__)).encode()).hexdigest()[:24]
         cache = _cache_dir()
         path = cache / f"taylor-{digest}.pkl" if cache else None
         if path is not None and path.exists():
@@ -128,35 +145,30 @@ class TaylorBackend:
                 with open(path, "rb") as fh:
                     ta, npar = pickle.load(fh)
                 # the recorder is pickled inside the integrator: take that one
-                return ta, (ta.nt_events[0].callback if minima else None), npar
+                return ta, (ta.nt_events[0].callback if flow.monitor else None), npar
             except Exception:  # a stale or partial file: rebuild it
                 pass
         from ._translate import to_heyoka
 
-        xs = hy.make_vars(*[f"x{i}" for i in range(m.n_states)])
-        ps = [hy.par[i] for i in range(len(m.p))]
+        xs = hy.make_vars(*[f"x{i}" for i in range(flow.n_states)])
+        ps = [hy.par[i] for i in range(n_params)]
         ins = [list(xs), ps]
-        rhs = to_heyoka(m.function(f"rhs_{mode.value}"), ins)[0]
+        rhs = to_heyoka(flow.field, ins)[0]
         direction = {-1: hy.event_direction.negative, 1: hy.event_direction.positive, 0: hy.event_direction.any}
         t_events = [
-            hy.t_event(to_heyoka(m.function(ev.function), ins)[0][0], direction=direction[ev.direction]) for ev in events
+            hy.t_event(to_heyoka(g.function, [list(xs), ps, [hy.par[n_params + i]]])[0][0], direction=direction[g.direction])
+            for i, g in enumerate(flow.guards)
         ]
         nt_events, recorder = [], None
-        if minima:  # (function, direction): record where it crosses zero, e.g. dR/dt = 0 upward
-            fname, fdir = minima
-            recorder = _MinimaRecorder()
-            rate = to_heyoka(m.function(fname), ins)[0][0]
-            nt_events = [hy.nt_event(rate, callback=recorder, direction=direction[fdir])]
+        if flow.monitor is not None:
+            recorder = _MonitorRecorder()
+            m = flow.monitor
+            nt_events = [hy.nt_event(to_heyoka(m.function, [list(xs), ps, [hy.expression(0.0)]])[0][0], callback=recorder,
+                                     direction=direction[m.direction])]
         used = hy.get_params(list(rhs) + [e.expression for e in t_events] + [e.expression for e in nt_events])
         npar = 1 + max((int(str(q)[1:]) for q in used), default=-1)
-        ta = hy.taylor_adaptive(
-            list(zip(xs, rhs)),
-            [0.0] * m.n_states,
-            pars=[0.0] * npar,
-            tol=self.rtol,
-            t_events=t_events,
-            nt_events=nt_events,
-        )
+        ta = hy.taylor_adaptive(list(zip(xs, rhs)), [0.0] * flow.n_states, pars=[0.0] * npar, tol=self.rtol,
+                                t_events=t_events, nt_events=nt_events)
         if nt_events:  # the recorder inside the integrator is the one we keep
             recorder = ta.nt_events[0].callback
         if path is not None:
@@ -169,62 +181,88 @@ class TaylorBackend:
                 pass
         return ta, recorder, npar
 
-    def propagate(self, mode, x0, t0, t_end, events, p, *, max_steps, t_eval=None, minima=None, resume=False) -> Propagation:
-        """Integrate ``mode`` from (t0, x0) to t_end or the first event of ``events``.
+    def propagate(self, flow: CompiledFlow, x0, t0, t_end, p, levels, *, budget: Budget, dense: bool = False,
+                  resume: bool = False) -> Propagation:
+        """Integrate ``flow`` from (t0, x0) to t_end or its first guard's zero.
 
-        ``minima`` = (function, direction): also record (t, x) wherever that function crosses
-        zero in that direction (e.g. ("Rdot_sliding", +1): the minima of R).
-        ``resume=True`` continues from where the last call stopped (same mode and events),
-        keeping heyoka's event cooldowns so that the event just located does not fire again.
+        ``levels`` are the guards' levels (run-time parameters). ``resume=True`` continues
+        from where the last call on this flow stopped, keeping heyoka's event cooldowns so
+        that the event just located does not fire again.
         """
-        minima = tuple(minima) if minima else None
-        ta, recorder, npar = self._integrator(mode, tuple(events), minima)
+        hy = _heyoka()
+        ta, recorder, npar = self._integrator(flow, len(p))
         if not resume:
             ta.time = float(t0)
             ta.state[:] = np.asarray(x0, dtype=float)
-            ta.pars[:] = np.asarray(p, dtype=float)[:npar]
-            if events or minima:
-                ta.reset_cooldowns()
+            ta.pars[:] = np.concatenate([np.asarray(p, dtype=float), np.asarray(levels, dtype=float)])[:npar]
+            ta.reset_cooldowns()
         if recorder is not None:
             recorder.points = []
-        want_dense = t_eval is not None and len(t_eval) > 0
-        try:
-            res = ta.propagate_until(float(t_end), max_steps=int(max(max_steps, 1)), c_output=want_dense)
-        except Exception as exc:  # heyoka raises on e.g. a non-finite state in an event
-            return Propagation(t=float(ta.time), x=np.array(ta.state), outcome="failed", reason=f"taylor: {exc}")
-        outcome, n_steps, c_out = res[0], int(res[3]), res[4]
-        x = np.array(ta.state, copy=True)
-        prop = Propagation(t=float(ta.time), x=x, outcome="time", n_steps=n_steps, n_rhs=n_steps * (ta.order + 1))
+        prop = Propagation(t=float(ta.time), x=np.array(ta.state), outcome="time")
+        while True:
+            t_start = float(ta.time)
+            try:
+                res = ta.propagate_until(float(t_end), max_steps=int(max(1, min(budget.steps - prop.n_steps, STEP_CHUNK))),
+                                         c_output=dense)
+            except Exception as exc:  # heyoka raises on e.g. a non-finite state in an event
+                prop.outcome, prop.reason = "failed", f"taylor: {exc}"
+                break
+            outcome, steps, c_out = res[0], int(res[3]), res[4]
+            prop.n_steps += steps
+            if dense and c_out is not None and steps > 0:
+                prop.dense.append(_Span(c_out, t_start, float(ta.time)))
+            if outcome == hy.taylor_outcome.step_limit:
+                if prop.n_steps >= budget.steps:
+                    prop.outcome, prop.reason = "failed", f"step limit ({prop.n_steps} steps) reached at t = {ta.time:.6g}"
+                    break
+                if budget.wall_exceeded():
+                    prop.outcome, prop.reason = "failed", f"wall-time limit reached at t = {ta.time:.6g}"
+                    break
+                continue
+            code = int(outcome.value)
+            if outcome == hy.taylor_outcome.time_limit:
+                prop.outcome = "time"
+            elif code < 0 and code > -(2**31):  # terminal event i triggered: outcome -(i+1)
+                prop.outcome, prop.event = "event", -code - 1
+            elif outcome == hy.taylor_outcome.err_nf_state:
+                prop.outcome, prop.reason = "failed", f"non-finite state at t = {ta.time:.6g}"
+            else:
+                prop.outcome, prop.reason = "failed", f"taylor integrator stopped: {outcome}"
+            break
+        prop.t, prop.x = float(ta.time), np.array(ta.state, copy=True)
+        prop.n_rhs = prop.n_steps * (ta.order + 1)
         if recorder is not None:
-            prop.minima = list(recorder.points)
-        code = int(outcome.value)
-        if outcome == _outcome("time_limit"):
-            prop.outcome = "time"
-        elif code < 0 and code > -(2**31):  # terminal event i triggered: outcome -(i+1)
-            prop.outcome, prop.event = "event", events[-code - 1].name
-        elif outcome == _outcome("step_limit"):
-            prop.outcome, prop.reason = "failed", f"step limit ({max_steps} steps) reached at t = {ta.time:.6g}"
-        elif outcome == _outcome("err_nf_state"):
-            prop.outcome, prop.reason = "failed", f"non-finite state at t = {ta.time:.6g}"
-        else:
-            prop.outcome, prop.reason = "failed", f"taylor integrator stopped: {outcome}"
-        if want_dense and c_out is not None:
-            te = np.asarray(t_eval, dtype=float)
-            te = te[(te >= t0) & (te <= prop.t)]
-            if te.size:
-                ys = np.asarray(c_out(te))
-                prop.ts, prop.ys = te, ys.reshape(te.size, -1)
+            prop.monitored = list(recorder.points)
         return prop
 
 
-def _outcome(name):
-    import heyoka as hy
+class HermiteDense:
+    """Cubic Hermite interpolation on an integrator's output grid (for output only)."""
 
-    return getattr(hy.taylor_outcome, name)
+    def __init__(self, ts, xs, field, p):
+        self.ts, self.xs = np.asarray(ts, float), np.asarray(xs, float)
+        self.field, self.p = field, np.asarray(p, float)
+
+    def __call__(self, tt) -> np.ndarray:
+        tt = np.atleast_1d(np.asarray(tt, dtype=float))
+        out = np.empty((tt.size, self.xs.shape[1]))
+        for i, t in enumerate(tt):
+            j = int(min(max(np.searchsorted(self.ts, t), 1), len(self.ts) - 1))
+            t0, t1 = self.ts[j - 1], self.ts[j]
+            if t == t1:
+                out[i] = self.xs[j]
+                continue
+            h = t1 - t0
+            s = (t - t0) / h
+            f0 = np.asarray(self.field(self.xs[j - 1], self.p)).ravel()
+            f1 = np.asarray(self.field(self.xs[j], self.p)).ravel()
+            out[i] = ((2 * s**3 - 3 * s**2 + 1) * self.xs[j - 1] + (s**3 - 2 * s**2 + s) * h * f0
+                      + (-2 * s**3 + 3 * s**2) * self.xs[j] + (s**3 - s**2) * h * f1)
+        return out
 
 
-class CvodesBackend:
-    """CVODES through CasADi with grid-bracketed, Brent-refined events."""
+class CvodesEngine:
+    """CVODES (BDF or Adams) or IDAS through CasADi, with grid-bracketed, Brent-refined events."""
 
     name = "cvodes"
     _lock = threading.Lock()
@@ -232,93 +270,72 @@ class CvodesBackend:
     #: output points per chunk (the chunk length adapts to the rotation rate). Measured: 100
     #: is 2x faster than 40 (fewer restarts of CVODES) and no slower than 200.
     n_grid = 100
+    #: CVODES' own step limit per output interval (the run's budget is checked between chunks)
+    mxstep = 500_000
 
-    def __init__(self, model: Model, rtol: float, method: str = "bdf", plugin: str = "cvodes"):
-        self.model = model
+    def __init__(self, rtol: float, atol: float | None = None, method: str = "bdf", plugin: str = "cvodes"):
         self.rtol = float(rtol)
-        self.method = method
-        self.plugin = plugin  # "cvodes", or "idas" (SUNDIALS' DAE solver on the same ODE)
+        self.atol = self.rtol * 1e-2 if atol is None else float(atol)
+        self.method, self.plugin = method, plugin
+        self.name = {("cvodes", "bdf"): "cvodes", ("cvodes", "adams"): "cvodes-adams"}.get((plugin, method), plugin)
 
-    def _functions(self, mode, max_steps: int):
+    def _functions(self, flow: CompiledFlow, n_params: int):
         import casadi as ca
 
-        m = self.model
-        key = (m.compiled.key, mode, self.rtol, self.method, self.plugin, int(max_steps), self.n_grid)
+        key = (flow.signature, self.rtol, self.atol, self.method, self.plugin, self.n_grid)
         with self._lock:
             if key in self._memory:
                 return self._memory[key]
-        x = ca.SX.sym("x", m.n_states)
-        p = ca.SX.sym("p", len(m.p))
+        x = ca.SX.sym("x", flow.n_states)
+        p = ca.SX.sym("p", n_params)
         T = ca.SX.sym("T")
-        rhs = m.function(f"rhs_{mode.value}")(x, p)
-        dae = {"x": x, "p": ca.vertcat(p, T), "ode": T * rhs}
-        opts = {"reltol": self.rtol, "abstol": self.rtol * 1e-2, "max_num_steps": int(max_steps)}
+        dae = {"x": x, "p": ca.vertcat(p, T), "ode": T * flow.field(x, p)}
+        opts = {"reltol": self.rtol, "abstol": self.atol, "max_num_steps": self.mxstep}
         if self.plugin == "cvodes":
             opts["linear_multistep_method"] = self.method
             if self.method == "adams":
                 opts["nonlinear_solver_iteration"] = "functional"
+        tag = flow.mode.value
         grid = [k / self.n_grid for k in range(1, self.n_grid + 1)]
-        chunk = ca.integrator(f"{self.plugin}_chunk_{mode.value}", self.plugin, dae, 0.0, grid, opts)
-        single = ca.integrator(f"{self.plugin}_single_{mode.value}", self.plugin, dae, 0.0, 1.0, opts)
-        out = (chunk, single)
+        chunk = ca.integrator(f"{self.plugin}_chunk_{tag}", self.plugin, dae, 0.0, grid, opts)
+        single = ca.integrator(f"{self.plugin}_single_{tag}", self.plugin, dae, 0.0, 1.0, opts)
+        # every guard, every guard rate (zeros where none) and the monitor on a whole grid at once
+        lv = ca.SX.sym("lv", len(flow.guards))
+        outs = [g.function(x, p, lv[i]) for i, g in enumerate(flow.guards)]
+        outs += [g.rate(x, p) if g.rate is not None else ca.SX(0) for g in flow.guards]
+        outs += [flow.monitor.function(x, p, 0.0) if flow.monitor else ca.SX(0)]
+        monitor = ca.Function("monitor", [x, p, lv], [ca.vertcat(*outs)]).map(self.n_grid + 1)
+        out = (chunk, single, monitor)
         with self._lock:
             self._memory[key] = out
         return out
 
-    def _rate(self, x) -> float:
-        """Fastest rotation rate, which sets the period of the fast oscillation of R."""
-        m = self.model
-        if m.chart == "euler":
-            return float(max(1.0, abs(x[2]), abs(x[5]), abs(x[3])))
-        return float(max(1.0, np.linalg.norm(x[3:6])))
-
-    def _monitor(self, mode, events):
-        """One CasADi function giving, on a whole output grid at once, every guard, every
-        guard rate (zeros where none), R and dR/dt: one call per chunk instead of many."""
-        import casadi as ca
-
-        key = (self.model.compiled.key, mode, events, self.n_grid)
-        with self._lock:
-            if key in self._memory:
-                return self._memory[key]
-        m = self.model
-        x = ca.SX.sym("x", m.n_states)
-        p = ca.SX.sym("p", len(m.p))
-        outs = [m.function(ev.function)(x, p) for ev in events]
-        outs += [m.function(ev.rate)(x, p) if ev.rate else ca.SX(0) for ev in events]
-        outs += [m.function(f"R_{mode.value}")(x, p), m.function(f"Rdot_{mode.value}")(x, p)]
-        f = ca.Function("monitor", [x, p], [ca.vertcat(*outs)]).map(self.n_grid + 1)
-        with self._lock:
-            self._memory[key] = f
-        return f
-
-    def propagate(self, mode, x0, t0, t_end, events, p, *, max_steps, t_eval=None, minima=None, resume=False) -> Propagation:
-        """As :meth:`TaylorBackend.propagate`; a guard exactly at zero at t0 does not fire.
-        Only the minima of R can be recorded (``minima`` = (f"Rdot_{mode}", +1)), to grid accuracy."""
-        m = self.model
-        events = tuple(events)
-        chunk, single = self._functions(mode, max_steps)
-        monitor = self._monitor(mode, events)
+    def propagate(self, flow: CompiledFlow, x0, t0, t_end, p, levels, *, budget: Budget, dense: bool = False,
+                  resume: bool = False) -> Propagation:
+        """As :meth:`TaylorEngine.propagate`. A guard at zero at t0 does not fire, nor (after
+        ``resume``) does the same guard within 1e-9 of t0. The monitor is recorded to grid
+        accuracy."""
         p = np.asarray(p, dtype=float)
-        ng, ne = self.n_grid, len(events)
+        levels = np.asarray(levels, dtype=float)
+        chunk, single, monitor = self._functions(flow, len(p))
+        ng, ne = self.n_grid, len(flow.guards)
         P = np.tile(p[:, None], (1, ng + 1))
+        L = np.tile(levels[:, None], (1, ng + 1)) if ne else np.zeros((0, ng + 1))
         t, x = float(t0), np.asarray(x0, dtype=float).copy()
         prop = Propagation(t=t, x=x, outcome="time")
-        te = None if t_eval is None else np.asarray(t_eval, dtype=float)
-        ts_out, ys_out = [], []
-        guard_fn = [m.function(ev.function) for ev in events]
-        rate_fn = [m.function(ev.rate) if ev.rate else None for ev in events]
+        grid_t, grid_x = [t], [x.copy()]
+        cool = 1e-9 * max(1.0, abs(t0)) if resume else 0.0
 
         def run(xa, T):
             return np.asarray(single(x0=xa, p=np.concatenate([p, [T]]))["xf"]).ravel() if T > 0 else xa
 
         while t < t_end and prop.outcome == "time":
             # 20 grid points per period of the fastest rotation resolve the oscillation of R.
-            dt = min(2 * np.pi / 20 / self._rate(x) * ng, t_end - t)
+            dt = min(2 * np.pi / 20 / flow.rate_hint(x) * ng, t_end - t)
             try:
                 r = chunk(x0=x, p=np.concatenate([p, [dt]]))
             except RuntimeError as exc:
-                prop.outcome, prop.reason = "failed", f"{self.plugin}: {_sundials_message(exc)} (chunk from t = {t:.6g})"
+                prop.outcome, prop.reason = "failed", f"{self.plugin}: {sundials_message(exc)} (chunk from t = {t:.6g})"
                 break
             st = chunk.stats()
             prop.n_steps += int(st.get("nsteps", 0))
@@ -328,59 +345,65 @@ class CvodesBackend:
             if not np.all(np.isfinite(X)):
                 prop.outcome, prop.reason = "failed", f"non-finite state near t = {t:.6g}"
                 break
-            M = np.asarray(monitor(X.T, P))  # (2 ne + 2, ng + 1)
-            G, Gd, Rs, Rds = M[:ne], M[ne:2 * ne], M[2 * ne], M[2 * ne + 1]
-            # candidate intervals, vectorised: sign changes, or a Hermite dip below zero
-            cand = np.zeros((ne, ng), dtype=bool)
-            dips = np.zeros((ne, ng), dtype=bool)
-            for i, ev in enumerate(events):
-                a, b = G[i, :-1], G[i, 1:]
-                down = (a > 0) & (b <= 0)
-                up = (a < 0) & (b >= 0)
-                cross = down if ev.direction < 0 else up if ev.direction > 0 else down | up
-                if ev.rate and ev.direction <= 0:
-                    dips[i] = ~cross & (a > 0) & (b > 0) & _hermite_dips(dt / ng, a, b, Gd[i, :-1], Gd[i, 1:])
-                cand[i] = cross | dips[i]
-            last = ng
-            for j in np.flatnonzero(cand.any(axis=0)):
-                found = None
-                for i in np.flatnonzero(cand[:, j]):
-                    hit = _refine(run, guard_fn[i], rate_fn[i], p, X[j], tk[j + 1] - tk[j], bool(dips[i, j]))
-                    if hit is not None and (found is None or hit[0] < found[0]):
-                        found = (hit[0], hit[1], events[i].name)
-                if found is not None:
-                    last = j
-                    t, x = tk[j] + found[0], found[1]
-                    prop.outcome, prop.event = "event", found[2]
-                    break
-            if minima:
-                for j in np.flatnonzero((Rds[:-1] < 0) & (Rds[1:] >= 0))[: max(last, 0)]:
-                    k = j + 1 if Rs[j + 1] < Rs[j] else j  # bottom of a dip, to grid accuracy
-                    prop.minima.append((float(tk[k]), X[k].copy()))
-            if te is not None:
-                hi = t if prop.outcome == "event" else tk[-1]
-                for tt in te[(te > tk[0]) & (te <= hi)]:
-                    j = int(min(max(np.searchsorted(tk, tt), 1), ng))
-                    ts_out.append(tt)
-                    ys_out.append(_hermite_state(tk, X, j, tt, m, mode))
-            if prop.outcome == "time":
+            M = np.asarray(monitor(X.T, P, L)) if ne or flow.monitor else np.zeros((1, ng + 1))
+            hit, last = self._first_event(flow, run, p, levels, X, tk, M, dt / ng, ne, cool, t0)
+            if hit is not None:
+                t, x = hit[0], hit[1]
+                prop.outcome, prop.event = "event", hit[2]
+            if flow.monitor is not None:
+                Ms = M[2 * ne]
+                for j in np.flatnonzero(np.sign(Ms[:-1]) * flow.monitor.direction < 0):
+                    if j < last and np.sign(Ms[j + 1]) * flow.monitor.direction >= 0:
+                        prop.monitored.append((float(tk[j + 1]), X[j + 1].copy()))
+            keep = tk <= (t if hit is not None else tk[-1])
+            grid_t.extend(tk[1:][keep[1:]])
+            grid_x.extend(X[1:][keep[1:]])
+            if hit is not None:
+                grid_t.append(t)
+                grid_x.append(x.copy())
+            else:
                 t, x = float(tk[-1]), X[-1].copy()
-            if prop.n_steps >= max_steps:
-                prop.outcome, prop.reason = "failed", f"step limit ({max_steps} steps) reached at t = {t:.6g}"
+            if prop.n_steps >= budget.steps:
+                prop.outcome, prop.reason = "failed", f"step limit ({prop.n_steps} steps) reached at t = {t:.6g}"
+            elif budget.wall_exceeded() and prop.outcome == "time" and t < t_end:
+                prop.outcome, prop.reason = "failed", f"wall-time limit reached at t = {t:.6g}"
         prop.t, prop.x = t, x
-        if te is not None and t0 in te:
-            ts_out.insert(0, t0)
-            ys_out.insert(0, np.asarray(x0, float))
-        if ts_out:
-            prop.ts, prop.ys = np.array(ts_out), np.array(ys_out)
+        if dense and len(grid_t) > 1:
+            prop.dense.append(_Span(HermiteDense(grid_t, grid_x, flow.field, p), grid_t[0], grid_t[-1]))
         return prop
 
+    def _first_event(self, flow, run, p, levels, X, tk, M, h, ne, cool, t0):
+        """The earliest confirmed guard zero on this grid chunk: ((t, x, index), last grid index)."""
+        ng = self.n_grid
+        cand = np.zeros((ne, ng), dtype=bool)
+        dips = np.zeros((ne, ng), dtype=bool)
+        G, Gd = M[:ne], M[ne:2 * ne]
+        for i, g in enumerate(flow.guards):
+            a, b = G[i, :-1], G[i, 1:]
+            down, up = (a > 0) & (b <= 0), (a < 0) & (b >= 0)
+            cross = down if g.direction < 0 else up if g.direction > 0 else down | up
+            if g.rate is not None and g.direction <= 0:
+                dips[i] = ~cross & (a > 0) & (b > 0) & _hermite_dips(h, a, b, Gd[i, :-1], Gd[i, 1:])
+            cand[i] = cross | dips[i]
+        for j in np.flatnonzero(cand.any(axis=0)):
+            found = None
+            for i in np.flatnonzero(cand[:, j]):
+                g = flow.guards[i]
+                hit = _refine(run, lambda xx, g=g, lv=levels[i]: float(g.function(xx, p, lv)),
+                              (lambda xx, g=g: float(g.rate(xx, p))) if g.rate is not None else None,
+                              X[j], tk[j + 1] - tk[j], bool(dips[i, j]))
+                if hit is not None and tk[j] + hit[0] - t0 <= cool:
+                    hit = None  # the event just handled, found again at the restart
+                if hit is not None and (found is None or hit[0] < found[0]):
+                    found = (hit[0], hit[1], int(i))
+            if found is not None:
+                return (tk[j] + found[0], found[1], found[2]), j
+        return None, ng
 
-def _sundials_message(exc) -> str:
+
+def sundials_message(exc) -> str:
     """The informative part of a SUNDIALS error raised through CasADi (without C++ file paths),
     e.g. 'CVode returned "CV_TOO_MUCH_WORK"' (the step limit was reached)."""
-    import re
-
     lines = [re.sub(r"^.*\.cpp:\d+:\s*", "", ln).strip() for ln in str(exc).splitlines()]
     lines = [ln for ln in lines if ln and not ln.startswith("Error in Function::call")]
     for key in ("TOO_MUCH_WORK", "CV_", "IDA_", "mxstep", "convergence", "error test"):
@@ -393,28 +416,28 @@ def _sundials_message(exc) -> str:
     return (lines[-1] if lines else "unknown failure")[:240]
 
 
-def _refine(run, gf, rate, p, xa, T, dip):
+def _refine(run, g, rate, xa, T, dip):
     """Locate a guard zero in (0, T] from state xa; None if a suspected dip does not cross."""
     from scipy.optimize import brentq
 
-    def g(tau):
-        return float(gf(run(xa, tau), p))
+    def gt(tau):
+        return g(run(xa, tau))
 
     hi = T
     if dip:
         # First find the bottom of the dip (dg/dt = 0); the guard must be <= 0 there.
         def rd(tau):
-            return float(rate(run(xa, tau), p))
+            return rate(run(xa, tau))
 
         if not rd(0.0) < 0.0 < rd(T):
             return None
         hi = brentq(rd, 0.0, T, xtol=1e-13)
-        if g(hi) > 0:
+        if gt(hi) > 0:
             return None
-    g0, g1 = g(0.0), g(hi)
+    g0, g1 = gt(0.0), gt(hi)
     if g0 == 0.0 or np.sign(g0) == np.sign(g1):  # re-integration did not confirm the crossing
         return None
-    tau = brentq(g, 0.0, hi, xtol=1e-13, maxiter=200)
+    tau = brentq(gt, 0.0, hi, xtol=1e-13, maxiter=200)
     return tau, run(xa, tau)
 
 
@@ -429,29 +452,12 @@ def _hermite_dips(h, g0, g1, d0, d1) -> np.ndarray:
     return v.min(axis=0) < 0
 
 
-def _hermite_state(seg_t, seg_x, j, tt, m, mode):
-    """Cubic Hermite interpolation of the state between grid points (for output only)."""
-    j = max(1, j)
-    t0, t1 = seg_t[j - 1], seg_t[j]
-    if tt == t1:
-        return seg_x[j]
-    h = t1 - t0
-    s = (tt - t0) / h
-    f0, f1 = m.rhs(seg_x[j - 1], mode), m.rhs(seg_x[j], mode)
-    return (
-        (2 * s**3 - 3 * s**2 + 1) * seg_x[j - 1]
-        + (s**3 - 2 * s**2 + s) * h * f0
-        + (-2 * s**3 + 3 * s**2) * seg_x[j]
-        + (s**3 - s**2) * h * f1
-    )
-
-
-BACKENDS = {"taylor": TaylorBackend, "cvodes": CvodesBackend}
-
-
-def get_backend(name: str, model: Model, rtol: float):
+def engine_for(name: str, rtol: float, atol: float | None = None):
+    """An integrator by name: taylor, cvodes, cvodes-adams or idas."""
+    if name == "taylor":
+        return TaylorEngine(rtol)
     if name == "cvodes-adams":
-        return CvodesBackend(model, rtol, method="adams")
+        return CvodesEngine(rtol, atol, method="adams")
     if name == "idas":
-        return CvodesBackend(model, rtol, plugin="idas")
-    return BACKENDS[name](model, rtol)
+        return CvodesEngine(rtol, atol, plugin="idas")
+    return CvodesEngine(rtol, atol)

@@ -1,130 +1,209 @@
-"""The body: a flip-symmetric axisymmetric solid given by its height function and moments.
+"""Bodies: a convex body of revolution given by its support function and its moments.
 
-The height of the centre O above the table is written as a function of c = cos(theta),
-``H(c)``, so that one definition serves both the Euler-angle chart (h(theta) = H(cos theta),
-singular at theta = 0) and the vector chart, where c = k_Z is an ordinary variable.
-For a flip-symmetric body H is even in c.
+The paper's equations (2.7) use the body only through h(theta), the height of the centre
+of mass G above the table when the symmetry axis k is inclined at theta to the vertical,
+and its derivatives: the contact point P lies a height h below G and a horizontal distance
+h_theta from it along the tilt. phasekit writes the height as a function of
+c = cos(theta), H(c) = h(theta), so that one definition serves the Euler chart (singular at
+theta = 0) and the vector chart, where c = k_Z is an ordinary variable. For a smooth body of
+revolution h is even about theta = 0 and pi, so H is smooth on [-1, 1].
 
-Units are the paper's: mass M, length b (the equatorial radius), time sqrt(b/g).
+theta = 0 is the body resting on the end at -k (axis up), theta = pi on the end at +k;
+for a body without flip symmetry these are different states.
+
+To define a body, subclass :class:`Body` and implement :meth:`Body.height` (a CasADi
+expression in c and the shape parameters) and :attr:`Body.shape_params`, or use
+:class:`CustomBody` with a function of theta or of cos(theta). Units: mass M, length b
+(the equatorial radius, or the sphere's radius), so A and C are in M b^2.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import hashlib
+import threading
 
 import casadi as ca
 import numpy as np
 
-from .errors import check_positive
+from .errors import ParameterError
+from .validate import check_nonnegative, check_positive, check_range
 
-__all__ = ["Body", "Spheroid"]
+__all__ = ["Body", "Spheroid", "EccentricSphere", "CustomBody"]
+
+#: aspect ratios outside this range give moments of inertia that overflow or vanish
+ASPECT_RANGE = (1e-4, 1e4)
 
 
-@dataclass(frozen=True)
 class Body:
-    """Base class: subclasses define :meth:`height_c` symbolically and the shape parameters.
+    """Base class of bodies. Subclasses provide :meth:`height` and :attr:`shape_params`.
 
-    ``A`` is the transverse and ``C`` the axial principal moment of inertia about O.
+    Parameters
+    ----------
+    A, C : float
+        Transverse and axial principal moments of inertia about the centre of mass G,
+        in units M b^2, with C <= 2 A (triangle inequality of principal moments).
+
+    Required of a subclass
+    ----------------------
+    ``shape_params`` -> tuple of floats
+        The numbers that fix the shape (compiled models take them as parameters, so bodies
+        that differ only in them share one compiled model).
+    ``height(c, shape)`` -> casadi.SX
+        H(c): the height of G above the table at c = cos(theta), written with the symbols
+        ``shape`` (one per shape parameter) and ``c`` only. Must be smooth on [-1, 1].
+    ``describe()`` (optional) -> str
+        A one-line description for reports.
     """
 
-    A: float
-    C: float
+    def __init__(self, A: float, C: float):
+        self.A = check_positive("A", A)
+        self.C = check_positive("C", C)
+        if self.C > 2 * self.A * (1 + 1e-12):
+            raise ParameterError("C", f"must satisfy C <= 2A (triangle inequality of principal moments; A = {self.A:g})", C)
+        self._key = None
 
-    # -- to be provided by subclasses --------------------------------------------------
+    # -- to be provided by subclasses ---------------------------------------------------------
     @property
     def shape_params(self) -> tuple[float, ...]:
-        """Numbers that fix the shape (the aspect ratio for a spheroid)."""
-        raise NotImplementedError
+        raise NotImplementedError(f"{type(self).__name__} must define `shape_params` (see phasekit.body.Body)")
 
-    @staticmethod
-    def height_c(c, shape):
-        """H(c): height of O above the table as a function of c = cos(theta) (CasADi SX)."""
-        raise NotImplementedError
+    def height(self, c, shape):
+        """H(c) as a CasADi expression in ``c`` and the symbols ``shape``."""
+        raise NotImplementedError(f"{type(self).__name__} must define `height(c, shape)` (see phasekit.body.Body)")
 
-    # -- derived ------------------------------------------------------------------------
+    # -- derived ----------------------------------------------------------------------------
+    @property
+    def n_shape(self) -> int:
+        return len(self.shape_params)
+
     @property
     def params(self) -> np.ndarray:
-        """Shape parameters followed by (A, C): the body part of a model's parameter vector."""
+        """Shape parameters followed by (A, C): the body's part of a model's parameter vector."""
         return np.array([*self.shape_params, self.A, self.C], dtype=float)
 
     @property
-    def kind(self) -> str:
-        return type(self).__name__
-
-    def _check_moments(self) -> None:
-        check_positive("A", self.A)
-        check_positive("C", self.C)
-        # The principal moments of a real body obey the triangle inequality, here C <= 2A.
-        if self.C > 2 * self.A * (1 + 1e-12):
-            raise ValueError(
-                f"`C` must satisfy C <= 2A (triangle inequality of principal moments); "
-                f"got A={self.A!r}, C={self.C!r}."
-            )
+    def structure_key(self) -> str:
+        """Identifies the symbolic form of H (not the numbers): bodies with equal keys share
+        compiled models."""
+        if self._key is None:
+            c, sh = ca.SX.sym("c"), ca.SX.sym("shape", self.n_shape)
+            f = ca.Function("H", [c, sh], [self.height(c, sh)])
+            digest = hashlib.sha256(f.serialize().encode()).hexdigest()[:16]
+            self._key = f"{type(self).__qualname__}:{self.n_shape}:{digest}"
+        return self._key
 
     def h(self, theta):
-        """h(theta), h'(theta), h''(theta) as floats (or arrays): exact derivatives via CasADi."""
-        return _h_functions(type(self))(np.asarray(theta, dtype=float), self.shape_params)
+        """(h, h_theta, h_thetatheta) at theta (float or array), exact derivatives via CasADi."""
+        return _theta_functions(self)(np.asarray(theta, dtype=float), self.shape_params)
 
     def height_slope(self, c: float) -> tuple[float, float]:
         """(H(c), H'(c)) with c = cos(theta): the height and its slope, regular at the poles."""
-        H, dH = _H_slope_function(type(self))(float(c), self.shape_params)
+        H, dH = _slope_function(self)(float(c), self.shape_params)
         return float(H), float(dH)
+
+    def radii_of_curvature(self, theta):
+        """Principal radii of curvature of the surface at the contact point for inclination
+        theta: meridional h + h_tt and azimuthal x_P / sin(theta) (x_P = h sin + h_t cos,
+        the distance of P from the axis). Both are > 0 on a strictly convex body."""
+        theta = np.asarray(theta, dtype=float)
+        h, h1, h2 = self.h(theta)
+        s = np.sin(theta)
+        xP = h * s + h1 * np.cos(theta)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r2 = np.where(np.abs(s) > 1e-6, xP / np.where(s == 0, 1.0, s), h + h2)
+        return h + h2, r2
+
+    def check_convex(self, param: str = "height", theta_range: tuple[float, float] = (0.0, np.pi), n: int = 721) -> None:
+        """Raise ParameterError (naming ``param``) unless the surface is smooth and strictly
+        convex over ``theta_range``: finite h > 0 and both radii of curvature > 0."""
+        th = np.linspace(*theta_range, n)
+        h = self.h(th)
+        r1, r2 = self.radii_of_curvature(th)
+        bad = ~(np.isfinite(h[0]) & np.isfinite(h[1]) & np.isfinite(h[2]) & (h[0] > 0) & (r1 > 0) & (r2 > 0))
+        if np.any(bad):
+            k = int(np.flatnonzero(bad)[0])
+            what = (f"must give a smooth strictly convex surface (height h > 0 and radii of curvature > 0 for theta in "
+                    f"[{theta_range[0]:g}, {theta_range[1]:g}]); at theta = {th[k]:.4g}: h = {h[0][k]:.4g}, "
+                    f"h + h'' = {r1[k]:.4g}, x_P/sin = {r2[k]:.4g}")
+            raise ParameterError(param, what, show_value=False)
+
+    @property
+    def is_prolate(self) -> bool:
+        """True when G is higher standing on an end than lying on the equator (h(0) > h(pi/2)):
+        such a body rises from the horizontal toward the vertical (the prolate branch)."""
+        return bool(self.h(0.0)[0] > self.h(np.pi / 2)[0])
+
+    @property
+    def flip_symmetric(self) -> bool:
+        """h(pi - theta) = h(theta): theta = 0 and pi are the same state."""
+        th = np.linspace(0.0, np.pi / 2, 7)
+        return bool(np.allclose(self.h(th)[0], self.h(np.pi - th)[0], rtol=1e-13, atol=1e-15))
+
+    def describe(self) -> str:
+        return repr(self)
+
+    def to_dict(self) -> dict:
+        return {"body": type(self).__name__, "shape": list(self.shape_params), "A": self.A, "C": self.C,
+                "description": self.describe()}
+
+    def __eq__(self, other) -> bool:
+        return type(other) is type(self) and other.structure_key == self.structure_key and np.array_equal(other.params, self.params)
+
+    def __hash__(self) -> int:
+        return hash((type(self), self.structure_key, tuple(self.params)))
 
     def __repr__(self) -> str:
         shape = ", ".join(f"{v:g}" for v in self.shape_params)
-        return f"{self.kind}({shape}, A={self.A:g}, C={self.C:g})"
+        return f"{type(self).__name__}({shape}, A={self.A:g}, C={self.C:g})"
 
 
-_H_CACHE: dict[type, object] = {}
-_SLOPE_CACHE: dict[type, object] = {}
+_LOCK = threading.Lock()
+_THETA_FUNCS: dict[str, object] = {}
+_SLOPE_FUNCS: dict[str, ca.Function] = {}
 
 
-def _H_slope_function(cls: type[Body]):
-    """Compile (c, shape) -> (H, dH/dc) once per body class."""
-    if cls not in _SLOPE_CACHE:
-        c = ca.SX.sym("c")
-        sh = ca.SX.sym("shape", cls.n_shape)
-        H = cls.height_c(c, sh)
-        _SLOPE_CACHE[cls] = ca.Function("height_slope", [c, sh], [H, ca.jacobian(H, c)])
-    return _SLOPE_CACHE[cls]
+def _slope_function(body: Body) -> ca.Function:
+    """(c, shape) -> (H, dH/dc), compiled once per body structure."""
+    key = body.structure_key
+    with _LOCK:
+        if key not in _SLOPE_FUNCS:
+            c, sh = ca.SX.sym("c"), ca.SX.sym("shape", body.n_shape)
+            H = body.height(c, sh)
+            _SLOPE_FUNCS[key] = ca.Function("height_slope", [c, sh], [H, ca.jacobian(H, c)])
+        return _SLOPE_FUNCS[key]
 
 
-def _h_functions(cls: type[Body]):
-    """Compile (theta, shape) -> (h, h_theta, h_thetatheta) once per body class."""
-    if cls not in _H_CACHE:
-        n_shape = cls.n_shape
-        th = ca.SX.sym("theta")
-        sh = ca.SX.sym("shape", n_shape)
-        h = cls.height_c(ca.cos(th), sh)
+def _theta_functions(body: Body):
+    """(theta, shape) -> (h, h_theta, h_thetatheta), compiled once per body structure."""
+    key = body.structure_key
+    with _LOCK:
+        if key in _THETA_FUNCS:
+            return _THETA_FUNCS[key]
+        th, sh = ca.SX.sym("theta"), ca.SX.sym("shape", body.n_shape)
+        h = body.height(ca.cos(th), sh)
         h1 = ca.jacobian(h, th)
-        h2 = ca.jacobian(h1, th)
-        f = ca.Function("h_theta_derivs", [th, sh], [h, h1, h2])
+        f = ca.Function("h_theta_derivs", [th, sh], [h, h1, ca.jacobian(h1, th)])
 
         def evaluate(theta, shape):
             flat = np.atleast_1d(theta).ravel()
-            fm = f.map(flat.size)
-            out = fm(flat[None, :], np.tile(np.asarray(shape, float)[:, None], (1, flat.size)))
+            out = f.map(flat.size)(flat[None, :], np.tile(np.asarray(shape, float)[:, None], (1, flat.size)))
             res = [np.asarray(o).reshape(np.shape(theta)) for o in out]
-            if np.ndim(theta) == 0:
-                res = [float(r) for r in res]
-            return tuple(res)
+            return tuple(float(r) for r in res) if np.ndim(theta) == 0 else tuple(res)
 
-        _H_CACHE[cls] = evaluate
-    return _H_CACHE[cls]
+        _THETA_FUNCS[key] = evaluate
+        return evaluate
 
 
-@dataclass(frozen=True, repr=False)
 class Spheroid(Body):
-    """Spheroid with semi-axes (1, 1, a): prolate for a > 1, oblate for a < 1.
+    """Spheroid with semi-axes (1, 1, a), G at its centre: prolate for a > 1, oblate for a < 1.
 
     Parameters
     ----------
     a : float
-        Aspect ratio (polar over equatorial semi-axis), a > 0.
+        Aspect ratio (polar over equatorial semi-axis), in [1e-4, 1e4].
     A, C : float, optional
-        Principal moments about O. Defaults are the uniform solid's, A = (1 + a^2)/5,
-        C = 2/5 (units M b^2); override them for a non-uniform density whose centre of
-        mass stays at the centre of volume.
+        Moments about G. Defaults are the uniform solid's, A = (1 + a^2)/5, C = 2/5;
+        override them for a non-uniform density whose centre of mass stays at the centre.
 
     Examples
     --------
@@ -132,33 +211,137 @@ class Spheroid(Body):
     0.65
     """
 
-    a: float = field(default=1.0)
-    n_shape = 1
-
     def __init__(self, a: float, A: float | None = None, C: float | None = None):
-        a = check_positive("a", a)
-        object.__setattr__(self, "a", a)
-        object.__setattr__(self, "A", (1.0 + a * a) / 5.0 if A is None else A)
-        object.__setattr__(self, "C", 0.4 if C is None else C)
-        self._check_moments()
-        object.__setattr__(self, "A", float(self.A))
-        object.__setattr__(self, "C", float(self.C))
+        self.a = check_range("a", a, *ASPECT_RANGE, closed="lr", label=f"[{ASPECT_RANGE[0]:g}, {ASPECT_RANGE[1]:g}]")
+        super().__init__((1.0 + self.a * self.a) / 5.0 if A is None else A, 0.4 if C is None else C)
 
     @property
     def shape_params(self) -> tuple[float, ...]:
         return (self.a,)
 
+    def height(self, c, shape):
+        # (2.10): h = (a^2 cos^2 + sin^2)^(1/2) = (1 + (a^2 - 1) c^2)^(1/2)
+        a = shape[0]
+        return ca.sqrt(1 + (a * a - 1) * c * c)
+
     @property
     def uniform(self) -> bool:
         return abs(self.A - (1 + self.a**2) / 5) < 1e-15 and abs(self.C - 0.4) < 1e-15
 
-    @staticmethod
-    def height_c(c, shape):
-        # (2.10): h = (a^2 cos^2 + sin^2)^(1/2) = (1 + (a^2 - 1) c^2)^(1/2)
-        a = shape[0]
-        return ca.sqrt(1 + (a * a - 1) * c * c)
+    @property
+    def is_prolate(self) -> bool:
+        return self.a > 1.0
+
+    @property
+    def flip_symmetric(self) -> bool:
+        return True
+
+    def to_dict(self) -> dict:
+        return {"body": "spheroid", "a": self.a, "A": self.A, "C": self.C, "description": self.describe()}
 
     def __repr__(self) -> str:
         if self.uniform:
             return f"Spheroid(a={self.a:g})"
         return f"Spheroid(a={self.a:g}, A={self.A:g}, C={self.C:g})"
+
+
+class EccentricSphere(Body):
+    """A sphere of radius 1 whose centre of mass G lies ``offset`` below its centre O along the
+    axis k (the tippe top). theta = 0: resting on the ball with G below O (axis up);
+    theta = pi: inverted, resting on the other side with G above O.
+
+    Support function: h = 1 - offset cos(theta), so h_t = offset sin(theta) and the radius
+    of curvature h + h_tt = 1 everywhere.
+
+    Parameters
+    ----------
+    offset : float in [0, 1)
+        Distance OG over the radius (alpha in the tippe-top literature).
+    A, C : float, optional
+        Moments about G. Default: C = 2/5 and A = 2/5 - offset^2, the moments about G of a
+        body whose moments about the centre O are the uniform ball's (parallel-axis theorem).
+    """
+
+    def __init__(self, offset: float, A: float | None = None, C: float | None = None):
+        self.offset = check_nonnegative("offset", offset)
+        if self.offset >= 1.0:
+            raise ParameterError("offset", "must lie in [0, 1) (G inside the ball)", offset)
+        if A is None and 0.4 - self.offset**2 <= 0.2:
+            raise ParameterError("offset", "must be < 0.447 for the default moments (give A and C for larger offsets)", offset)
+        super().__init__(0.4 - self.offset**2 if A is None else A, 0.4 if C is None else C)
+
+    @property
+    def shape_params(self) -> tuple[float, ...]:
+        return (self.offset,)
+
+    def height(self, c, shape):
+        return 1 - shape[0] * c
+
+    @property
+    def is_prolate(self) -> bool:
+        return False
+
+    def to_dict(self) -> dict:
+        return {"body": "tippe-top", "offset": self.offset, "A": self.A, "C": self.C, "description": self.describe()}
+
+    def __repr__(self) -> str:
+        return f"EccentricSphere(offset={self.offset:g}, A={self.A:g}, C={self.C:g})"
+
+
+class CustomBody(Body):
+    """A body from a user's support function, in a few lines::
+
+        body = pk.CustomBody(lambda th: ca.sqrt(4 * ca.cos(th) ** 2 + ca.sin(th) ** 2), A=1.0, C=0.4)
+
+    Parameters
+    ----------
+    height : callable
+        The height of G above the table as a CasADi expression: a function of theta
+        (``variable="theta"``), or of c = cos(theta) (``variable="cos"``). Given in theta,
+        the vector chart evaluates it at theta = acos(k_Z), whose derivative is singular
+        exactly at theta = 0 and pi: give it in cos(theta) to work at the poles.
+    A, C : float
+        Moments about G (units M b^2).
+    name : str
+        Shown in reports.
+
+    The profile is checked for smoothness and convexity over [0, pi] (both radii of
+    curvature > 0); a bad one raises ParameterError naming `height`.
+    """
+
+    def __init__(self, height, A: float, C: float, *, variable: str = "theta", name: str = "custom"):
+        if not callable(height):
+            raise ParameterError("height", "must be a function of theta (or of cos(theta)) returning a CasADi expression", height)
+        if variable not in ("theta", "cos"):
+            raise ParameterError("variable", "must be one of theta, cos", variable)
+        super().__init__(A, C)
+        self._fn, self.variable, self.name = height, variable, str(name)
+        try:
+            self.structure_key
+        except Exception as exc:  # the function is not CasADi-expressible
+            raise ParameterError("height", f"must return a CasADi expression ({type(exc).__name__}: {exc})", show_value=False) from None
+        interior = (1e-6, np.pi - 1e-6) if variable == "theta" else (0.0, np.pi)
+        self.check_convex("height", interior)
+
+    @property
+    def shape_params(self) -> tuple[float, ...]:
+        return ()
+
+    def height(self, c, shape):
+        if self.variable == "cos":
+            return self._fn(c)
+        return self._fn(ca.acos(c))
+
+    @property
+    def structure_key(self) -> str:
+        if self._key is None:
+            c = ca.SX.sym("c")
+            f = ca.Function("H", [c], [self.height(c, ca.SX.sym("shape", 0))])
+            self._key = "CustomBody:" + hashlib.sha256(f.serialize().encode()).hexdigest()[:16]
+        return self._key
+
+    def describe(self) -> str:
+        return f"{self.name} body (custom support function, A={self.A:g}, C={self.C:g})"
+
+    def __repr__(self) -> str:
+        return f"CustomBody({self.name!r}, A={self.A:g}, C={self.C:g})"

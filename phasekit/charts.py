@@ -1,22 +1,24 @@
-"""Two coordinate charts of the same contact dynamics.
+"""Coordinate charts of the rigid-body dynamics: objects, not strings.
 
 A chart gives, in CasADi SX, the state derivative as an *affine* function of the contact
-force Fc = (F_1, F_2, R), the vertical velocity W of the centre O (so that the contact
-constraint is R = 1 + dW/dt, (2.8)), the slip velocity u of the contact point P
-(horizontal, in the same axes as F_1, F_2) and the conserved or monitored quantities.
-:mod:`phasekit.model` turns these into one smooth vector field per mode.
+force Fc = (F_1, F_2, R), the vertical velocity W of the centre of mass G (so that the
+contact constraint is R = 1 + dW/dt, (2.8)), the slip velocity u of the contact point P and
+the monitored quantities. :mod:`phasekit.model` turns these into one smooth vector field per
+mode; free flight is the same equations with Fc = 0 (:data:`FLIGHT`).
 
-``euler``
+:data:`EULER`
     The paper's variables (U, V, Omega, Lambda, theta, n) and equations (2.7),
     transcribed. (U, V) and (F_X, F_y) are in axes that turn with the precession.
     Singular at theta = 0 and pi (division by sin(theta) in (2.7c)).
-``vector``
+:data:`VECTOR`
     Derived independently from Newton-Euler: state (k, w, v) with k the unit vector of
     the symmetry axis, w the angular velocity and v = (v_x, v_y) the horizontal velocity of
-    O, all in fixed axes. Regular at theta = 0. k is kept on the unit sphere by construction
-    rather than projection: the field uses khat = k/|k| in every geometric term and
-    dk/dt = w x k, which leaves |k| exactly invariant, so a drift of |k| (of the order of
-    the tolerance) never feeds back into the physics.
+    G, all in fixed axes. Regular at theta = 0 and pi. k is kept on the unit sphere by
+    construction rather than projection: the field uses khat = k/|k| in every geometric
+    term and dk/dt = w x k, which leaves |k| exactly invariant.
+:data:`FLIGHT`
+    The vector chart's state plus the gap Delta (4.1) between the body and the table and
+    its rate (Delta = z - h would lose its t^3 growth after lift-off to cancellation).
 """
 
 from __future__ import annotations
@@ -24,87 +26,208 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-__all__ = ["CHARTS", "EULER_NAMES", "euler_terms", "vector_terms", "euler_to_vector", "vector_to_euler"]
+from .errors import ParameterError
 
-EULER_NAMES = ("U", "V", "Omega", "Lambda", "theta", "n")
-VECTOR_NAMES = ("k_x", "k_y", "k_z", "w_x", "w_y", "w_z", "v_x", "v_y")
+__all__ = ["Chart", "EULER", "VECTOR", "FLIGHT", "CHARTS", "PAPER_NAMES", "get_chart", "euler_to_vector", "vector_to_euler"]
 
-
-def euler_terms(x, shape, A, C, Fc, height_c):
-    """Equations (2.7) with the contact force as a symbol.
-
-    Returns a dict with ``xdot`` (affine in Fc), ``W``, ``slip``, ``energy``, ``L_Z``,
-    ``spin`` (n), ``jellett`` (J = -L.X_P) and ``theta``.
-    """
-    U, V, Om, Lam, th, n = (x[i] for i in range(6))
-    FX, Fy, R = Fc[0], Fc[1], Fc[2]
-    c, s = ca.cos(th), ca.sin(th)
-    h = height_c(c, shape)
-    h1 = ca.jacobian(h, th)
-    xP = h * s + h1 * c  # -h^2 d/dtheta(cos/h), (2.2)
-    zPm = h * c - h1 * s  # h^2 d/dtheta(sin/h) = -z_P
-    xdot = ca.vertcat(
-        Om * V + FX,  # (2.7a)
-        -Om * U + Fy,  # (2.7b)
-        (C * n * Lam - 2 * A * Om * Lam * c - zPm * Fy) / (A * s),  # (2.7c)
-        (Om * s * (A * Om * c - C * n) - R * h1 - h * FX) / A,  # (2.7d)
-        Lam,  # (2.7e)
-        xP * Fy / C,  # (2.7f)
-    )
-    W = Lam * h1  # (2.5)
-    slip = ca.vertcat(U - h * Lam, V + Om * h1 + (n - Om * c) * xP)  # (2.4a,b)
-    energy = 0.5 * (U * U + V * V + W * W) + 0.5 * A * (Om * Om * s * s + Lam * Lam) + 0.5 * C * n * n + h
-    L_Z = A * Om * s * s + C * n * c
-    jellett = A * Om * s * xP + C * n * zPm
-    return dict(xdot=xdot, W=W, slip=slip, energy=energy, L_Z=L_Z, spin=n, jellett=jellett, theta=th, cos_theta=c, h=h)
+#: the paper's state variables, in order
+PAPER_NAMES = ("U", "V", "Omega", "Lambda", "theta", "n")
 
 
 def _cross(a, b):
     return ca.vertcat(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-def vector_terms(x, shape, A, C, Fc, height_c):
-    """Newton-Euler in fixed axes: m dv/dt = F + R e_Z - e_Z, dL/dt = r_P x (F + R e_Z).
+class Chart:
+    """Base class of charts; see the module notes for the three instances."""
 
-    With I = A 1 + (C - A) k k^T about O and dI/dt w = (C - A) n (w x k):
-    I dw/dt = r_P x Fc - (C - A) n (w x k). The contact point relative to O is
-    r_P = -H'(c) (k - c e_Z) - H(c) e_Z with c = k_Z (the lowest point of the surface).
-    """
-    k = x[0:3]
-    w = x[3:6]
-    vx, vy = x[6], x[7]
-    khat = k / ca.norm_2(k)
-    c = khat[2]
-    csym = ca.SX.sym("c")
-    Hs = height_c(csym, shape)
-    dHs = ca.jacobian(Hs, csym)
-    H = ca.substitute(Hs, csym, c)
-    dH = ca.substitute(dHs, csym, c)
-    ez = ca.DM([0, 0, 1])
-    rP = -dH * (khat - c * ez) - H * ez
-    force = ca.vertcat(Fc[0], Fc[1], Fc[2])
-    n = ca.dot(w, khat)
-    wxk = _cross(w, khat)
-    torque = _cross(rP, force) - (C - A) * n * wxk
-    # I^{-1} = (1 - k k^T)/A + k k^T / C
-    wdot = (torque - khat * ca.dot(khat, torque)) / A + khat * ca.dot(khat, torque) / C
-    kdot = _cross(w, k)
-    xdot = ca.vertcat(kdot, wdot, Fc[0], Fc[1])
-    W = dH * wxk[2]  # d/dt H(k_Z)
-    vP = ca.vertcat(vx, vy, 0) + _cross(w, rP)
-    slip = vP[0:2]
-    Lvec = A * (w - n * khat) + C * n * khat
-    energy = 0.5 * (vx * vx + vy * vy + W * W) + 0.5 * ca.dot(w, Lvec) + H
-    L_Z = Lvec[2]
-    jellett = -ca.dot(Lvec, rP)
-    theta = ca.acos(c)
-    return dict(xdot=xdot, W=W, slip=slip, energy=energy, L_Z=L_Z, spin=n, jellett=jellett, theta=theta, cos_theta=c, h=H)
+    name = ""
+    state_names: tuple[str, ...] = ()
+    #: state indices of the horizontal velocity of G: adding du to them adds du to the slip
+    velocity_slots: tuple[int, int] = (0, 1)
+    #: whether the chart is regular at theta = 0 and pi
+    regular_at_poles = True
+
+    @property
+    def n_states(self) -> int:
+        return len(self.state_names)
+
+    def terms(self, x, H, A, C, Fc) -> dict:
+        """Symbolic terms: ``xdot`` (affine in Fc), ``W``, ``slip``, ``energy``, ``L_Z``,
+        ``spin``, ``jellett``, ``cos_theta``, ``h`` and ``paper`` (the paper's six variables).
+        ``H`` maps c = cos(theta) to the height of G (an SX expression)."""
+        raise NotImplementedError
+
+    def from_paper(self, y) -> np.ndarray:
+        """A state in the paper's variables, in this chart's coordinates."""
+        raise NotImplementedError
+
+    def to_paper(self, x) -> np.ndarray:
+        """A state of this chart in the paper's variables (U, V, Omega, Lambda, theta, n)."""
+        raise NotImplementedError
+
+    def theta(self, x) -> float:
+        return float(self.to_paper(x)[4])
+
+    def rotation_rate(self, x) -> float:
+        """The fastest rotation rate of a state (>= 1): sets the period of R's oscillation."""
+        return float(max(1.0, np.linalg.norm(np.asarray(x, dtype=float)[3:6])))
+
+    def __repr__(self) -> str:
+        return f"<chart {self.name}>"
+
+    def __reduce__(self):  # charts are singletons: unpickle to the same object
+        return (_chart_named, (self.name,))
 
 
-CHARTS = {
-    "euler": dict(names=EULER_NAMES, terms=euler_terms),
-    "vector": dict(names=VECTOR_NAMES, terms=vector_terms),
-}
+class EulerChart(Chart):
+    name = "euler"
+    state_names = PAPER_NAMES
+    velocity_slots = (0, 1)
+    regular_at_poles = False
+
+    def terms(self, x, H, A, C, Fc) -> dict:
+        U, V, Om, Lam, th, n = (x[i] for i in range(6))
+        FX, Fy, R = Fc[0], Fc[1], Fc[2]
+        c, s = ca.cos(th), ca.sin(th)
+        h = H(c)
+        h1 = ca.jacobian(h, th)
+        xP = h * s + h1 * c  # -h^2 d/dtheta(cos/h), (2.2)
+        zPm = h * c - h1 * s  # h^2 d/dtheta(sin/h) = -z_P
+        xdot = ca.vertcat(
+            Om * V + FX,  # (2.7a)
+            -Om * U + Fy,  # (2.7b)
+            (C * n * Lam - 2 * A * Om * Lam * c - zPm * Fy) / (A * s),  # (2.7c)
+            (Om * s * (A * Om * c - C * n) - R * h1 - h * FX) / A,  # (2.7d)
+            Lam,  # (2.7e)
+            xP * Fy / C,  # (2.7f)
+        )
+        W = Lam * h1  # (2.5)
+        slip = ca.vertcat(U - h * Lam, V + Om * h1 + (n - Om * c) * xP)  # (2.4a,b)
+        energy = 0.5 * (U * U + V * V + W * W) + 0.5 * A * (Om * Om * s * s + Lam * Lam) + 0.5 * C * n * n + h
+        L_Z = A * Om * s * s + C * n * c
+        jellett = A * Om * s * xP + C * n * zPm
+        return dict(xdot=xdot, W=W, slip=slip, energy=energy, L_Z=L_Z, spin=n, jellett=jellett, cos_theta=c, h=h,
+                    paper=ca.vertcat(U, V, Om, Lam, th, n))
+
+    def from_paper(self, y) -> np.ndarray:
+        return np.array(y, dtype=float)
+
+    def to_paper(self, x) -> np.ndarray:
+        return np.array(x, dtype=float)
+
+    def theta(self, x) -> float:
+        return float(x[4])
+
+    def rotation_rate(self, x) -> float:
+        return float(max(1.0, abs(x[2]), abs(x[5]), abs(x[3])))
+
+
+class VectorChart(Chart):
+    name = "vector"
+    state_names = ("k_x", "k_y", "k_z", "w_x", "w_y", "w_z", "v_x", "v_y")
+    velocity_slots = (6, 7)
+
+    def rigid_terms(self, x, H, A, C, Fc) -> dict:
+        """Newton-Euler in fixed axes: m dv/dt = F + R e_Z - e_Z, dL/dt = r_P x (F + R e_Z).
+
+        With I = A 1 + (C - A) k k^T about G and dI/dt w = (C - A) n (w x k):
+        I dw/dt = r_P x Fc - (C - A) n (w x k). The contact point relative to G is
+        r_P = -H'(c) (k - c e_Z) - H(c) e_Z with c = k_Z (the lowest point of the surface).
+        """
+        k, w = x[0:3], x[3:6]
+        vx, vy = x[6], x[7]
+        khat = k / ca.norm_2(k)
+        c = khat[2]
+        csym = ca.SX.sym("c")
+        Hs = H(csym)
+        Hc = ca.substitute(Hs, csym, c)
+        dH = ca.substitute(ca.jacobian(Hs, csym), csym, c)
+        ez = ca.DM([0, 0, 1])
+        rP = -dH * (khat - c * ez) - Hc * ez
+        n = ca.dot(w, khat)
+        wxk = _cross(w, khat)
+        torque = _cross(rP, ca.vertcat(Fc[0], Fc[1], Fc[2])) - (C - A) * n * wxk
+        # I^{-1} = (1 - k k^T)/A + k k^T / C
+        wdot = (torque - khat * ca.dot(khat, torque)) / A + khat * ca.dot(khat, torque) / C
+        xdot = ca.vertcat(_cross(w, k), wdot, Fc[0], Fc[1])
+        W = dH * wxk[2]  # d/dt H(k_Z)
+        slip = (ca.vertcat(vx, vy, 0) + _cross(w, rP))[0:2]
+        Lvec = A * (w - n * khat) + C * n * khat
+        rot_energy = 0.5 * ca.dot(w, Lvec)
+        # the paper's variables; Omega and the azimuthal axes are undefined at the poles
+        s = ca.sqrt(khat[0] ** 2 + khat[1] ** 2)
+        eX = ca.vertcat(khat[0] / s, khat[1] / s, 0)
+        eY = ca.vertcat(-khat[1] / s, khat[0] / s, 0)
+        v3 = ca.vertcat(vx, vy, 0)
+        paper = ca.vertcat(ca.dot(v3, eX), ca.dot(v3, eY), (w[2] - n * c) / (s * s), ca.dot(w, eY), ca.atan2(s, c), n)
+        return dict(xdot=xdot, W=W, slip=slip, rot_energy=rot_energy, L_Z=Lvec[2], L=Lvec, spin=n,
+                    jellett=-ca.dot(Lvec, rP), cos_theta=c, h=Hc, rP=rP, paper=paper)
+
+    def terms(self, x, H, A, C, Fc) -> dict:
+        T = self.rigid_terms(x, H, A, C, Fc)
+        vx, vy, W = x[6], x[7], T["W"]
+        T["energy"] = 0.5 * (vx * vx + vy * vy + W * W) + T["rot_energy"] + T["h"]
+        return T
+
+    def from_paper(self, y) -> np.ndarray:
+        return euler_to_vector(y)
+
+    def to_paper(self, x) -> np.ndarray:
+        return vector_to_euler(x)
+
+    def theta(self, x) -> float:
+        x = np.asarray(x, dtype=float)
+        return float(np.arctan2(np.hypot(x[0], x[1]), x[2]))
+
+
+class FlightChart(Chart):
+    """Free flight: the vector chart's rigid-body equations with no contact force, plus the
+    gap. dv_x/dt = dv_y/dt = 0; d2Delta/dt2 = -1 - d2h/dt2 (G falls freely); the vertical
+    velocity of G is dDelta/dt + dh/dt."""
+
+    name = "flight"
+    state_names = VectorChart.state_names + ("gap", "gap_rate")
+    velocity_slots = (6, 7)
+
+    def terms(self, x, H, A, C, Fc) -> dict:
+        T = VECTOR.rigid_terms(x[0:8], H, A, C, ca.SX.zeros(3))
+        rot = ca.vertcat(T["xdot"], 0, 0)
+        Hdot = ca.jtimes(T["h"], x, rot)
+        Hddot = ca.jtimes(Hdot, x, rot)
+        D, Dd = x[8], x[9]
+        T["xdot"] = ca.vertcat(T["xdot"], Dd, -1 - Hddot)
+        vz = Dd + Hdot
+        T["energy"] = 0.5 * (x[6] ** 2 + x[7] ** 2 + vz * vz) + T["rot_energy"] + D + T["h"]
+        T.update(W=vz, gap=D, gap_rate=Dd, gap_acc=-1 - Hddot, Hdot=Hdot)
+        return T
+
+    def from_paper(self, y) -> np.ndarray:
+        return np.concatenate([euler_to_vector(y), [0.0, 0.0]])
+
+    def to_paper(self, x) -> np.ndarray:
+        return vector_to_euler(np.asarray(x, dtype=float)[:8])
+
+    def theta(self, x) -> float:
+        return VECTOR.theta(np.asarray(x)[:8])
+
+
+EULER, VECTOR, FLIGHT = EulerChart(), VectorChart(), FlightChart()
+CHARTS = {c.name: c for c in (EULER, VECTOR, FLIGHT)}
+
+
+def get_chart(chart, *, contact: bool = True) -> Chart:
+    """A chart object from itself or its name ("euler" or "vector"; "flight" unless ``contact``)."""
+    if isinstance(chart, Chart) and (chart is not FLIGHT or not contact):
+        return chart
+    allowed = ("euler", "vector") if contact else tuple(CHARTS)
+    if not isinstance(chart, str) or chart not in allowed:
+        raise ParameterError("chart", f"must be one of {', '.join(allowed)}", chart)
+    return CHARTS[chart]
+
+
+def _chart_named(name: str) -> Chart:
+    return CHARTS[name]
 
 
 def euler_to_vector(y) -> np.ndarray:
@@ -124,8 +247,8 @@ def vector_to_euler(z) -> np.ndarray:
     """(k, w, v) -> (U, V, Omega, Lambda, theta, n), for theta in (0, pi).
 
     At theta = 0 or pi the azimuth, Omega and Lambda are undefined (the chart's
-    singularity); those return NaN-free limits only when the tilt is exactly zero:
-    Omega is then set to the vertical component of w and Lambda, U, V refer to the x axis.
+    singularity); exactly there Omega is set to the vertical component of w and Lambda,
+    U, V refer to the x axis.
     """
     z = np.asarray(z, dtype=float)
     k = z[0:3] / np.linalg.norm(z[0:3])

@@ -1,45 +1,262 @@
 """Command line: ``phasekit <command> ... [--json]`` (also ``python -m phasekit``).
 
-Every command prints one JSON object with ``--json``. Bad input prints one line,
-``phasekit: error: ...``, on stderr and exits with status 2, never a traceback.
+Every command prints one JSON object with ``--json`` (and nothing else on stdout: library
+output is sent to stderr while it runs). Bad input prints one line naming the flag as
+typed, its valid range and the value, on stderr (and, with ``--json``, as a JSON object
+with status "error" on stdout), and exits with status 2; a failed run exits with 1.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
+import os
 import re
 import sys
+import warnings
 
-import numpy as np
+__all__ = ["main", "main_entry"]
 
-__all__ = ["main"]
+EXAMPLES = """examples:
+  phasekit simulate --a 1.5 --mu 0.1 --gyroscopic --theta0 1.5607963 --omega0 10.5 --json
+  phasekit simulate --a 1.5 --mu 0.1 --paper-start 5.2 --slip-eps 1e-3 --t-end 300
+  phasekit simulate --a 1.5 --mu 0.1 --state 0 0 0 0 1.0 0 --t-end 5
+  phasekit simulate --body tippe-top --offset 0.3 --A 0.38 --C 0.4 --mu 0.3 --slip-eps 1e-8 \\
+      --theta0 0.1 --spin-about-vertical 15 --stop-at theta=0.4 --t-end 30 --rtol 1e-10 --json
+  phasekit fixed-points --a 1.5 --mu 0.1 --omega0 10 --json
+  phasekit gyroscopic --a 1.5 --mu 0.1 --omega0 10.5 --theta0 1.5607963 --t 0 10 40
+"""
+
+#: Python parameter names -> the flag a user typed (the CLI rewords API errors with these)
+FLAGS = {
+    "a": "--a", "A": "--A", "C": "--C", "offset": "--offset", "w": "--w", "body": "--body", "mu": "--mu",
+    "eps": "--slip-eps", "friction": "--friction", "theta0": "--theta0", "omega0": "--omega0", "n0": "--n0",
+    "t_end": "--t-end", "rtol": "--rtol", "atol": "--atol", "restitution": "--restitution", "stop_at": "--stop-at",
+    "backend": "--backend", "state": "--state", "x0": "--state", "theta": "--state (theta)", "U": "--state (U)",
+    "V": "--state (V)", "Omega": "--state (Omega)", "Lambda": "--state (Lambda)", "n": "--state (n)",
+    "delta": "--delta", "branch": "--branch", "seed_law": "--seed-law", "formulation": "--formulation",
+    "max_steps": "--max-steps", "max_wall": "--max-wall", "unstable_manifold": "--unstable-manifold",
+    "t": "--t", "label": "--paper-start", "level": "--stop-at", "max_switches": "--max-switches",
+}
+
+
+class _UsageError(Exception):
+    def __init__(self, message: str, flag: str | None = None):
+        super().__init__(message)
+        self.flag = flag
 
 
 class _Parser(argparse.ArgumentParser):
     def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
+        kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
         super().__init__(*args, **kwargs)
         # argparse's own pattern misses exponents, so "--state ... -1e-4 ..." would read
         # -1e-4 as an option; accept any negative float literal as a value.
         self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|nan)$", re.I)
 
     def error(self, message):  # one line, no usage block
-        raise _UsageError(message)
+        flag = re.search(r"argument (--[\w-]+)", message)
+        raise _UsageError(message, flag.group(1) if flag else None)
 
 
-class _UsageError(Exception):
-    pass
+def _real(text: str) -> float:
+    """A real number as typed (inf and nan are refused later by range checks, with the flag)."""
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
 
 
-def _json_default(obj):
-    if isinstance(obj, (np.floating,)):
-        return float(obj)
-    if isinstance(obj, (np.integer,)):
-        return int(obj)
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    return str(obj)
+def _count(text: str) -> int:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
+    if not math.isfinite(value) or value != int(value):
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}")
+    return int(value)
+
+
+def _add_body(p):
+    g = p.add_argument_group("body (units: mass M, length b = equatorial radius or ball radius, time sqrt(b/g))")
+    g.add_argument("--body", default="spheroid", help="spheroid | tippe-top | egg (default: %(default)s)")
+    g.add_argument("--a", type=_real, default=None, help="aspect ratio: spheroid semi-axes (1, 1, a), egg length/breadth")
+    g.add_argument("--offset", type=_real, default=None, help="tippe-top: centre of mass below the ball's centre, in [0, 1)")
+    g.add_argument("--w", type=_real, default=None, help="egg: asymmetry (shift of the widest section over the length)")
+    g.add_argument("--A", dest="A", type=_real, default=None,
+                   help="transverse moment of inertia about G, units M b^2 (default: the body's, e.g. (1+a^2)/5)")
+    g.add_argument("--C", dest="C", type=_real, default=None, help="axial moment of inertia about G (default: the body's, e.g. 2/5)")
+
+
+def _add_friction(p):
+    g = p.add_argument_group("friction")
+    g.add_argument("--mu", type=_real, required=True, help="friction coefficient mu in [0, 1000]")
+    g.add_argument("--friction", default="coulomb",
+                   help="coulomb (exact stick-slip; stability of fixed points then means the rolling linearisation) "
+                        "| viscous (part I's wet friction) (default: %(default)s)")
+    g.add_argument("--slip-eps", type=_real, default=None,
+                   help="regularise Coulomb friction as -mu R u/sqrt(|u|^2+eps^2) (default: exact stick-slip)")
+
+
+def _add_solver(p):
+    g = p.add_argument_group("solver (every run is bounded by steps and wall time)")
+    g.add_argument("--rtol", type=_real, default=1e-9, help="tolerance in [1e-16, 0.1] (default: %(default)s)")
+    g.add_argument("--atol", type=_real, default=None, help="absolute tolerance of CVODES/IDAS (default: rtol/100)")
+    g.add_argument("--backend", default="auto", help="auto | taylor | cvodes | cvodes-adams | idas (default: %(default)s)")
+    g.add_argument("--formulation", default="auto", help="euler | vector | auto (vector within 1e-5 of the poles) "
+                                                         "(default: %(default)s)")
+    g.add_argument("--max-steps", type=_count, default=5_000_000, help="step budget of the run (default: %(default)s)")
+    g.add_argument("--max-wall", type=_real, default=600.0, help="wall-time budget in seconds (default: %(default)s)")
+
+
+def _build_parser() -> _Parser:
+    from . import __version__
+
+    parser = _Parser(prog="phasekit", description="Phase space of an axisymmetric body spinning on a table.",
+                     epilog=EXAMPLES)
+    parser.add_argument("--version", action="version", version=f"phasekit {__version__}")
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser, metavar="{simulate,fixed-points,gyroscopic}")
+
+    sim = sub.add_parser("simulate", help="integrate the exact equations from a start", epilog=EXAMPLES)
+    _add_body(sim)
+    _add_friction(sim)
+    g = sim.add_argument_group("start (exactly one)")
+    start = g.add_mutually_exclusive_group(required=True)
+    start.add_argument("--state", type=_real, nargs=6, metavar=("U", "V", "Omega", "Lambda", "theta", "n"),
+                       help="the paper's state variables")
+    start.add_argument("--gyroscopic", action="store_true", help="on the slow manifold at --theta0 with --omega0 or --n0")
+    start.add_argument("--unstable-manifold", metavar="horizontal|vertical",
+                       help="fixed point + --delta x unstable eigenvector, with --omega0 or --n0")
+    start.add_argument("--spin-about-vertical", type=_real, metavar="N0",
+                       help="angular velocity N0 about the vertical at --theta0, centre of mass at rest (tippe top)")
+    start.add_argument("--paper-start", metavar="5.1|5.2", help="the paper's printed start (5.1) with --n0, (5.2) with --omega0")
+    g.add_argument("--theta0", type=_real, default=None, help="initial inclination of the axis, radians")
+    g.add_argument("--omega0", type=_real, default=None, help="precession rate Omega0 (prolate starts)")
+    g.add_argument("--n0", type=_real, default=None, help="spin n0 (oblate starts)")
+    g.add_argument("--delta", type=_real, default=0.01, help="seed amplitude on the unstable manifold (default: %(default)s)")
+    g.add_argument("--branch", default="+0", help="unstable direction and sign: +0, -0, +1, ... (default: %(default)s)")
+    g.add_argument("--seed-law", default="viscous", help="linearisation giving the direction: viscous | same (default: %(default)s)")
+    r = sim.add_argument_group("run")
+    r.add_argument("--t-end", type=_real, default=200.0, help="end time, units sqrt(b/g) (default: %(default)s)")
+    r.add_argument("--stop-at", default="jump",
+                   help="jump | touchdown | none | NAME=VALUE: stop when an observable first reaches a value, "
+                        "e.g. theta=0.4 (runs through flights) (default: %(default)s)")
+    r.add_argument("--restitution", type=_real, default=None, help="Newton's e in [0, 1] at impacts (with --stop-at none; "
+                                                                     "default 0)")
+    _add_solver(sim)
+    o = sim.add_argument_group("output")
+    o.add_argument("--json", action="store_true", help="print one JSON object")
+    o.add_argument("--events", action="store_true", help="list every event (human output)")
+
+    fx = sub.add_parser("fixed-points", help="steady states and their linear stability", epilog=EXAMPLES)
+    _add_body(fx)
+    _add_friction(fx)
+    grp = fx.add_mutually_exclusive_group(required=True)
+    grp.add_argument("--omega0", type=_real, help="precession rate of the family")
+    grp.add_argument("--n0", type=_real, help="spin of the family")
+    fx.add_argument("--json", action="store_true", help="print one JSON object")
+
+    gy = sub.add_parser("gyroscopic", help="gyroscopic mean solution theta-bar(t), Omega-bar(t) and J", epilog=EXAMPLES)
+    _add_body(gy)
+    gy.add_argument("--mu", type=_real, required=True, help="friction coefficient mu > 0 (sets the slow time mu t)")
+    g2 = gy.add_mutually_exclusive_group(required=True)
+    g2.add_argument("--omega0", type=_real, help="precession rate (prolate)")
+    g2.add_argument("--n0", type=_real, help="spin (oblate)")
+    gy.add_argument("--theta0", type=_real, required=True, help="initial inclination, radians, in (0, pi)")
+    gy.add_argument("--t", type=_real, nargs="+", required=True, help="times (units sqrt(b/g))")
+    gy.add_argument("--json", action="store_true", help="print one JSON object")
+    return parser
+
+
+def _body(args):
+    from .api import make_body
+
+    return make_body(args.body, a=args.a, offset=args.offset, w=args.w, A=args.A, C=args.C)
+
+
+def _cmd_simulate(args) -> dict:
+    from .api import simulate_start
+
+    start = _start_of(args)
+    if args.restitution is not None and args.stop_at in ("jump", "touchdown"):
+        warnings.warn(f"--restitution has no effect with --stop-at {args.stop_at} (impacts happen with --stop-at none)")
+    opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall)
+    return simulate_start(body=_body(args), friction=args.friction, mu=args.mu, slip_eps=args.slip_eps, start=start,
+                          t_end=args.t_end, stop_at=args.stop_at, restitution=args.restitution or 0.0,
+                          formulation=args.formulation, options=opts)
+
+
+def _refuse(args, names, why):
+    for name in names:
+        if getattr(args, name) is not None:
+            raise _UsageError(f"{FLAGS[name]} {why}", FLAGS[name])
+
+
+def _start_of(args) -> dict:
+    if args.unstable_manifold is not None:
+        _refuse(args, ["theta0"], "does not go with --unstable-manifold (the fixed point fixes theta)")
+        return dict(kind="unstable-manifold", state=args.unstable_manifold, delta=args.delta, omega0=args.omega0,
+                    n0=args.n0, branch=args.branch, seed_law=args.seed_law)
+    if args.gyroscopic:
+        if args.theta0 is None:
+            raise _UsageError("--theta0 is required with --gyroscopic (a number in (0, pi))", "--theta0")
+        return dict(kind="gyroscopic", theta0=args.theta0, omega0=args.omega0, n0=args.n0)
+    if args.spin_about_vertical is not None:
+        if args.theta0 is None:
+            raise _UsageError("--theta0 is required with --spin-about-vertical (a number in [0, pi])", "--theta0")
+        _refuse(args, ["omega0", "n0"], "does not go with --spin-about-vertical (it sets the spin)")
+        return dict(kind="spin-about-vertical", theta0=args.theta0, n0=args.spin_about_vertical)
+    if args.paper_start is not None:
+        _refuse(args, ["theta0"], "does not go with --paper-start (the printed start fixes theta)")
+        return dict(kind="paper", label=args.paper_start, n0=args.n0, omega0=args.omega0)
+    _refuse(args, ["theta0", "omega0", "n0"], "goes with --gyroscopic, --spin-about-vertical or --unstable-manifold, "
+                                              "not with --state")
+    return dict(kind="state", state=args.state)
+
+
+def _cmd_fixed_points(args) -> dict:
+    from .api import fixed_points_report
+
+    return fixed_points_report(body=_body(args), mu=args.mu, friction=args.friction, slip_eps=args.slip_eps,
+                               omega0=args.omega0, n0=args.n0)
+
+
+def _cmd_gyroscopic(args) -> dict:
+    from .api import gyroscopic_report
+
+    return gyroscopic_report(body=_body(args), mu=args.mu, theta0=args.theta0, t=args.t, omega0=args.omega0, n0=args.n0)
+
+
+def _fmt(v) -> str:
+    return f"{v:.10g}" if isinstance(v, float) else str(v)
+
+
+def _print_human(out: dict, events: bool) -> None:
+    if "fixed_points" in out:
+        for fp in out["fixed_points"]:
+            st = ", ".join(f"{k}={'undefined' if v is None else f'{v:.8g}'}" for k, v in fp["state"].items())
+            print(f"{fp['kind']:<13s} {fp['classification']:<45s} residual {fp['residual']:.1e}  [{st}]")
+        print(f"({out['note']})")
+        return
+    if "J" in out:
+        print(f"J = {out['J']:.10g} ({out['J_definition']}), {out['method']}")
+        for t, th, om in zip(out["t"], out["theta"], out["Omega"]):
+            print(f"t = {t:12.6g}   theta = {th:.12f}   Omega = {om:.12f}")
+        return
+    print(f"status: {out['status']}" + (f" ({out['reason']})" if out.get("reason") else ""))
+    for key in ("t_jump", "t_stop", "t_end", "theta_end", "R_min", "stuck", "mode_end"):
+        if out.get(key) is not None:
+            print(f"{key}: {_fmt(out[key])}")
+    if out.get("flight"):
+        print("flight: " + ", ".join(f"{k}={_fmt(v)}" for k, v in out["flight"].items()))
+    print(f"{out['n_events']} events, {out['n_steps']} steps, {out['wall_s'] * 1e3:.1f} ms, "
+          f"{out['formulation']} chart, {out['backend']}" + ("" if events else " (list the events with --events)"))
+    if events:
+        for e in out["events"]:
+            print(f"  {e['kind']:<12s} t = {e['t']:.10g}  {e['mode_before']} -> {e['mode_after']}")
 
 
 def _finite_json(obj):
@@ -53,164 +270,92 @@ def _finite_json(obj):
     return obj
 
 
-def _add_body(p):
-    p.add_argument("--a", type=float, required=True, help="aspect ratio a > 0 (prolate a > 1, oblate a < 1)")
-    p.add_argument("--A", dest="A", type=float, default=None, help="transverse moment (default (1+a^2)/5)")
-    p.add_argument("--C", dest="C", type=float, default=None, help="axial moment (default 2/5)")
+def _json_default(obj):
+    import numpy as np
+
+    if isinstance(obj, np.floating):
+        return float(obj)
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    return str(obj)
 
 
-def _add_friction(p, default="coulomb"):
-    p.add_argument("--mu", type=float, required=True, help="friction coefficient mu >= 0")
-    p.add_argument("--friction", default=default, help="coulomb | viscous")
-    p.add_argument(
-        "--slip-eps",
-        type=float,
-        default=None,
-        help="regularise Coulomb friction as -mu R u/sqrt(|u|^2+eps^2); default: exact stick-slip",
-    )
-
-
-def _build_parser() -> _Parser:
-    parser = _Parser(prog="phasekit", description="Phase space of a spheroid spinning on a table.")
-    sub = parser.add_subparsers(dest="command", parser_class=_Parser)
-
-    sim = sub.add_parser("simulate", help="integrate the exact equations from a start")
-    _add_body(sim)
-    _add_friction(sim)
-    start = sim.add_mutually_exclusive_group(required=True)
-    start.add_argument("--state", type=float, nargs=6, metavar=("U", "V", "Omega", "Lambda", "theta", "n"))
-    start.add_argument("--gyroscopic", action="store_true", help="start on the slow manifold")
-    start.add_argument("--unstable-manifold", choices=None, metavar="horizontal|vertical",
-                       help="start at fixed point + delta * unstable eigenvector")
-    sim.add_argument("--delta", type=float, default=0.01, help="seed amplitude on the unstable manifold")
-    sim.add_argument("--branch", default="+0", help="which unstable direction and sign (+0, -0, ...)")
-    sim.add_argument("--seed-law", default="viscous", help="linearisation giving the direction: viscous | same")
-    sim.add_argument("--theta0", type=float, default=None)
-    sim.add_argument("--omega0", type=float, default=None)
-    sim.add_argument("--n0", type=float, default=None)
-    sim.add_argument("--t-end", type=float, default=200.0)
-    sim.add_argument("--rtol", type=float, default=1e-9)
-    sim.add_argument("--stop-at", default="jump", help="jump | touchdown | none")
-    sim.add_argument("--restitution", type=float, default=0.0, help="Newton's e in [0, 1] at impacts (--stop-at none)")
-    sim.add_argument("--formulation", default="auto", help="euler | vector | auto")
-    sim.add_argument("--backend", default="auto", help="auto | taylor | cvodes | cvodes-adams | idas")
-    sim.add_argument("--json", action="store_true")
-
-    fx = sub.add_parser("fixed-points", help="steady states and their linear stability")
-    _add_body(fx)
-    _add_friction(fx, default="viscous")
-    grp = fx.add_mutually_exclusive_group(required=True)
-    grp.add_argument("--omega0", type=float)
-    grp.add_argument("--n0", type=float)
-    fx.add_argument("--json", action="store_true")
-
-    gy = sub.add_parser("gyroscopic", help="gyroscopic mean solution theta-bar(t), Omega-bar(t) and J")
-    _add_body(gy)
-    gy.add_argument("--mu", type=float, required=True)
-    g2 = gy.add_mutually_exclusive_group(required=True)
-    g2.add_argument("--omega0", type=float)
-    g2.add_argument("--n0", type=float)
-    gy.add_argument("--theta0", type=float, required=True)
-    gy.add_argument("--t", type=float, nargs="+", required=True, help="times (units sqrt(b/g))")
-    gy.add_argument("--json", action="store_true")
-    return parser
-
-
-def _cmd_simulate(args) -> dict:
-    from .api import simulate_start
-
-    if args.unstable_manifold is not None:
-        if args.theta0 is not None:
-            raise ValueError("`theta0` does not go with --unstable-manifold (the fixed point fixes theta).")
-        start = dict(kind="unstable-manifold", state=args.unstable_manifold, delta=args.delta, omega0=args.omega0,
-                     n0=args.n0, branch=args.branch, seed_law=args.seed_law)
-    elif args.gyroscopic:
-        if args.theta0 is None:
-            raise ValueError("`theta0` is required with --gyroscopic (a number in (0, pi)).")
-        start = dict(kind="gyroscopic", theta0=args.theta0, omega0=args.omega0, n0=args.n0)
-    else:
-        if args.theta0 is not None or args.omega0 is not None or args.n0 is not None:
-            raise ValueError("`theta0`, `omega0` and `n0` go with --gyroscopic, not with --state.")
-        start = dict(kind="state", state=args.state)
-    return simulate_start(
-        a=args.a,
-        A=args.A,
-        C=args.C,
-        mu=args.mu,
-        friction=args.friction,
-        slip_eps=args.slip_eps,
-        start=start,
-        t_end=args.t_end,
-        rtol=args.rtol,
-        stop_at=args.stop_at,
-        restitution=args.restitution,
-        formulation=args.formulation,
-        backend=args.backend,
-    )
-
-
-def _cmd_fixed_points(args) -> dict:
-    from .api import fixed_points_report
-
-    return fixed_points_report(a=args.a, mu=args.mu, friction=args.friction, slip_eps=args.slip_eps, A=args.A, C=args.C,
-                               omega0=args.omega0, n0=args.n0)
-
-
-def _cmd_gyroscopic(args) -> dict:
-    from .api import gyroscopic_report
-
-    return gyroscopic_report(a=args.a, mu=args.mu, theta0=args.theta0, t=args.t, omega0=args.omega0, n0=args.n0, A=args.A, C=args.C)
-
-
-def _print_human(out: dict) -> None:
-    if "fixed_points" in out:
-        for fp in out["fixed_points"]:
-            st = ", ".join(f"{k}={'undefined' if v is None else f'{v:.8g}'}" for k, v in fp["state"].items())
-            print(f"{fp['kind']:<13s} {fp['classification']:<45s} residual {fp['residual']:.1e}  [{st}]")
+@contextlib.contextmanager
+def _stdout_to_stderr():
+    """While computing, send everything written to stdout (Python or C++ libraries) to stderr,
+    so that stdout holds only the result."""
+    sys.stdout.flush()
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):  # no real file (e.g. captured in tests)
+        with contextlib.redirect_stdout(sys.stderr):
+            yield
         return
-    if "theta" in out and "Omega" in out:
-        print(f"J = {out['J']:.10g} ({out['J_definition']}), {out['method']}")
-        for t, th, om in zip(out["t"], out["theta"], out["Omega"]):
-            print(f"t = {t:12.6g}   theta = {th:.12f}   Omega = {om:.12f}")
-        return
-    for key, val in out.items():
-        if key == "events":
-            print("events:")
-            for e in val:
-                print(f"  {e['kind']:<10s} t = {e['t']:.10g}  {e['mode_before']} -> {e['mode_after']}")
-        elif isinstance(val, dict):
-            print(f"{key}: " + ", ".join(f"{k}={v:.10g}" if isinstance(v, float) else f"{k}={v}" for k, v in val.items()))
-        else:
-            print(f"{key}: {val}")
+    saved = os.dup(fd)
+    try:
+        os.dup2(sys.stderr.fileno(), fd)
+        with contextlib.redirect_stdout(sys.stderr):
+            yield
+    finally:
+        sys.stdout.flush()
+        os.dup2(saved, fd)
+        os.close(saved)
+
+
+def _error(message: str, flag: str | None, as_json: bool, code: int = 2) -> int:
+    message = " ".join(message.split())
+    print(f"phasekit: error: {message}", file=sys.stderr)
+    if as_json:
+        print(json.dumps({"status": "error", "parameter": flag, "message": message}))
+    return code
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    print(f"phasekit: warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
 COMMANDS = {"simulate": _cmd_simulate, "fixed-points": _cmd_fixed_points, "gyroscopic": _cmd_gyroscopic}
 
 
 def main(argv=None) -> int:
-    """Run the CLI; returns the exit status (0 success, 1 failed run, 2 bad input)."""
+    """Run the CLI; returns the exit status (0 success, 1 failed run, 2 bad input, 130 interrupted)."""
+    from .errors import ParameterError, PhasekitError
+
+    argv = list(sys.argv[1:] if argv is None else argv)
+    as_json = "--json" in argv
     parser = _build_parser()
     try:
-        args = parser.parse_args(argv)
-        if args.command is None:
-            raise _UsageError("a command is required: " + ", ".join(COMMANDS))
-        out = COMMANDS[args.command](args)
-    except (_UsageError, ValueError) as exc:
-        msg = " ".join(str(exc).split())
-        print(f"phasekit: error: {msg}", file=sys.stderr)
-        return 2
+        with warnings.catch_warnings():
+            warnings.simplefilter("default")
+            warnings.showwarning = _show_warning
+            args = parser.parse_args(argv)
+            if args.command is None:
+                raise _UsageError("a command is required: " + ", ".join(COMMANDS))
+            with _stdout_to_stderr():
+                out = COMMANDS[args.command](args)
+    except _UsageError as exc:
+        return _error(str(exc), exc.flag, as_json)
+    except ParameterError as exc:
+        flag = FLAGS.get(exc.param, "--" + exc.param.replace("_", "-"))
+        return _error(exc.render(flag), flag, as_json)
+    except PhasekitError as exc:
+        return _error(str(exc), None, as_json, code=1)
+    except KeyboardInterrupt:
+        return _error("interrupted", None, as_json, code=130)
     out = _finite_json(out)
-    if getattr(args, "json", False):
-        print(json.dumps(out, default=_json_default))
+    if as_json:
+        print(json.dumps(out, default=_json_default, allow_nan=False))
     else:
-        _print_human(out)
+        _print_human(out, getattr(args, "events", False))
     return 1 if out.get("status") == "failed" else 0
-
-
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
 
 
 def main_entry() -> None:
     """Console-script entry point."""
     sys.exit(main())
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main_entry()

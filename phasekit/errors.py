@@ -1,34 +1,20 @@
-"""Error types, run statuses and the input checks shared by every public entry point.
+"""Error types and the one status vocabulary of every result.
 
-Bad input raises :class:`ValueError` at once, naming the parameter in backticks and
-giving its valid range. Numerical trouble never raises from a sweep: it ends as a
-result whose status is :attr:`Status.FAILED` with a reason.
+Bad input raises :class:`ParameterError` (a :class:`ValueError`) at once, naming the
+parameter and its valid range. Numerical trouble is a result whose ``status`` is
+:attr:`Status.FAILED` with a reason; with ``throw=True`` it raises
+:class:`ConvergenceError` carrying that result instead.
 """
 
 from __future__ import annotations
 
 import enum
-import math
-from collections.abc import Sequence
 
-import numpy as np
-
-__all__ = [
-    "PhasekitError",
-    "ConvergenceError",
-    "BracketError",
-    "Status",
-    "check_finite",
-    "check_positive",
-    "check_nonnegative",
-    "check_open_interval",
-    "check_choice",
-    "check_vector",
-]
+__all__ = ["PhasekitError", "ConvergenceError", "ParameterError", "Status"]
 
 
 class PhasekitError(Exception):
-    """Base class of phasekit's own errors (never raised for bad input: that is ValueError)."""
+    """Base class of phasekit's own errors (bad input is :class:`ParameterError` instead)."""
 
 
 class ConvergenceError(PhasekitError):
@@ -39,70 +25,70 @@ class ConvergenceError(PhasekitError):
         self.result = result
 
 
-class BracketError(PhasekitError):
-    """A threshold search found no sign change in the interval it was given."""
+class ParameterError(ValueError):
+    """An invalid argument. ``param`` is its name as the Python API spells it, ``expected`` the
+    valid range in words and ``value`` what was given, so that a front end (the CLI) can
+    re-word the message with its own flag name."""
+
+    def __init__(self, param: str, expected: str, value: object = None, *, show_value: bool = True):
+        self.param, self.expected, self.value, self.show_value = param, expected, value, show_value
+        super().__init__(self.render(f"`{param}`"))
+
+    def render(self, name: str) -> str:
+        got = f", got {plain(self.value)}" if self.show_value else ""
+        return f"{name} {self.expected}{got}."
+
+
+def plain(value) -> str:
+    """A value as a user typed it: 0.1, not np.float64(0.1); lists and strings readable."""
+    import numpy as np
+
+    if isinstance(value, (bool, np.bool_)):
+        return str(bool(value))
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        return repr(float(value))
+    if isinstance(value, str):
+        return repr(value)
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if isinstance(value, (list, tuple)):
+        inner = ", ".join(plain(v) for v in value[:12]) + (", ..." if len(value) > 12 else "")
+        return f"[{inner}]"
+    if value is None:
+        return "None"
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
 
 
 class Status(str, enum.Enum):
-    """How a run ended. The value is what the JSON output prints."""
+    """How a run or a search ended; the value is what JSON and tables print, ``message``
+    says it in words. Shared by simulations, flights and threshold searches."""
 
-    JUMPED = "jumped"  # R reached zero with dR/dt < 0: contact lost
-    COMPLETED = "completed"  # reached the end time (or the rise completed) in contact
-    TOUCHDOWN = "touchdown"  # stopped at the first re-contact after a flight
-    FAILED = "failed"  # the integrator could not continue; see the reason
+    # a simulation (and a flight)
+    JUMPED = ("jumped", "R reached 0 with dR/dt < 0: the body lost contact")
+    TOUCHDOWN = ("touchdown", "stopped at the first re-contact after a flight")
+    STOPPED = ("stopped", "a stop condition was met")
+    COMPLETED = ("completed", "reached the end time")
+    # a threshold search
+    CONVERGED = ("converged", "the bracket is narrower than the tolerance")
+    NON_MONOTONE = ("non_monotone", "more than one jump / no-jump transition")
+    BRACKET_ONLY = ("bracket_only", "a run failed inside the bracket; the bracket is as far as it was narrowed")
+    NO_JUMP_IN_RANGE = ("no_jump_in_range", "no run in the searched range jumped")
+    JUMPS_AT_LOWER_BOUND = ("jumps_at_lower_bound", "every run in the searched range jumped")
+    # anything
+    FAILED = ("failed", "the computation could not continue; see the reason")
+
+    def __new__(cls, value: str, message: str):
+        obj = str.__new__(cls, value)
+        obj._value_ = value
+        obj.message = message
+        return obj
 
     def __str__(self) -> str:
         return self.value
 
-
-def _is_real(value) -> bool:
-    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
-
-
-def check_finite(name: str, value) -> float:
-    """Return ``value`` as a float, or raise ValueError if it is not a finite real number."""
-    if not _is_real(value) or not math.isfinite(float(value)):
-        raise ValueError(f"`{name}` must be a finite real number, got {value!r}.")
-    return float(value)
-
-
-def check_positive(name: str, value) -> float:
-    """A finite number > 0."""
-    if not _is_real(value) or not math.isfinite(float(value)) or not float(value) > 0:
-        raise ValueError(f"`{name}` must be a finite number > 0, got {value!r}.")
-    return float(value)
-
-
-def check_nonnegative(name: str, value) -> float:
-    """A finite number >= 0."""
-    if not _is_real(value) or not math.isfinite(float(value)) or not float(value) >= 0:
-        raise ValueError(f"`{name}` must be a finite number >= 0, got {value!r}.")
-    return float(value)
-
-
-def check_open_interval(name: str, value, lo: float, hi: float, label: str | None = None) -> float:
-    """A finite number strictly inside (lo, hi); ``label`` spells the interval in the message."""
-    label = label or f"({lo:g}, {hi:g})"
-    if not _is_real(value) or not math.isfinite(float(value)) or not lo < float(value) < hi:
-        raise ValueError(f"`{name}` must lie in {label}, got {value!r}.")
-    return float(value)
-
-
-def check_choice(name: str, value, choices: Sequence[str]) -> str:
-    """One of a fixed set of strings."""
-    if not isinstance(value, str) or value not in choices:
-        raise ValueError(f"`{name}` must be one of {', '.join(choices)}; got {value!r}.")
-    return value
-
-
-def check_vector(name: str, value, length: int) -> np.ndarray:
-    """A finite real vector of the given length, returned as a float array (a copy)."""
-    try:
-        arr = np.array(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"`{name}` must be {length} finite real numbers, got {value!r}.") from None
-    if arr.shape != (length,):
-        raise ValueError(f"`{name}` must have exactly {length} entries, got shape {arr.shape}.")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"`{name}` must be finite, got {value!r}.")
-    return arr
+    @property
+    def ok(self) -> bool:
+        return self is not Status.FAILED

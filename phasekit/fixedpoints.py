@@ -40,10 +40,11 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
-from .charts import EULER_NAMES, vector_to_euler
-from .errors import ConvergenceError, check_finite
+from .charts import EULER, PAPER_NAMES, VECTOR
+from .errors import ConvergenceError
+from .hybrid import Mode
 from .model import Model
-from .modes import Mode, velocity_slots
+from .validate import check_finite
 
 __all__ = [
     "FixedPoint",
@@ -142,7 +143,7 @@ class FixedPoint:
 
     def to_dict(self) -> dict:
         y = self.y
-        state = {k: (None if not np.isfinite(v) else float(v)) for k, v in zip(EULER_NAMES, y)}
+        state = {k: (None if not np.isfinite(v) else float(v)) for k, v in zip(PAPER_NAMES, y)}
         return {
             "kind": self.kind,
             "state": state,
@@ -169,7 +170,6 @@ class Branch:
     parameter: str
     values: np.ndarray
     points: tuple[FixedPoint, ...]
-    newton_iterations: tuple[int, ...] = ()
 
     @property
     def n_unstable(self) -> np.ndarray:
@@ -178,13 +178,6 @@ class Branch:
     @property
     def stable(self) -> np.ndarray:
         return np.array([p.stable for p in self.points])
-
-    def table(self) -> list[dict]:
-        return [
-            {self.parameter: float(v), "n_unstable": p.n_unstable, "stable": p.stable, "residual": p.residual,
-             "max_re": float(p.eigenvalues.real.max())}
-            for v, p in zip(self.values, self.points)
-        ]
 
 
 # -- the states --------------------------------------------------------------------------
@@ -228,7 +221,7 @@ def intermediate_state(body, theta: float) -> np.ndarray | None:
 
 
 def _mode_for(model: Model) -> Mode:
-    return Mode.ROLLING if Mode.ROLLING in model.modes else Mode.SLIDING
+    return Mode.ROLLING if model.friction.has_rolling_mode else Mode.SLIDING
 
 
 _SOLVERS: dict = {}
@@ -247,7 +240,7 @@ def _newton_system(model: Model, kind: str, fixed: str):
     f = model.function("rhs_sliding")
     p = ca.SX.sym("p", len(model.p))
     val = ca.SX.sym("val")
-    if model.chart == "euler":
+    if model.chart is EULER:
         x = ca.SX.sym("x", 6)
         r = f(x, p)
         # At a fixed point Lambda = 0 and F_y = 0 make (2.7c) hold identically when Omega
@@ -279,15 +272,15 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
     Raises ConvergenceError (with the last iterate's residual) if Newton fails.
     """
     value = check_finite("value", value)
-    fixed = fixed or ("Omega" if model.chart == "euler" else "n")
+    fixed = fixed or ("Omega" if model.chart is EULER else "n")
     newton_model = model
-    if Mode.ROLLING in model.modes:  # exact Coulomb: any smooth law has the same zero-slip states
+    if model.friction.has_rolling_mode:  # exact Coulomb: any smooth law has the same zero-slip states
         from .friction import Viscous
 
         newton_model = Model(model.body, Viscous(1.0), model.chart)
     solver, lift, nz = _newton_system(newton_model, kind, fixed)
     guess = np.asarray(guess, dtype=float)
-    z0 = guess if model.chart == "euler" else guess[[0, 1, 3, 4, 6, 7]]
+    z0 = guess if model.chart is EULER else guess[[0, 1, 3, 4, 6, 7]]
     pv = np.concatenate([newton_model.p, [value]])
     z = np.asarray(solver(z0, pv)).ravel()
     x = np.asarray(lift(z, newton_model.p, value)).ravel()
@@ -308,7 +301,7 @@ def _rolling_reduced_jacobian(model: Model, x: np.ndarray):
     velocity of O (it is slaved to u = 0), and the map lifting tangent vectors back.
     The CasADi function is built once per compiled model."""
     n = model.n_states
-    i, j = velocity_slots(model.chart)
+    i, j = model.chart.velocity_slots
     keep = [k for k in range(n) if k not in (i, j)]
     key = model.compiled.key
     if key not in _REDUCED:
@@ -344,22 +337,25 @@ def linearise(model: Model, x, *, kind: str = "state") -> FixedPoint:
         lam, V = np.linalg.eig(model.jacobian(x, mode))
         law = model.friction.name
     order = np.lexsort((-lam.imag, -lam.real))
-    y = vector_to_euler(x) if model.chart == "vector" else x.copy()
-    if model.chart == "vector" and np.hypot(x[0], x[1]) == 0.0:
+    y = model.chart.to_paper(x)
+    if model.chart is VECTOR and np.hypot(x[0], x[1]) == 0.0:
         y[2] = np.nan  # Omega is undefined at theta = 0
-    return FixedPoint(kind, model.chart, x, y, lam[order], V[:, order], residual, law)
+    return FixedPoint(kind, model.chart.name, x, y, lam[order], V[:, order], residual, law)
 
 
 # -- all fixed points for a family parameter ---------------------------------------------
 
 
-def fixed_points(model_euler: Model, model_vector: Model | None = None, *, omega0: float | None = None, n0: float | None = None) -> list[FixedPoint]:
+def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: float | None = None,
+                 n0: float | None = None) -> list[FixedPoint]:
     """Every class of steady state at the given family parameter.
 
     ``omega0``: the horizontal precession and the intermediate precessions with that
-    Omega. ``n0``: the vertical spin (needs ``model_vector``) and the intermediate
-    precessions with that spin.
+    Omega. ``n0``: the vertical spin (found in the vector chart: ``model_vector``, by
+    default ``model`` in the vector chart) and the intermediate precessions with that spin.
     """
+    model_euler = model if model.chart is EULER else model.with_chart("euler")
+    model_vector = model_vector or model.with_chart("vector")
     if (omega0 is None) == (n0 is None):
         raise ValueError("give exactly one of `omega0` or `n0`.")
     body = model_euler.body
@@ -372,8 +368,7 @@ def fixed_points(model_euler: Model, model_vector: Model | None = None, *, omega
         sign = np.sign(omega0) or 1.0
     else:
         n0 = check_finite("n0", n0)
-        if model_vector is not None:
-            out.append(find_fixed_point(model_vector, vertical_state(n0), kind="vertical", value=n0))
+        out.append(find_fixed_point(model_vector, vertical_state(n0), kind="vertical", value=n0))
         target = lambda st: st[5] - abs(n0)  # noqa: E731
         sign = np.sign(n0) or 1.0
     # intermediate family: bracket the parameter along theta*, then Newton from the bracket

@@ -12,42 +12,64 @@ Laws
 ----
 Coulomb(mu)
     F = -mu R u/|u| while sliding (2.6). The exact treatment of zero slip is a separate
-    *rolling* mode (no-slip constraint) entered when the slip vanishes with the required
-    friction <= mu R and left when it exceeds mu R: see :mod:`phasekit.modes`.
+    ROLLING mode (no-slip constraint) entered when the slip vanishes with the required
+    friction <= mu R and left when it exceeds mu R: see :mod:`phasekit.system`.
 RegularisedCoulomb(mu, eps)
-    F = -mu R u / sqrt(|u|^2 + eps^2): smooth, one mode, but stiff once the slip is
+    F = -mu R u / sqrt(|u|^2 + eps^2): smooth, one vector field, but stiff once the slip is
     below ~eps (its relaxation rate is ~mu/eps). eps is a velocity in units sqrt(g b).
 Viscous(mu)
     F = -mu u (part I's "wet" friction), independent of R and smooth everywhere.
+
+A new law subclasses :class:`FrictionLaw` and implements :meth:`FrictionLaw.sliding_force`;
+it then works everywhere a built-in law does (simulation, fixed points, thresholds).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import warnings
 
 import casadi as ca
 import numpy as np
 
-from .errors import check_nonnegative, check_positive
+from .errors import ParameterError
+from .validate import check_nonnegative, check_positive
 
-__all__ = ["FrictionLaw", "Coulomb", "RegularisedCoulomb", "Viscous", "friction_law"]
+__all__ = ["FrictionLaw", "Coulomb", "RegularisedCoulomb", "Viscous", "friction_law", "MU_MAX"]
+
+#: friction coefficients above this are not friction but numerical trouble (and overflow R mu)
+MU_MAX = 1e3
 
 
-@dataclass(frozen=True)
 class FrictionLaw:
-    """Base class. ``mu`` is the friction coefficient (Coulomb) or drag coefficient (viscous)."""
+    """Base class of friction laws.
 
-    mu: float
+    Parameters
+    ----------
+    mu : float in [0, 1e3]
+        Friction coefficient (Coulomb laws) or drag coefficient (viscous).
 
-    #: whether zero slip is a separate (rolling) mode rather than a point of a smooth field
+    Required of a subclass
+    ----------------------
+    ``sliding_force(u, mu, eps)`` (static) -> (Fc0, d)
+        CasADi 3-vectors with Fc = Fc0 + R d while sliding with slip ``u`` (2-vector).
+    ``name`` (class attribute)
+        Short name used in reports and JSON.
+    ``has_rolling_mode`` (class attribute, default False)
+        True when zero slip is a separate mode (exact Coulomb): the law must then be of the
+        form d = (-mu u/|u|, 1) so that the static friction cone is mu R.
+    """
+
     has_rolling_mode = False
+    #: True when the law's force is proportional to R (Coulomb-like): zero slip can stick
+    can_stick = False
     name = "friction"
 
-    def __post_init__(self):
-        object.__setattr__(self, "mu", check_nonnegative("mu", self.mu))
+    def __init__(self, mu: float):
+        self.mu = check_nonnegative("mu", mu, upper=MU_MAX)
 
     @property
     def eps(self) -> float:
+        """Slip-speed regularisation (0 for laws without one)."""
         return 0.0
 
     @property
@@ -57,25 +79,37 @@ class FrictionLaw:
 
     @staticmethod
     def sliding_force(u, mu, eps):
-        """Return (Fc0, d), each an SX 3-vector, with Fc = Fc0 + R d while sliding."""
-        raise NotImplementedError
+        """Return (Fc0, d), each a CasADi 3-vector, with Fc = Fc0 + R d while sliding."""
+        raise NotImplementedError("a FrictionLaw subclass must define sliding_force(u, mu, eps)")
 
     def force(self, u: np.ndarray, R: float) -> np.ndarray:
         """Numeric horizontal friction force for slip ``u`` (2,) and normal reaction ``R``."""
         us = ca.SX.sym("u", 2)
         f0, d = self.sliding_force(us, self.mu, self.eps)
-        f = ca.Function("F", [us], [(f0 + R * d)[:2]])
+        f = ca.Function("F", [us], [(ca.SX(f0) + R * ca.SX(d))[:2]])
         return np.asarray(f(np.asarray(u, float))).ravel()
 
     def describe(self) -> str:
         return f"{self.name}(mu={self.mu:g})"
 
+    def to_dict(self) -> dict:
+        return {"law": self.name, "mu": self.mu, "slip_eps": self.eps if self.eps > 0 else None}
 
-@dataclass(frozen=True)
+    def __eq__(self, other) -> bool:
+        return type(other) is type(self) and np.array_equal(other.params, self.params)
+
+    def __hash__(self) -> int:
+        return hash((type(self), tuple(self.params)))
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}(mu={self.mu!r})"
+
+
 class Coulomb(FrictionLaw):
     """Exact Coulomb friction: sliding with F = -mu R u/|u|, rolling when the slip vanishes."""
 
     has_rolling_mode = True
+    can_stick = True
     name = "coulomb"
 
     @staticmethod
@@ -84,20 +118,22 @@ class Coulomb(FrictionLaw):
         return ca.SX.zeros(3), ca.vertcat(-mu * u[0] / s, -mu * u[1] / s, 1)
 
 
-@dataclass(frozen=True)
 class RegularisedCoulomb(FrictionLaw):
     """Coulomb friction with the slip speed regularised as sqrt(|u|^2 + eps^2)."""
 
-    eps_: float = 1e-8
+    can_stick = True
     name = "coulomb-regularised"
 
     def __init__(self, mu: float, eps: float = 1e-8):
-        object.__setattr__(self, "mu", check_nonnegative("mu", mu))
-        object.__setattr__(self, "eps_", check_positive("eps", eps))
+        super().__init__(mu)
+        self._eps = check_positive("eps", eps, upper=1.0)
+        if self._eps < 1e-14:
+            raise ParameterError("eps", "must lie in [1e-14, 1] (below it the slip relaxation rate mu/eps exceeds "
+                                        "what a double-precision integrator can follow)", eps)
 
     @property
     def eps(self) -> float:
-        return self.eps_
+        return self._eps
 
     @staticmethod
     def sliding_force(u, mu, eps):
@@ -108,10 +144,9 @@ class RegularisedCoulomb(FrictionLaw):
         return f"{self.name}(mu={self.mu:g}, eps={self.eps:g})"
 
     def __repr__(self) -> str:
-        return f"RegularisedCoulomb(mu={self.mu!r}, eps={self.eps!r})"
+        return f"{type(self).__name__}(mu={self.mu!r}, eps={self.eps!r})"
 
 
-@dataclass(frozen=True)
 class Viscous(FrictionLaw):
     """Viscous ("wet") friction F = -mu u, independent of the normal reaction."""
 
@@ -124,11 +159,11 @@ class Viscous(FrictionLaw):
 
 def friction_law(name: str, mu: float, eps: float | None = None) -> FrictionLaw:
     """Build a law from its CLI name: ``coulomb`` (exact stick-slip, or regularised when
-    ``eps`` is given) or ``viscous``."""
+    ``eps`` is given) or ``viscous`` (which has no regularisation: ``eps`` is refused)."""
     if name == "coulomb":
         return Coulomb(mu) if eps is None else RegularisedCoulomb(mu, eps)
     if name == "viscous":
         if eps is not None:
-            check_positive("eps", eps)
+            raise ParameterError("eps", "applies to Coulomb friction only (viscous friction is smooth at zero slip)", eps)
         return Viscous(mu)
-    raise ValueError(f"`friction` must be one of coulomb, viscous; got {name!r}.")
+    raise ParameterError("friction", "must be one of coulomb, viscous", name)

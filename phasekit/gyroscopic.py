@@ -16,7 +16,7 @@ q = a (a - 1) / (J |a - 1|), a tan(q T0) = tan(theta0).
 
 Jellett constant: J = A Omega h here (3.17). The paper quotes J = 4 and 4.2 in Fig. 3
 (oblate a = 2/3, n0 = 10, 10.5); those equal C n0, not A Omega h = C n0 a (= 2.67, 2.8):
-see ../shared/NOTES.md pitfall 4. The prolate values of Fig. 4 (6.63, 6.83) do equal A Omega0 h.
+see docs/physics.md (Jellett constant). The prolate values of Fig. 4 (6.63, 6.83) do equal A Omega0 h.
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from .body import Body, Spheroid
-from .errors import check_open_interval, check_positive
+from .validate import check_positive, check_range
 from .starts import gyroscopic_start
 
 __all__ = ["mean_slip", "jellett_constant", "gyroscopic_numeric", "gyroscopic_closed", "gyroscopic_solution", "rise_time"]
@@ -58,7 +58,7 @@ def gyroscopic_numeric(body: Body, theta0: float, omega0: float, T, *, rtol: flo
     """
     from scipy.integrate import solve_ivp
 
-    theta0 = check_open_interval("theta0", theta0, 0.0, np.pi, "(0, pi)")
+    theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
     T = np.atleast_1d(np.asarray(T, dtype=float))
     if np.any(T < 0):
         raise ValueError("`T` must be >= 0.")
@@ -85,7 +85,7 @@ def gyroscopic_closed(a: float, J: float, theta0: float, T, *, A: float | None =
     a = check_positive("a", a)
     if a == 1.0:
         raise ValueError("`a` must differ from 1: a sphere does not rise (h_theta = 0).")
-    theta0 = check_open_interval("theta0", theta0, 0.0, np.pi, "(0, pi)")
+    theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
     flip = theta0 > np.pi / 2
     th0 = np.pi - theta0 if flip else theta0
     T = np.asarray(T, dtype=float)

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import check_nonnegative
+from .validate import check_nonnegative
 
 __all__ = ["ImpactResult", "impact", "contact_point", "collision_matrix"]
 

@@ -9,14 +9,14 @@ k_x > 0 for the vertical.
 Part I's linear stability uses viscous friction; under exact Coulomb friction the
 zero-slip fixed points are neutral (rolling), so by default a Coulomb run is seeded along
 the viscous eigenvector with the same mu (the paper's recipe, Fig. 6): see
-``seed_law`` below and ../shared/NOTES.md pitfall 1 for why such seeds can stick.
+``seed_law`` below, and docs/physics.md (zero slip) for why such seeds can stick.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .errors import check_choice, check_positive
+from .validate import check_choice, check_positive
 from .fixedpoints import FixedPoint, find_fixed_point, horizontal_state, vertical_state
 from .friction import Viscous
 from .model import Model

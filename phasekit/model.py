@@ -1,20 +1,20 @@
-"""The contact model: one smooth CasADi vector field per mode, compiled once and cached.
+"""The model builder: one smooth CasADi vector field per mode, compiled once and cached.
 
 Given a chart (:mod:`phasekit.charts`), the state derivative is affine in the contact
 force Fc = (F_1, F_2, R). Each mode adds the equations that fix Fc:
 
-* the contact constraint R = 1 + dW/dt, (2.8), in every contact mode;
+* every contact mode: the contact constraint R = 1 + dW/dt, (2.8);
 * SLIDING: the friction law, Fc = Fc0(u) + R d(u) (:mod:`phasekit.friction`), which
   leaves one linear equation for R; for Coulomb friction this is (6.1);
-* ROLLING: the no-slip constraint du/dt = 0, which with (2.8) is a 3x3 linear system
-  for Fc (solved symbolically by minor expansion).
+* ROLLING (exact Coulomb): the no-slip constraint du/dt = 0, which with (2.8) is a 3x3
+  linear system for Fc (solved symbolically);
+* FLIGHT: Fc = 0, in the flight chart (the vector chart's state plus the gap), built from
+  the same rigid-body equations.
 
-All equations are symbolic in the parameter vector
-p = (shape..., A, C, mu, eps, cos_stop, stop_sign), so a model compiled for one body
-class and law serves every aspect ratio and coefficient: sweeps never recompile. The
-last two entries only feed the optional "rise complete" guard
-stop_sign * (cos_stop - cos(theta)), which crosses zero downwards when theta passes
-theta_stop in the direction of the rise.
+All equations are symbolic in the parameter vector p = (shape..., A, C, mu, eps), so a
+model compiled for one body structure and law serves every aspect ratio and coefficient:
+sweeps never recompile. Observables (R, energy, the paper's variables, ...) are compiled
+per chart; :meth:`Model.evaluate` lists them.
 """
 
 from __future__ import annotations
@@ -27,13 +27,12 @@ import casadi as ca
 import numpy as np
 
 from .body import Body
-from .charts import CHARTS
-from .errors import check_choice
+from .charts import FLIGHT, PAPER_NAMES, Chart, get_chart
+from .errors import ParameterError
 from .friction import FrictionLaw
-from .modes import Mode
+from .hybrid import CompiledFlow, CompiledGuard, Mode
 
-__all__ = ["Mode", "Model", "compiled_model", "evaluate_function"]
-
+__all__ = ["Model", "CompiledModel", "compiled_model", "evaluate_function", "OBSERVABLES", "STICK_SLIP", "STICK_SLIP_POINTWISE"]
 
 #: slip speed (units sqrt(g b)) at which exact Coulomb sliding is taken to have stuck;
 #: the stick time is then extrapolated to the exact zero of the slip
@@ -41,85 +40,119 @@ STICK_SLIP = 1e-10
 #: the same for integrators that evaluate the field pointwise (CVODES), which chatter at u = 0
 STICK_SLIP_POINTWISE = 1e-7
 
-#: A, C, mu, eps, cos_stop, stop_sign: the parameters after the body's shape parameters
-N_LAW_AND_RUN_PARAMS = 6
-
-#: quantities available from every chart, evaluated by :meth:`Model.evaluate`
-COMMON_OUTPUTS = ("slip", "energy", "L_Z", "spin", "jellett", "theta", "h", "W")
+#: observables every mode provides, for :meth:`Model.evaluate`, events and trajectory samples
+OBSERVABLES = {
+    **{name: f"the paper's state variable {name}" for name in PAPER_NAMES},
+    "R": "normal reaction of the mode in force (0 in flight), units M g",
+    "Rdot": "dR/dt in the mode in force",
+    "friction": "horizontal friction force (F_1, F_2) of the mode in force, units M g",
+    "slip": "slip velocity of the contact point (2-vector)",
+    "slip_speed": "|slip velocity| of the contact point",
+    "energy": "total energy (kinetic + potential), units M g b",
+    "jellett": "Jellett's quantity -L.r_P = L.GP (angular momentum about G dotted with G->P)",
+    "L_Z": "vertical angular momentum about G",
+    "spin": "spin n = w.k",
+    "h": "height of G above the table, units b (in flight: h(theta), the gap excluded)",
+    "W": "vertical velocity of G",
+    "cos_theta": "cos(theta)",
+    "gap": "height of the lowest point above the table (0 in contact)",
+    "gap_rate": "rate of the gap (0 in contact)",
+}
 
 
 @dataclass
 class CompiledModel:
-    """CasADi functions of (x, p) for one (body class, law class, chart)."""
+    """CasADi functions of (x, p) for one (body structure, law class, chart).
 
-    chart: str
-    state_names: tuple[str, ...]
+    ``contact`` holds functions of a state of the contact chart, ``flight`` of a flight
+    state; names of mode fields are ``rhs_<mode>``, ``rhs_jac_<mode>``, ``R_<mode>``,
+    ``Rdot_<mode>``, ``Fc_<mode>``."""
+
+    chart: Chart
     n_params: int
+    modes: tuple[Mode, ...]
+    contact: dict[str, ca.Function] = field(default_factory=dict)
+    flight: dict[str, ca.Function] = field(default_factory=dict)
     key: tuple = ()
     signature: str = ""  # changes whenever the equations change (keys on-disk caches)
-    functions: dict[str, ca.Function] = field(default_factory=dict)
-    modes: tuple[Mode, ...] = ()
+    guards: dict = field(default_factory=dict)  # (on, mode) -> g(x, p, level)
+    flows: dict = field(default_factory=dict)  # (Flow, events) -> CompiledFlow
 
-    def f(self, name: str) -> ca.Function:
-        return self.functions[name]
+    def functions_of(self, mode: Mode) -> dict[str, ca.Function]:
+        return self.flight if mode is Mode.FLIGHT else self.contact
 
 
 _CACHE: dict[tuple, CompiledModel] = {}
 _LOCK = threading.Lock()
 
 
-def compiled_model(body_cls: type[Body], law_cls: type[FrictionLaw], chart: str) -> CompiledModel:
-    """Build (or fetch from the cache) the compiled model of a body class, law class and chart."""
-    key = (body_cls, law_cls, chart)
+def compiled_model(body: Body, law: FrictionLaw, chart: Chart) -> CompiledModel:
+    """Build (or fetch from the cache) the compiled model of a body structure, law class and chart."""
+    key = (body.structure_key, type(law), chart.name)
     with _LOCK:
         if key not in _CACHE:
-            _CACHE[key] = _build(body_cls, law_cls, chart)
+            _CACHE[key] = _build(body, type(law), chart, key)
         return _CACHE[key]
 
 
-def _build(body_cls, law_cls, chart) -> CompiledModel:
-    spec = CHARTS[chart]
-    names = spec["names"]
-    nx, ns = len(names), body_cls.n_shape
+def _function(name, x, p, expr) -> ca.Function:
+    return ca.Function(name, [x, p], [expr], ["x", "p"], [name])
+
+
+def _common(fn: dict, T: dict, x, p) -> None:
+    """Observables shared by every chart, from its terms."""
+    for name in ("energy", "L_Z", "spin", "jellett", "h", "W", "cos_theta"):
+        fn[name] = _function(name, x, p, T[name])
+    for i, name in enumerate(PAPER_NAMES):
+        fn[name] = _function(name, x, p, T["paper"][i])
+    fn["paper"] = _function("paper", x, p, T["paper"])
+
+
+def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key) -> CompiledModel:
+    nx, ns = chart.n_states, body.n_shape
     x = ca.SX.sym("x", nx)
-    p = ca.SX.sym("p", ns + N_LAW_AND_RUN_PARAMS)
+    p = ca.SX.sym("p", ns + 4)
     Fc = ca.SX.sym("Fc", 3)
     shape, A, C, mu, eps = p[:ns], p[ns], p[ns + 1], p[ns + 2], p[ns + 3]
-    cos_stop, stop_sign = p[ns + 4], p[ns + 5]
-    T = spec["terms"](x, shape, A, C, Fc, body_cls.height_c)
+
+    def H(c):
+        return body.height(c, shape)
+
+    T = chart.terms(x, H, A, C, Fc)
     xdot, slip = T["xdot"], T["slip"]
+    modes = [Mode.SLIDING, Mode.ROLLING] if law_cls.can_stick else [Mode.SLIDING]
+    out = CompiledModel(chart=chart, n_params=ns + 4, modes=(*modes, Mode.FLIGHT), key=key)
+    fn = out.contact
 
     # Contact constraint R - 1 - dW/dt = 0, affine in Fc: G.Fc + g0 = 0.
     constraint = Fc[2] - 1 - ca.jtimes(T["W"], x, xdot)
     G = ca.jacobian(constraint, Fc)
     g0 = ca.substitute(constraint, Fc, ca.SX.zeros(3))
 
-    out = CompiledModel(chart=chart, state_names=names, n_params=ns + N_LAW_AND_RUN_PARAMS)
-    fn = out.functions
-
-    def add(name, expr):
-        fn[name] = ca.Function(name, [x, p], [expr], ["x", "p"], [name])
-
     def add_mode(mode: Mode, Fc_mode):
         tag = mode.value
         rhs = ca.substitute(xdot, Fc, Fc_mode)
         R = Fc_mode[2]
-        add(f"rhs_{tag}", rhs)
+        fn[f"rhs_{tag}"] = _function(f"rhs_{tag}", x, p, rhs)
         # CasADi reserves the name "jac"; see the style guide.
-        add(f"rhs_jac_{tag}", ca.jacobian(rhs, x))
-        add(f"R_{tag}", R)
-        add(f"Rdot_{tag}", ca.jtimes(R, x, rhs))
-        add(f"Fc_{tag}", Fc_mode)
-        return rhs, R
+        fn[f"rhs_jac_{tag}"] = _function(f"rhs_jac_{tag}", x, p, ca.jacobian(rhs, x))
+        fn[f"R_{tag}"] = _function(f"R_{tag}", x, p, R)
+        fn[f"Rdot_{tag}"] = _function(f"Rdot_{tag}", x, p, ca.jtimes(R, x, rhs))
+        fn[f"Fc_{tag}"] = _function(f"Fc_{tag}", x, p, Fc_mode)
+        fn[f"friction_{tag}"] = _function(f"friction_{tag}", x, p, Fc_mode[0:2])
+        return rhs, Fc_mode
 
     # SLIDING: Fc = Fc0 + R d, R from the constraint.
     Fc0, d = law_cls.sliding_force(slip, mu, eps)
     Fc0, d = ca.SX(Fc0), ca.SX(d)
     R_sl = -(g0 + ca.mtimes(G, Fc0)) / ca.mtimes(G, d)
     rhs_sl, _ = add_mode(Mode.SLIDING, Fc0 + R_sl * d)
-    modes = [Mode.SLIDING]
+    speed2 = slip[0] ** 2 + slip[1] ** 2
+    fn["slip"] = _function("slip", x, p, slip)
+    fn["slip_speed2"] = _function("slip_speed2", x, p, speed2)
+    fn["slip_speed"] = _function("slip_speed", x, p, ca.sqrt(speed2))
     # d|u|^2/dt while sliding: extrapolates a stick event to the exact zero of the slip.
-    add("slip_speed2_rate", 2 * ca.dot(slip, ca.jtimes(slip, x, rhs_sl)))
+    fn["slip_speed2_rate"] = _function("slip_speed2_rate", x, p, 2 * ca.dot(slip, ca.jtimes(slip, x, rhs_sl)))
     # Guards of the stick event: the slip speed falls to STICK_SLIP (exact Coulomb), or to
     # 10 eps (regularised law, where the force then departs from Coulomb's by > 0.5%).
     # The Taylor backend uses |u| itself: as the slip vanishes under Coulomb friction |u|
@@ -127,46 +160,67 @@ def _build(body_cls, law_cls, chart) -> CompiledModel:
     # zero, giving a simple root (the squared form has a near-double root it can miss).
     # Pointwise integrators (CVODES) chatter at u = 0 instead, so they bracket the dip of
     # |u|^2 below a larger threshold, using its rate for Hermite interpolation.
-    speed2 = slip[0] ** 2 + slip[1] ** 2
-    add("stick_guard", ca.sqrt(speed2) - (STICK_SLIP + 10 * eps))
-    add("stick_guard_sq", speed2 - (STICK_SLIP_POINTWISE + 10 * eps) ** 2)
+    fn["stick_guard"] = _function("stick_guard", x, p, ca.sqrt(speed2) - (STICK_SLIP + 10 * eps))
+    fn["stick_guard_sq"] = _function("stick_guard_sq", x, p, speed2 - (STICK_SLIP_POINTWISE + 10 * eps) ** 2)
     # Regularised law only: the slip has grown back above 100 eps (hysteresis against chatter).
-    add("unstick_guard", 100 * eps - ca.sqrt(speed2))
+    fn["unstick_guard"] = _function("unstick_guard", x, p, 100 * eps - ca.sqrt(speed2))
 
     if law_cls.has_rolling_mode:
-        # ROLLING: constraint and du/dt = 0 fix all three components of Fc.
-        rows = ca.vertcat(constraint, ca.jtimes(slip, x, xdot))
-        M = ca.jacobian(rows, Fc)
-        b = ca.substitute(rows, Fc, ca.SX.zeros(3))
-        Fc_roll = -ca.solve(M, b)
-        _, R_roll = add_mode(Mode.ROLLING, Fc_roll)
-        # >= 0 while static friction can hold the no-slip constraint.
-        add("margin_rolling", mu * mu * R_roll * R_roll - Fc_roll[0] ** 2 - Fc_roll[1] ** 2)
-        modes.append(Mode.ROLLING)
+        _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu)
+    elif law_cls.can_stick:
+        # a regularised law has one field: its "rolling" mode (slip below 10 eps) reuses it
+        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction"):
+            fn[f"{name}_rolling"] = fn[f"{name}_sliding"]
 
-        # Slip acceleration when sliding starts from zero slip in direction e = (cos phi, sin phi):
-        # used to find the direction in which slip develops when rolling ends.
-        phi = ca.SX.sym("phi")
-        e = ca.vertcat(ca.cos(phi), ca.sin(phi))
-        d_e = ca.vertcat(-mu * e, 1)
-        R_e = -g0 / ca.mtimes(G, d_e)
-        rhs_e = ca.substitute(xdot, Fc, R_e * d_e)
-        fn["slip_onset"] = ca.Function(
-            "slip_onset", [x, p, phi], [ca.jtimes(slip, x, rhs_e), R_e], ["x", "p", "phi"], ["slip_acc", "R"]
-        )
-
-    for name in COMMON_OUTPUTS:
-        add(name, T[name])
-    add("slip_speed2", slip[0] ** 2 + slip[1] ** 2)
-    add("cos_theta", T["cos_theta"])
-    add("rise_guard", stop_sign * (cos_stop - T["cos_theta"]))
-    # Velocity of O that carries the slip: U, V (euler) or v_x, v_y (vector) are the last
-    # velocity components; shifting them shifts the slip one-for-one.
-    out.modes = tuple(modes)
-    out.key = (body_cls, law_cls, chart)
-    blob = "".join(fn[k].serialize() for k in sorted(fn))
-    out.signature = f"{body_cls.__qualname__}|{law_cls.__qualname__}|{chart}|" + hashlib.sha256(blob.encode()).hexdigest()
+    _common(fn, T, x, p)
+    fn["gap"] = _function("gap", x, p, ca.SX(0))
+    fn["gap_rate"] = _function("gap_rate", x, p, ca.SX(0))
+    _build_flight(out.flight, body, ns)
+    blob = "".join(f.serialize() for d in (out.contact, out.flight) for _, f in sorted(d.items()))
+    out.signature = f"{key[0]}|{law_cls.__qualname__}|{chart.name}|" + hashlib.sha256(blob.encode()).hexdigest()
     return out
+
+
+def _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu) -> None:
+    """ROLLING (exact Coulomb): the constraint and du/dt = 0 fix all three components of Fc."""
+    rows = ca.vertcat(constraint, ca.jtimes(slip, x, xdot))
+    M = ca.jacobian(rows, Fc)
+    b = ca.substitute(rows, Fc, ca.SX.zeros(3))
+    _, Fc_roll = add_mode(Mode.ROLLING, -ca.solve(M, b))
+    # >= 0 while static friction can hold the no-slip constraint.
+    fn["margin_rolling"] = _function("margin_rolling", x, p, mu * mu * Fc_roll[2] ** 2 - Fc_roll[0] ** 2 - Fc_roll[1] ** 2)
+    # Slip acceleration when sliding starts from zero slip in direction e = (cos phi, sin phi):
+    # fixes the direction in which slip develops where rolling is infeasible.
+    phi = ca.SX.sym("phi")
+    e = ca.vertcat(ca.cos(phi), ca.sin(phi))
+    d_e = ca.vertcat(-mu * e, 1)
+    R_e = -g0 / ca.mtimes(G, d_e)
+    rhs_e = ca.substitute(xdot, Fc, R_e * d_e)
+    fn["slip_onset"] = ca.Function("slip_onset", [x, p, phi], [ca.jtimes(slip, x, rhs_e), R_e],
+                                   ["x", "p", "phi"], ["slip_acc", "R"])
+
+
+def _build_flight(fn: dict, body: Body, ns: int) -> None:
+    """FLIGHT: the same rigid-body equations with no contact force, in the flight chart."""
+    x = ca.SX.sym("x", FLIGHT.n_states)
+    p = ca.SX.sym("p", ns + 4)
+    shape, A, C = p[:ns], p[ns], p[ns + 1]
+    T = FLIGHT.terms(x, lambda c: body.height(c, shape), A, C, None)
+    rhs = T["xdot"]
+    fn["rhs_flight"] = _function("rhs_flight", x, p, rhs)
+    fn["rhs_jac_flight"] = _function("rhs_jac_flight", x, p, ca.jacobian(rhs, x))
+    zero = ca.SX(0)
+    for name in ("R_flight", "Rdot_flight"):
+        fn[name] = _function(name, x, p, zero)
+    fn["Fc_flight"] = _function("Fc_flight", x, p, ca.SX.zeros(3))
+    fn["friction_flight"] = _function("friction_flight", x, p, ca.SX.zeros(2))
+    _common(fn, T, x, p)
+    for name in ("gap", "gap_rate", "gap_acc", "Hdot"):
+        fn[name] = _function(name, x, p, T[name])
+    fn["L"] = _function("L", x, p, T["L"])
+    slip = (ca.vertcat(x[6], x[7], 0) + ca.cross(x[3:6], T["rP"]))[0:2]  # of the lowest point
+    fn["slip"] = _function("slip", x, p, slip)
+    fn["slip_speed"] = _function("slip_speed", x, p, ca.norm_2(slip))
 
 
 def evaluate_function(f: ca.Function, p: np.ndarray, x):
@@ -175,6 +229,8 @@ def evaluate_function(f: ca.Function, p: np.ndarray, x):
     if X.ndim == 1:
         r = np.asarray(f(X, p))
         return float(r.item()) if r.size == 1 else r.ravel()
+    if X.shape[0] == 0:
+        return np.empty((0,) if f.numel_out(0) == 1 else (0, f.numel_out(0)))
     r = np.asarray(f.map(X.shape[0])(X.T, np.tile(p[:, None], (1, X.shape[0]))))
     return r.ravel() if r.shape[0] == 1 else r.T
 
@@ -185,53 +241,155 @@ class Model:
     Parameters
     ----------
     body : Body
-        e.g. ``Spheroid(1.5)``.
+        e.g. ``Spheroid(1.5)``, ``EccentricSphere(0.3)`` or a :class:`CustomBody`.
     friction : FrictionLaw
         ``Coulomb(mu)`` (exact stick-slip), ``RegularisedCoulomb(mu, eps)`` or ``Viscous(mu)``.
-    chart : {"euler", "vector"}
+    chart : "euler", "vector" or a Chart
         Coordinates: the paper's (2.7), or the singularity-free Newton-Euler form.
     """
 
-    def __init__(self, body: Body, friction: FrictionLaw, chart: str = "euler"):
+    def __init__(self, body: Body, friction: FrictionLaw, chart="euler"):
         if not isinstance(body, Body):
-            raise ValueError(f"`body` must be a phasekit Body such as Spheroid(a), got {body!r}.")
+            raise ParameterError("body", "must be a phasekit Body such as Spheroid(a)", body)
         if not isinstance(friction, FrictionLaw):
-            raise ValueError(f"`friction` must be a phasekit FrictionLaw, got {friction!r}.")
-        check_choice("chart", chart, tuple(CHARTS))
+            raise ParameterError("friction", "must be a phasekit FrictionLaw such as Coulomb(mu)", friction)
         self.body = body
         self.friction = friction
-        self.chart = chart
-        self.compiled = compiled_model(type(body), type(friction), chart)
-        # cos_stop = 2 is never reached: the rise guard is inert unless a run sets it.
-        self.p = np.concatenate([body.params, friction.params, [2.0, 1.0]])
+        self.chart = get_chart(chart)
+        self.compiled = compiled_model(body, friction, self.chart)
+        self.p = np.concatenate([body.params, friction.params])
 
+    # -- structure --------------------------------------------------------------------------
     @property
     def state_names(self) -> tuple[str, ...]:
-        return self.compiled.state_names
+        return self.chart.state_names
 
     @property
     def n_states(self) -> int:
-        return len(self.compiled.state_names)
+        return self.chart.n_states
 
     @property
     def modes(self) -> tuple[Mode, ...]:
+        """The modes of this law: SLIDING, ROLLING (laws that can stick) and FLIGHT."""
         return self.compiled.modes
 
-    def function(self, name: str) -> ca.Function:
-        return self.compiled.f(name)
+    def function(self, name: str, mode: Mode | None = None) -> ca.Function:
+        """A compiled function by name: of a contact state, or of a flight state when
+        ``mode`` is FLIGHT."""
+        fns = self.compiled.functions_of(Mode(mode) if mode is not None else Mode.SLIDING)
+        if name not in fns:
+            raise ParameterError("name", f"must be one of the model's functions ({', '.join(sorted(fns))})", name)
+        return fns[name]
 
-    def evaluate(self, name: str, x) -> np.ndarray | float:
-        """Evaluate a named quantity at a state (d,) or at many states (m, d)."""
-        return evaluate_function(self.compiled.f(name), self.p, x)
+    def observable(self, name: str, mode: Mode = Mode.SLIDING) -> ca.Function:
+        """The compiled observable ``name`` (see :data:`OBSERVABLES`) in ``mode``."""
+        mode = Mode(mode)
+        if name not in OBSERVABLES:
+            raise ParameterError("name", f"must be one of {', '.join(OBSERVABLES)}", name)
+        if mode not in self.modes:
+            raise ParameterError("mode", f"must be one of {', '.join(m.value for m in self.modes)}", mode.value)
+        fns = self.compiled.functions_of(mode)
+        if name in ("R", "Rdot", "friction"):
+            return fns[f"{name}_{mode.value}"]
+        return fns[name]
+
+    # -- evaluation -------------------------------------------------------------------------
+    def evaluate(self, name: str, x, mode: Mode = Mode.SLIDING):
+        """Evaluate an observable at a state (d,) or at many states (m, d) of ``mode``'s chart.
+
+        Names (:data:`OBSERVABLES`): U, V, Omega, Lambda, theta, n (the paper's state), R,
+        Rdot, friction (of the mode), slip, slip_speed, energy, jellett, L_Z, spin, h, W,
+        cos_theta, gap, gap_rate. ``mode`` is "sliding" (default), "rolling" or "flight"
+        and matters for R, Rdot and friction (and sets the chart of ``x`` for flight).
+        """
+        if name not in OBSERVABLES:
+            fns = self.compiled.functions_of(Mode(mode))
+            if name in fns:  # an internal function (guards, rates): allowed, not advertised
+                return evaluate_function(fns[name], self.p, x)
+            raise ParameterError("name", f"must be one of {', '.join(OBSERVABLES)}", name)
+        return evaluate_function(self.observable(name, mode), self.p, x)
 
     def rhs(self, x, mode: Mode = Mode.SLIDING) -> np.ndarray:
-        return np.asarray(self.compiled.f(f"rhs_{Mode(mode).value}")(x, self.p)).ravel()
+        mode = Mode(mode)
+        return np.asarray(self.compiled.functions_of(mode)[f"rhs_{mode.value}"](x, self.p)).ravel()
 
     def jacobian(self, x, mode: Mode = Mode.SLIDING) -> np.ndarray:
-        return np.asarray(self.compiled.f(f"rhs_jac_{Mode(mode).value}")(x, self.p))
+        mode = Mode(mode)
+        return np.asarray(self.compiled.functions_of(mode)[f"rhs_jac_{mode.value}"](x, self.p))
 
     def normal_reaction(self, x, mode: Mode = Mode.SLIDING):
-        return self.evaluate(f"R_{Mode(mode).value}", x)
+        return self.evaluate("R", x, mode)
+
+    def with_chart(self, chart) -> "Model":
+        """The same body and law in another chart."""
+        return Model(self.body, self.friction, chart)
+
+    def to_dict(self) -> dict:
+        return {**self.body.to_dict(), **self.friction.to_dict(), "chart": self.chart.name}
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, Model) and (other.body, other.friction, other.chart) == (self.body, self.friction, self.chart)
+
+    def __hash__(self) -> int:
+        return hash((self.body, self.friction, self.chart.name))
 
     def __repr__(self) -> str:
-        return f"Model({self.body!r}, {self.friction.describe()}, chart={self.chart!r})"
+        return f"Model({self.body!r}, {self.friction.describe()}, chart={self.chart.name!r})"
+
+    # -- what the integrators see ---------------------------------------------------------------
+    def guard_function(self, on: str, mode: Mode) -> ca.Function:
+        """g(x, p, level) for an event on ``on`` in ``mode``: the observable minus the level,
+        except theta, watched as cos(level) - cos(theta) (the same zero and direction, and
+        smooth in the vector chart where theta = atan2(|k_h|, k_Z) is not)."""
+        mode = Mode(mode)
+        key = (on, mode)
+        cache = self.compiled.guards
+        if key not in cache:
+            fns = self.compiled.functions_of(mode)
+            if on in ("R", "Rdot", "friction"):
+                f = fns[f"{on}_{mode.value}"]
+            elif on in fns and on != "theta":
+                f = fns[on]
+            elif on != "theta":
+                names = ", ".join(OBSERVABLES)
+                raise ParameterError("on", f"must name an observable ({names}) or a model guard function", on)
+            if on != "theta" and f.numel_out(0) != 1:
+                raise ParameterError("on", "must name a scalar observable (slip and friction are vectors; use slip_speed)", on)
+            chart = FLIGHT if mode is Mode.FLIGHT else self.chart
+            x, p, lv = ca.SX.sym("x", chart.n_states), ca.SX.sym("p", self.compiled.n_params), ca.SX.sym("level")
+            if on == "theta":
+                g = ca.cos(lv) - fns["cos_theta"](x, p)
+            else:
+                g = f(x, p) - lv
+            cache[key] = ca.Function(f"guard_{on}_{mode.value}", [x, p, lv], [g], ["x", "p", "level"], ["g"])
+        return cache[key]
+
+    def compile_flow(self, flow, events) -> CompiledFlow:
+        """The integrators' view of one flow with the events it watches (cached)."""
+        key = (flow, tuple((e.on, e.direction, e.rate) for e in events))
+        cache = self.compiled.flows
+        if key not in cache:
+            mode = flow.mode
+            fns = self.compiled.functions_of(mode)
+            guards = []
+            for e in events:
+                gf = self.guard_function(e.on, mode)
+                rate = None
+                if e.rate:
+                    rate = fns[f"{e.rate}_{mode.value}"] if e.rate in ("R", "Rdot") else fns[e.rate]
+                guards.append(CompiledGuard(e.name, gf, e.direction, rate, _digest(gf) + (_digest(rate) if rate else "")))
+            monitor = None
+            if flow.monitor is not None:
+                mf = self.guard_function(flow.monitor[0], mode)
+                monitor = CompiledGuard("monitor", mf, flow.monitor[1], None, _digest(mf))
+            field = fns[flow.field]
+            parts = [self.compiled.signature, mode.value, flow.field] + [f"{g.signature}:{g.direction}" for g in guards]
+            parts.append(monitor.signature + f":{monitor.direction}" if monitor else "-")
+            chart = FLIGHT if mode is Mode.FLIGHT else self.chart
+            cache[key] = CompiledFlow(mode, field, chart.n_states, tuple(guards), monitor,
+                                      hashlib.sha256("|".join(parts).encode()).hexdigest(), chart.rotation_rate)
+        return cache[key]
+
+
+def _digest(f: ca.Function) -> str:
+    return hashlib.sha256(f.serialize().encode()).hexdigest()[:20]

@@ -16,7 +16,7 @@ I2_dominant   (3.57)  ONLY the dominant part of I2 near theta-bar = 0 or pi/2; a
 Gamma         (3.44)  omega^(-1/2) exp(I);  Gamma_closed (3.58) = omega^(-1/2) sigma gamma^(...)
 Sigma         (3.64)  envelope of the minima of R: 1 - |h_theta omega^2 c Gamma|
 c_xi / perturbation_from_c_xi  (3.46), and the accompanying Omega' (3.27), Psi' (3.28), n' = 0
-mean_filter   (3.6)   fast-time average of a simulated signal over a sliding window
+mean_over_periods (3.6) fast-time average over each period of a simulated signal
 """
 
 from __future__ import annotations
@@ -43,7 +43,6 @@ __all__ = [
     "Sigma",
     "c_xi",
     "perturbation_from_c_xi",
-    "mean_filter",
     "mean_over_periods",
 ]
 
@@ -93,12 +92,17 @@ def zeta(body: Body, theta, Omega):
     return ((A * Omega + ht * c / (s * Omega)) * L + (2 * ht * htt - ht / h * (htt / w2 - ht**2)) * dth + h**2 / np.abs(VP)) / (A + ht**2)
 
 
-def zeta_gyro(body: Body, theta, Omega):
-    """(3.48) (spheroid: the second term uses a)."""
+def _zeta_gyro_terms(body: Body, theta, Omega):
+    """The three terms of (3.48) before the factor dtheta/dT (the integrands of I1, I2, I3)."""
     h, ht, _, s, c = _geom(body, theta)
     A, C, a = body.A, body.C, body.shape_params[0]
+    return (-A * ht / (A + ht**2) * Omega**2, -(a * a - 1) / (A - a * a * C) * A * C / (A + ht**2) * h / ht, c / s)
+
+
+def zeta_gyro(body: Body, theta, Omega):
+    """(3.48) (spheroid: the second term uses a)."""
     _, dth, _, _ = slow_rates(body, theta, Omega)
-    return (-A * ht / (A + ht**2) * Omega**2 - (a * a - 1) / (A - a * a * C) * A * C / (A + ht**2) * h / ht + c / s) * dth
+    return sum(_zeta_gyro_terms(body, theta, Omega)) * dth
 
 
 def _along_rise(body, J, theta0, theta):
@@ -115,17 +119,10 @@ def I_quadrature(body: Body, J: float, theta0: float, theta, *, form: str = "gyr
     from scipy.integrate import quad
 
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
-    A, C = body.A, body.C
-    a = body.shape_params[0]
 
     def integrands(th):
-        om = _along_rise(body, J, theta0, th)
-        h, ht, _, s, c = _geom(body, th)
         # -1/2 zeta / (dtheta/dT): the dtheta/dT factor of (3.48) cancels
-        i1 = 0.5 * A * ht * om**2 / (A + ht**2)
-        i2 = 0.5 * (a * a - 1) / (A - a * a * C) * A * C / (A + ht**2) * h / ht
-        i3 = -0.5 * c / s
-        return i1, i2, i3
+        return tuple(-0.5 * term for term in _zeta_gyro_terms(body, th, _along_rise(body, J, theta0, th)))
 
     if form == "gyro":
         fns = [lambda x, k=k: integrands(x)[k] for k in range(3)]
@@ -237,19 +234,6 @@ def perturbation_from_c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu:
     _, ht, _, s, c_ = _geom(body, theta_bar0)
     om_p = (-Omega_bar0 * c_ / s + ht / (body.A * Omega_bar0 * s * s)) * th_p
     return float(th_p), float(lam_p), float(om_p)
-
-
-def mean_filter(ts, values, window: float):
-    """(3.6): the average of ``values`` over [t - window/2, t + window/2] for each sample time
-    (trapezoidal, on the samples; the ends use the part of the window inside the data)."""
-    ts = np.asarray(ts, dtype=float)
-    v = np.asarray(values, dtype=float)
-    cum = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(ts))])
-    lo = np.clip(ts - window / 2, ts[0], ts[-1])
-    hi = np.clip(ts + window / 2, ts[0], ts[-1])
-    area = np.interp(hi, ts, cum) - np.interp(lo, ts, cum)
-    # integrate the linear interpolant exactly at the window ends
-    return area / np.maximum(hi - lo, 1e-300)
 
 
 def mean_over_periods(ts, values, marks):

@@ -16,15 +16,27 @@ from __future__ import annotations
 import numpy as np
 
 from .body import Body
-from .charts import euler_to_vector
-from .errors import check_finite, check_open_interval, check_vector
+from .charts import get_chart
+from .errors import ParameterError
+from .validate import check_finite, check_range, check_vector
 
-__all__ = ["gyroscopic_start", "raw_start", "to_chart", "balance_residual"]
+__all__ = ["gyroscopic_start", "vertical_spin_start", "raw_start", "to_chart"]
+
+#: the largest rate (units sqrt(g/b)) a start may have: beyond it the dynamics are beyond
+#: double precision (Omega^2 terms against 1) and the Taylor steps vanish
+RATE_MAX = 1e5
 
 
 def _q(body: Body, theta: float) -> float:
     """h_theta / sin(theta) = -H'(cos theta), evaluated without dividing by sin(theta)."""
     return -body.height_slope(np.cos(theta))[1]
+
+
+def _rate(name: str, value) -> float:
+    v = check_finite(name, value, nonzero=True)
+    if abs(v) > RATE_MAX:
+        raise ParameterError(name, f"must be nonzero with |{name}| <= {RATE_MAX:g}", value)
+    return v
 
 
 def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, n0: float | None = None) -> np.ndarray:
@@ -44,49 +56,56 @@ def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, 
     -------
     array (6,): (U, V, Omega, Lambda, theta, n) = (0, 0, Omega0, 0, theta0, n).
     """
-    theta0 = check_open_interval("theta0", theta0, 0.0, np.pi, "(0, pi)")
+    if not isinstance(body, Body):
+        raise ParameterError("body", "must be a phasekit Body such as Spheroid(a)", body)
+    theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
     if (omega0 is None) == (n0 is None):
-        raise ValueError("give exactly one of `omega0` (prolate) or `n0` (oblate).")
+        raise ParameterError("omega0", "or `n0` must be given, not both (prolate: omega0; oblate: n0)", show_value=False)
     A, C = body.A, body.C
     c = np.cos(theta0)
     q = _q(body, theta0)
     if omega0 is not None:
-        omega0 = check_finite("omega0", omega0)
-        if omega0 == 0.0:
-            raise ValueError("`omega0` must be a finite nonzero number, got 0.0.")
+        omega0 = _rate("omega0", omega0)
         n = (A * omega0 * c - q / omega0) / C
+        if not abs(n) <= RATE_MAX:
+            raise ParameterError("omega0", f"is too small for a gyroscopic balance at theta0 = {theta0:g} (it needs a "
+                                           f"spin |n| = {abs(n):.3g} > {RATE_MAX:g})", omega0)
         return np.array([0.0, 0.0, omega0, 0.0, theta0, n])
-    n0 = check_finite("n0", n0)
-    if n0 == 0.0:
-        raise ValueError("`n0` must be a finite nonzero number, got 0.0.")
+    n0 = _rate("n0", n0)
     if c <= 0.0:
-        raise ValueError(f"`theta0` must lie in (0, pi/2) for a start given n0 (fast branch), got {theta0!r}.")
+        raise ParameterError("theta0", "must lie in (0, pi/2) for a start given n0 (the fast branch)", theta0)
     disc = (C * n0) ** 2 + 4.0 * A * c * q
     if disc < 0.0:
         need = np.sqrt(max(-4.0 * A * c * q, 0.0)) / C
-        raise ValueError(f"`n0` must satisfy |n0| > {need:.6g} for a gyroscopic balance at theta0 = {theta0:g}, got {n0!r}.")
+        raise ParameterError("n0", f"must satisfy |n0| > {need:.6g} for a gyroscopic balance at theta0 = {theta0:g}", n0)
     omega = (C * n0 + np.sign(n0) * np.sqrt(disc)) / (2.0 * A * c)
     return np.array([0.0, 0.0, omega, 0.0, theta0, n0])
 
 
-def balance_residual(body: Body, y) -> float:
-    """(A Omega cos - C n) sin - h_theta/Omega at a state: zero on a gyroscopic start."""
-    U, V, Om, Lam, th, n = np.asarray(y, dtype=float)
-    return (body.A * Om * np.cos(th) - body.C * n) * np.sin(th) - _q(body, th) * np.sin(th) / Om
+def vertical_spin_start(theta0: float, n0: float) -> np.ndarray:
+    """Spun about the vertical with the centre of mass at rest: angular velocity n0 e_Z at
+    inclination theta0, i.e. Omega = n0, Lambda = 0, n = n0 cos(theta0), U = V = 0 (the
+    usual start of a tippe top)."""
+    theta0 = check_range("theta0", theta0, 0.0, np.pi, closed="lr", label="[0, pi]")
+    n0 = _rate("n0", n0)
+    return np.array([0.0, 0.0, n0, 0.0, theta0, n0 * np.cos(theta0)])
 
 
-def raw_start(state, *, chart: str = "euler") -> np.ndarray:
-    """Validate a raw (U, V, Omega, Lambda, theta, n); theta in (0, pi), or [0, pi] for the
-    vector chart, which is regular at the poles."""
+def raw_start(state, *, chart="euler") -> np.ndarray:
+    """Validate a raw (U, V, Omega, Lambda, theta, n); theta in (0, pi) for the Euler chart,
+    [0, pi] for the vector chart, which is regular at the poles."""
     y = check_vector("state", state, 6)
-    if chart == "euler":
-        check_open_interval("theta", y[4], 0.0, np.pi, "(0, pi) in the euler formulation (use --formulation vector at 0 or pi)")
-    elif not 0.0 <= y[4] <= np.pi:
-        raise ValueError(f"`theta` must lie in [0, pi], got {y[4]!r}.")
+    if get_chart(chart).regular_at_poles:
+        check_range("theta", y[4], 0.0, np.pi, closed="lr", label="[0, pi]")
+    else:
+        check_range("theta", y[4], 0.0, np.pi, label="(0, pi) in the Euler chart (the vector chart is regular at 0 and pi)")
+    for i, name in ((0, "U"), (1, "V"), (2, "Omega"), (3, "Lambda"), (5, "n")):
+        if abs(y[i]) > RATE_MAX:
+            raise ParameterError(name, f"must satisfy |{name}| <= {RATE_MAX:g}", y[i])
     return y
 
 
-def to_chart(chart: str, y) -> np.ndarray:
-    """A state in the paper's variables expressed in ``chart`` coordinates."""
-    y = np.asarray(y, dtype=float)
-    return y.copy() if chart == "euler" else euler_to_vector(y)
+def to_chart(chart, y) -> np.ndarray:
+    """A state in the paper's variables expressed in the coordinates of ``chart``
+    ("euler", "vector" or a Chart)."""
+    return get_chart(chart).from_paper(check_vector("y", y, 6))

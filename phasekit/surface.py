@@ -129,6 +129,7 @@ class SceneData:
 
 
 def _simulate(scene: Scene, value: float, dense: bool):
+    from .hybrid import Event
     from .simulate import simulate
     from .starts import gyroscopic_start
 
@@ -136,14 +137,11 @@ def _simulate(scene: Scene, value: float, dense: bool):
     model = Model(body, Coulomb(scene.mu))
     if scene.branch == "prolate":
         y0 = gyroscopic_start(body, math.pi / 2 - scene.seed_distance, omega0=value)
-        rise = 0.05
+        rise = Event("theta", 0.05, direction=-1, name="rise-complete")
     else:
         y0 = gyroscopic_start(body, scene.seed_distance, n0=value)
-        rise = math.pi / 2 - 0.05
-    probe = simulate(model, y0, 1000.0, rise_theta=rise, track_minima=False)
-    te = np.arange(0.0, probe.t, scene.dt) if dense else None
-    r = simulate(model, y0, 1000.0, rise_theta=rise, track_minima=False, t_eval=te) if dense else probe
-    return body, r
+        rise = Event("theta", math.pi / 2 - 0.05, direction=+1, name="rise-complete")
+    return body, simulate(model, y0, 1000.0, events=[rise], track_minima=False, dense=dense)
 
 
 def compute_scene(scene: Scene) -> SceneData:
@@ -156,8 +154,8 @@ def compute_scene(scene: Scene) -> SceneData:
         for v in scene.values:
             _, r = _simulate(scene, v, dense="trajectories" in show)
             data.n_simulations += 1
-            if "trajectories" in show and r.ys is not None:
-                pts = r.ys[:, [2, 4, 5]]
+            if "trajectories" in show:
+                pts = r.states(np.arange(0.0, r.t, scene.dt))[:, [2, 4, 5]]
                 if r.x_jump is not None:
                     pts = np.vstack([pts, r.x_jump[[2, 4, 5]]])
                 data.trajectories.append(pts)

@@ -42,16 +42,20 @@ def vertical_rise():
     m = pk.Model(body, pk.Viscous(0.1), "vector")
     d = 1e-6
     z0 = np.array([np.sin(d), 0.0, np.cos(d), 0.0, 0.0, 12.0, 0.0, 0.0])
-    r_vert = pk.simulate(m, z0, 3000.0, rtol=1e-9, rise_theta=np.pi / 2 - 0.05)
+    rise = pk.Event("theta", np.pi / 2 - 0.05, direction=+1, name="rise-complete")
+    r_vert = pk.simulate(m, z0, 3000.0, rtol=1e-9, events=[rise])
     y_away = pk.gyroscopic_start(body, 0.05, n0=12.0)
-    r_away = pk.simulate(m, pk.to_chart("vector", y_away), 3000.0, rtol=1e-9, rise_theta=np.pi / 2 - 0.05)
+    r_away = pk.simulate(m, pk.to_chart("vector", y_away), 3000.0, rtol=1e-9, events=[rise])
     return r_vert, r_away
 
 
 def test_vertical_start_runs_through_the_rise(vertical_rise):
     r_vert, r_away = vertical_rise
-    assert r_vert.status in (pk.Status.COMPLETED, pk.Status.JUMPED)
-    assert r_vert.status is pk.Status.JUMPED or "rise complete" in r_vert.reason
+    # viscous friction: the oscillations of R do not grow enough to lose contact, and the rise
+    # from 1e-6 off the vertical completes (theta passes pi/2 - 0.05) within the time allowed
+    assert r_vert.status is pk.Status.STOPPED and r_vert.events[-1].name == "rise-complete"
+    assert r_vert.x_jump is None and r_vert.R_min > 0
+    assert abs(r_vert.euler_end[4] - (np.pi / 2 - 0.05)) < 1e-9
     # steps per unit of simulated time comparable with a start away from the vertical
     rate_vert, rate_away = r_vert.n_steps / r_vert.t, r_away.n_steps / r_away.t
     print(f"vertical start: {r_vert.n_steps} steps over t = {r_vert.t:.1f}; start at 0.05: {r_away.n_steps} over t = {r_away.t:.1f}")

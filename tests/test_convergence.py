@@ -21,7 +21,9 @@ def test_standard_workload_jumps(runs):
     assert 40 < r.t_jump < 50
     assert r.Rdot_jump < 0  # R crosses zero downwards
     assert not r.stuck  # slides throughout (slip stays >= 0.03)
-    assert r.events_named("lift-off")[0].t == r.t_jump
+    # the recorded lift-off state satisfies the guard: R = 0 there, evaluated afresh from the model
+    m = pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1))
+    assert abs(m.normal_reaction(r.x_jump)) < 1e-9
 
 
 def test_t_jump_converges_in_eps_and_rtol(runs):

@@ -9,18 +9,15 @@ import pytest
 
 import phasekit as pk
 from phasekit.cli import main
-from phasekit.flight import (
-    FlightModel,
-    cos_theta_exact,
-    flight_constants,
-    flight_invariants,
-    flight_state,
-    fly,
-    gap_exact,
-    gap_max_series,
-    gap_series,
-)
+from phasekit.flight import cos_theta_exact, flight_constants, flight_invariants, fly, gap_exact, gap_max_series, gap_series
 from phasekit.impact import impact
+from phasekit.resets import flight_state
+
+
+def flight_of(m, r, **kw):
+    """The first flight after the jump of ``r``: (summary, trajectory)."""
+    f = fly(m, r.x_jump, r.t_jump, r.t_jump + 1.0, **kw)
+    return f.flights[0], f
 
 
 @pytest.fixture(scope="module")
@@ -35,17 +32,15 @@ def jump11():
 
 def test_numerical_flight_equals_closed_form_4_12(jump11):
     body, m, r = jump11
-    probe = fly(m, r.x_jump, r.t_jump, r.t_jump + 1.0, rtol=1e-14)
-    T = probe.t_touchdown - r.t_jump
-    te = r.t_jump + np.linspace(0, T, 200)
-    f = fly(m, r.x_jump, r.t_jump, r.t_jump + 1.0, rtol=1e-14, t_eval=te)
-    k = flight_constants(body, r.x_jump, f.W_star)
-    np.testing.assert_allclose(f.xs[:, 2] / np.linalg.norm(f.xs[:, :3], axis=1), cos_theta_exact(k, f.ts - r.t_jump), atol=1e-10)
-    euler = np.array([pk.vector_to_euler(x[:8]) for x in f.xs[1:]])
+    fl, traj = flight_of(m, r, rtol=1e-14)
+    ts = r.t_jump + np.linspace(0, fl.t_touchdown - r.t_jump, 200)
+    xs = traj.segments[0].states(ts)
+    k = flight_constants(body, r.x_jump, fl.W_star)
+    np.testing.assert_allclose(xs[:, 2] / np.linalg.norm(xs[:, :3], axis=1), cos_theta_exact(k, ts - r.t_jump), atol=1e-10)
+    euler = np.array([pk.vector_to_euler(x[:8]) for x in xs[1:]])
     inv = flight_invariants(body, euler)
     assert np.max(np.abs(inv - inv[0]) / np.maximum(np.abs(inv[0]), 1e-300)) < 1e-10  # (4.6)-(4.8)
-    fm = FlightModel(body)
-    E = fm.evaluate("energy", f.xs)
+    E = m.evaluate("energy", xs, pk.Mode.FLIGHT)
     assert np.ptp(E) / abs(E[0]) < 1e-12
 
 
@@ -53,7 +48,7 @@ def test_touchdown_located_to_1e_10(jump11):
     from scipy.optimize import brentq
 
     body, m, r = jump11
-    f = fly(m, r.x_jump, r.t_jump, r.t_jump + 1.0, rtol=1e-13)
+    f, _ = flight_of(m, r, rtol=1e-13)
     k = flight_constants(body, r.x_jump, f.W_star)
     T = f.t_touchdown - r.t_jump
     t_exact = brentq(lambda s: gap_exact(body, k, s), 0.5 * T, 1.5 * T, xtol=1e-15)
@@ -63,11 +58,11 @@ def test_touchdown_located_to_1e_10(jump11):
 
 def test_gap_grows_like_t_cubed(jump11):
     body, m, r = jump11
-    f0 = fly(m, r.x_jump, r.t_jump, r.t_jump + 1.0, rtol=1e-14)
+    f0, traj = flight_of(m, r, rtol=1e-14)
     W = f0.W_star
     t = np.geomspace(1e-3 * W, 3e-2 * W, 30)
-    f = fly(m, r.x_jump, r.t_jump, r.t_jump + 1.0, rtol=1e-14, t_eval=r.t_jump + t)
-    slope = np.polyfit(np.log(f.ts - r.t_jump), np.log(f.gaps), 1)[0]
+    gaps = traj.segments[0].states(r.t_jump + t)[:, 8]
+    slope = np.polyfit(np.log(t), np.log(gaps), 1)[0]
     assert slope == pytest.approx(3.0, abs=0.05)
 
 
@@ -101,14 +96,15 @@ def test_velocities_and_accelerations_continuous_through_lift_off(jump11):
     body, m, r = jump11
     mv = pk.Model(body, pk.Coulomb(0.1), "vector")
     z = pk.euler_to_vector(r.x_jump)
-    fm = FlightModel(body)
     xf = flight_state(m, r.x_jump)
     a_contact = mv.rhs(z)  # (dk, dw, dv_h) in contact at R = 0
-    a_flight = fm.rhs(xf)
+    a_flight = m.rhs(xf, pk.Mode.FLIGHT)
     np.testing.assert_allclose(a_flight[:8], a_contact, atol=1e-9)
-    # vertical: in contact dW/dt = R - 1 = -1 at lift-off; in flight the gap has zero acceleration
-    assert abs(fm.evaluate("gap_acc", xf)) < 1e-9
-    assert xf[8] == 0.0 and xf[9] == 0.0  # gap and its rate start at zero: no jump in velocity
+    # vertical: in contact dW/dt = R - 1 = -1 at lift-off, so G's vertical acceleration is that of
+    # free fall on both sides; in flight it is the gap's acceleration plus d2h/dt2
+    assert abs(m.evaluate("gap_acc", xf, pk.Mode.FLIGHT)) < 1e-9
+    # the vertical velocity of G carries over: W in contact (2.5) equals gap rate + dh/dt in flight
+    assert m.evaluate("W", xf, pk.Mode.FLIGHT) == pytest.approx(mv.evaluate("W", z), abs=1e-12)
 
 
 @pytest.mark.parametrize("e, mu", [(0.0, 0.1), (0.5, 0.1), (0.9, 0.3), (1.0, 0.0)])
@@ -134,8 +130,9 @@ def test_whole_rise_with_repeated_bouncing_records_every_event():
     body = pk.Spheroid(1.5)
     m = pk.Model(body, pk.Coulomb(0.1))
     y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0)
-    r = pk.simulate(m, y0, 400.0, stop_at="none", restitution=0.5, rise_theta=0.05, max_switches=100_000)
-    assert r.status is pk.Status.COMPLETED and "rise complete" in r.reason
+    rise = pk.Event("theta", 0.05, direction=-1, name="rise-complete")
+    r = pk.simulate(m, y0, 400.0, stop_at="none", restitution=0.5, events=[rise], max_switches=100_000)
+    assert r.status is pk.Status.STOPPED and r.events[-1].name == "rise-complete"
     kinds = [e.kind for e in r.events]
     assert kinds.count("touchdown") == kinds.count("impact") > kinds.count("lift-off") > 1
     dE = [float(e.detail.split("dE=")[1].split(",")[0]) for e in r.events if e.kind == "impact"]

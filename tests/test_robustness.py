@@ -25,8 +25,9 @@ def test_vector_to_euler_is_finite_next_to_the_pole():
 def test_extreme_cases_end_with_a_status_and_finite_state(a, law, start):
     body = pk.Spheroid(a)
     y0 = pk.gyroscopic_start(body, start["theta0"], omega0=start.get("omega0"), n0=start.get("n0"))
-    r = pk.simulate(pk.Model(body, law), y0, 2000.0, rise_theta=0.05 if a > 1 else np.pi / 2 - 0.05)
-    assert r.status in (pk.Status.JUMPED, pk.Status.COMPLETED)
+    rise = pk.Event("theta", 0.05, direction=-1) if a > 1 else pk.Event("theta", np.pi / 2 - 0.05, direction=+1)
+    r = pk.simulate(pk.Model(body, law), y0, 2000.0, events=[rise])
+    assert r.status in (pk.Status.JUMPED, pk.Status.STOPPED, pk.Status.COMPLETED)
     assert np.all(np.isfinite(r.x)) and np.isfinite(r.R_min)
 
 

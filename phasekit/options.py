@@ -1,0 +1,84 @@
+"""Solver options: every integration default, written once.
+
+Derive variants with :func:`dataclasses.replace`, e.g. ``replace(opts, rtol=1e-12)``, or
+pass the fields as keywords to :func:`phasekit.simulate`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+from .validate import check_bool, check_choice, check_int, check_positive, check_range
+
+__all__ = ["SolverOptions", "BACKENDS", "RTOL_RANGE"]
+
+#: integrators: heyoka's Taylor method; CVODES (BDF or Adams) and IDAS through CasADi.
+#: "auto" is Taylor except in the one stiff regime (a regularised Coulomb law that has stuck).
+BACKENDS = ("auto", "taylor", "cvodes", "cvodes-adams", "idas")
+#: tolerances a double-precision integrator can honour: below 1e-16 the Taylor order grows
+#: without bound (heyoka picks it from the tolerance) and CVODES cannot meet the error test.
+RTOL_RANGE = (1e-16, 0.1)
+
+
+@dataclass(frozen=True, kw_only=True)
+class SolverOptions:
+    """Integration settings.
+
+    Attributes
+    ----------
+    rtol : float, default 1e-9
+        Relative tolerance, in [1e-16, 0.1]. For the Taylor method it is heyoka's single
+        mixed absolute/relative tolerance; for CVODES/IDAS the relative one.
+    atol : float or None, default None
+        Absolute tolerance of CVODES/IDAS; None means ``rtol / 100``. The Taylor method has
+        one mixed tolerance and does not use it.
+    backend : {"auto", "taylor", "cvodes", "cvodes-adams", "idas"}, default "auto"
+        "auto" is the Taylor method, handing over to CVODES BDF only while a regularised
+        Coulomb law holds the slip below ~10 eps with mu/eps > 2000 (the stiff regime).
+        Free flight always uses the Taylor method (its t^3 gap needs polynomial root finding).
+    max_steps : int, default 5_000_000
+        Step budget of the whole run; exceeding it ends the run with status "failed".
+    max_wall : float, default 600
+        Wall-clock budget of the whole run in seconds; exceeding it ends the run "failed".
+    max_switches : int, default 10_000
+        Most mode switches (events with a reset) before the run is declared chattering.
+    track_minima : bool, default True
+        Locate every local minimum of R (and the maximum of each flight's gap).
+    dense : bool, default True
+        Keep the integrator's dense output (heyoka's Taylor polynomials) so that
+        :meth:`Trajectory.sample` can evaluate any instant without re-integration. Costs
+        ~2.5x the integration time of a bare run; sweeps turn it off.
+    """
+
+    rtol: float = 1e-9
+    atol: float | None = None
+    backend: str = "auto"
+    max_steps: int = 5_000_000
+    max_wall: float = 600.0
+    max_switches: int = 10_000
+    track_minima: bool = True
+    dense: bool = True
+
+    def __post_init__(self):
+        lo, hi = RTOL_RANGE
+        object.__setattr__(self, "rtol", check_range("rtol", self.rtol, lo, hi, closed="lr", label=f"[{lo:g}, {hi:g}]"))
+        if self.atol is not None:
+            object.__setattr__(self, "atol", check_positive("atol", self.atol))
+        check_choice("backend", self.backend, BACKENDS)
+        object.__setattr__(self, "max_steps", check_int("max_steps", self.max_steps, minimum=1))
+        object.__setattr__(self, "max_wall", check_positive("max_wall", self.max_wall))
+        object.__setattr__(self, "max_switches", check_int("max_switches", self.max_switches, minimum=1))
+        object.__setattr__(self, "track_minima", check_bool("track_minima", self.track_minima))
+        object.__setattr__(self, "dense", check_bool("dense", self.dense))
+
+    @property
+    def abs_tol(self) -> float:
+        """The absolute tolerance CVODES/IDAS use."""
+        return self.rtol * 1e-2 if self.atol is None else self.atol
+
+    @classmethod
+    def names(cls) -> tuple[str, ...]:
+        return tuple(f.name for f in fields(cls))
+
+    def to_dict(self) -> dict:
+        return {name: getattr(self, name) for name in self.names()}

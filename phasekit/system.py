@@ -1,0 +1,111 @@
+"""phasekit's hybrid system, declared in one place: its modes, events and resets.
+
+====================  =========================  ==================  ===========================
+event                 guard (fires when)         watched in          reset / outcome
+====================  =========================  ==================  ===========================
+lift-off              R = 0, downward            sliding, rolling    stop "jumped", or -> flight
+stick                 |u| = 1e-10 (+10 eps)      sliding             exact: -> rolling (or slide
+                                                                     on); regularised: -> rolling
+slip                  |F_req| = mu R (exact);    rolling             -> sliding along -F_req
+                      |u| = 100 eps (reg.)                           (regularised: mode only)
+touchdown             gap = 0, downward          flight              stop "touchdown", or impact
+                                                                     -> flight (rebound) / contact
+user events           observable = level         all (or as given)   stop "stopped", or record
+====================  =========================  ==================  ===========================
+
+Flows: SLIDING (``rhs_sliding``), ROLLING (``rhs_rolling``; for a regularised law the same
+field as sliding, integrated by CVODES when it is stiff), FLIGHT (``rhs_flight``, always
+the Taylor method). Contact flows record the minima of R, flight the maximum of the gap.
+A new event is one more :class:`phasekit.hybrid.Event` passed to :func:`phasekit.simulate`.
+"""
+
+from __future__ import annotations
+
+from .errors import ParameterError, Status
+from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
+from .resets import LiftOff, SlipOnset, Stick, SwitchMode, Touchdown, contact_start, flight_start_state
+from .validate import check_choice, check_range
+
+__all__ = ["declare", "STOP_AT", "STIFF_RATE", "GUARD_DELAY"]
+
+#: how far a run goes: the first lift-off, the first touchdown, or the end time
+STOP_AT = ("jump", "touchdown", "none")
+#: "auto" hands a stuck regularised law to CVODES when its slip relaxation rate mu/eps
+#: exceeds this. Measured (prolate a = 1.5, mu = 0.1, literal seeds, t <= 3000): the Taylor
+#: method is faster for eps >= 1e-4 (rate 1e3) and runs out of steps at eps = 1e-5.
+STIFF_RATE = 2000.0
+#: At lift-off Delta = dDelta/dt = 0 and d2Delta/dt2 = -R vanish only to rounding and the
+#: event tolerance (~1e-16, ~1e-12), so the gap's Taylor polynomial can have spurious roots
+#: before its t^3 growth dominates (t ~ 1e-5). The touchdown guard is armed after this long;
+#: a flight whose gap has not opened by then is a graze and touches down there.
+GUARD_DELAY = 1e-5
+
+CONTACT = frozenset({Mode.SLIDING, Mode.ROLLING})
+
+
+def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()) -> HybridSystem:
+    """The modes, events and resets of ``model``'s law, with the run's stop rule and the
+    user's ``events`` appended."""
+    check_choice("stop_at", stop_at, STOP_AT)
+    restitution = check_range("restitution", restitution, 0.0, 1.0, closed="lr")
+    law = model.friction
+    stiff = law.can_stick and not law.has_rolling_mode and law.mu / law.eps > STIFF_RATE
+    flows = (
+        Flow(Mode.SLIDING, "rhs_sliding", monitor=("Rdot", +1)),
+        Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1), stiff=stiff),
+        Flow(Mode.FLIGHT, "rhs_flight", monitor=("gap_rate", -1), engine="taylor"),
+    )
+    jump_ends = stop_at == "jump"
+    evs = [Event("R", name="lift-off", direction=-1, modes=CONTACT, rate="Rdot", stop=Status.JUMPED,
+                 reset=None if jump_ends else LiftOff())]
+    if law.can_stick:
+        to_roll = Stick() if law.has_rolling_mode else SwitchMode(Mode.ROLLING, "stick", "slip < 10 eps (regularised)")
+        # the Taylor method watches |u| itself; pointwise integrators the dip of |u|^2 (see model)
+        evs += [Event("stick_guard", name="stick", direction=-1, modes={Mode.SLIDING}, reset=to_roll),
+                Event("stick_guard_sq", name="stick", direction=-1, modes={Mode.SLIDING}, reset=to_roll,
+                      rate="slip_speed2_rate")]
+        if law.has_rolling_mode:
+            evs.append(Event("margin_rolling", name="slip", direction=-1, modes={Mode.ROLLING}, reset=SlipOnset()))
+        else:
+            evs.append(Event("unstick_guard", name="slip", direction=-1, modes={Mode.ROLLING},
+                             reset=SwitchMode(Mode.SLIDING, "slip", "slip > 100 eps (regularised)")))
+    evs.append(Event("gap", name="touchdown", direction=-1, modes={Mode.FLIGHT}, arm_after=GUARD_DELAY,
+                     stop=Status.TOUCHDOWN, reset=None if stop_at == "touchdown" else Touchdown(restitution)))
+    for ev in events:
+        if not isinstance(ev, Event):
+            raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
+        evs.append(ev)
+    return HybridSystem(flows, tuple(evs), _initial(stop_at))
+
+
+def _initial(stop_at: str):
+    def initial(model, t, x, mode=None):
+        """Start in contact (the mode from the slip), or in flight when asked; a contact
+        state that would need R <= 0 lifts off at once."""
+        if mode is Mode.FLIGHT:
+            return _flight_start(model, t, x)
+        start = contact_start(model, t, x)
+        if start.stop is not None or float(model.evaluate("R", start.x, start.mode)) > 0.0:
+            return start
+        rec = start.records + (Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 at start"),)
+        if stop_at == "jump":
+            return Transition(start.mode, t, start.x, rec, stop=Status.JUMPED,
+                              reason="R <= 0 at the start: the state cannot stay in contact")
+        return Transition(Mode.FLIGHT, t, flight_start_state(model, start.x), rec)
+
+    return initial
+
+
+def _flight_start(model, t, x):
+    return Transition(Mode.FLIGHT, t, flight_start_state(model, x))
+
+
+def is_pointwise(engine_name: str) -> bool:
+    return engine_name != "taylor"
+
+
+def watched(system: HybridSystem, mode: Mode, engine_name: str) -> tuple[Event, ...]:
+    """The events ``mode`` watches with this integrator (the stick guard has a Taylor and a
+    pointwise form)."""
+    skip = "stick_guard" if is_pointwise(engine_name) else "stick_guard_sq"
+    return tuple(e for e in system.events_of(mode) if e.on != skip)

@@ -1,0 +1,392 @@
+"""Results of a simulation: segments (one mode each), the event log, and one status.
+
+A :class:`Trajectory` is what :func:`phasekit.simulate` returns. It keeps the integrator's
+dense output (heyoka's Taylor polynomials) per segment, so :meth:`Trajectory.sample`
+evaluates the state and any observable at any instant without re-integrating, and it
+carries its inputs (model, start, options) so that it can be rerun from :meth:`to_dict`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .charts import FLIGHT, PAPER_NAMES
+from .errors import ParameterError, Status
+from .hybrid import Mode
+from .model import evaluate_function
+from .validate import check_times
+
+__all__ = ["EventRecord", "Segment", "Flight", "Trajectory", "SAMPLE_COLUMNS"]
+
+#: columns of :meth:`Trajectory.sample` after t and mode
+SAMPLE_COLUMNS = (*PAPER_NAMES, "R", "energy", "jellett", "slip", "L_Z", "h", "gap")
+
+
+@dataclass(frozen=True)
+class EventRecord:
+    """A located event: ``name`` (stick, slip, lift-off, touchdown, impact, a stop or a user
+    event), its time, the modes before and after, the state (in the model's chart) and a
+    detail."""
+
+    name: str
+    t: float
+    mode_before: str
+    mode_after: str
+    x: np.ndarray | None = field(default=None, repr=False, compare=False)
+    detail: str = ""
+    y: np.ndarray | None = field(default=None, repr=False, compare=False)  # the paper's variables
+
+    @property
+    def kind(self) -> str:  # the name, as older code called it
+        return self.name
+
+    def to_dict(self) -> dict:
+        d = {"kind": self.name, "t": float(self.t), "mode_before": self.mode_before, "mode_after": self.mode_after}
+        if self.detail:
+            d["detail"] = self.detail
+        if self.y is not None:
+            d["state"] = {k: float(v) for k, v in zip(PAPER_NAMES, self.y)}
+        return d
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A stretch of one mode: from (t0, x0) to (t1, x1), states in the mode's chart (the
+    model's chart in contact, the flight chart in flight). ``end`` names what ended it
+    (an event, "time" or "failed"); ``monitored``: the (t, x) where the flow's monitor
+    crossed zero (minima of R; the maximum of the gap in flight)."""
+
+    mode: Mode
+    t0: float
+    t1: float
+    x0: np.ndarray = field(repr=False)
+    x1: np.ndarray = field(repr=False)
+    engine: str = ""
+    end: str = ""
+    n_steps: int = 0
+    n_rhs: int = 0
+    monitored: tuple = field(default=(), repr=False)
+    dense: tuple = field(default=(), repr=False)
+
+    def states(self, ts) -> np.ndarray:
+        """States at times inside [t0, t1] from the dense output."""
+        ts = np.asarray(ts, dtype=float)
+        out = np.empty((ts.size, self.x0.size))
+        if not self.dense:
+            raise ValueError("no dense output was kept: simulate with dense=True")
+        starts = np.array([s.t0 for s in self.dense])
+        idx = np.clip(np.searchsorted(starts, ts, side="right") - 1, 0, len(self.dense) - 1)
+        for k in np.unique(idx):
+            sel = idx == k
+            span = self.dense[k]
+            out[sel] = span(np.clip(ts[sel], span.t0, span.t1))
+        exact0, exact1 = ts == self.t0, ts == self.t1
+        out[exact0], out[exact1] = self.x0, self.x1
+        return out
+
+
+@dataclass(frozen=True)
+class Flight:
+    """One flight: from lift-off (t_liftoff) to touchdown (t_touchdown, None if it did not
+    end in one). ``gap_max``/``t_gap_max``: the located maximum of the gap; ``W_star`` and
+    ``Omega_star``: vertical velocity of G and precession rate at lift-off."""
+
+    status: Status
+    t_liftoff: float
+    t_touchdown: float | None
+    x_liftoff: np.ndarray = field(repr=False)
+    x_end: np.ndarray = field(repr=False)
+    gap_max: float | None
+    t_gap_max: float | None
+    W_star: float
+    Omega_star: float
+    n_steps: int = 0
+
+    def to_dict(self) -> dict:
+        return {"t_liftoff": self.t_liftoff, "t_touchdown": self.t_touchdown, "gap_max": self.gap_max,
+                "t_gap_max": self.t_gap_max, "W_star": self.W_star, "Omega_star": self.Omega_star}
+
+
+class Trajectory:
+    """The outcome of :func:`phasekit.simulate`.
+
+    Attributes
+    ----------
+    status : Status
+        ``jumped`` (R reached 0 with dR/dt < 0), ``touchdown`` (stopped at the first
+        re-contact), ``stopped`` (a stop event), ``completed`` (reached ``t_end``) or
+        ``failed`` (see ``reason``).
+    segments : tuple of Segment
+        The stretches of one mode each, in time order.
+    events : tuple of EventRecord
+        Every located event in time order (stick, slip, lift-off, touchdown, impact, stops
+        and the user's events).
+    model, x0, t0, options
+        The inputs, so that the run can be repeated.
+    """
+
+    def __init__(self, *, model, x0, t0, t_end, options, status, reason, segments, events, wall_s, stop_at="jump",
+                 restitution=0.0, user_events=(), t_eval=None, x_end=None, mode_end=None):
+        self.model, self.x0, self.t0, self.t_end, self.options = model, np.asarray(x0, float), float(t0), float(t_end), options
+        self.status, self.reason = status, reason
+        self.segments, self.events = tuple(segments), tuple(events)
+        self.wall_s, self.stop_at, self.restitution, self.user_events = wall_s, stop_at, restitution, tuple(user_events)
+        self._x_end, self._mode_end = x_end, mode_end
+        self.ts = self.ys = None
+        if t_eval is not None and self.segments:
+            te = t_eval[(t_eval >= self.t0) & (t_eval <= self.t)]
+            if te.size:
+                self.ts, self.ys = te, self._chart_states(te)
+
+    # -- summary ---------------------------------------------------------------------------
+    @property
+    def chart(self) -> str:
+        return self.model.chart.name
+
+    @property
+    def rtol(self) -> float:
+        return self.options.rtol
+
+    @property
+    def t(self) -> float:
+        """The time the run ended."""
+        return self.segments[-1].t1 if self.segments else self.t0
+
+    @property
+    def x(self) -> np.ndarray:
+        """The final state, in the model's chart."""
+        if self._x_end is not None:
+            return self._x_end
+        seg = self.segments[-1]
+        return self._to_chart(seg.mode, seg.x1)
+
+    @property
+    def mode(self) -> str:
+        return (self._mode_end or self.segments[-1].mode).value if (self._mode_end or self.segments) else Mode.SLIDING.value
+
+    @property
+    def backend(self) -> str:
+        used = []
+        for s in self.segments:
+            if s.mode is not Mode.FLIGHT and s.engine and s.engine not in used:
+                used.append(s.engine)
+        return "+".join(used) or self.options.backend
+
+    @property
+    def n_steps(self) -> int:
+        return sum(s.n_steps for s in self.segments)
+
+    @property
+    def n_rhs(self) -> int:
+        return sum(s.n_rhs for s in self.segments)
+
+    @property
+    def success(self) -> bool:
+        return self.status is not Status.FAILED
+
+    @property
+    def jumped(self) -> bool:
+        return self.status is Status.JUMPED
+
+    def events_named(self, name: str) -> list[EventRecord]:
+        return [e for e in self.events if e.name == name]
+
+    @property
+    def stuck(self) -> bool:
+        """Whether the body ever held zero slip: any time in the rolling mode (for a regularised
+        law: with slip below 10 eps), or a stick event."""
+        return any(s.mode is Mode.ROLLING for s in self.segments) or any(e.name == "stick" for e in self.events)
+
+    @property
+    def _liftoff(self) -> EventRecord | None:
+        return next((e for e in self.events if e.name == "lift-off"), None)
+
+    @property
+    def t_jump(self) -> float | None:
+        e = self._liftoff
+        return None if e is None else e.t
+
+    @property
+    def x_jump(self) -> np.ndarray | None:
+        e = self._liftoff
+        return None if e is None else e.x
+
+    @property
+    def Rdot_jump(self) -> float | None:
+        e = self._liftoff
+        if e is None:
+            return None
+        return float(self.model.evaluate("Rdot", e.x, Mode(e.mode_before) if e.mode_before in ("sliding", "rolling") else Mode.SLIDING))
+
+    @property
+    def minima(self) -> np.ndarray:
+        """(t, R) at each located local minimum of R, shape (m, 2)."""
+        rows = []
+        for s in self.segments:
+            if s.mode is not Mode.FLIGHT and s.monitored:
+                X = np.array([x for _, x in s.monitored])
+                R = np.atleast_1d(evaluate_function(self.model.observable("R", s.mode), self.model.p, X))
+                rows.extend(zip([t for t, _ in s.monitored], R))
+        return np.array(rows, dtype=float).reshape(-1, 2)
+
+    @property
+    def R_min(self) -> float | None:
+        """The smallest normal reaction met: over the located minima, the segment ends, and 0
+        at a lift-off."""
+        # R is 0 at a located lift-off (to the event tolerance): count it as 0
+        vals = [float(self.model.evaluate("R", s.x1, s.mode)) for s in self.segments
+                if s.mode is not Mode.FLIGHT and s.end != "lift-off"]
+        vals += [float(self.model.evaluate("R", s.x0, s.mode)) for s in self.segments[:1] if s.mode is not Mode.FLIGHT]
+        m = self.minima
+        if m.size:
+            vals.append(float(m[:, 1].min()))
+        if self._liftoff is not None:
+            vals.append(0.0)
+        return min(vals) if vals else None
+
+    @property
+    def flights(self) -> tuple[Flight, ...]:
+        return tuple(self._flight(s) for s in self.segments if s.mode is Mode.FLIGHT)
+
+    def _flight(self, s: Segment) -> Flight:
+        m = self.model
+        gmax = tg = None
+        if s.monitored:
+            tg, xg = max(s.monitored, key=lambda q: q[1][8])
+            gmax = float(xg[8])
+        W = float(s.x0[9] + m.evaluate("Hdot", s.x0, Mode.FLIGHT))
+        status = Status.TOUCHDOWN if s.end == "touchdown" else Status.FAILED if s.end == "failed" else Status.COMPLETED
+        return Flight(status, s.t0, s.t1 if s.end == "touchdown" else None, s.x0, s.x1, gmax, tg, W,
+                      float(FLIGHT.to_paper(s.x0)[2]), s.n_steps)
+
+    # -- states ----------------------------------------------------------------------------
+    def _to_chart(self, mode: Mode, X) -> np.ndarray:
+        """States of ``mode``'s chart -> the model's chart (flight: drop the gap)."""
+        if mode is not Mode.FLIGHT:
+            return np.asarray(X, dtype=float)
+        from .resets import contact_state
+
+        if np.ndim(X) == 1:
+            return contact_state(self.model, X)
+        return np.array([contact_state(self.model, x) for x in X])
+
+    def _locate(self, ts) -> np.ndarray:
+        """Index of the segment each time belongs to (the first that contains it)."""
+        ends = np.array([s.t1 for s in self.segments])
+        return np.minimum(np.searchsorted(ends, ts, side="left"), len(self.segments) - 1)
+
+    def _check_times(self, times) -> np.ndarray:
+        ts = np.atleast_1d(np.asarray(check_times("times", times, allow_empty=True)))
+        lo, hi = self.t0, self.t
+        if ts.size and (ts[0] < lo or ts[-1] > hi):
+            raise ParameterError("times", f"must lie in the simulated span [{lo:.10g}, {hi:.10g}]", [float(ts[0]), float(ts[-1])])
+        if not self.segments:
+            raise ParameterError("times", "cannot be sampled: the run has no segment", show_value=False)
+        if not all(s.dense for s in self.segments):
+            raise ParameterError("times", "cannot be sampled: this run kept no dense output (simulate with dense=True)",
+                                 show_value=False)
+        return ts
+
+    def _chart_states(self, ts) -> np.ndarray:
+        idx = self._locate(ts)
+        out = np.empty((ts.size, self.model.n_states))
+        for k in np.unique(idx):
+            sel = idx == k
+            seg = self.segments[k]
+            out[sel] = self._to_chart(seg.mode, seg.states(ts[sel])).reshape(int(sel.sum()), -1)
+        return out
+
+    def states(self, times) -> np.ndarray:
+        """States at ``times`` in the model's chart (flight states with the gap dropped)."""
+        return self._chart_states(self._check_times(times))
+
+    def sample(self, times):
+        """A pandas DataFrame with one row per time: ``t``, ``mode`` and the columns of
+        :data:`SAMPLE_COLUMNS` (the paper's state U, V, Omega, Lambda, theta, n; R of the
+        mode in force; energy; jellett = L.GP; slip = |u_P|; L_Z; h; gap), from the dense
+        output: no re-integration, errors of the order of the tolerance. A time at an event
+        belongs to the segment that ends there (before the reset). Times outside the simulated
+        span raise ParameterError."""
+        import pandas as pd
+
+        ts = self._check_times(times)
+        idx = self._locate(ts)
+        cols = {name: np.empty(ts.size) for name in SAMPLE_COLUMNS}
+        modes = np.empty(ts.size, dtype=object)
+        for k in np.unique(idx):
+            sel = idx == k
+            seg = self.segments[k]
+            X = seg.states(ts[sel])
+            modes[sel] = seg.mode.value
+            P = evaluate_function(self.model.function("paper", seg.mode), self.model.p, X)
+            for i, name in enumerate(PAPER_NAMES):
+                cols[name][sel] = P[:, i]
+            for name in ("R", "energy", "jellett", "L_Z", "h", "gap"):
+                cols[name][sel] = evaluate_function(self.model.observable(name, seg.mode), self.model.p, X)
+            cols["slip"][sel] = evaluate_function(self.model.observable("slip_speed", seg.mode), self.model.p, X)
+        return pd.DataFrame({"t": ts, "mode": modes, **cols})
+
+    @property
+    def euler_end(self) -> np.ndarray:
+        return self.model.chart.to_paper(self.x)
+
+    @property
+    def euler_ys(self) -> np.ndarray | None:
+        if self.ys is None:
+            return None
+        return np.array([self.model.chart.to_paper(z) for z in self.ys])
+
+    # -- export ----------------------------------------------------------------------------
+    def to_dict(self, *, events: bool = True) -> dict:
+        """JSON form in the paper's variables, with the inputs (model, start, options)."""
+        chart = self.model.chart
+        y_end = chart.to_paper(self.x)
+        xj = self.x_jump
+        d = {
+            "status": str(self.status),
+            "reason": self.reason,
+            "t_jump": self.t_jump,
+            "state_at_jump": None if xj is None else dict(zip(PAPER_NAMES, map(float, chart.to_paper(xj)))),
+            "Rdot_at_jump": self.Rdot_jump,
+            "R_min": self.R_min,
+            "t_end": float(self.t),
+            "theta_end": float(y_end[4]),
+            "state_end": dict(zip(PAPER_NAMES, map(float, y_end))),
+            "mode_end": self.mode,
+            "stuck": self.stuck,
+            "n_events": len(self.events),
+            "n_steps": int(self.n_steps),
+            "n_rhs": int(self.n_rhs),
+            "wall_s": float(self.wall_s),
+            "formulation": chart.name,
+            "backend": self.backend,
+            "rtol": self.options.rtol,
+        }
+        stops = [e for e in self.events if e.mode_after == "end" and e.name not in ("lift-off", "touchdown")]
+        if self.status is Status.STOPPED and stops:
+            d["t_stop"] = stops[-1].t
+            d["stopped_by"] = stops[-1].name
+        if events:
+            d["events"] = [e.to_dict() for e in self.events]
+        fl = self.flights
+        if fl:
+            d["flight"] = fl[0].to_dict()
+            d["n_flights"] = len(fl)
+        d["model"] = self.model.to_dict()
+        d["start"] = dict(zip(PAPER_NAMES, map(float, chart.to_paper(self.x0) if self.x0.size == chart.n_states
+                                                   else FLIGHT.to_paper(self.x0))))
+        d["start_chart_state"] = self.x0.tolist()
+        d["t0"] = self.t0
+        d["t_end_requested"] = self.t_end
+        d["stop_at"] = self.stop_at
+        d["restitution"] = self.restitution
+        d["user_events"] = [e.to_dict() for e in self.user_events]
+        d["options"] = self.options.to_dict()
+        return d
+
+    def __repr__(self) -> str:
+        tj = f", t_jump={self.t_jump:.9g}" if self.t_jump is not None else ""
+        return (f"Trajectory(status={self.status.value}{tj}, t={self.t:.6g}, segments={len(self.segments)}, "
+                f"events={len(self.events)}, wall_s={self.wall_s:.3g})")
