@@ -29,9 +29,9 @@ import time
 from dataclasses import asdict, replace
 from pathlib import Path
 
-
-from phasekit.sweep import ModelPack, ResultStore, TaskSpec, make_client, provenance, run_tasks
-from phasekit.threshold import DEFAULT_DEFINITIONS, Definition, threshold_key, threshold_row
+import phasekit as pk
+from phasekit.viz import pyplot, save_figure
+from phasekit import DEFAULT_DEFINITIONS, Definition, ModelPack, ResultStore, TaskSpec, make_client, provenance, run_tasks
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "threshold_vs_aspect"
@@ -47,9 +47,6 @@ DEFAULT_NAME = "sliding"
 # start (5.1), delta ~ 1e-5): n0 = 10 no jump, 10.5 jump.
 PAPER_BRACKETS = {1.5: (10.2, 10.5), 2 / 3: (10.0, 10.5)}
 
-FIELDS = ["key", "branch", "a", "threshold", "bracket_lo", "bracket_hi", "n_sims", "status", "definition", "default",
-          "group", "name", "seed", "amplitude", "eps", "mu", "rtol", "transitions", "stuck_near",
-          "check_above_jumped", "check_below_jumped", "consistent", "n_check_sims", "wall_s"]
 
 
 def sensitivity_definitions(quick: bool) -> list[Definition]:
@@ -67,7 +64,7 @@ def sensitivity_definitions(quick: bool) -> list[Definition]:
 
 
 def row_key(defn: Definition, a: float) -> str:
-    return threshold_key(defn, a, SEARCH)
+    return pk.threshold_key(defn, a, SEARCH)
 
 
 def build_tasks(quick: bool, sensitivity: bool) -> list[TaskSpec]:
@@ -79,14 +76,14 @@ def build_tasks(quick: bool, sensitivity: bool) -> list[TaskSpec]:
             prev = None
             for a in a_list:  # ordered from far to near a = 1: thresholds grow along the chain
                 key = row_key(defn, a)
-                specs.append(TaskSpec(key, threshold_row, (asdict(defn), a, "main", defn.name == DEFAULT_NAME, SEARCH), after=prev))
+                specs.append(TaskSpec(key, pk.threshold_task, (asdict(defn), a, "main", defn.name == DEFAULT_NAME, SEARCH), after=prev))
                 main_keys[defn.name, a] = key
                 prev = key
     if sensitivity:
         for defn in sensitivity_definitions(quick):
             parent = "literal-eps1e-4" if defn.seed == "literal" else DEFAULT_NAME
             for a in (1.5, 2 / 3):
-                specs.append(TaskSpec(row_key(defn, a), threshold_row, (asdict(defn), a, "sensitivity", False, SEARCH),
+                specs.append(TaskSpec(row_key(defn, a), pk.threshold_task, (asdict(defn), a, "sensitivity", False, SEARCH),
                                       after=main_keys.get((parent, a))))
     return specs
 
@@ -103,31 +100,23 @@ def warm_up() -> None:
                 pass
 
 
-def _f(x):
-    return None if x in (None, "", "None") else float(x)
-
-
 def plot(rows: list[dict], quick: bool, png: Path) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     fig, axes = plt.subplots(1, 2, figsize=(12, 5.6))
     styles = {"sliding": dict(color="k", lw=2.2, marker="o", ms=4, zorder=5),
               "literal-eps1e-3": dict(color="C0", lw=1, marker="s", ms=3),
               "literal-eps1e-4": dict(color="C1", lw=1, marker="^", ms=3),
               "literal-exact": dict(color="C3", lw=1, marker="v", ms=3),
               "viscous": dict(color="C2", lw=1, marker="x", ms=3)}
-    main = [r for r in rows if r["group"] == "main"]
+    main = [r for r in rows if r.group == "main"]
     for ax, branch in zip(axes, ("prolate", "oblate")):
         for defn in DEFAULT_DEFINITIONS:
-            pts = sorted((float(r["a"]), r) for r in main if r["name"] == defn.name and r["branch"] == branch)
+            pts = sorted(((r.a, r) for r in main if r.name == defn.name and r.branch == branch), key=lambda q: q[0])
             if not pts:
                 continue
-            ok = [(a, _f(r["threshold"])) for a, r in pts if _f(r["threshold"]) is not None]
+            ok = [(a, r.threshold) for a, r in pts if r.threshold is not None]
             label = defn.label + (" [default]" if defn.name == DEFAULT_NAME else "")
-            none = [a for a, r in pts if r["status"] == "no_jump_in_range"]
+            none = [a for a, r in pts if r.status == "no_jump_in_range"]
             if ok:
                 ax.plot(*zip(*ok), label=label, **styles.get(defn.name, {}))
             if none:
@@ -154,34 +143,32 @@ def plot(rows: list[dict], quick: bool, png: Path) -> None:
     fig.legend(list(handles.values()), list(handles.keys()), loc="lower center", ncol=2, fontsize=8, frameon=False)
     fig.suptitle(r"Smallest $\Omega_0$ / $n_0$ that leads to loss of contact, $\mu=0.1$" + (" (quick run)" if quick else ""), fontsize=11)
     fig.tight_layout(rect=(0, 0.17, 1, 1))
-    fig.savefig(png, dpi=130)
-    plt.close(fig)
+    save_figure(fig, png)
 
 
-def report(rows: list[dict], wall: float, n_new: int, mode: str) -> dict:
-    main = [r for r in rows if r["group"] == "main"]
+def report(rows: list, wall: float, n_new: int, mode: str) -> dict:
+    main = [r for r in rows if r.group == "main"]
     print(f"\nFigure {STEM}.png: jump thresholds against aspect ratio, mu = 0.1, 5 definitions; table {STEM}.csv.")
     print(f"{'definition':<58s} {'branch':<8s} {'a':>6s} {'threshold':>10s} {'status':<17s} {'sims':>4s} {'check':>5s}")
-    for r in sorted(main, key=lambda r: (r["name"] != DEFAULT_NAME, r["name"], r["branch"], float(r["a"]))):
-        th = _f(r["threshold"])
-        print(f"{r['definition'][:58]:<58s} {r['branch']:<8s} {float(r['a']):6.3f} {('%.4f' % th) if th else '-':>10s} "
-              f"{r['status']:<17s} {r['n_sims']:>4s} {('ok' if r['consistent'] == 'True' else 'FAIL' if r['consistent'] == 'False' else '-'):>5s}")
-    bad = [r for r in main if r["consistent"] == "False"]
-    checked = [r for r in main if r["consistent"] in ("True", "False")]
+    for r in sorted(main, key=lambda r: (r.name != DEFAULT_NAME, r.name, r.branch, r.a)):
+        check = "ok" if r.consistent else "FAIL" if r.consistent is False else "-"
+        th = f"{r.threshold:.4f}" if r.threshold else "-"
+        print(f"{r.definition[:58]:<58s} {r.branch:<8s} {r.a:6.3f} {th:>10s} {r.status:<17s} {r.n_sims:>4d} {check:>5s}")
+    bad = [r for r in main if r.consistent is False]
+    checked = [r for r in main if r.consistent is not None]
     print(f"self-consistency (1.02 x jumps, 0.98 x does not): {len(checked) - len(bad)} of {len(checked)} points pass")
-    sens = [r for r in rows if r["group"] == "sensitivity"]
+    sens = [r for r in rows if r.group == "sensitivity"]
     if sens:
         print("\nSensitivity at a = 1.5 (Omega0) and a = 2/3 (n0):")
-        ref = {(r["name"], r["a"]): _f(r["threshold"]) for r in main}
-        for r in sorted(sens, key=lambda r: (r["name"], float(r["a"]))):
-            parent = "literal-eps1e-4" if r["seed"] == "literal" else DEFAULT_NAME
-            base = ref.get((parent, r["a"]))
-            th = _f(r["threshold"])
-            rel = f"{(th / base - 1):+.2e}" if th and base else "-"
-            print(f"  {r['name']:<30s} a={float(r['a']):.4f} threshold={('%.4f' % th) if th else r['status']:<18s} "
-                  f"vs {parent}: {rel}  stuck near threshold: {r['stuck_near']}")
-    n_sims = sum(int(r["n_sims"] or 0) + int(r["n_check_sims"] or 0) for r in rows)
-    sim_wall = sum(float(r["wall_s"] or 0) for r in rows)
+        ref = {(r.name, r.a): r.threshold for r in main}
+        for r in sorted(sens, key=lambda r: (r.name, r.a)):
+            parent = "literal-eps1e-4" if r.seed == "literal" else DEFAULT_NAME
+            base = ref.get((parent, r.a))
+            rel = f"{(r.threshold / base - 1):+.2e}" if r.threshold and base else "-"
+            th = f"{r.threshold:.4f}" if r.threshold else r.status
+            print(f"  {r.name:<30s} a={r.a:.4f} threshold={th:<18s} vs {parent}: {rel}  stuck near threshold: {r.stuck_near}")
+    n_sims = sum(r.n_sims + r.n_check_sims for r in rows)
+    sim_wall = sum(r.wall_s for r in rows)
     print(f"\n{len(rows)} points ({n_new} computed now, {mode}); {n_sims} simulations, {sim_wall:.1f} s of task time, "
           f"{wall:.1f} s wall; {n_sims / max(sim_wall, 1e-9):.0f} simulations per second per worker.")
     return {"n_sims": n_sims, "task_s": sim_wall}
@@ -207,7 +194,7 @@ def main(argv=None) -> dict:
                        "definitions": {d.name: asdict(d) for d in list(DEFAULT_DEFINITIONS) + sensitivity_definitions(args.quick)},
                        "default_definition": DEFAULT_NAME, "jump": "R reaches 0 with dR/dt < 0 before the rise completes",
                        "rise_complete": "theta within rise_margin of the final state (0 prolate, pi/2 oblate), or t_max reached"})
-    store = ResultStore(csv_path, manifest_path, FIELDS, meta, fresh=args.fresh)
+    store = ResultStore(csv_path, manifest_path, pk.ThresholdRow, meta, fresh=args.fresh)
     pending = [s for s in specs if s.key not in store]
     client = cluster = None
     pack = None
@@ -219,14 +206,14 @@ def main(argv=None) -> dict:
             mode = f"dask: {len(client.scheduler_info()['workers'])} workers, model pack {pack.size_mb:.1f} MB shipped once"
     try:
         run_tasks(specs, store_get=store.get, on_result=lambda s, r: store.add(r), client=client, pack=pack,
-                  progress=not args.no_progress)
+                  progress=not args.no_progress, desc="thresholds")
     finally:
         if client is not None:
             client.close()
         if cluster is not None:
             cluster.close()
     keys = {s.key for s in specs}
-    rows = [r for r in store.rows() if r["key"] in keys]
+    rows = [r for r in store.rows() if r.key in keys]
     plot(rows, args.quick, png)
     wall = time.perf_counter() - t0
     stats = report(rows, wall, len(pending), mode)
