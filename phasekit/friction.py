@@ -159,11 +159,13 @@ class Viscous(FrictionLaw):
 
 def friction_law(name: str, mu: float, eps: float | None = None) -> FrictionLaw:
     """Build a law from its CLI name: ``coulomb`` (exact stick-slip, or regularised when
-    ``eps`` is given) or ``viscous`` (which has no regularisation: ``eps`` is refused)."""
+    ``eps`` is given) or ``viscous`` (smooth at zero slip: an ``eps`` is checked, then ignored
+    with a warning)."""
     if name == "coulomb":
         return Coulomb(mu) if eps is None else RegularisedCoulomb(mu, eps)
     if name == "viscous":
         if eps is not None:
-            raise ParameterError("eps", "applies to Coulomb friction only (viscous friction is smooth at zero slip)", eps)
+            check_positive("eps", eps, upper=1.0)
+            warnings.warn("`eps` has no effect with viscous friction (it regularises Coulomb friction only)", stacklevel=2)
         return Viscous(mu)
     raise ParameterError("friction", "must be one of coulomb, viscous", name)

@@ -49,7 +49,7 @@ OBSERVABLES = {
     "slip": "slip velocity of the contact point (2-vector)",
     "slip_speed": "|slip velocity| of the contact point",
     "energy": "total energy (kinetic + potential), units M g b",
-    "jellett": "Jellett's quantity -L.r_P = L.GP (angular momentum about G dotted with G->P)",
+    "jellett": "Jellett's integral -L.GP (angular momentum about G dotted with P->G; A Omega h in the gyroscopic limit (3.17))",
     "L_Z": "vertical angular momentum about G",
     "spin": "spin n = w.k",
     "h": "height of G above the table, units b (in flight: h(theta), the gap excluded)",

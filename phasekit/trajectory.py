@@ -305,7 +305,7 @@ class Trajectory:
     def sample(self, times):
         """A pandas DataFrame with one row per time: ``t``, ``mode`` and the columns of
         :data:`SAMPLE_COLUMNS` (the paper's state U, V, Omega, Lambda, theta, n; R of the
-        mode in force; energy; jellett = L.GP; slip = |u_P|; L_Z; h; gap), from the dense
+        mode in force; energy; jellett = -L.GP (Jellett's integral); slip = |u_P|; L_Z; h; gap), from the dense
         output: no re-integration, errors of the order of the tolerance. A time at an event
         belongs to the segment that ends there (before the reset). Times outside the simulated
         span raise ParameterError."""
