@@ -43,7 +43,7 @@ class SolverOptions:
     max_switches : int, default 10_000
         Most mode switches (events with a reset) before the run is declared chattering.
     track_minima : bool, default True
-        Locate every local minimum of R (and the maximum of each flight's gap).
+        Locate every local minimum of R. (The maximum of each flight's gap is always located.)
     dense : bool, default True
         Keep the integrator's dense output (heyoka's Taylor polynomials) so that
         :meth:`Trajectory.sample` can evaluate any instant without re-integration. Costs

@@ -132,9 +132,13 @@ def zero_slip_start(model, x) -> tuple[Mode, np.ndarray, str] | None:
     return Mode.SLIDING, _set_slip(model, x0, SLIP_ONSET * found[0]), "zero slip, rolling infeasible"
 
 
-def contact_start(model, t: float, x, *, before: str = "start") -> Transition:
-    """The contact mode a state starts in: at zero slip ROLLING where static friction holds
-    (exact Coulomb), or with slip below 10 eps (regularised law); else SLIDING."""
+def contact_start(model, t: float, x, *, before: str = "start", stiff: bool = False) -> Transition:
+    """The contact mode a state starts in: at zero slip, ROLLING where static friction holds
+    (exact Coulomb); else SLIDING. A regularised law whose slip is already below 10 eps starts
+    in its ROLLING mode only where that matters, i.e. where the field is ``stiff`` there and
+    another integrator takes over; elsewhere its two modes share one field and the first stick
+    event is left to the integration (which keeps runs bit-for-bit those of earlier versions).
+    :attr:`Trajectory.stuck` reports such starts either way."""
     law = model.friction
     speed = float(model.function("slip_speed")(x, model.p))
     if law.has_rolling_mode and speed <= STICK_SLIP:
@@ -143,7 +147,7 @@ def contact_start(model, t: float, x, *, before: str = "start") -> Transition:
             return _no_direction(t, x)
         mode, x, detail = out
         return Transition(mode, t, x, (Record("stick" if mode is Mode.ROLLING else "slip", before, mode.value, x, detail),))
-    if law.can_stick and not law.has_rolling_mode and speed < STICK_SLIP + 10 * law.eps:
+    if stiff and law.can_stick and not law.has_rolling_mode and speed < STICK_SLIP + 10 * law.eps:
         detail = "slip < 10 eps (regularised)"
         return Transition(Mode.ROLLING, t, x, (Record("stick", before, "rolling", x, detail),))
     return Transition(Mode.SLIDING, t, np.asarray(x, dtype=float))

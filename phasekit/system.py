@@ -75,16 +75,16 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
         if not isinstance(ev, Event):
             raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
         evs.append(ev)
-    return HybridSystem(flows, tuple(evs), _initial(stop_at))
+    return HybridSystem(flows, tuple(evs), _initial(stop_at, stiff))
 
 
-def _initial(stop_at: str):
+def _initial(stop_at: str, stiff: bool):
     def initial(model, t, x, mode=None):
         """Start in contact (the mode from the slip), or in flight when asked; a contact
         state that would need R <= 0 lifts off at once."""
         if mode is Mode.FLIGHT:
             return _flight_start(model, t, x)
-        start = contact_start(model, t, x)
+        start = contact_start(model, t, x, stiff=stiff)
         if start.stop is not None or float(model.evaluate("R", start.x, start.mode)) > 0.0:
             return start
         rec = start.records + (Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 at start"),)

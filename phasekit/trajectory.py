@@ -15,7 +15,7 @@ import numpy as np
 from .charts import FLIGHT, PAPER_NAMES
 from .errors import ParameterError, Status
 from .hybrid import Mode
-from .model import evaluate_function
+from .model import STICK_SLIP, evaluate_function
 from .validate import check_times
 
 __all__ = ["EventRecord", "Segment", "Flight", "Trajectory", "SAMPLE_COLUMNS"]
@@ -195,9 +195,14 @@ class Trajectory:
 
     @property
     def stuck(self) -> bool:
-        """Whether the body ever held zero slip: any time in the rolling mode (for a regularised
-        law: with slip below 10 eps), or a stick event."""
-        return any(s.mode is Mode.ROLLING for s in self.segments) or any(e.name == "stick" for e in self.events)
+        """Whether the body ever held zero slip: any time in the rolling mode, a stick event, or
+        (regularised law) a start with the slip already below its stick threshold 10 eps."""
+        if any(s.mode is Mode.ROLLING for s in self.segments) or any(e.name == "stick" for e in self.events):
+            return True
+        law = self.model.friction
+        if law.can_stick and not law.has_rolling_mode and self.segments and self.segments[0].mode is not Mode.FLIGHT:
+            return float(self.model.evaluate("slip_speed", self.segments[0].x0)) < STICK_SLIP + 10 * law.eps
+        return False
 
     @property
     def _liftoff(self) -> EventRecord | None:
