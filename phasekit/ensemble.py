@@ -113,7 +113,8 @@ def _client(scheduler):
         return scheduler, False
     if hasattr(scheduler, "scheduler_address"):
         return Client(scheduler), True
-    raise ParameterError("scheduler", "must be a Dask scheduler address, a dask.distributed.Client or a cluster", scheduler)
+    raise ParameterError("scheduler", "must be a Dask scheduler address, a dask.distributed.Client or a cluster",
+                         scheduler)
 
 
 def _progress(total: int, enabled: bool):
@@ -326,11 +327,11 @@ def rerun(source, index: int | None = None, *, model: Model | None = None, **ove
         kw = {k: inputs[k] for k in PASSED if k in inputs and k != "options"}
         kw.update(inputs["options"])
         kw.update(overrides)
-        return simulate(m, np.array(inputs["starts_chart"][index]), inputs["t_end"], events=_events_from(inputs["events"]),
-                        **kw)
+        x0 = np.array(inputs["starts_chart"][index])
+        return simulate(m, x0, inputs["t_end"], events=_events_from(inputs["events"]), **kw)
     if not isinstance(source, dict) or "start_chart_state" not in source:
-        raise ParameterError("source", "must be a Trajectory.to_dict() (or simulate --json output) or an ensemble table",
-                             show_value=False)
+        raise ParameterError("source", "must be a Trajectory.to_dict() (or simulate --json output) or an ensemble "
+                                       "table", show_value=False)
     m = _model_from(source["model"], model)
     kw = dict(t0=source["t0"], stop_at=source["stop_at"], restitution=source["restitution"], **source["options"])
     if len(source["start_chart_state"]) == FLIGHT.n_states != m.n_states:

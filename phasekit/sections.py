@@ -65,7 +65,8 @@ def poincare(model, x0, t_end: float, *, on: str = "Lambda", value: float = 0.0,
     section = Event(on, value, direction=direction, terminal=False, name=SECTION_EVENT)
     user = tuple(simulate_kwargs.pop("events", ()))
     if any(getattr(e, "name", None) == SECTION_EVENT for e in user):
-        raise ParameterError("events", f"must not use the name {SECTION_EVENT!r}, reserved for the section", show_value=False)
+        raise ParameterError("events", f"must not use the name {SECTION_EVENT!r}, reserved for the section",
+                             show_value=False)
     traj = simulate(model, x0, t_end, events=(*user, section), dense=True, **simulate_kwargs)
     times = [e.t for e in traj.events if e.name == SECTION_EVENT]
     df = traj.sample(times)

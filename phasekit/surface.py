@@ -113,8 +113,8 @@ class Scene:
     resolution : int >= 2
         Grid points per direction of the surface.
     exact_lambda : float, optional
-        Lambda of the exact-boundary section (None: the median |Lambda| of the computed
-        crossings, or 0 without them).
+        Lambda of the exact-boundary section (None: the median of abs(Lambda) over the
+        computed crossings, or 0 without them).
     dt : float > 0
         Output spacing of the drawn trajectories.
     body : Body, optional
@@ -137,7 +137,8 @@ class Scene:
     mu: float = 0.1
     values: tuple[float, ...] = (10.0, 12.0, 15.0, 20.0, 30.0)
     seed_distance: float = 0.01  # sliding-branch seeds, the default threshold definition
-    show: frozenset = field(default_factory=lambda: frozenset({"surface", "trajectories", "crossings", "fixed_points", "axes", "colorbar"}))
+    show: frozenset = field(default_factory=lambda: frozenset({"surface", "trajectories", "crossings", "fixed_points",
+                                                               "axes", "colorbar"}))
     omega_range: tuple[float, float] | None = None
     theta_range: tuple[float, float] | None = None
     n_clip: tuple[float, float] | None = None
@@ -281,7 +282,8 @@ def _ranges(scene: Scene, data: SceneData, body) -> tuple:
         om_rng = (8.0, 30.0)
     if pts.size and scene.omega_range is None:  # hold every drawn point
         om_rng = (min(om_rng[0], pts[:, 0].min()), max(om_rng[1], pts[:, 0].max()))
-    th_rng = scene.theta_range or ((0.35, math.pi / 2 - 0.03) if scene.branch == "prolate" else (0.05, math.pi / 2 - 0.35))
+    default_th = (0.35, math.pi / 2 - 0.03) if scene.branch == "prolate" else (0.05, math.pi / 2 - 0.35)
+    th_rng = scene.theta_range or default_th
     if data.crossings and scene.theta_range is None:
         th_c = [c.theta for c in data.crossings]
         th_rng = ((min(th_rng[0], min(th_c) - 0.1), th_rng[1]) if scene.branch == "prolate"

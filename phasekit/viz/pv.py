@@ -26,6 +26,9 @@ __all__ = ["render_scene", "RenderInfo", "HTML_EXTRA"]
 HTML_EXTRA = ("trame_pyvista",)
 #: drawn box in VTK coordinates: Omega, theta, n spans
 ASPECT = (1.4, 1.0, 1.0)
+#: where the glTF axes' tick values and titles sit, per axis, relative to the axis (box units)
+TICK_OFFSETS = ((0.0, -0.08, -0.06), (-0.12, 0.0, -0.06), (-0.12, -0.05, 0.0))
+TITLE_OFFSETS = ((0.0, -0.2, -0.12), (-0.25, 0.0, -0.12), (-0.25, -0.1, 0.0))
 COLORS = ("#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d", "#666666")
 
 
@@ -114,7 +117,8 @@ def _check_exports(html, gltf) -> None:
             continue
         parent = Path(target).resolve().parent
         if not parent.is_dir() or not os.access(parent, os.W_OK):
-            raise PhasekitError(f"cannot write the {name} export {target}: directory {parent} is missing or not writable")
+            raise PhasekitError(f"cannot write the {name} export {target}: directory {parent} is missing or not "
+                                "writable")
     if html is not None:
         missing = [m for m in HTML_EXTRA if importlib.util.find_spec(m) is None]
         if missing:
@@ -211,10 +215,10 @@ def _draw(pl, data, title, window_size) -> dict:
         grid = _clipped_grid(pv, f, *data.surface, n_lo, n_hi)
         counts["surface"] = grid.n_points
         if grid.n_points:
-            pl.add_mesh(grid, scalars="n", cmap="coolwarm", opacity=0.55, show_scalar_bar="colorbar" in show, clim=(n_lo, n_hi),
-                        scalar_bar_args=dict(title="n on (6.3)", color="k", vertical=True, title_font_size=16, fmt="%.3g",
-                                             label_font_size=14, position_x=0.86, position_y=0.08, width=0.05,
-                                             height=0.6), smooth_shading=True)
+            bar = dict(title="n on (6.3)", color="k", vertical=True, title_font_size=16, fmt="%.3g", label_font_size=14,
+                       position_x=0.86, position_y=0.08, width=0.05, height=0.6)
+            pl.add_mesh(grid, scalars="n", cmap="coolwarm", opacity=0.55, show_scalar_bar="colorbar" in show,
+                        clim=(n_lo, n_hi), scalar_bar_args=bar, smooth_shading=True)
     if data.exact is not None and "exact_boundary" in show:
         grid = _clipped_grid(pv, f, *data.exact, n_lo, n_hi)
         counts["exact_boundary"] = grid.n_points
@@ -240,9 +244,9 @@ def _draw(pl, data, title, window_size) -> dict:
         from ..surface import AXES
 
         titles = [f"{name} [{unit}]" for name, unit in AXES]
-        pl.show_bounds(bounds=[0, ASPECT[0], 0, ASPECT[1], 0, ASPECT[2]], axes_ranges=list(data.bounds), xtitle=titles[0],
-                       ytitle=titles[1], ztitle=titles[2], color="k", font_size=16, location="outer", grid="back",
-                       ticks="outside")
+        pl.show_bounds(bounds=[0, ASPECT[0], 0, ASPECT[1], 0, ASPECT[2]], axes_ranges=list(data.bounds),
+                       xtitle=titles[0], ytitle=titles[1], ztitle=titles[2], color="k", font_size=16, location="outer",
+                       grid="back", ticks="outside")
     if title:
         # anchored by its top-left corner a margin inside the image (a corner annotation
         # touches the edge)
@@ -300,12 +304,11 @@ def _add_axes_geometry(pl, bounds) -> None:
             p[j] = v
             q = f(p)[0]
             label = pv.Text3D(f"{v:.3g}", depth=0.002).scale(0.035, inplace=False)
-            off = np.array([0.0, -0.08, -0.06]) if j == 0 else np.array([-0.12, 0.0, -0.06]) if j == 1 else np.array([-0.12, -0.05, 0.0])
+            off = np.array(TICK_OFFSETS[j])
             pl.add_mesh(label.translate(q + off, inplace=False), color="black")
         mid = lo.copy()
         mid[j] = 0.5 * (lo[j] + hi[j])
-        q = f(mid)[0] + (np.array([0.0, -0.2, -0.12]) if j == 0 else np.array([-0.25, 0.0, -0.12]) if j == 1
-                         else np.array([-0.25, -0.1, 0.0]))
+        q = f(mid)[0] + np.array(TITLE_OFFSETS[j])
         pl.add_mesh(pv.Text3D(f"{name} [{unit}]", depth=0.002).scale(0.045, inplace=False).translate(q, inplace=False),
                     color="black")
 
@@ -316,6 +319,6 @@ def _annotate_gltf(path: Path, bounds) -> None:
 
     doc = json.loads(Path(path).read_text())
     doc.setdefault("asset", {}).setdefault("extras", {})["phasekit_axes"] = [
-        {"name": name, "unit": unit, "range": [float(bounds[2 * j]), float(bounds[2 * j + 1])], "drawn_span": [0.0, ASPECT[j]]}
-        for j, (name, unit) in enumerate(AXES)]
+        {"name": name, "unit": unit, "range": [float(bounds[2 * j]), float(bounds[2 * j + 1])],
+         "drawn_span": [0.0, ASPECT[j]]} for j, (name, unit) in enumerate(AXES)]
     Path(path).write_text(json.dumps(doc))
