@@ -92,9 +92,8 @@ def _cut(a: np.ndarray, b: np.ndarray, lo, hi) -> np.ndarray:
 @contextlib.contextmanager
 def _quiet_vtk():
     """VTK warnings off while drawing (they would go to stderr); errors still show."""
-    import vtk
+    from vtkmodules.vtkCommonCore import vtkLogger as logger
 
-    logger = vtk.vtkLogger
     old = logger.GetCurrentVerbosityCutoff()
     logger.SetStderrVerbosity(logger.VERBOSITY_ERROR)
     try:
