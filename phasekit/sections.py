@@ -47,7 +47,8 @@ def poincare(model, x0, t_end: float, *, on: str = "Lambda", value: float = 0.0,
     -------
     pandas.DataFrame
         One row per crossing in time order, with the columns of :meth:`Trajectory.sample`;
-        ``(DataFrame, Trajectory)`` with ``return_trajectory=True``.
+        ``(DataFrame, Trajectory)`` with ``return_trajectory=True``. A start that lies on the
+        section, moving in ``direction``, is the first crossing (t = t0).
 
     Examples
     --------
