@@ -16,7 +16,9 @@ from .hybrid import Event, Mode
 from .model import OBSERVABLES, Model
 from .options import BACKENDS, SolverOptions
 from .simulate import simulate, taylor_integrator
-from .trajectory import EventRecord, Flight, Segment, Trajectory
+from .trajectory import SAMPLE_COLUMNS, EventRecord, Flight, Segment, Trajectory
+from .sections import poincare
+from .ensemble import ensemble, rerun
 from .starts import gyroscopic_start, raw_start, to_chart, vertical_spin_start
 from .fixedpoints import (
     Branch,
@@ -102,6 +104,10 @@ __all__ = [
     "Segment",
     "EventRecord",
     "Flight",
+    "SAMPLE_COLUMNS",
+    "poincare",
+    "ensemble",
+    "rerun",
     "Status",
     "PhasekitError",
     "ConvergenceError",

@@ -36,7 +36,12 @@ from .hybrid import CompiledFlow
 __all__ = ["Propagation", "Budget", "TaylorEngine", "CvodesEngine", "engine_for", "HermiteDense"]
 
 #: bump when the layout of the pickled cache entries changes
-CACHE_FORMAT = 3
+CACHE_FORMAT = 4
+#: cooldown of every guard after it fires (a run resumed after a non-terminal event or a
+#: graze must not find the same root again). heyoka deduces one from the guard's rate at the
+#: root, which blows up at a tangential crossing: measured 8.6e8 for a section Lambda = 0 at a
+#: start with dLambda/dt = 1e-16, which silenced the event for the rest of the run.
+EVENT_COOLDOWN = 1e-9
 #: steps per call of heyoka's propagate: between calls the wall clock is checked
 STEP_CHUNK = 20_000
 
@@ -156,7 +161,8 @@ class TaylorEngine:
         rhs = to_heyoka(flow.field, ins)[0]
         direction = {-1: hy.event_direction.negative, 1: hy.event_direction.positive, 0: hy.event_direction.any}
         t_events = [
-            hy.t_event(to_heyoka(g.function, [list(xs), ps, [hy.par[n_params + i]]])[0][0], direction=direction[g.direction])
+            hy.t_event(to_heyoka(g.function, [list(xs), ps, [hy.par[n_params + i]]])[0][0], direction=direction[g.direction],
+                       cooldown=EVENT_COOLDOWN)
             for i, g in enumerate(flow.guards)
         ]
         nt_events, recorder = [], None

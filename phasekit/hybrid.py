@@ -27,10 +27,13 @@ __all__ = ["Mode", "Flow", "Event", "Reset", "Record", "Transition", "HybridSyst
 class Mode(str, enum.Enum):
     """Contact modes; the simulator switches between them only at located events.
 
-    SLIDING  smooth while the slip u != 0 (Coulomb), or everywhere (viscous, regularised).
-    ROLLING  zero slip held by static friction: exact Coulomb's no-slip mode, or, for a
-             regularised law, the stretch where the slip is below 10 eps (same field).
-    FLIGHT   no contact: gravity and torque-free rotation, until the gap closes.
+    SLIDING
+        smooth while the slip u != 0 (Coulomb), or everywhere (viscous, regularised).
+    ROLLING
+        zero slip held by static friction: exact Coulomb's no-slip mode, or, for a
+        regularised law, the stretch where the slip is below 10 eps (same field).
+    FLIGHT
+        no contact: gravity and torque-free rotation, until the gap closes.
     """
 
     SLIDING = "sliding"

@@ -23,11 +23,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .body import Spheroid
-from .friction import Coulomb
+from .body import Body, Spheroid
+from .errors import ParameterError
+from .friction import Coulomb, FrictionLaw
 from .model import Model
+from .validate import check_int, check_nonnegative, check_positive, check_range
 
-__all__ = ["surface_n", "exact_boundary", "Scene", "SceneData", "Crossing", "compute_scene", "ELEMENTS"]
+__all__ = ["surface_n", "exact_boundary", "Scene", "SceneData", "Crossing", "compute_scene", "ELEMENTS", "AXES"]
 
 ELEMENTS = frozenset({"surface", "exact_boundary", "trajectories", "crossings", "fixed_points", "axes", "colorbar"})
 
@@ -38,14 +40,15 @@ def surface_n(body, Omega, theta):
     return body.A / body.C * (Omega * np.cos(theta) + 1.0 / (Omega * ht * np.sin(theta)))
 
 
-def exact_boundary(body, mu: float, Omega, theta, Lambda: float = 0.0):
+def exact_boundary(body, mu: float, Omega, theta, Lambda: float = 0.0, *, friction: FrictionLaw | None = None):
     """n at which the model's normal reaction (6.1) vanishes, for U = V = 0 and the given Lambda.
 
-    Found by Brent's method on R(n) from the compiled model (Coulomb friction, slip direction
-    of that state), independently of the closed form (6.3)."""
+    Found by Brent's method on R(n) from the compiled model (Coulomb friction with ``mu``,
+    or the law ``friction``; slip direction of that state), independently of the closed
+    form (6.3)."""
     from scipy.optimize import brentq
 
-    model = Model(body, Coulomb(mu))
+    model = Model(body, Coulomb(mu) if friction is None else friction)
     Rf = model.function("R_sliding")
     Om = np.atleast_1d(np.asarray(Omega, dtype=float))
     Th = np.atleast_1d(np.asarray(theta, dtype=float))
@@ -68,40 +71,142 @@ def exact_boundary(body, mu: float, Omega, theta, Lambda: float = 0.0):
     return out if out.ndim else float(out)
 
 
+#: the scene's axes: (Omega, theta, n) with the paper's units (time unit sqrt(b/g))
+AXES = (("Omega", "sqrt(g/b)"), ("theta", "rad"), ("n", "sqrt(g/b)"))
+
+
+def _pair(name: str, value) -> tuple[float, float] | None:
+    if value is None:
+        return None
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ParameterError(name, "must be a pair (lo, hi) of numbers", value) from None
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+        raise ParameterError(name, "must be a pair (lo, hi) of finite numbers with lo < hi", value)
+    return lo, hi
+
+
 @dataclass(frozen=True)
 class Scene:
-    """What to draw: the branch, the trajectories' family parameter values, and the elements.
+    """What to draw in (Omega, theta, n): the branch, the family values of the simulated
+    trajectories, the user's own trajectories, and the elements.
 
-    ``show`` is a subset of ELEMENTS. ``exact_lambda`` is the Lambda of the exact-boundary
-    section (None: the median |Lambda| of the computed crossings, or 0 without them).
+    Parameters
+    ----------
+    branch : {"prolate", "oblate"}
+        prolate: trajectories start next to the horizontal steady precession (``values`` are
+        Omega0); oblate: next to the vertical spin (``values`` are n0).
+    a : float
+        Aspect ratio of the uniform spheroid (ignored when ``body`` is given).
+    mu : float
+        Coulomb friction coefficient (ignored when ``friction`` is given).
+    values : tuple of float
+        Family parameter of each simulated trajectory (may be empty).
+    seed_distance : float in (0, pi/2)
+        Distance of the sliding-branch seeds from the fixed point.
+    show : frozenset
+        A subset of :data:`ELEMENTS`.
+    omega_range, theta_range, n_clip : (lo, hi), optional
+        The drawn box. By default it holds every drawn point; given ranges clip the
+        trajectories (nothing is drawn outside the axes box).
+    resolution : int >= 2
+        Grid points per direction of the surface.
+    exact_lambda : float, optional
+        Lambda of the exact-boundary section (None: the median of abs(Lambda) over the
+        computed crossings, or 0 without them).
+    dt : float > 0
+        Output spacing of the drawn trajectories.
+    body : Body, optional
+        Any body (a user-defined :class:`phasekit.Body` subclass too); default Spheroid(a).
+    friction : FrictionLaw, optional
+        Any friction law; default Coulomb(mu).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> scene = pk.Scene("prolate", 1.5, values=(), show=frozenset({"trajectories", "axes"}))
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, 1.5, omega0=12.0), 100.0)
+    >>> scene.add_trajectory(traj).n_trajectories
+    1
     """
 
-    branch: str = "prolate"  # prolate: from the horizontal state (Omega0); oblate: from the vertical (n0)
+    branch: str = "prolate"
     a: float = 1.5
     mu: float = 0.1
     values: tuple[float, ...] = (10.0, 12.0, 15.0, 20.0, 30.0)
     seed_distance: float = 0.01  # sliding-branch seeds, the default threshold definition
-    show: frozenset = field(default_factory=lambda: frozenset({"surface", "trajectories", "crossings", "fixed_points", "axes", "colorbar"}))
+    show: frozenset = field(default_factory=lambda: frozenset({"surface", "trajectories", "crossings", "fixed_points",
+                                                               "axes", "colorbar"}))
     omega_range: tuple[float, float] | None = None
     theta_range: tuple[float, float] | None = None
     n_clip: tuple[float, float] | None = None
     resolution: int = 120
     exact_lambda: float | None = None
     dt: float = 0.02  # output spacing of the drawn trajectories
+    body: Body | None = None
+    friction: FrictionLaw | None = None
+    extra: list = field(default_factory=list, compare=False, hash=False, repr=False)
 
     def __post_init__(self):
         unknown = set(self.show) - ELEMENTS
         if unknown:
-            raise ValueError(f"`show` must be a subset of {sorted(ELEMENTS)}; unknown: {sorted(unknown)}.")
+            raise ParameterError("show", f"must be a subset of {', '.join(sorted(ELEMENTS))} (unknown: "
+                                         f"{', '.join(sorted(map(str, unknown)))})", show_value=False)
         if self.branch not in ("prolate", "oblate"):
-            raise ValueError(f"`branch` must be prolate or oblate, got {self.branch!r}.")
-        if (self.a > 1) != (self.branch == "prolate"):
-            raise ValueError(f"`a` must be > 1 for the prolate branch and < 1 for the oblate one, got {self.a!r}.")
+            raise ParameterError("branch", "must be prolate or oblate", self.branch)
+        if self.body is not None and not isinstance(self.body, Body):
+            raise ParameterError("body", "must be a phasekit Body", self.body)
+        if self.friction is not None and not isinstance(self.friction, FrictionLaw):
+            raise ParameterError("friction", "must be a phasekit FrictionLaw", self.friction)
+        body = self.make_body()
+        if body.is_prolate != (self.branch == "prolate"):
+            what = "`a` must be > 1" if self.body is None else "the body must be prolate (h(0) > h(pi/2))"
+            raise ParameterError("branch", f"{self.branch} does not match the body ({what} for the prolate branch, "
+                                           "the reverse for the oblate one)", self.branch)
+        check_nonnegative("mu", self.mu)
+        vals = tuple(check_positive("values", v) for v in self.values)
+        object.__setattr__(self, "values", vals)
+        check_range("seed_distance", self.seed_distance, 0.0, np.pi / 2, label="(0, pi/2)")
+        for name in ("omega_range", "theta_range", "n_clip"):
+            object.__setattr__(self, name, _pair(name, getattr(self, name)))
+        object.__setattr__(self, "resolution", check_int("resolution", self.resolution, minimum=2, maximum=4000))
+        check_positive("dt", self.dt)
+        if self.exact_lambda is not None:
+            check_range("exact_lambda", self.exact_lambda, -1e3, 1e3)
+
+    def make_body(self) -> Body:
+        return self.body if self.body is not None else Spheroid(self.a)
+
+    def make_friction(self) -> FrictionLaw:
+        return self.friction if self.friction is not None else Coulomb(self.mu)
+
+    def add_trajectory(self, traj, label: str | None = None) -> "Scene":
+        """Draw ``traj`` (any :class:`phasekit.Trajectory` with dense output) too, and its
+        lift-off point as a crossing. Returns the scene, so calls chain."""
+        from .trajectory import Trajectory
+
+        if not isinstance(traj, Trajectory):
+            raise ParameterError("traj", "must be a phasekit Trajectory (from pk.simulate)", traj)
+        if not traj.segments or not all(s.dense for s in traj.segments):
+            raise ParameterError("traj", "must keep its dense output (simulate with dense=True, the default)",
+                                 show_value=False)
+        self.extra.append((traj, label))
+        return self
+
+    @property
+    def n_trajectories(self) -> int:
+        """Trajectories drawn: the simulated ones and the user's."""
+        return len(self.values) + len(self.extra)
 
 
 @dataclass(frozen=True)
 class Crossing:
-    value: float  # Omega0 or n0 of the trajectory
+    """Where a trajectory reached R = 0: its family value (None for a user's trajectory),
+    time and state, and n on (6.3) at the same (Omega, theta)."""
+
+    value: float | None  # Omega0 or n0 of the trajectory
     t: float
     Omega: float
     theta: float
@@ -117,6 +222,9 @@ class Crossing:
 
 @dataclass
 class SceneData:
+    """What :func:`compute_scene` computed: the grids, the trajectories' (Omega, theta, n)
+    points, the crossings, the fixed points and the box ``bounds`` (Omega, theta, n pairs)."""
+
     scene: Scene
     surface: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None  # Omega, theta, n grids
     exact: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
@@ -126,6 +234,7 @@ class SceneData:
     fixed_points: np.ndarray | None = None
     n_simulations: int = 0
     bounds: tuple | None = None
+    labels: list = field(default_factory=list)  # one per trajectory (None: a simulated one)
 
 
 def _simulate(scene: Scene, value: float, dense: bool):
@@ -133,8 +242,8 @@ def _simulate(scene: Scene, value: float, dense: bool):
     from .simulate import simulate
     from .starts import gyroscopic_start
 
-    body = Spheroid(scene.a)
-    model = Model(body, Coulomb(scene.mu))
+    body = scene.make_body()
+    model = Model(body, scene.make_friction())
     if scene.branch == "prolate":
         y0 = gyroscopic_start(body, math.pi / 2 - scene.seed_distance, omega0=value)
         rise = Event("theta", 0.05, direction=-1, name="rise-complete")
@@ -144,60 +253,89 @@ def _simulate(scene: Scene, value: float, dense: bool):
     return body, simulate(model, y0, 1000.0, events=[rise], track_minima=False, dense=dense)
 
 
+def _add_run(data: SceneData, body, r, value, label, show) -> None:
+    """The drawn points and the crossing of one trajectory."""
+    if "trajectories" in show:
+        ts = np.arange(r.t0, r.t, data.scene.dt)
+        pts = r.sample(ts)[["Omega", "theta", "n"]].to_numpy()
+        if r.x_jump is not None:
+            pts = np.vstack([pts, r.model.chart.to_paper(r.x_jump)[[2, 4, 5]]])
+        data.trajectories.append(pts)
+        data.labels.append(label)
+    if r.x_jump is not None:
+        U, V, Om, Lam, th, n = r.model.chart.to_paper(r.x_jump)
+        data.crossings.append(Crossing(value, r.t_jump, Om, th, n, Lam, float(surface_n(body, Om, th))))
+
+
+def _ranges(scene: Scene, data: SceneData, body) -> tuple:
+    """(Omega, theta) ranges of the surface grid: given, or from the values and the data."""
+    vals = np.asarray(scene.values, dtype=float)
+    pts = np.vstack(data.trajectories) if data.trajectories else np.empty((0, 3))
+    if scene.omega_range is not None:
+        om_rng = scene.omega_range
+    elif vals.size:
+        om_rng = ((0.75 * vals.min(), 1.05 * vals.max()) if scene.branch == "prolate"
+                  else (0.6 * body.C * vals.min() / body.A, 1.1 * body.C * vals.max() / body.A))
+    elif pts.size:
+        om_rng = (0.9 * pts[:, 0].min(), 1.1 * pts[:, 0].max())
+    else:
+        om_rng = (8.0, 30.0)
+    if pts.size and scene.omega_range is None:  # hold every drawn point
+        om_rng = (min(om_rng[0], pts[:, 0].min()), max(om_rng[1], pts[:, 0].max()))
+    default_th = (0.35, math.pi / 2 - 0.03) if scene.branch == "prolate" else (0.05, math.pi / 2 - 0.35)
+    th_rng = scene.theta_range or default_th
+    if data.crossings and scene.theta_range is None:
+        th_c = [c.theta for c in data.crossings]
+        th_rng = ((min(th_rng[0], min(th_c) - 0.1), th_rng[1]) if scene.branch == "prolate"
+                  else (th_rng[0], max(th_rng[1], max(th_c) + 0.1)))
+    return om_rng, th_rng
+
+
 def compute_scene(scene: Scene) -> SceneData:
-    """Compute exactly the data the scene's elements need."""
+    """Compute exactly the data the scene's elements need (no simulation for a scene
+    without trajectories or crossings)."""
     show = scene.show
     data = SceneData(scene)
-    body = Spheroid(scene.a)
-    need_sims = bool({"trajectories", "crossings"} & show)
-    if need_sims:
+    body = scene.make_body()
+    if {"trajectories", "crossings"} & show:
         for v in scene.values:
             _, r = _simulate(scene, v, dense="trajectories" in show)
             data.n_simulations += 1
-            if "trajectories" in show:
-                pts = r.states(np.arange(0.0, r.t, scene.dt))[:, [2, 4, 5]]
-                if r.x_jump is not None:
-                    pts = np.vstack([pts, r.x_jump[[2, 4, 5]]])
-                data.trajectories.append(pts)
-            if r.x_jump is not None:
-                U, V, Om, Lam, th, n = r.x_jump
-                data.crossings.append(Crossing(v, r.t_jump, Om, th, n, Lam, float(surface_n(body, Om, th))))
-    # ranges: from the trajectories when there are any, else sensible defaults
-    vals = np.asarray(scene.values, dtype=float)
-    if scene.omega_range is not None:
-        om_rng = scene.omega_range
-    elif scene.branch == "prolate":
-        om_rng = (0.75 * vals.min(), 1.05 * vals.max())
-    else:
-        lo = body.C * vals.min() / body.A
-        om_rng = (0.6 * lo, 1.1 * body.C * vals.max() / body.A)
-    th_rng = scene.theta_range or ((0.35, math.pi / 2 - 0.03) if scene.branch == "prolate" else (0.05, math.pi / 2 - 0.35))
-    if need_sims and data.crossings:
-        th_c = [c.theta for c in data.crossings]
-        th_rng = (min(th_rng[0], min(th_c) - 0.1), th_rng[1]) if scene.branch == "prolate" else (th_rng[0], max(th_rng[1], max(th_c) + 0.1))
+            _add_run(data, body, r, v, None, show)
+        for traj, label in scene.extra:
+            _add_run(data, body, traj, None, label or f"trajectory {len(data.labels) + 1}", show)
+    om_rng, th_rng = _ranges(scene, data, body)
     if "surface" in show or "exact_boundary" in show:
-        om = np.linspace(*om_rng, scene.resolution)
-        th = np.linspace(*th_rng, scene.resolution)
-        OM, TH = np.meshgrid(om, th, indexing="ij")
-        if "surface" in show:
-            data.surface = (OM, TH, surface_n(body, OM, TH))
-        if "exact_boundary" in show:
-            lam = scene.exact_lambda
-            if lam is None:
-                lam = float(np.median([abs(c.Lambda) for c in data.crossings])) if data.crossings else 0.0
-            data.exact_lambda = lam
-            coarse = max(20, scene.resolution // 4)
-            om_c, th_c = np.linspace(*om_rng, coarse), np.linspace(*th_rng, coarse)
-            OMc, THc = np.meshgrid(om_c, th_c, indexing="ij")
-            data.exact = (OMc, THc, exact_boundary(body, scene.mu, OMc, THc, lam))
-    if "fixed_points" in show:
+        _grids(scene, data, body, om_rng, th_rng)
+    if "fixed_points" in show and scene.values:
         if scene.branch == "prolate":  # horizontal steady precessions (Omega0, pi/2, 0)
             data.fixed_points = np.array([[v, math.pi / 2, 0.0] for v in scene.values])
         else:  # vertical spins: theta = 0, plotted at the fast-branch limit Omega = C n0 / A
             data.fixed_points = np.array([[body.C * v / body.A, 0.0, v] for v in scene.values])
-    n_all = []
-    for tr in data.trajectories:
-        n_all.append(tr[:, 2])
+    data.bounds = _bounds(scene, data, om_rng, th_rng)
+    return data
+
+
+def _grids(scene, data, body, om_rng, th_rng) -> None:
+    om = np.linspace(*om_rng, scene.resolution)
+    th = np.linspace(*th_rng, scene.resolution)
+    OM, TH = np.meshgrid(om, th, indexing="ij")
+    if "surface" in scene.show:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            data.surface = (OM, TH, surface_n(body, OM, TH))
+    if "exact_boundary" in scene.show:
+        lam = scene.exact_lambda
+        if lam is None:
+            lam = float(np.median([abs(c.Lambda) for c in data.crossings])) if data.crossings else 0.0
+        data.exact_lambda = lam
+        coarse = max(20, scene.resolution // 4)
+        OMc, THc = np.meshgrid(np.linspace(*om_rng, coarse), np.linspace(*th_rng, coarse), indexing="ij")
+        data.exact = (OMc, THc, exact_boundary(body, scene.mu, OMc, THc, lam, friction=scene.friction))
+
+
+def _bounds(scene, data, om_rng, th_rng) -> tuple:
+    """The axes box (Omega lo, hi, theta lo, hi, n lo, hi)."""
+    n_all = [tr[:, 2] for tr in data.trajectories]
     if data.crossings:
         n_all.append(np.array([c.n for c in data.crossings]))
     if data.fixed_points is not None:
@@ -210,7 +348,14 @@ def compute_scene(scene: Scene) -> SceneData:
         n_lo, n_hi = n_cat.min() - 0.3 * span, n_cat.max() + 0.3 * span
     else:
         n_lo, n_hi = (-5.0, 40.0)
-    th_lo = min(th_rng[0], 0.0 if scene.branch == "oblate" and "fixed_points" in show else th_rng[0])
-    th_hi = max(th_rng[1], math.pi / 2 if scene.branch == "prolate" and "fixed_points" in show else th_rng[1])
-    data.bounds = (om_rng[0], om_rng[1], th_lo, th_hi, n_lo, n_hi)
-    return data
+    th_lo, th_hi = th_rng
+    pts = [np.vstack(data.trajectories)] if data.trajectories else []
+    if data.fixed_points is not None:
+        pts.append(data.fixed_points)
+    if pts and scene.theta_range is None:
+        P = np.vstack(pts)
+        th_lo, th_hi = min(th_lo, P[:, 1].min()), max(th_hi, P[:, 1].max())
+    om_lo, om_hi = om_rng
+    if data.fixed_points is not None and scene.omega_range is None:
+        om_lo, om_hi = min(om_lo, data.fixed_points[:, 0].min()), max(om_hi, data.fixed_points[:, 0].max())
+    return tuple(float(v) for v in (om_lo, om_hi, th_lo, th_hi, n_lo, n_hi))

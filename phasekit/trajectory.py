@@ -18,7 +18,7 @@ from .hybrid import Mode
 from .model import STICK_SLIP, evaluate_function
 from .validate import check_times
 
-__all__ = ["EventRecord", "Segment", "Flight", "Trajectory", "SAMPLE_COLUMNS"]
+__all__ = ["EventRecord", "Segment", "Flight", "Trajectory", "SAMPLE_COLUMNS", "observable_table"]
 
 #: columns of :meth:`Trajectory.sample` after t and mode
 SAMPLE_COLUMNS = (*PAPER_NAMES, "R", "energy", "jellett", "slip", "L_Z", "h", "gap")
@@ -107,6 +107,29 @@ class Flight:
     def to_dict(self) -> dict:
         return {"t_liftoff": self.t_liftoff, "t_touchdown": self.t_touchdown, "gap_max": self.gap_max,
                 "t_gap_max": self.t_gap_max, "W_star": self.W_star, "Omega_star": self.Omega_star}
+
+
+def observable_table(model, parts):
+    """A :meth:`Trajectory.sample`-style DataFrame from ``parts``: (mode, times, states in
+    that mode's chart) in time order."""
+    import pandas as pd
+
+    n = sum(len(ts) for _, ts, _ in parts)
+    cols = {name: np.empty(n) for name in SAMPLE_COLUMNS}
+    t_all, modes = np.empty(n), np.empty(n, dtype=object)
+    i = 0
+    for mode, ts, X in parts:
+        X = np.asarray(X, dtype=float).reshape(len(ts), -1)
+        sel = slice(i, i + len(ts))
+        t_all[sel], modes[sel] = ts, mode.value
+        P = evaluate_function(model.function("paper", mode), model.p, X)
+        for j, name in enumerate(PAPER_NAMES):
+            cols[name][sel] = np.reshape(P, (len(ts), -1))[:, j]
+        for name in ("R", "energy", "jellett", "L_Z", "h", "gap"):
+            cols[name][sel] = evaluate_function(model.observable(name, mode), model.p, X)
+        cols["slip"][sel] = evaluate_function(model.observable("slip_speed", mode), model.p, X)
+        i += len(ts)
+    return pd.DataFrame({"t": t_all, "mode": modes, **cols})
 
 
 class Trajectory:
@@ -285,8 +308,10 @@ class Trajectory:
     def _check_times(self, times) -> np.ndarray:
         ts = np.atleast_1d(np.asarray(check_times("times", times, allow_empty=True)))
         lo, hi = self.t0, self.t
-        if ts.size and (ts[0] < lo or ts[-1] > hi):
-            raise ParameterError("times", f"must lie in the simulated span [{lo:.10g}, {hi:.10g}]", [float(ts[0]), float(ts[-1])])
+        bad = ts[(ts < lo) | (ts > hi)]
+        if bad.size:
+            raise ParameterError("times", f"must lie in the simulated span [{lo:.10g}, {hi:.10g}] ({bad.size} outside)",
+                                 float(bad[0]) if bad.size == 1 else [float(bad[0]), float(bad[-1])])
         if not self.segments:
             raise ParameterError("times", "cannot be sampled: the run has no segment", show_value=False)
         if not all(s.dense for s in self.segments):
@@ -308,30 +333,59 @@ class Trajectory:
         return self._chart_states(self._check_times(times))
 
     def sample(self, times):
-        """A pandas DataFrame with one row per time: ``t``, ``mode`` and the columns of
-        :data:`SAMPLE_COLUMNS` (the paper's state U, V, Omega, Lambda, theta, n; R of the
-        mode in force; energy; jellett = -L.GP (Jellett's integral); slip = |u_P|; L_Z; h; gap), from the dense
-        output: no re-integration, errors of the order of the tolerance. A time at an event
-        belongs to the segment that ends there (before the reset). Times outside the simulated
-        span raise ParameterError."""
-        import pandas as pd
+        """The state and the observables at ``times``, from the dense output.
 
+        Parameters
+        ----------
+        times : float or array of float
+            Instants inside the simulated span [t0, t] (sorted on return). A time at an event
+            belongs to the segment that ends there (the state before the reset).
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per time: ``t``, ``mode`` (the mode in force) and the columns of
+            :data:`SAMPLE_COLUMNS`: the paper's state U, V, Omega, Lambda, theta, n; ``R``,
+            the normal reaction of the mode in force (0 in flight); ``energy``; ``jellett``
+            (Jellett's integral -L.GP); ``slip`` (slip speed of the contact point, of the lowest point in
+            flight); ``L_Z``; ``h`` (height of G, the gap excluded); ``gap`` (0 in contact).
+
+        Raises
+        ------
+        ParameterError
+            A time outside the simulated span, or a run that kept no dense output.
+
+        Notes
+        -----
+        No re-integration: the Taylor method's steps are polynomials, so the error is of
+        the order of the tolerance (CVODES segments use cubic Hermite interpolation on their
+        output grid, whose error can be larger).
+        """
         ts = self._check_times(times)
         idx = self._locate(ts)
-        cols = {name: np.empty(ts.size) for name in SAMPLE_COLUMNS}
-        modes = np.empty(ts.size, dtype=object)
+        parts = []
         for k in np.unique(idx):
             sel = idx == k
             seg = self.segments[k]
-            X = seg.states(ts[sel])
-            modes[sel] = seg.mode.value
-            P = evaluate_function(self.model.function("paper", seg.mode), self.model.p, X)
-            for i, name in enumerate(PAPER_NAMES):
-                cols[name][sel] = P[:, i]
-            for name in ("R", "energy", "jellett", "L_Z", "h", "gap"):
-                cols[name][sel] = evaluate_function(self.model.observable(name, seg.mode), self.model.p, X)
-            cols["slip"][sel] = evaluate_function(self.model.observable("slip_speed", seg.mode), self.model.p, X)
-        return pd.DataFrame({"t": ts, "mode": modes, **cols})
+            parts.append((seg.mode, ts[sel], seg.states(ts[sel])))
+        return observable_table(self.model, parts)
+
+    def at(self, t: float):
+        """The row of :meth:`sample` at one instant ``t``, as a pandas Series
+        (``traj.at(12.0)["R"]``)."""
+        if np.ndim(t) != 0:
+            raise ParameterError("t", "must be one time (use sample for many)", t)
+        return self.sample([t]).iloc[0]
+
+    def events_table(self, name: str | None = None):
+        """The recorded events (or those called ``name``) as a DataFrame: ``t``, ``event``,
+        ``mode_before``, ``mode_after`` and the paper's state at the event."""
+        import pandas as pd
+
+        rows = [{"t": e.t, "event": e.name, "mode_before": e.mode_before, "mode_after": e.mode_after,
+                 **dict(zip(PAPER_NAMES, e.y if e.y is not None else [np.nan] * len(PAPER_NAMES)))}
+                for e in self.events if name is None or e.name == name]
+        return pd.DataFrame(rows, columns=["t", "event", "mode_before", "mode_after", *PAPER_NAMES])
 
     @property
     def euler_end(self) -> np.ndarray:

@@ -1,7 +1,9 @@
 """Issue 8: the jump surface (6.3), the exact boundary, scenes and off-screen rendering."""
 
+import os
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -75,3 +77,99 @@ def test_pyvista_is_imported_only_to_draw_3d():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.stdout.strip().splitlines()[-1] == "False", out.stderr
+
+
+# -- issue 18: scenes of any body, law and trajectory; the render fixes -------------------------
+
+
+def test_drawn_box_holds_every_point_and_given_ranges_clip():
+    """The oblate scene once drew a trajectory segment outside its axes box: the box now holds
+    every drawn point, and given ranges cut the trajectories exactly at the faces."""
+    from phasekit.viz.pv import _inside_runs
+
+    d = compute_scene(Scene("oblate", 2 / 3, values=(9.0, 20.0, 40.0), resolution=20,
+                            show=frozenset({"trajectories", "crossings", "fixed_points", "axes"})))
+    lo, hi = np.array(d.bounds[0::2]), np.array(d.bounds[1::2])
+    for P in [*d.trajectories, d.fixed_points, np.array([[c.Omega, c.theta, c.n] for c in d.crossings])]:
+        assert np.all((P >= lo) & (P <= hi))
+    bounds = (10.0, 20.0, 0.0, 1.0, 0.0, 30.0)
+    P = np.column_stack([np.linspace(5.0, 25.0, 201), np.full(201, 0.5), np.full(201, 10.0)])
+    [run] = _inside_runs(P, bounds)
+    assert run[0, 0] == pytest.approx(10.0, abs=1e-12) and run[-1, 0] == pytest.approx(20.0, abs=1e-12)
+    assert np.all((run[:, 0] >= 10.0 - 1e-12) & (run[:, 0] <= 20.0 + 1e-12))
+
+
+class _UserSpheroid(pk.Body):
+    def __init__(self, a):
+        self.a_user = a
+        super().__init__((1 + a * a) / 5, 0.4)
+
+    @property
+    def shape_params(self):
+        return (self.a_user,)
+
+    def height(self, c, shape):
+        import casadi as ca
+
+        return ca.sqrt(1 + (shape[0] ** 2 - 1) * c * c)
+
+
+def test_scene_of_a_user_body_equals_the_built_in_one():
+    show = frozenset({"surface", "crossings", "fixed_points"})
+    mine = compute_scene(Scene("prolate", values=(12.0,), resolution=15, show=show, body=_UserSpheroid(1.5)))
+    ref = compute_scene(Scene("prolate", 1.5, values=(12.0,), resolution=15, show=show))
+    np.testing.assert_allclose(mine.surface[2], ref.surface[2], rtol=1e-12)
+    assert mine.crossings[0].t == pytest.approx(ref.crossings[0].t, rel=1e-10)
+    with pytest.raises(pk.ParameterError, match="`branch`"):
+        Scene("oblate", body=_UserSpheroid(1.5))
+
+
+@pytest.mark.render
+def test_render_own_trajectory_quietly_with_title_margin_and_gltf_axes(tmp_path):
+    """A user's trajectory (own law) in a scene of a user body; no VTK/X warning on stderr; the
+    title's first row of pixels is below the top margin; the glTF carries the axes."""
+    import json
+
+    code = f"""
+import numpy as np, phasekit as pk, casadi as ca
+from phasekit.viz import render_scene
+from tests.test_surface import _UserSpheroid
+body = _UserSpheroid(1.5)
+law = pk.RegularisedCoulomb(0.1, 1e-3)
+traj = pk.simulate(pk.Model(body, law), pk.gyroscopic_start(body, 1.5, omega0=12.0), 200.0)
+sc = pk.Scene("prolate", values=(), body=body, friction=law, resolution=20,
+              show=frozenset({{"surface", "trajectories", "crossings", "axes"}})).add_trajectory(traj)
+info = render_scene(sc, r"{tmp_path / 'own.png'}", window_size=(500, 400), title="TITLE",
+                    gltf=r"{tmp_path / 'own.gltf'}")
+print(info.n_points["trajectories"], info.n_points["crossings"], traj.t_jump is not None)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300,
+                         cwd=str(Path(__file__).resolve().parents[1]), env={**os.environ, "DISPLAY": ""})
+    assert out.returncode == 0, out.stderr
+    assert out.stderr.strip() == ""  # no 'bad X server connection', no VTK warning
+    n_traj, n_cross, jumped = out.stdout.split()
+    assert int(n_traj) > 100 and int(n_cross) == 1 and jumped == "True"
+    from PIL import Image
+
+    img = np.asarray(Image.open(tmp_path / "own.png").convert("L"))
+    dark_rows = np.flatnonzero((img < 128).any(axis=1))
+    assert dark_rows[0] >= 8  # the title does not touch the top edge
+    doc = json.loads((tmp_path / "own.gltf").read_text())
+    assert [a["unit"] for a in doc["asset"]["extras"]["phasekit_axes"]] == ["sqrt(g/b)", "rad", "sqrt(g/b)"]
+
+
+@pytest.mark.render
+def test_render_without_a_path_returns_the_plotter_and_exports_fail_early(tmp_path):
+    import pyvista as pv
+
+    from phasekit.viz import render_scene
+
+    d = compute_scene(Scene("prolate", 1.5, show=frozenset({"surface", "axes"}), resolution=15))
+    pl = render_scene(d, off_screen=True, window_size=(300, 200))
+    try:
+        assert isinstance(pl, pv.Plotter) and len(pl.renderer.actors) >= 1
+    finally:
+        pl.close()
+    with pytest.raises(pk.PhasekitError, match="cannot write the gltf export"):
+        render_scene(d, tmp_path / "x.png", gltf=str(tmp_path / "missing" / "x.gltf"))
+    assert not (tmp_path / "x.png").exists()

@@ -1,7 +1,24 @@
 """Drawing and study output. Nothing here imports a plotting library at import time:
 matplotlib is imported by the functions that draw, pyvista only when a 3-D scene is drawn."""
 
+from .mpl import LABELS, label, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
 from .output import output_dir, progress, pyplot, save_figure, study_parser, write_csv
 from .pv import RenderInfo, render_scene
 
-__all__ = ["render_scene", "RenderInfo", "study_parser", "output_dir", "pyplot", "save_figure", "write_csv", "progress"]
+__all__ = [
+    "render_scene",
+    "RenderInfo",
+    "plot_timeseries",
+    "plot_events",
+    "plot_section",
+    "plot_phase",
+    "plot_minima",
+    "label",
+    "LABELS",
+    "study_parser",
+    "output_dir",
+    "pyplot",
+    "save_figure",
+    "write_csv",
+    "progress",
+]

@@ -1,0 +1,341 @@
+"""Ensembles: one model, many starts, one table; and rerunning any result from its inputs.
+
+:func:`ensemble` runs :func:`phasekit.simulate` from every start and returns a pandas
+DataFrame with one row per start (the start in the paper's variables, the status, t_jump,
+R_min, the reason for a failure, ...). Each row is exactly what a single ``pk.simulate``
+call with the same arguments gives: the runs are independent and deterministic.
+
+Where the runs go
+-----------------
+* Local processes by default: a :class:`concurrent.futures.ProcessPoolExecutor` with the
+  "spawn" start method. Spawn, because heyoka keeps a thread pool (TBB) that a forked child
+  would inherit half-initialised; a process pool rather than a Dask LocalCluster because it
+  starts in about a second, needs no optional package, and each worker is handed the model
+  once (its initializer) and then only starts. Workers load the compiled integrators from the
+  on-disk cache (~/.cache/phasekit), warmed by one run in this process first, so no worker
+  compiles anything.
+* Dask when ``scheduler`` is given: an address ("tcp://host:8786"), a
+  ``dask.distributed.Client``, or a cluster object (anything with ``scheduler_address``).
+* ``processes=1`` (or a single start) runs in this process.
+
+A tqdm progress bar is written to stderr (``progress=False`` turns it off).
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import multiprocessing
+import os
+import sys
+import time
+
+import numpy as np
+
+from .charts import FLIGHT, PAPER_NAMES
+from .errors import ParameterError, PhasekitError, Status
+from .hybrid import Event
+from .model import Model
+from .simulate import simulate, solver_options
+from .validate import check_finite, check_int, check_vector
+
+__all__ = ["ensemble", "rerun", "summary_row", "ROW_COLUMNS"]
+
+#: columns of an ensemble row after the start (i, U, V, Omega, Lambda, theta, n)
+ROW_COLUMNS = ("status", "reason", "t_jump", "R_min", "t_end", "theta_end", "mode_end", "n_events", "stuck", "n_steps",
+               "wall_s")
+#: keywords of :func:`phasekit.simulate` an ensemble passes on (``t_eval`` and ``throw`` are not
+#: per-row quantities: an ensemble tabulates failures)
+PASSED = ("t0", "stop_at", "restitution", "mode", "options")
+
+
+def summary_row(traj, events=()) -> dict:
+    """The row of one trajectory: its start (paper variables), how it ended, and the first
+    time of each user event (column ``t_<event name>``, None if it never fired)."""
+    start = traj.to_dict(events=False)["start"]
+    row = {name: start[name] for name in PAPER_NAMES}
+    row.update(status=traj.status.value, reason=traj.reason, t_jump=traj.t_jump, R_min=traj.R_min, t_end=traj.t,
+               theta_end=float(traj.euler_end[4]), mode_end=traj.mode, n_events=len(traj.events), stuck=traj.stuck,
+               n_steps=int(traj.n_steps), wall_s=float(traj.wall_s))
+    for ev in events:
+        hit = next((e.t for e in traj.events if e.name == ev.name), None)
+        row[f"t_{ev.name}"] = hit
+    return row
+
+
+# -- worker side -----------------------------------------------------------------------------
+_JOB: dict = {}
+
+
+def _install(job: dict) -> None:
+    """Worker initializer: keep the model and the run's arguments for every start."""
+    _JOB.clear()
+    _JOB.update(job)
+
+
+def _run_one(i: int, x0, job: dict | None = None) -> tuple[int, dict]:
+    job = job or _JOB
+    try:
+        traj = simulate(job["model"], x0, job["t_end"], events=job["events"], **job["kwargs"])
+        return i, summary_row(traj, job["events"])
+    except Exception as exc:  # a worker never loses a row: it reports the failure
+        return i, {"status": Status.FAILED.value, "reason": f"{type(exc).__name__}: {exc}"}
+
+
+# -- the parent ------------------------------------------------------------------------------
+
+
+def _starts(model: Model, starts) -> np.ndarray:
+    """Starts as an (m, n_states) array in ``model.chart``; a DataFrame is read from its
+    paper-variable columns."""
+    if hasattr(starts, "columns"):
+        missing = [c for c in PAPER_NAMES if c not in starts.columns]
+        if missing:
+            raise ParameterError("starts", f"as a table needs the columns {', '.join(PAPER_NAMES)} (missing "
+                                           f"{', '.join(missing)})", show_value=False)
+        return np.array([model.chart.from_paper(check_vector("starts", r, 6))
+                         for r in starts[list(PAPER_NAMES)].to_numpy(dtype=float)]).reshape(-1, model.n_states)
+    try:
+        rows = [check_vector("starts", x, model.n_states) for x in starts]
+    except TypeError:
+        raise ParameterError("starts", f"must be a sequence of states of {model.n_states} numbers", starts) from None
+    if not rows:
+        raise ParameterError("starts", "must hold at least one start", show_value=False)
+    return np.array(rows)
+
+
+def _client(scheduler):
+    """(client, owned): a Dask client for an address, a Client or a cluster."""
+    from dask.distributed import Client
+
+    if isinstance(scheduler, str):
+        return Client(scheduler), True
+    if isinstance(scheduler, Client):
+        return scheduler, False
+    if hasattr(scheduler, "scheduler_address"):
+        return Client(scheduler), True
+    raise ParameterError("scheduler", "must be a Dask scheduler address, a dask.distributed.Client or a cluster",
+                         scheduler)
+
+
+def _progress(total: int, enabled: bool):
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc="ensemble", unit="run", disable=not enabled, file=sys.stderr, leave=False)
+
+
+def ensemble(model: Model, starts, t_end: float, *, events=(), scheduler=None, processes: int | None = None,
+             progress: bool = True, **simulate_kwargs):
+    """Simulate ``model`` from every start; one row per start.
+
+    Parameters
+    ----------
+    model : Model
+    starts : sequence of arrays, or DataFrame
+        States in ``model.chart`` (as :func:`phasekit.simulate` takes them), or a table with
+        the paper's columns U, V, Omega, Lambda, theta, n.
+    t_end : float
+        End time of every run.
+    events : sequence of Event
+        User events of every run; the first time each fired is the column ``t_<name>``.
+    scheduler : str, dask Client or cluster, optional
+        Run on Dask instead of local processes.
+    processes : int, optional
+        Local worker processes (default: the number of cores, at most the number of starts);
+        1 runs in this process.
+    progress : bool
+        A progress bar on stderr.
+    **simulate_kwargs
+        ``t0``, ``stop_at``, ``restitution``, ``mode``, ``options`` and any field of
+        :class:`phasekit.SolverOptions` (``rtol=...``, ``max_steps=...``). ``dense``
+        defaults to False here (no dense output is needed for the table).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``i`` (position in ``starts``), U, V, Omega, Lambda, theta, n (the start),
+        then :data:`ROW_COLUMNS` and ``t_<event>`` per user event. ``df.attrs["inputs"]``
+        holds the model, the starts in the model's chart, t_end, the events and the solver
+        options, so that :func:`rerun` can repeat any row.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> model = pk.Model(body, pk.Coulomb(0.1))
+    >>> starts = [pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=w) for w in (10.5, 12.0)]
+    >>> df = pk.ensemble(model, starts, 200.0, processes=1, progress=False)
+    >>> list(df["status"])
+    ['jumped', 'jumped']
+    """
+    if not isinstance(model, Model):
+        raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
+    X = _starts(model, starts)
+    t_end = check_finite("t_end", t_end)
+    events = tuple(events)
+    for ev in events:
+        if not isinstance(ev, Event):
+            raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
+    if len({ev.name for ev in events}) != len(events):
+        raise ParameterError("events", "must have distinct names (each names a column t_<name>)", show_value=False)
+    if processes is not None:
+        processes = check_int("processes", processes, minimum=1)
+    kwargs = _kwargs(simulate_kwargs)
+    job = {"model": model, "t_end": t_end, "events": events, "kwargs": kwargs}
+    _run_one(0, X[0], job)  # validates the arguments here, and warms the on-disk integrator cache
+    t0 = time.perf_counter()
+    n_proc = min(processes or os.cpu_count() or 1, len(X))
+    with _progress(len(X), progress) as bar:
+        if scheduler is not None:
+            rows = _on_dask(scheduler, job, X, bar)
+        elif n_proc <= 1:
+            rows = {}
+            for i, x in enumerate(X):
+                rows[i] = _run_one(i, x, job)[1]
+                bar.update()
+        else:
+            rows = _on_processes(n_proc, job, X, bar)
+    return _table(model, X, rows, job, time.perf_counter() - t0)
+
+
+def _kwargs(given: dict) -> dict:
+    kw = {k: given.pop(k) for k in list(given) if k in PASSED}
+    for key in ("t_eval", "throw", "events"):
+        if key in given:
+            raise ParameterError(key, "is not an ensemble option (an ensemble tabulates one row per start)",
+                                 show_value=False)
+    given.setdefault("dense", False)
+    opts = solver_options(kw.pop("options", None), **given)  # unknown names are an error here
+    return {**kw, "options": opts}
+
+
+def _on_processes(n: int, job: dict, X: np.ndarray, bar) -> dict:
+    rows = {}
+    ctx = multiprocessing.get_context("spawn")
+    try:
+        with cf.ProcessPoolExecutor(max_workers=n, mp_context=ctx, initializer=_install, initargs=(job,)) as pool:
+            futures = [pool.submit(_run_one, i, x) for i, x in enumerate(X)]
+            for f in cf.as_completed(futures):
+                i, row = f.result()
+                rows[i] = row
+                bar.update()
+    except (cf.process.BrokenProcessPool, RuntimeError) as exc:
+        raise PhasekitError("ensemble: the worker processes stopped before finishing. Workers are started with "
+                            "'spawn', which re-imports the calling script: call pk.ensemble under "
+                            "`if __name__ == '__main__':`, or pass processes=1"
+                            f" ({type(exc).__name__}: {' '.join(str(exc).split())[:200]})") from None
+    return rows
+
+
+def _on_dask(scheduler, job: dict, X: np.ndarray, bar) -> dict:
+    from dask.distributed import as_completed
+
+    client, owned = _client(scheduler)
+    try:
+        job_f = client.scatter(job, broadcast=True)
+        futures = [client.submit(_run_one, i, x, job_f, pure=False) for i, x in enumerate(X)]
+        rows = {}
+        for f in as_completed(futures):
+            i, row = f.result()
+            rows[i] = row
+            bar.update()
+        return rows
+    finally:
+        if owned:
+            client.close()
+
+
+def _table(model: Model, X: np.ndarray, rows: dict, job: dict, wall: float):
+    import pandas as pd
+
+    ev_cols = [f"t_{ev.name}" for ev in job["events"]]
+    cols = ["i", *PAPER_NAMES, *ROW_COLUMNS, *ev_cols]
+    out = []
+    for i, x in enumerate(X):
+        row = {"i": i, **dict(zip(PAPER_NAMES, map(float, model.chart.to_paper(x))))}
+        row.update(rows[i])
+        out.append(row)
+    df = pd.DataFrame(out).reindex(columns=cols)
+    opts = job["kwargs"]["options"]
+    df.attrs["inputs"] = {
+        "model": model.to_dict(), "starts_chart": X.tolist(), "t_end": job["t_end"],
+        "events": [ev.to_dict() for ev in job["events"]], "options": opts.to_dict(),
+        **{k: v for k, v in job["kwargs"].items() if k != "options"},
+    }
+    df.attrs["wall_s"] = wall
+    return df
+
+
+# -- rerun -------------------------------------------------------------------------------------
+
+
+def _model_from(d: dict, model: Model | None) -> Model:
+    if model is not None:
+        if not isinstance(model, Model):
+            raise ParameterError("model", "must be a phasekit Model", model)
+        return model
+    from .api import make_body
+    from .friction import Coulomb, RegularisedCoulomb, Viscous
+
+    kind = d.get("body")
+    if kind not in ("spheroid", "tippe-top", "egg"):
+        raise ParameterError("model", f"must be given to rerun a {kind or 'user-defined'} body (only the built-in "
+                                      "bodies can be rebuilt from their description)", show_value=False)
+    body = make_body(kind, a=d.get("a"), offset=d.get("offset"), w=d.get("w"), A=d["A"], C=d["C"])
+    laws = {"coulomb": lambda: Coulomb(d["mu"]), "viscous": lambda: Viscous(d["mu"]),
+            "coulomb-regularised": lambda: RegularisedCoulomb(d["mu"], d["slip_eps"])}
+    if d.get("law") not in laws:
+        raise ParameterError("model", f"must be given to rerun the friction law {d.get('law')!r} (only the built-in "
+                                      "laws can be rebuilt from their description)", show_value=False)
+    return Model(body, laws[d["law"]](), d.get("chart", "euler"))
+
+
+def _events_from(items) -> list[Event]:
+    return [Event(e["on"], e["level"], direction=e["direction"], terminal=e["terminal"], name=e["name"]) for e in items]
+
+
+def rerun(source, index: int | None = None, *, model: Model | None = None, **overrides):
+    """Repeat a run from the inputs a result carries.
+
+    Parameters
+    ----------
+    source : dict or DataFrame
+        A :meth:`Trajectory.to_dict` (or the CLI's ``simulate --json`` output, parsed), or a
+        DataFrame returned by :func:`ensemble` together with ``index``.
+    index : int, optional
+        The row (``i``) of an ensemble table to repeat.
+    model : Model, optional
+        Needed for a user-defined body or friction law, which cannot be rebuilt from their
+        description; built-in ones are rebuilt from ``source["model"]``.
+    **overrides
+        Keywords of :func:`phasekit.simulate` to change (e.g. ``dense=True`` for sampling).
+
+    Returns
+    -------
+    Trajectory
+        With the same start, end time, stop rule, events and solver options, hence the same
+        numbers (t_jump to the last digit).
+    """
+    if hasattr(source, "attrs") and hasattr(source, "columns"):
+        inputs = source.attrs.get("inputs")
+        if inputs is None:
+            raise ParameterError("source", "is a table without the inputs of an ensemble (df.attrs['inputs'])",
+                                 show_value=False)
+        if index is None:
+            raise ParameterError("index", "is required to rerun a row of an ensemble table", show_value=False)
+        index = check_int("index", index, minimum=0, maximum=len(inputs["starts_chart"]) - 1)
+        m = _model_from(inputs["model"], model)
+        kw = {k: inputs[k] for k in PASSED if k in inputs and k != "options"}
+        kw.update(inputs["options"])
+        kw.update(overrides)
+        x0 = np.array(inputs["starts_chart"][index])
+        return simulate(m, x0, inputs["t_end"], events=_events_from(inputs["events"]), **kw)
+    if not isinstance(source, dict) or "start_chart_state" not in source:
+        raise ParameterError("source", "must be a Trajectory.to_dict() (or simulate --json output) or an ensemble "
+                                       "table", show_value=False)
+    m = _model_from(source["model"], model)
+    kw = dict(t0=source["t0"], stop_at=source["stop_at"], restitution=source["restitution"], **source["options"])
+    if len(source["start_chart_state"]) == FLIGHT.n_states != m.n_states:
+        kw["mode"] = "flight"
+    kw.update(overrides)
+    return simulate(m, np.array(source["start_chart_state"]), source["t_end_requested"],
+                    events=_events_from(source.get("user_events", [])), **kw)
