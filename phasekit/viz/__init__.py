@@ -1,7 +1,8 @@
 """Drawing and study output. Nothing here imports a plotting library at import time:
 matplotlib is imported by the functions that draw, pyvista only when a 3-D scene is drawn."""
 
-from .output import output_dir, progress, pyplot, save_figure, study_parser, write_csv
+from .output import atomic_path, output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
 from .pv import RenderInfo, render_scene
 
-__all__ = ["render_scene", "RenderInfo", "study_parser", "output_dir", "pyplot", "save_figure", "write_csv", "progress"]
+__all__ = ["render_scene", "RenderInfo", "study_parser", "output_dir", "pyplot", "save_figure", "write_csv", "atomic_path",
+           "progress", "run_study"]
