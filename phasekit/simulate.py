@@ -100,6 +100,12 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     return traj
 
 
+def _tracked(flow, track_minima: bool):
+    """``flow``, without its monitor of the minima of R when they are not wanted: the
+    integrator then carries no non-terminal event (fewer steps; the flight's gap maximum stays)."""
+    return flow if track_minima or flow.mode is Mode.FLIGHT else replace(flow, monitor=None)
+
+
 class _Run:
     """The state of one run of the loop."""
 
@@ -149,7 +155,7 @@ class _Run:
 
     def step(self) -> None:
         """Propagate the current mode to its first event and handle that event."""
-        flow = self.system.flow(self.mode)
+        flow = _tracked(self.system.flow(self.mode), self.opts.track_minima)
         engine = self.engine(flow)
         events = watched(self.system, self.mode, engine.name)
         extend = self.resume  # a non-terminal event or a graze: the same segment goes on
@@ -226,17 +232,20 @@ class _Run:
         return traj
 
 
-def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump", rtol: float = 1e-9, events=()):
+def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump", rtol: float = 1e-9, events=(),
+                      track_minima: bool = True):
     """The compiled heyoka integrator phasekit uses for one mode, for users (and benchmarks)
     who want to drive heyoka directly: returns (integrator, parameters). Its terminal events
     are the mode's guards (lift-off first, ...) with the levels of ``events`` appended; set
-    ``integrator.pars[:] = parameters`` (done here) and ``integrator.state``/``.time``."""
+    ``integrator.pars[:] = parameters`` (done here) and ``integrator.state``/``.time``.
+    ``track_minima=False``: the integrator simulate uses with that option (no monitor of the
+    minima of R)."""
     from .backends import TaylorEngine
 
     mode = Mode(mode)
     system = declare(model, stop_at=stop_at, events=events)
     evs = watched(system, mode, "taylor")
-    cflow = model.compile_flow(system.flow(mode), evs)
+    cflow = model.compile_flow(_tracked(system.flow(mode), track_minima), evs)
     ta, _, npar = TaylorEngine(solver_options(rtol=rtol).rtol)._integrator(cflow, len(model.p))
     pars = np.concatenate([model.p, [e.level for e in evs]])[:npar]
     ta.pars[:] = pars
