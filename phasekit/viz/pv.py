@@ -72,7 +72,7 @@ def render_scene(data, path, *, window_size=(1400, 1000), html: str | None = Non
         counts["surface"] = grid.n_points
         if grid.n_points:
             pl.add_mesh(grid, scalars="n", cmap="coolwarm", opacity=0.55, show_scalar_bar="colorbar" in show,
-                        scalar_bar_args=dict(title="n on (6.3)", color="k", vertical=True, title_font_size=16,
+                        scalar_bar_args=dict(title="n on (6.3), units sqrt(g/b)", color="k", vertical=True, title_font_size=16,
                                              label_font_size=14), smooth_shading=True)
     if data.exact is not None and "exact_boundary" in show:
         OM, TH, N = data.exact
@@ -102,8 +102,8 @@ def render_scene(data, path, *, window_size=(1400, 1000), html: str | None = Non
         pl.add_points(P, color="red", point_size=12, render_points_as_spheres=True)
     if "axes" in show:
         b = data.bounds
-        pl.show_bounds(bounds=[0, 1.4, 0, 1.0, 0, 1.0], axes_ranges=list(b), xtitle="Omega", ytitle="theta (rad)",
-                       ztitle="n", color="k", font_size=16, location="outer", grid="back", ticks="outside")
+        pl.show_bounds(bounds=[0, 1.4, 0, 1.0, 0, 1.0], axes_ranges=list(b), xtitle="Omega (units sqrt(g/b))", ytitle="theta (rad)",
+                       ztitle="n (units sqrt(g/b))", color="k", font_size=16, location="outer", grid="back", ticks="outside")
     if title:
         pl.add_text(title, font_size=11, color="k", position="upper_left")
     pl.camera_position = camera or CAMERAS[scene.branch]
