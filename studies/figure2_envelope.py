@@ -45,7 +45,7 @@ def main(argv=None) -> dict:
     body = pk.Spheroid(A_RATIO)
     theta = np.linspace(THETA0, 0.02, 1500)
     coarse = np.linspace(THETA0, 0.02, 120)
-    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    fig, ax = plt.subplots(figsize=(9.2, 4.8))
     out = {}
     for k, J in enumerate(progress(J_VALUES, desc="Jellett constants", enabled=not args.no_progress)):
         sig = pk.Sigma(body, J, THETA0, theta, C_AMP, form="closed")
@@ -67,7 +67,7 @@ def main(argv=None) -> dict:
     ax.set_xlabel(r"mean inclination $\bar\theta$ (rad); the rise runs left to right")
     ax.set_ylabel(r"envelope $\Sigma$ of the minima of $R$ (units $Mg$)")
     ax.set_title(r"Fig. 2: $a=1.5$, $c=-0.00054$, $\bar\theta_0=\pi/2-10^{-4}$; dashed after $\Sigma=0$ (jump)", fontsize=10)
-    ax.legend(fontsize=8, ncol=2, loc="lower left", title=r"Jellett constant $J = A\Omega h$", title_fontsize=8)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), title="Jellett constant\n" + r"$J = A\Omega h$", title_fontsize=8)
     fig.tight_layout()
     path = save_figure(fig, out_dir / "figure2_envelope.png")
     print(f"Figure {path.name}: Sigma (3.64) against theta-bar, closed forms (3.47), (3.58); {time.perf_counter() - t0:.1f} s.")

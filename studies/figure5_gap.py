@@ -112,8 +112,9 @@ def main(argv=None) -> dict:
     ax.set_ylabel(r"maximum gap $\Delta_{max}$ (units $b$)")
     ax.set_title(f"(d) {int(ok.sum())} jumps from perturbations of amplitude 0.05 (seed {args.seed})", fontsize=9)
     ax.legend(fontsize=8)
-    fig.suptitle(r"Fig. 5: the gap during the first flight; prolate $a=1.5$, Coulomb $\mu=0.1$; (a-c) from the sliding-branch "
-                 r"start $\theta_0=\pi/2-0.01$, flight integrated at rtol $10^{-13}$", fontsize=11)
+    fig.suptitle(r"Fig. 5: the gap during the first flight; prolate $a=1.5$, Coulomb $\mu=0.1$" "\n"
+                 r"(a-c) from the sliding-branch start $\theta_0=\pi/2-0.01$, flight integrated at rtol $10^{-13}$; "
+                 r"(d) from random perturbations of the horizontal steady precession, rtol $10^{-9}$", fontsize=10)
     fig.tight_layout()
     png = save_figure(fig, out_dir / "figure5_gap.png", dpi=120)
     write_csv(out_dir / "figure5_gap.csv",

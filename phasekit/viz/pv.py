@@ -72,7 +72,7 @@ def render_scene(data, path, *, window_size=(1400, 1000), html: str | None = Non
         counts["surface"] = grid.n_points
         if grid.n_points:
             pl.add_mesh(grid, scalars="n", cmap="coolwarm", opacity=0.55, show_scalar_bar="colorbar" in show,
-                        scalar_bar_args=dict(title="n on (6.3), units sqrt(g/b)", color="k", vertical=True, title_font_size=16,
+                        scalar_bar_args=dict(title="n on (6.3)\n(units sqrt(g/b))", color="k", vertical=True, title_font_size=16,
                                              label_font_size=14), smooth_shading=True)
     if data.exact is not None and "exact_boundary" in show:
         OM, TH, N = data.exact
