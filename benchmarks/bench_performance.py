@@ -17,8 +17,11 @@ minimum of R located, which costs a few times the bare integration).
    Rolling: the paper's start (5.2), which sticks at t = 0.011 and rolls; sliding: the
    standard workload. Both to t = 40 (before the standard workload's jump), sweep path.
 
-Timings are medians over ``--repeats`` runs, the runs of the compared methods interleaved so
-that a change in machine load hits both sides alike.
+Timings: the median and the best of ``--repeats`` runs, the runs of the compared methods
+interleaved so that a change in machine load hits both sides alike. On a shared machine the
+best run is the better estimate of the intrinsic cost (other processes only ever add time, as
+the timeit documentation notes); both ratios are printed, and a goal is reported met only
+when the median ratio meets it.
 
     python benchmarks/bench_performance.py [--repeats N] [--json]
 
@@ -42,9 +45,18 @@ SWEEP = dict(dense=False, track_minima=False)
 GOALS = {"scipy_bdf": 1000.0, "bare_heyoka": 1.35, "rolling_sliding": 3.0}
 
 
+class Timing(float):
+    """A median wall time (the float value) that also carries the best run (``.best``)."""
+
+    def __new__(cls, runs):
+        t = super().__new__(cls, statistics.median(runs))
+        t.best = min(runs)
+        return t
+
+
 def timed(fns: dict, repeats: int) -> tuple[dict, dict]:
-    """Median wall time of each callable over ``repeats`` interleaved rounds (after one
-    untimed warm-up call each), and each one's last result."""
+    """Wall time of each callable over ``repeats`` interleaved rounds (after one untimed
+    warm-up call each), and each one's last result."""
     out = {k: f() for k, f in fns.items()}
     times = {k: [] for k in fns}
     for _ in range(repeats):
@@ -52,7 +64,11 @@ def timed(fns: dict, repeats: int) -> tuple[dict, dict]:
             t0 = time.perf_counter()
             out[k] = f()
             times[k].append(time.perf_counter() - t0)
-    return {k: statistics.median(v) for k, v in times.items()}, out
+    return {k: Timing(v) for k, v in times.items()}, out
+
+
+def ms(t: Timing) -> str:
+    return f"{t * 1e3:.3f} ms (best {t.best * 1e3:.3f})"
 
 
 def bare_heyoka(model, y0, rtol):
@@ -82,9 +98,9 @@ def scipy_vs_phasekit(model, body, y0, err, repeats, say) -> dict:
     say("1. phasekit vs scipy BDF on a NumPy rhs (standard workload, to the jump)")
     say(f"   scipy BDF rtol 1e-9:                      {t_sp * 1e3:9.2f} ms, t* error {e_sp:.1e} ({nfev} rhs)")
     say(f"   phasekit rtol {rt:.0e}, sweep path:          {t['sweep'] * 1e3:9.3f} ms, t* error {err(r['sweep'].t_jump):.1e}"
-        f"  ratio {t_sp / t['sweep']:.0f}x (goal >= {GOALS['scipy_bdf']:.0f}x)")
+        f"  ratio {t_sp / t['sweep']:.0f}x (goal >= {GOALS['scipy_bdf']:.0f}x; best runs {t_sp.best / t['sweep'].best:.0f}x)")
     say(f"   phasekit rtol {rt:.0e}, default options:     {t['default'] * 1e3:9.3f} ms, t* error {err(r['default'].t_jump):.1e}"
-        f"  ratio {t_sp / t['default']:.0f}x (dense output + minima of R)")
+        f"  ratio {t_sp / t['default']:.0f}x (dense output + minima of R; best runs {t_sp.best / t['default'].best:.0f}x)")
     return {"scipy_bdf_ms": t_sp * 1e3, "scipy_bdf_error": e_sp, "phasekit_rtol": rt, "sweep_ms": t["sweep"] * 1e3,
             "default_ms": t["default"] * 1e3, "ratio_scipy_bdf_sweep": t_sp / t["sweep"],
             "ratio_scipy_bdf_default": t_sp / t["default"]}
@@ -101,14 +117,17 @@ def bare_vs_phasekit(model, y0, err, repeats, say) -> dict:
     cv, _ = timed({be: (lambda be=be: pk.simulate(model, y0, 200.0, rtol=1e-9, backend=be, **SWEEP))
                    for be in ("cvodes", "cvodes-adams")}, max(1, repeats // 4))
     say("2. phasekit vs the bare heyoka propagate on the same compiled integrator (rtol 1e-9, to the jump)")
-    say(f"   bare heyoka propagate_until {t['bare'] * 1e3:.3f} ms (t* = {t_bare_jump:.9f}, error {err(t_bare_jump):.1e})")
-    say(f"   sweep path      {t['sweep'] * 1e3:.3f} ms = {t['sweep'] / t['bare']:.2f}x bare heyoka "
-        f"(goal <= {GOALS['bare_heyoka']}x; this is the compared one)")
-    say(f"   default options {t['default'] * 1e3:.3f} ms = {t['default'] / t['bare']:.2f}x bare heyoka "
-        f"(dense output + minima of R; {r['default'].n_steps} steps against {r['sweep'].n_steps})")
+    say(f"   bare heyoka propagate_until {ms(t['bare'])} (t* = {t_bare_jump:.9f}, error {err(t_bare_jump):.1e})")
+    say(f"   sweep path      {ms(t['sweep'])} = {t['sweep'] / t['bare']:.2f}x bare heyoka (best runs: "
+        f"{t['sweep'].best / t['bare'].best:.2f}x; goal <= {GOALS['bare_heyoka']}x; this is the compared one)")
+    say(f"   default options {ms(t['default'])} = {t['default'] / t['bare']:.2f}x bare heyoka (best runs: "
+        f"{t['default'].best / t['bare'].best:.2f}x; dense output + minima of R; {r['default'].n_steps} steps against "
+        f"{r['sweep'].n_steps})")
     say(f"   for reference: CVODES BDF {cv['cvodes'] * 1e3:.2f} ms, CVODES Adams {cv['cvodes-adams'] * 1e3:.2f} ms (sweep path)")
     return {"bare_heyoka_ms": t["bare"] * 1e3, "sweep_rtol1e-9_ms": t["sweep"] * 1e3, "default_rtol1e-9_ms": t["default"] * 1e3,
             "ratio_sweep_bare_heyoka": t["sweep"] / t["bare"], "ratio_default_bare_heyoka": t["default"] / t["bare"],
+            "ratio_sweep_bare_heyoka_best": t["sweep"].best / t["bare"].best,
+            "ratio_default_bare_heyoka_best": t["default"].best / t["bare"].best,
             "cvodes_bdf_ms": cv["cvodes"] * 1e3, "cvodes_adams_ms": cv["cvodes-adams"] * 1e3}
 
 
@@ -120,8 +139,9 @@ def rolling_vs_sliding(model, y0, repeats, say) -> dict:
     if not (rr.mode == "rolling" and rr.stuck and rs.mode == "sliding" and not rs.stuck):
         raise RuntimeError(f"the workloads changed: rolling run ends {rr.mode} (stuck {rr.stuck}), sliding run ends {rs.mode}")
     say("3. sticking (rolling) against sliding, both to t = 40 (sweep path)")
-    say(f"   rolling {t['rolling'] * 1e3:.3f} ms ({rr.n_steps} steps); sliding {t['sliding'] * 1e3:.3f} ms ({rs.n_steps} steps); "
-        f"ratio {t['rolling'] / t['sliding']:.2f} (goal <= {GOALS['rolling_sliding']:g})")
+    say(f"   rolling {ms(t['rolling'])} ({rr.n_steps} steps); sliding {ms(t['sliding'])} ({rs.n_steps} steps); "
+        f"ratio {t['rolling'] / t['sliding']:.2f} (best runs {t['rolling'].best / t['sliding'].best:.2f}; "
+        f"goal <= {GOALS['rolling_sliding']:g})")
     return {"rolling_ms": t["rolling"] * 1e3, "sliding_ms": t["sliding"] * 1e3, "ratio_rolling_sliding": t["rolling"] / t["sliding"]}
 
 
