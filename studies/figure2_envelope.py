@@ -7,7 +7,7 @@ the envelope no longer applies). Also prints, for each J, the inclination of the
 jump with the closed form and with the quadrature form of I (exact I2 instead of its
 dominant part (3.57)). Writes figure2_envelope.png (figures/ by default).
 
-    python studies/figure2_envelope.py [--out DIR]
+    python studies/figure2_envelope.py [--quick] [--out DIR]
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ def first_zero(theta, sig):
 
 
 def main(argv=None) -> dict:
-    args = study_parser(__doc__, default_out=FIGURES, quick=False).parse_args(argv)
+    args = study_parser(__doc__, default_out=FIGURES, quick_help="the same run (it is short)").parse_args(argv)
     out_dir = output_dir(args)
     plt = pyplot()
 

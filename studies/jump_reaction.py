@@ -4,7 +4,7 @@ Prolate uniform spheroid a = 1.5, Coulomb friction mu = 0.1 (exact stick-slip), 
 start theta0 = pi/2 - 0.01, Omega0 = 10.5. Writes jump_reaction.png (figures/ by default)
 and prints what was run, the jump time at two tolerances (its error estimate) and the run time.
 
-    python studies/jump_reaction.py [--out DIR]
+    python studies/jump_reaction.py [--quick] [--out DIR]
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ FIGURES = Path(__file__).resolve().parents[1] / "figures"
 
 
 def main(argv=None) -> dict:
-    args = study_parser(__doc__, default_out=FIGURES, quick=False).parse_args(argv)
+    args = study_parser(__doc__, default_out=FIGURES, quick_help="the same run (it is short)").parse_args(argv)
     out = output_dir(args)
     plt = pyplot()
 
