@@ -70,6 +70,34 @@ def run(omega0: float, e: float):
                 wall_s=r.wall_s, t_jump=r.t_jump)
 
 
+def draw(plt, rows, control, omegas):
+    """(a) mu_e / mu with error bars; (b) the naive estimate 1 - (fraction of the rise in flight)."""
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 4.8))
+    for k, om in enumerate(omegas):
+        sub = [r for r in rows if r["omega0"] == om]
+        err = [np.hypot(r["s_fit"] / MU, 0.0 if np.isnan(r["bias"]) else r["bias"]) for r in sub]
+        x = np.array([r["e"] for r in sub]) + 0.012 * (k - len(omegas) / 2)
+        ax.errorbar(x, [r["mu_e"] / MU for r in sub], yerr=err, fmt="o-", ms=4, capsize=3, color=f"C{k}",
+                    label=fr"$\Omega_0={om:g}$")
+        bx.plot(x, [1 - r["flight_fraction"] for r in sub], "o:", ms=4, color=f"C{k}", label=fr"$\Omega_0={om:g}$")
+    ax.axhline(control["mu_e"] / MU, color="0.5", ls="--", lw=1, label=fr"no jump ($\Omega_0=9$): fit gives {control['mu_e'] / MU:.4f}")
+    for a, where in ((ax, "lower right"), (bx, "lower left")):
+        a.axhline(1.0, color="k", lw=0.6)
+        a.set_xlabel(r"coefficient of restitution $e$")
+        a.legend(fontsize=8, loc=where, ncol=2, title=r"$\Omega_0$ in units $\sqrt{g/b}$", title_fontsize=8)
+    lo = min(r["mu_e"] / MU - np.hypot(r["s_fit"] / MU, np.nan_to_num(r["bias"])) for r in rows)
+    ax.set_ylim(lo - 0.6 * (1.005 - lo), 1.005)  # room below the bars for the legend
+    ax.set_ylabel(r"effective friction $\mu_e/\mu$ (fit of (3.18) to $\theta(t)$)")
+    ax.set_title("(a) mu_e / mu; error bars: fit error and the method's bias (fit before the first lift-off)", fontsize=9)
+    bx.set_ylim(0, 1.05)
+    bx.set_ylabel(r"$1 -$ (fraction of the rise spent in flight)")
+    bx.set_title("(b) the naive estimate mu_e / mu ~ 1 - (flight fraction): far off", fontsize=9)
+    fig.suptitle(r"Whole rise with bouncing: prolate $a=1.5$, Coulomb $\mu=0.1$, sliding-branch start "
+                 r"$\theta_0=\pi/2-0.01$, to $\theta = 0.05$; rtol $10^{-9}$", fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
 def main(argv=None) -> list[dict]:
     ap = study_parser(__doc__, default_out=FIGURES, quick_help="Omega0 = 11, 20 and e = 0, 0.6 only")
     args = ap.parse_args(argv)
@@ -82,20 +110,7 @@ def main(argv=None) -> list[dict]:
     # below the jump threshold last (Omega0 = 9): no flight, the method's calibration
     todo = [(om, e) for om in omegas for e in es] + [(9.0, 0.5)]
     *rows, control = [run(om, e) for om, e in progress(todo, desc="rises", enabled=not args.no_progress)]
-    fig, ax = plt.subplots(figsize=(7.5, 4.8))
-    for k, om in enumerate(omegas):
-        sub = [r for r in rows if r["omega0"] == om]
-        err = [np.hypot(r["s_fit"] / MU, 0.0 if np.isnan(r["bias"]) else r["bias"]) for r in sub]
-        x = np.array([r["e"] for r in sub]) + 0.012 * (k - len(omegas) / 2)
-        ax.errorbar(x, [r["mu_e"] / MU for r in sub], yerr=err, fmt="o-", ms=4, capsize=3, label=fr"$\Omega_0={om:g}$")
-        ax.plot(x, [1 - r["flight_fraction"] for r in sub], ls=":", color=ax.lines[-1].get_color(), lw=1)
-    ax.axhline(control["mu_e"] / MU, color="0.5", ls="--", lw=1, label=fr"no jump ($\Omega_0=9$): fit gives {control['mu_e'] / MU:.4f}")
-    ax.axhline(1.0, color="k", lw=0.6)
-    ax.set_xlabel(r"coefficient of restitution $e$")
-    ax.set_ylabel(r"effective friction $\mu_e/\mu$")
-    ax.set_title(r"Whole rise with bouncing, $a=1.5$, $\mu=0.1$; dotted: naive $1-$(fraction of time in flight)", fontsize=9)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
+    fig = draw(plt, rows, control, omegas)
     png = save_figure(fig, out / "bouncing.png")
     write_csv(out / "bouncing.csv", list(rows[0]), rows + [control])
     print(f"Figure {png.name}: mu_e / mu from fits of (3.18) over the whole bouncing rise; {time.perf_counter() - t0:.1f} s.")

@@ -138,7 +138,8 @@ def _command(argv) -> str:
 
 def run_study(main, argv=None, *, resume: str | None = None) -> None:
     """Run ``main(argv)`` as a command: Ctrl-C ends it with one line on stderr (no traceback)
-    saying what was kept and how to resume, and exit code 130.
+    saying what was kept and how to resume, and exit code 130; a closed stdout pipe ends it
+    quietly.
 
     ``resume`` says how a rerun picks up (for a study that keeps finished work); the default
     is for studies that write their files whole at the end: nothing was changed, rerun.
@@ -151,3 +152,7 @@ def run_study(main, argv=None, *, resume: str | None = None) -> None:
         sys.stderr.write(f"\ninterrupted: {how}: {_command(argv)}\n")
         sys.stderr.flush()
         raise SystemExit(EXIT_INTERRUPTED) from None
+    except BrokenPipeError:  # the reader went away (e.g. `| head`): stop quietly (Python docs' recipe)
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        raise SystemExit(1) from None
