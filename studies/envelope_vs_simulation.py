@@ -135,25 +135,9 @@ def literal_starts():
     return out
 
 
-def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES, quick_help="coarser output grid; trend in Omega0 only")
-    args = ap.parse_args(argv)
-    out_dir = output_dir(args)
-    plt = pyplot()
-
-    t0 = time.perf_counter()
-    dt = 0.01 if args.quick else 0.003
-    trend_cases = TREND[:3] if args.quick else TREND
-    runs, trends = [], []
-    with progress(total=len(PAPER_CASES) + len(trend_cases) + 2, desc="simulations", enabled=not args.no_progress) as bar:
-        for cases, out in ((PAPER_CASES, runs), (trend_cases, trends)):
-            for c in cases:
-                out.append(run_case(c, 400.0, dt))
-                bar.update()
-        lits = literal_starts()
-        bar.update(2)
-
-    # --- figure: 3 rows x 2 columns (oblate | prolate)
+def draw(plt, runs):
+    """3 rows x 2 columns (oblate | prolate): the mean state against the gyroscopic solution,
+    then R with its minima and Sigma for the two cases of each figure."""
     fig, axes = plt.subplots(3, 2, figsize=(12, 9))
     for col, pair in enumerate((runs[0:2], runs[2:4])):
         d = pair[1]  # the jumping (larger) case for the mean-state panel
@@ -189,6 +173,28 @@ def main(argv=None) -> dict:
                  "\nstarts on the sliding branch with the nutation of amplitude $c$ (3.46); minima of $R$ located as events",
                  fontsize=11)
     fig.tight_layout()
+    return fig
+
+
+def main(argv=None) -> dict:
+    ap = study_parser(__doc__, default_out=FIGURES, quick_help="coarser output grid; trend in Omega0 only")
+    args = ap.parse_args(argv)
+    out_dir = output_dir(args)
+    plt = pyplot()
+
+    t0 = time.perf_counter()
+    dt = 0.01 if args.quick else 0.003
+    trend_cases = TREND[:3] if args.quick else TREND
+    runs, trends = [], []
+    with progress(total=len(PAPER_CASES) + len(trend_cases) + 2, desc="simulations", enabled=not args.no_progress) as bar:
+        for cases, out in ((PAPER_CASES, runs), (trend_cases, trends)):
+            for c in cases:
+                out.append(run_case(c, 400.0, dt))
+                bar.update()
+        lits = literal_starts()
+        bar.update(2)
+
+    fig = draw(plt, runs)
     png = save_figure(fig, out_dir / "envelope_vs_simulation.png", dpi=120)
 
     # --- csv

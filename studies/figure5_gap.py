@@ -37,22 +37,14 @@ def first_flight(model, x0, t_max=400.0, dense=False):
     return pk.simulate(model, x0, t_max, stop_at="touchdown", events=[RISE], track_minima=False, dense=dense)
 
 
-def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES, quick_help="Omega0 step 5 instead of 2.5, 5 members each instead of 10")
-    ap.add_argument("--seed", type=int, default=2006, help="seed of the ensemble's perturbations (default 2006)")
-    args = ap.parse_args(argv)
-    out_dir = output_dir(args)
-    plt = pyplot()
-
-    t0 = time.perf_counter()
-    body = pk.Spheroid(A_RATIO)
-    model = pk.Model(body, pk.Coulomb(MU))
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8))
+def flights_abc(axes, model, body) -> list:
+    """(a-c): the first flight from the sliding-branch start for Omega0 = 11, 20, 30, drawn
+    and tabulated."""
     print("Figure 5a-c: first flight from the sliding-branch start (theta0 = pi/2 - 0.01)")
     print(f"{'Omega0':>6s} {'t*':>8s} {'W*':>9s} {'Omega*':>8s} {'W* Omega*':>9s} {'flight':>8s} {'Dmax exact':>11s} "
           f"{'(4.23)':>11s} {'rel err':>8s} {'(4.22) curve err':>16s}")
     rows_abc = []
-    for ax, om in zip(axes.flat[:3], (11.0, 20.0, 30.0)):
+    for ax, om in zip(axes, (11.0, 20.0, 30.0)):
         y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=om)
         r = first_flight(model, y0)
         fl = r.flights[0]
@@ -78,13 +70,14 @@ def main(argv=None) -> dict:
         ax.set_xlabel(r"time since lift-off $t-t_*$ (units $\sqrt{b/g}$)")
         ax.set_ylabel(r"gap $\Delta$ (units $b$)")
         ax.legend(fontsize=8)
+    return rows_abc
 
-    # (d) ensemble
-    rng = np.random.default_rng(args.seed)
-    omegas = np.arange(10.0, 41.0, 5.0 if args.quick else 2.5)
-    n_each = 5 if args.quick else 10
+
+def ensemble(model, omegas, n_each, seed, show_progress) -> list:
+    """(d): first flights from random perturbations of amplitude 0.05 of the horizontal state."""
+    rng = np.random.default_rng(seed)
     recs = []
-    with progress(total=len(omegas) * n_each, desc="ensemble", enabled=not args.no_progress) as bar:
+    with progress(total=len(omegas) * n_each, desc="ensemble", enabled=show_progress) as bar:
         for om in omegas:
             for j in range(n_each):
                 v = rng.standard_normal(6)
@@ -98,20 +91,41 @@ def main(argv=None) -> dict:
                 fl = r.flights[0]
                 gm, _ = pk.gap_max_series(fl.Omega_star, fl.W_star)
                 recs.append((om, j, "touchdown", fl.gap_max, gm, fl.W_star, fl.Omega_star, r.stuck))
+    return recs
+
+
+def draw_ensemble(ax, recs, omegas, seed) -> tuple[int, int, np.ndarray]:
     recs_a = np.array([(q[0], q[3], q[4]) for q in recs], dtype=float)
     ok = np.isfinite(recs_a[:, 1])
     bound = (4.65 / recs_a[:, 0]) ** 5
     over_exact = int(np.sum(recs_a[ok, 1] > bound[ok]))
     over_series = int(np.sum(recs_a[ok, 2] > bound[ok]))
-    ax = axes[1, 1]
     ax.semilogy(recs_a[ok, 0] - 0.3, recs_a[ok, 1], "k.", ms=4, label=r"$\Delta_{max}$ exact (numerical flight)")
     ax.semilogy(recs_a[ok, 0] + 0.3, recs_a[ok, 2], "C3x", ms=4, label=r"$\Delta_{max}$ from (4.23)")
     oo = np.linspace(omegas[0], omegas[-1], 200)
     ax.semilogy(oo, (4.65 / oo) ** 5, "b-", lw=1.2, label=r"bound $(4.65/\Omega_0)^5$")
     ax.set_xlabel(r"initial precession rate $\Omega_0$ (units $\sqrt{g/b}$)")
     ax.set_ylabel(r"maximum gap $\Delta_{max}$ (units $b$)")
-    ax.set_title(f"(d) {int(ok.sum())} jumps from perturbations of amplitude 0.05 (seed {args.seed})", fontsize=9)
+    ax.set_title(f"(d) {int(ok.sum())} jumps from perturbations of amplitude 0.05 (seed {seed})", fontsize=9)
     ax.legend(fontsize=8)
+    return over_exact, over_series, ok
+
+
+def main(argv=None) -> dict:
+    ap = study_parser(__doc__, default_out=FIGURES, quick_help="Omega0 step 5 instead of 2.5, 5 members each instead of 10")
+    ap.add_argument("--seed", type=int, default=2006, help="seed of the ensemble's perturbations (default 2006)")
+    args = ap.parse_args(argv)
+    out_dir = output_dir(args)
+    plt = pyplot()
+
+    t0 = time.perf_counter()
+    body = pk.Spheroid(A_RATIO)
+    model = pk.Model(body, pk.Coulomb(MU))
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8))
+    rows_abc = flights_abc(axes.flat[:3], model, body)
+    omegas = np.arange(10.0, 41.0, 5.0 if args.quick else 2.5)
+    recs = ensemble(model, omegas, 5 if args.quick else 10, args.seed, not args.no_progress)
+    over_exact, over_series, ok = draw_ensemble(axes[1, 1], recs, omegas, args.seed)
     fig.suptitle(r"Fig. 5: the gap during the first flight; prolate $a=1.5$, Coulomb $\mu=0.1$" "\n"
                  r"(a-c) from the sliding-branch start $\theta_0=\pi/2-0.01$, flight integrated at rtol $10^{-13}$; "
                  r"(d) from random perturbations of the horizontal steady precession, rtol $10^{-9}$", fontsize=10)

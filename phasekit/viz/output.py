@@ -38,9 +38,8 @@ def study_parser(doc: str, *, default_out: Path, quick: bool = True, quick_help:
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter, allow_abbrev=False)
     if quick:
         ap.add_argument("--quick", action="store_true",
-                        help=(quick_help or "a reduced run") + "; writes to <out>/quick/ unless --out is given")
-    ap.add_argument("--out", default=None, metavar="DIR",
-                    help=f"directory for the figures and tables (default: {default_out}, or {Path(default_out) / 'quick'} with --quick)")
+                        help=(quick_help or "a reduced run") + f"; writes to {Path(default_out) / 'quick'} unless --out is given")
+    ap.add_argument("--out", default=None, metavar="DIR", help=f"directory for the figures and tables (default: {default_out})")
     ap.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     ap.set_defaults(default_out=str(default_out))
     return ap
