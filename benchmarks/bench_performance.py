@@ -1,94 +1,192 @@
-"""The speed goals of issue 9, as ratios measured side by side in one run (not timed tests).
+"""The speed goals of issues 9 and 14, as ratios measured side by side in one run (not timed tests).
 
-1. The default path against scipy BDF on a plain NumPy right-hand side, on the standard
-   workload (prolate a = 1.5, mu = 0.1, Coulomb, gyroscopic start theta0 = pi/2 - 0.01,
-   Omega0 = 10.5, to the jump), at equal or better t_jump error: goal >= 1000x.
-2. The default path against the fastest compiled integrator measured in the same run (the raw
-   heyoka propagate on the same compiled Taylor integrator, CVODES BDF and Adams): goal <= 2x.
+Standard workload: prolate a = 1.5, mu = 0.1, Coulomb (exact stick-slip), gyroscopic start
+theta0 = pi/2 - 0.01, Omega0 = 10.5, to the jump (t* = 45.256). phasekit is timed two ways:
+the *sweep path* (``dense=False, track_minima=False``: what the threshold sweeps run, t* only)
+and the *default options* of ``pk.simulate`` (dense output kept for ``traj.sample`` and every
+minimum of R located, which costs a few times the bare integration).
+
+1. phasekit against scipy BDF on a plain NumPy right-hand side, at equal or better t* error:
+   goal >= 1000x (the sweep path; the default options are printed beside it).
+2. phasekit against the bare heyoka propagate on the same compiled Taylor integrator
+   (``pk.taylor_integrator(model, rtol=1e-9, track_minima=False)``, ``propagate_until`` to
+   the lift-off event, nothing else), both at rtol 1e-9: goal <= 1.35x for the sweep path,
+   which is the one compared with bare heyoka (same integrator, same events); the default
+   options' ratio and CVODES BDF and Adams are printed for reference.
 3. A sticking (rolling) trajectory against a sliding one of the same length: goal <= 3x.
    Rolling: the paper's start (5.2), which sticks at t = 0.011 and rolls; sliding: the
-   standard workload. Both to t = 40 (before the standard workload's jump at 45.26).
+   standard workload. Both to t = 40 (before the standard workload's jump), sweep path.
 
-    python benchmarks/bench_performance.py [--repeats N]
+Timings: the median and the best of ``--repeats`` runs, the runs of the compared methods
+interleaved so that a change in machine load hits both sides alike. On a shared machine the
+best run is the better estimate of the intrinsic cost (other processes only ever add time, as
+the timeit documentation notes); both ratios are printed, and a goal is reported met only
+when the median ratio meets it.
+
+    python benchmarks/bench_performance.py [--repeats N] [--json]
+
+With ``--json`` the report goes to stderr and stdout holds one JSON object with the ratios.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
 import statistics
+import sys
 import time
 
 import numpy as np
 
 import phasekit as pk
-from phasekit.backends import TaylorBackend
-from phasekit.baseline import solve_ivp_to_jump
-from phasekit.modes import Mode, mode_events
+from phasekit.viz import run_study
+
+SWEEP = dict(dense=False, track_minima=False)
+GOALS = {"scipy_bdf": 1000.0, "bare_heyoka": 1.35, "rolling_sliding": 3.0}
 
 
-def timed(fn, repeats):
-    out, ts = None, []
+class Timing(float):
+    """A median wall time (the float value) that also carries the best run (``.best``)."""
+
+    def __new__(cls, runs):
+        t = super().__new__(cls, statistics.median(runs))
+        t.best = min(runs)
+        return t
+
+
+def timed(fns: dict, repeats: int) -> tuple[dict, dict]:
+    """Wall time of each callable over ``repeats`` interleaved rounds (after one untimed
+    warm-up call each), and each one's last result."""
+    out = {k: f() for k, f in fns.items()}
+    times = {k: [] for k in fns}
     for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts), out
+        for k, f in fns.items():
+            t0 = time.perf_counter()
+            out[k] = f()
+            times[k].append(time.perf_counter() - t0)
+    return {k: Timing(v) for k, v in times.items()}, out
 
 
-def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--repeats", type=int, default=20)
-    args = ap.parse_args(argv)
-    body = pk.Spheroid(1.5)
-    m = pk.Model(body, pk.Coulomb(0.1))
-    y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5)
-    t_ref = pk.simulate(m, y0, 200.0, rtol=1e-15, track_minima=False).t_jump
-    err = lambda tj: abs(tj - t_ref) / t_ref  # noqa: E731
+def ms(t: Timing) -> str:
+    return f"{t * 1e3:.3f} ms (best {t.best * 1e3:.3f})"
 
-    # 1. scipy BDF on NumPy at rtol 1e-9 (its usual setting), then the default at the loosest
-    # tolerance whose error is no worse
-    t_sp, (tj_sp, _, nfev) = timed(lambda: solve_ivp_to_jump(y0, 200.0, a=1.5, A=body.A, C=body.C, mu=0.1, rtol=1e-9),
-                                   max(1, args.repeats // 10))
+
+def bare_heyoka(model, y0, rtol):
+    """The compiled Taylor integrator of the sliding mode, driven directly."""
+    ta, _ = pk.taylor_integrator(model, rtol=rtol, track_minima=False)
+
+    def run():
+        ta.time = 0.0
+        ta.state[:] = y0
+        ta.reset_cooldowns()
+        return ta.propagate_until(200.0)
+
+    return ta, run
+
+
+def scipy_vs_phasekit(model, body, y0, err, repeats, say) -> dict:
+    t_sp, res = timed({"bdf": lambda: pk.solve_ivp_to_jump(y0, 200.0, a=body.a, A=body.A, C=body.C, mu=0.1, rtol=1e-9)},
+                      max(1, min(3, repeats // 10)))
+    t_sp, (tj_sp, _, nfev) = t_sp["bdf"], res["bdf"]
     e_sp = err(tj_sp)
-    chosen = None
+    # the loosest tolerance whose t* error is no worse than scipy's
     for rt in (1e-6, 1e-7, 1e-8, 1e-9):
-        pk.simulate(m, y0, 200.0, rtol=rt, track_minima=False)
-        t_pk, r = timed(lambda: pk.simulate(m, y0, 200.0, rtol=rt, track_minima=False), args.repeats)
-        if err(r.t_jump) <= e_sp:
-            chosen = (rt, t_pk, err(r.t_jump))
+        if err(pk.simulate(model, y0, 200.0, rtol=rt, **SWEEP).t_jump) <= e_sp:
             break
-    rt, t_pk, e_pk = chosen
-    print("1. default path vs scipy BDF on a NumPy rhs (standard workload)")
-    print(f"   scipy BDF rtol 1e-9: {t_sp * 1e3:9.2f} ms, t* error {e_sp:.1e} ({nfev} rhs)")
-    print(f"   phasekit rtol {rt:.0e}: {t_pk * 1e3:9.3f} ms, t* error {e_pk:.1e}")
-    print(f"   ratio {t_sp / t_pk:.0f}x (goal >= 1000x)")
-    # same tolerance, for reference
-    t_pk9, r9 = timed(lambda: pk.simulate(m, y0, 200.0, rtol=1e-9, track_minima=False), args.repeats)
-    print(f"   (at the same rtol 1e-9: {t_pk9 * 1e3:.3f} ms, error {err(r9.t_jump):.1e}, ratio {t_sp / t_pk9:.0f}x)")
+    t, r = timed({"sweep": lambda: pk.simulate(model, y0, 200.0, rtol=rt, **SWEEP)}, repeats)
+    td, rd = timed({"default": lambda: pk.simulate(model, y0, 200.0, rtol=rt)}, repeats)
+    t.update(td)
+    r.update(rd)
+    say("1. phasekit vs scipy BDF on a NumPy rhs (standard workload, to the jump)")
+    say(f"   scipy BDF rtol 1e-9:                      {t_sp * 1e3:9.2f} ms, t* error {e_sp:.1e} ({nfev} rhs)")
+    say(f"   phasekit rtol {rt:.0e}, sweep path:          {t['sweep'] * 1e3:9.3f} ms, t* error {err(r['sweep'].t_jump):.1e}"
+        f"  ratio {t_sp / t['sweep']:.0f}x (goal >= {GOALS['scipy_bdf']:.0f}x; best runs {t_sp.best / t['sweep'].best:.0f}x)")
+    say(f"   phasekit rtol {rt:.0e}, default options:     {t['default'] * 1e3:9.3f} ms, t* error {err(r['default'].t_jump):.1e}"
+        f"  ratio {t_sp / t['default']:.0f}x (dense output + minima of R; best runs {t_sp.best / t['default'].best:.0f}x)")
+    return {"scipy_bdf_ms": t_sp * 1e3, "scipy_bdf_error": e_sp, "phasekit_rtol": rt, "sweep_ms": t["sweep"] * 1e3,
+            "default_ms": t["default"] * 1e3, "ratio_scipy_bdf_sweep": t_sp / t["sweep"],
+            "ratio_scipy_bdf_sweep_best": t_sp.best / t["sweep"].best,
+            "ratio_scipy_bdf_default": t_sp / t["default"]}
 
-    # 2. fastest compiled integrator in this run, at the default's tolerance 1e-9
-    eng = TaylorBackend(m, 1e-9)
-    evs = mode_events(m, Mode.SLIDING)
-    t_raw, _ = timed(lambda: eng.propagate(Mode.SLIDING, y0, 0.0, 200.0, evs, m.p, max_steps=10**6), args.repeats)
-    for be in ("cvodes", "cvodes-adams"):
-        pk.simulate(m, y0, 200.0, rtol=1e-9, backend=be, track_minima=False)
-    t_bdf, _ = timed(lambda: pk.simulate(m, y0, 200.0, rtol=1e-9, backend="cvodes", track_minima=False), max(1, args.repeats // 4))
-    t_ad, _ = timed(lambda: pk.simulate(m, y0, 200.0, rtol=1e-9, backend="cvodes-adams", track_minima=False), max(1, args.repeats // 4))
-    fastest = min(t_raw, t_bdf, t_ad)
-    print("2. default path vs the fastest compiled integrator (rtol 1e-9)")
-    print(f"   raw heyoka propagate {t_raw * 1e3:.3f} ms; CVODES BDF {t_bdf * 1e3:.2f} ms; CVODES Adams {t_ad * 1e3:.2f} ms")
-    print(f"   default path {t_pk9 * 1e3:.3f} ms = {t_pk9 / fastest:.2f}x the fastest (goal <= 2x)")
 
-    # 3. rolling against sliding over the same time
+def bare_vs_phasekit(model, y0, err, repeats, say) -> dict:
+    ta, bare = bare_heyoka(model, y0, 1e-9)
+    # each phasekit path interleaved with bare heyoka on its own: a default-options run
+    # allocates its dense output (MBs), which would slow whichever run comes next
+    t, r = timed({"bare": bare, "sweep": lambda: pk.simulate(model, y0, 200.0, rtol=1e-9, **SWEEP)}, repeats)
+    t_bare_jump = float(ta.time)
+    td, rd = timed({"bare": bare, "default": lambda: pk.simulate(model, y0, 200.0, rtol=1e-9)}, repeats)
+    t["default"], r["default"] = td["default"], rd["default"]
+    if abs(t_bare_jump - r["sweep"].t_jump) > 1e-12 * t_bare_jump:  # the same integration, or the ratio means nothing
+        raise RuntimeError(f"bare heyoka stopped at t = {t_bare_jump!r}, phasekit's jump is at {r['sweep'].t_jump!r}")
+    cv, _ = timed({be: (lambda be=be: pk.simulate(model, y0, 200.0, rtol=1e-9, backend=be, **SWEEP))
+                   for be in ("cvodes", "cvodes-adams")}, max(1, repeats // 4))
+    say("2. phasekit vs the bare heyoka propagate on the same compiled integrator (rtol 1e-9, to the jump)")
+    say(f"   bare heyoka propagate_until {ms(t['bare'])} (t* = {t_bare_jump:.9f}, error {err(t_bare_jump):.1e})")
+    say(f"   sweep path      {ms(t['sweep'])} = {t['sweep'] / t['bare']:.2f}x bare heyoka (best runs: "
+        f"{t['sweep'].best / t['bare'].best:.2f}x; goal <= {GOALS['bare_heyoka']}x; this is the compared one)")
+    say(f"   default options {ms(t['default'])} = {t['default'] / td['bare']:.2f}x bare heyoka (best runs: "
+        f"{t['default'].best / td['bare'].best:.2f}x; dense output + minima of R; {r['default'].n_steps} steps against "
+        f"{r['sweep'].n_steps})")
+    say(f"   for reference: CVODES BDF {cv['cvodes'] * 1e3:.2f} ms, CVODES Adams {cv['cvodes-adams'] * 1e3:.2f} ms (sweep path)")
+    return {"bare_heyoka_ms": t["bare"] * 1e3, "sweep_rtol1e-9_ms": t["sweep"] * 1e3, "default_rtol1e-9_ms": t["default"] * 1e3,
+            "ratio_sweep_bare_heyoka": t["sweep"] / t["bare"], "ratio_default_bare_heyoka": t["default"] / td["bare"],
+            "ratio_sweep_bare_heyoka_best": t["sweep"].best / t["bare"].best,
+            "ratio_default_bare_heyoka_best": t["default"].best / td["bare"].best,
+            "cvodes_bdf_ms": cv["cvodes"] * 1e3, "cvodes_adams_ms": cv["cvodes-adams"] * 1e3}
+
+
+def rolling_vs_sliding(model, y0, repeats, say) -> dict:
     y52 = np.array([7e-5, 2e-6, 10.5, -1e-4, np.pi / 2 - 1e-3, 2e-2])
-    pk.simulate(m, y52, 40.0, track_minima=False)
-    t_roll, rr = timed(lambda: pk.simulate(m, y52, 40.0, track_minima=False), args.repeats)
-    t_slide, rs = timed(lambda: pk.simulate(m, y0, 40.0, track_minima=False), args.repeats)
-    assert rr.mode == "rolling" and rr.stuck and rs.mode == "sliding" and not rs.stuck
-    print("3. sticking (rolling) against sliding, both to t = 40")
-    print(f"   rolling {t_roll * 1e3:.3f} ms ({rr.n_steps} steps); sliding {t_slide * 1e3:.3f} ms ({rs.n_steps} steps); "
-          f"ratio {t_roll / t_slide:.2f} (goal <= 3)")
+    t, r = timed({"rolling": lambda: pk.simulate(model, y52, 40.0, **SWEEP),
+                  "sliding": lambda: pk.simulate(model, y0, 40.0, **SWEEP)}, repeats)
+    rr, rs = r["rolling"], r["sliding"]
+    if not (rr.mode == "rolling" and rr.stuck and rs.mode == "sliding" and not rs.stuck):
+        raise RuntimeError(f"the workloads changed: rolling run ends {rr.mode} (stuck {rr.stuck}), sliding run ends {rs.mode}")
+    say("3. sticking (rolling) against sliding, both to t = 40 (sweep path)")
+    say(f"   rolling {ms(t['rolling'])} ({rr.n_steps} steps); sliding {ms(t['sliding'])} ({rs.n_steps} steps); "
+        f"ratio {t['rolling'] / t['sliding']:.2f} (best runs {t['rolling'].best / t['sliding'].best:.2f}; "
+        f"goal <= {GOALS['rolling_sliding']:g})")
+    return {"rolling_ms": t["rolling"] * 1e3, "sliding_ms": t["sliding"] * 1e3, "ratio_rolling_sliding": t["rolling"] / t["sliding"],
+            "ratio_rolling_sliding_best": t["rolling"].best / t["sliding"].best}
+
+
+def main(argv=None) -> dict:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter, allow_abbrev=False)
+    ap.add_argument("--repeats", type=int, default=50, help="timed runs per method (default 50; scipy BDF: a tenth, at most 3)")
+    ap.add_argument("--json", action="store_true", help="report on stderr; stdout: one JSON object with the ratios")
+    args = ap.parse_args(argv)
+    if args.repeats < 1:
+        ap.error(f"argument --repeats: must be >= 1, got {args.repeats}")
+    stream = sys.stderr if args.json else sys.stdout
+    say = lambda line: print(line, file=stream, flush=True)  # noqa: E731
+
+    body = pk.Spheroid(1.5)
+    model = pk.Model(body, pk.Coulomb(0.1))
+    y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5)
+    t_ref = pk.simulate(model, y0, 200.0, rtol=1e-15, **SWEEP).t_jump
+    err = lambda tj: abs(tj - t_ref) / t_ref  # noqa: E731
+    say(f"standard workload: reference t* = {t_ref:.12f} (Taylor, rtol 1e-15); median (and best) of {args.repeats} "
+        f"interleaved runs; load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+    out = {"t_ref": t_ref, "repeats": args.repeats}
+    out.update(scipy_vs_phasekit(model, body, y0, err, args.repeats, say))
+    out.update(bare_vs_phasekit(model, y0, err, args.repeats, say))
+    out.update(rolling_vs_sliding(model, y0, args.repeats, say))
+    out["goals"] = GOALS
+    out["load_average"] = os.getloadavg()[0]
+    out["goals_met"] = {"scipy_bdf": out["ratio_scipy_bdf_sweep"] >= GOALS["scipy_bdf"],
+                        "bare_heyoka": out["ratio_sweep_bare_heyoka"] <= GOALS["bare_heyoka"],
+                        "rolling_sliding": out["ratio_rolling_sliding"] <= GOALS["rolling_sliding"]}
+    out["goals_met_best_runs"] = {"scipy_bdf": out["ratio_scipy_bdf_sweep_best"] >= GOALS["scipy_bdf"],
+                                  "bare_heyoka": out["ratio_sweep_bare_heyoka_best"] <= GOALS["bare_heyoka"],
+                                  "rolling_sliding": out["ratio_rolling_sliding_best"] <= GOALS["rolling_sliding"]}
+    say("goals met (median): " + ", ".join(f"{k} {'yes' if v else 'NO'}" for k, v in out["goals_met"].items())
+        + "; on the best runs: " + ", ".join(f"{k} {'yes' if v else 'NO'}" for k, v in out["goals_met_best_runs"].items()))
+    if args.json:
+        print(json.dumps(out))
+    return out
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main, resume="nothing was written; run it again")

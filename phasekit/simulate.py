@@ -6,6 +6,7 @@ the run with the event's status), record it, repeat. Nothing here knows any even
 
 from __future__ import annotations
 
+import functools
 import time
 from dataclasses import replace
 
@@ -30,6 +31,20 @@ POLE_GUARD = 1e-12
 def solver_options(options: SolverOptions | None = None, **overrides) -> SolverOptions:
     """``options`` (default SolverOptions()) with the given fields replaced; unknown names
     are an error naming them."""
+    if options is None:
+        try:  # the same keywords again (a sweep): the validated object from last time
+            return _options_from(tuple(sorted(overrides.items())))
+        except TypeError:  # an unhashable value: validate it below (and say what is wrong)
+            pass
+    return _solver_options(options, **overrides)
+
+
+@functools.lru_cache(maxsize=256)
+def _options_from(items: tuple) -> SolverOptions:
+    return _solver_options(None, **dict(items))
+
+
+def _solver_options(options: SolverOptions | None = None, **overrides) -> SolverOptions:
     if options is not None and not isinstance(options, SolverOptions):
         raise ParameterError("options", "must be a phasekit SolverOptions", options)
     unknown = sorted(set(overrides) - set(SolverOptions.names()))
@@ -89,7 +104,7 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
         raise ParameterError("x0", "has theta at 0 or pi, where the Euler chart is singular (2.7c): use "
                                    "Model(body, law, chart='vector')", x0)
     te = None if t_eval is None else check_times("t_eval", t_eval)
-    system = declare(model, stop_at=stop_at, restitution=restitution, events=events)
+    system = _declared(model, stop_at, restitution, events)
     run = _Run(model, system, opts, t_end, dense=opts.dense or te is not None)
     run.apply(system.initial(model, t0, x0, start_mode))
     while run.status is None:
@@ -98,6 +113,27 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     if throw and traj.status is Status.FAILED:
         raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
     return traj
+
+
+def _declared(model, stop_at, restitution, events):
+    """:func:`phasekit.system.declare`, kept for runs that declare the same system again (a
+    sweep calls simulate thousands of times; declaring costs ~25 us a call, a few % of a run)."""
+    events = tuple(events)
+    try:  # events compare without their reset: key on the reset objects too
+        return _declare_cached(model, stop_at, restitution, events, tuple(id(getattr(e, "reset", None)) for e in events))
+    except TypeError:  # unhashable arguments: declare (which validates them)
+        return declare(model, stop_at=stop_at, restitution=restitution, events=events)
+
+
+@functools.lru_cache(maxsize=64)
+def _declare_cached(model, stop_at, restitution, events, _reset_ids):
+    return declare(model, stop_at=stop_at, restitution=restitution, events=events)
+
+
+def _tracked(flow, track_minima: bool):
+    """``flow``, without its monitor of the minima of R when they are not wanted: the
+    integrator then carries no non-terminal event (fewer steps; the flight's gap maximum stays)."""
+    return flow if track_minima or flow.mode is Mode.FLIGHT else replace(flow, monitor=None)
 
 
 class _Run:
@@ -149,9 +185,7 @@ class _Run:
 
     def step(self) -> None:
         """Propagate the current mode to its first event and handle that event."""
-        flow = self.system.flow(self.mode)
-        if not self.opts.track_minima and flow.mode is not Mode.FLIGHT:
-            flow = replace(flow, monitor=None)
+        flow = _tracked(self.system.flow(self.mode), self.opts.track_minima)
         engine = self.engine(flow)
         events = watched(self.system, self.mode, engine.name)
         extend = self.resume  # a non-terminal event or a graze: the same segment goes on
@@ -228,17 +262,20 @@ class _Run:
         return traj
 
 
-def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump", rtol: float = 1e-9, events=()):
+def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump", rtol: float = 1e-9, events=(),
+                      track_minima: bool = True):
     """The compiled heyoka integrator phasekit uses for one mode, for users (and benchmarks)
     who want to drive heyoka directly: returns (integrator, parameters). Its terminal events
     are the mode's guards (lift-off first, ...) with the levels of ``events`` appended; set
-    ``integrator.pars[:] = parameters`` (done here) and ``integrator.state``/``.time``."""
+    ``integrator.pars[:] = parameters`` (done here) and ``integrator.state``/``.time``.
+    ``track_minima=False``: the integrator simulate uses with that option (no monitor of the
+    minima of R)."""
     from .backends import TaylorEngine
 
     mode = Mode(mode)
     system = declare(model, stop_at=stop_at, events=events)
     evs = watched(system, mode, "taylor")
-    cflow = model.compile_flow(system.flow(mode), evs)
+    cflow = model.compile_flow(_tracked(system.flow(mode), track_minima), evs)
     ta, _, npar = TaylorEngine(solver_options(rtol=rtol).rtol)._integrator(cflow, len(model.p))
     pars = np.concatenate([model.p, [e.level for e in evs]])[:npar]
     ta.pars[:] = pars

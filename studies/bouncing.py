@@ -13,22 +13,20 @@ suggest. It fails: the tangential impulse of each impact is Coulomb-limited too,
 impacts the normal impulse per unit time equals the weight, so the mean friction stays near
 mu M g however much of the time is spent in flight.
 
-Writes figures/bouncing.png and figures/bouncing.csv.
+Writes bouncing.png and bouncing.csv to figures/ (figures/quick/ with --quick, or --out DIR).
 
-    python studies/bouncing.py [--quick]
+    python studies/bouncing.py [--quick] [--out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
-import csv
 import time
 from pathlib import Path
 
 import numpy as np
 
 import phasekit as pk
-from phasekit.gyroscopic import gyroscopic_closed, jellett_constant
+from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 MU, A_RATIO = 0.1, 1.5
@@ -38,7 +36,7 @@ def fit_mu(ts, theta, J, theta0):
     """Least-squares mu for theta(t) ~ (3.18) with T = mu t; returns (mu, standard error)."""
     from scipy.optimize import curve_fit
 
-    f = lambda t, mu: gyroscopic_closed(A_RATIO, J, theta0, mu * t)[0]  # noqa: E731
+    f = lambda t, mu: pk.gyroscopic_closed(A_RATIO, J, theta0, mu * t)[0]  # noqa: E731
     p, cov = curve_fit(f, ts, theta, p0=[MU])
     return float(p[0]), float(np.sqrt(cov[0, 0]))
 
@@ -47,61 +45,74 @@ def run(omega0: float, e: float):
     body = pk.Spheroid(A_RATIO)
     model = pk.Model(body, pk.Coulomb(MU))
     y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=omega0)
-    J = float(jellett_constant(body, y0[4], y0[2]))
+    J = float(pk.jellett_constant(body, y0[4], y0[2]))
     dt = 2 * np.pi / omega0  # one sample per fast period: residuals roughly independent
     te = np.arange(0.0, 1000.0, dt)
-    r = pk.simulate(model, y0, 1000.0, stop_at="none", restitution=e, rise_theta=0.05, t_eval=te, max_switches=500_000,
-                    track_minima=False)
-    mu_e, s_fit = fit_mu(r.ts, r.ys[:, 4], J, y0[4])
+    rise = pk.Event("theta", 0.05, direction=-1, name="rise-complete")  # the end of the rise
+    # dense output kept to sample theta; the fit uses the samples that fall in contact (the
+    # gyroscopic solution describes the body on the table)
+    r = pk.simulate(model, y0, 1000.0, stop_at="none", restitution=e, events=[rise], max_switches=500_000,
+                    track_minima=False, dense=True)
+    t0s, t1s = np.array([(s.t0, s.t1) for s in r.segments if s.mode is not pk.Mode.FLIGHT]).T
+    k = np.searchsorted(t0s, te, side="right") - 1  # the last contact segment starting before each sample
+    ts = te[(k >= 0) & (te <= t1s[np.maximum(k, 0)])]
+    theta = r.states(ts)[:, 4]
+    mu_e, s_fit = fit_mu(ts, theta, J, y0[4])
     bias = np.nan
-    if r.t_jump is not None and np.sum(r.ts <= r.t_jump) > 5:
-        sel = r.ts <= r.t_jump
-        mu_pre, _ = fit_mu(r.ts[sel], r.ys[sel, 4], J, y0[4])
+    if r.t_jump is not None and np.sum(ts <= r.t_jump) > 5:
+        sel = ts <= r.t_jump
+        mu_pre, _ = fit_mu(ts[sel], theta[sel], J, y0[4])
         bias = abs(mu_pre / MU - 1)
     flight_time = sum((f.t_touchdown or r.t) - f.t_liftoff for f in r.flights)
-    kinds = [ev.kind for ev in r.events]
+    kinds = [ev.name for ev in r.events]
     return dict(omega0=omega0, e=e, status=r.status.value, t_rise=r.t, mu_e=mu_e, s_fit=s_fit, bias=bias,
                 flight_fraction=flight_time / r.t, n_liftoff=kinds.count("lift-off"), n_impact=kinds.count("impact"),
                 wall_s=r.wall_s, t_jump=r.t_jump)
 
 
-def main(argv=None) -> list[dict]:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true")
-    args = ap.parse_args(argv)
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    t0 = time.perf_counter()
-    es = (0.0, 0.6) if args.quick else (0.0, 0.3, 0.6, 0.9)
-    omegas = (11.0, 20.0) if args.quick else (11.0, 15.0, 20.0, 30.0)
-    rows = [run(om, e) for om in omegas for e in es]
-    control = run(9.0, 0.5)  # below the jump threshold: no flight, the method's calibration
-    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+def draw(plt, rows, control, omegas):
+    """(a) mu_e / mu with error bars; (b) the naive estimate 1 - (fraction of the rise in flight)."""
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 4.8))
     for k, om in enumerate(omegas):
         sub = [r for r in rows if r["omega0"] == om]
         err = [np.hypot(r["s_fit"] / MU, 0.0 if np.isnan(r["bias"]) else r["bias"]) for r in sub]
         x = np.array([r["e"] for r in sub]) + 0.012 * (k - len(omegas) / 2)
-        ax.errorbar(x, [r["mu_e"] / MU for r in sub], yerr=err, fmt="o-", ms=4, capsize=3, label=fr"$\Omega_0={om:g}$")
-        ax.plot(x, [1 - r["flight_fraction"] for r in sub], ls=":", color=ax.lines[-1].get_color(), lw=1)
+        ax.errorbar(x, [r["mu_e"] / MU for r in sub], yerr=err, fmt="o-", ms=4, capsize=3, color=f"C{k}",
+                    label=fr"$\Omega_0={om:g}$")
+        bx.plot(x, [1 - r["flight_fraction"] for r in sub], "o:", ms=4, color=f"C{k}", label=fr"$\Omega_0={om:g}$")
     ax.axhline(control["mu_e"] / MU, color="0.5", ls="--", lw=1, label=fr"no jump ($\Omega_0=9$): fit gives {control['mu_e'] / MU:.4f}")
-    ax.axhline(1.0, color="k", lw=0.6)
-    ax.set_xlabel(r"coefficient of restitution $e$")
-    ax.set_ylabel(r"effective friction $\mu_e/\mu$")
-    ax.set_title(r"Whole rise with bouncing, $a=1.5$, $\mu=0.1$; dotted: naive $1-$(fraction of time in flight)", fontsize=9)
-    ax.legend(fontsize=8)
+    for a, where in ((ax, "lower right"), (bx, "lower left")):
+        a.axhline(1.0, color="k", lw=0.6)
+        a.set_xlabel(r"coefficient of restitution $e$")
+        a.legend(fontsize=8, loc=where, ncol=2, title=r"$\Omega_0$ in units $\sqrt{g/b}$", title_fontsize=8)
+    lo = min(r["mu_e"] / MU - np.hypot(r["s_fit"] / MU, np.nan_to_num(r["bias"])) for r in rows)
+    ax.set_ylim(lo - 0.6 * (1.005 - lo), 1.005)  # room below the bars for the legend
+    ax.set_ylabel(r"effective friction $\mu_e/\mu$ (fit of (3.18) to $\theta(t)$)")
+    ax.set_title("(a) mu_e / mu; error bars: fit error and the method's bias (fit before the first lift-off)", fontsize=9)
+    bx.set_ylim(0, 1.05)
+    bx.set_ylabel(r"$1 -$ (fraction of the rise spent in flight)")
+    bx.set_title("(b) the naive estimate mu_e / mu ~ 1 - (flight fraction): far off", fontsize=9)
+    fig.suptitle(r"Whole rise with bouncing: prolate $a=1.5$, Coulomb $\mu=0.1$, sliding-branch start "
+                 r"$\theta_0=\pi/2-0.01$, to $\theta = 0.05$; rtol $10^{-9}$", fontsize=10)
     fig.tight_layout()
-    FIGURES.mkdir(exist_ok=True)
-    png = FIGURES / "bouncing.png"
-    fig.savefig(png, dpi=130)
-    plt.close(fig)
-    with open(FIGURES / "bouncing.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        for r in rows + [control]:
-            w.writerow(r)
+    return fig
+
+
+def main(argv=None) -> list[dict]:
+    ap = study_parser(__doc__, default_out=FIGURES, quick_help="Omega0 = 11, 20 and e = 0, 0.6 only")
+    args = ap.parse_args(argv)
+    out = output_dir(args)
+    plt = pyplot()
+
+    t0 = time.perf_counter()
+    es = (0.0, 0.3, 0.6, 0.9) if not args.quick else (0.0, 0.6)
+    omegas = (11.0, 15.0, 20.0, 30.0) if not args.quick else (11.0, 20.0)
+    # below the jump threshold last (Omega0 = 9): no flight, the method's calibration
+    todo = [(om, e) for om in omegas for e in es] + [(9.0, 0.5)]
+    *rows, control = [run(om, e) for om, e in progress(todo, desc="rises", enabled=not args.no_progress)]
+    fig = draw(plt, rows, control, omegas)
+    png = save_figure(fig, out / "bouncing.png")
+    write_csv(out / "bouncing.csv", list(rows[0]), rows + [control])
     print(f"Figure {png.name}: mu_e / mu from fits of (3.18) over the whole bouncing rise; {time.perf_counter() - t0:.1f} s.")
     print(f"{'Omega0':>6s} {'e':>4s} {'rise t':>7s} {'lift-offs':>9s} {'impacts':>8s} {'flight %':>8s} {'mu_e/mu':>8s} "
           f"{'+-fit':>7s} {'bias':>7s} {'1-flight':>8s}")
@@ -113,4 +124,4 @@ def main(argv=None) -> list[dict]:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main)

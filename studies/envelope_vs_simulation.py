@@ -11,16 +11,14 @@ Means: the average over each fast period (between successive located minima of R
 Errors (RMS and max over the rise up to the jump) of the gyroscopic theta-bar and of Sigma
 against the simulated minima of R, and their trend in Omega0 (10.5, 20, 40) and n0.
 
-Writes figures/envelope_vs_simulation.png and figures/envelope_vs_simulation.csv
-(columns case, t, theta_bar, sigma, r_min_sim).
+Writes envelope_vs_simulation.png and envelope_vs_simulation.csv (columns case, t, theta_bar,
+sigma, r_min_sim, sigma_c_eff, c, c_eff) to figures/ (figures/quick/ with --quick, or --out DIR).
 
-    python studies/envelope_vs_simulation.py [--quick]
+    python studies/envelope_vs_simulation.py [--quick] [--out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
-import csv
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -28,9 +26,7 @@ from pathlib import Path
 import numpy as np
 
 import phasekit as pk
-from phasekit.api import choose_formulation
-from phasekit.gyroscopic import gyroscopic_closed, jellett_constant
-from phasekit.multiscale import Gamma_closed, Sigma, mean_over_periods, omega2, omega_gyro, perturbation_from_c_xi, slow_rates
+from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 MU = 0.1
@@ -61,28 +57,30 @@ def run_case(case: Case, t_max: float, dt: float):
     body = pk.Spheroid(case.a)
     y0 = pk.gyroscopic_start(body, case.theta0, omega0=case.omega0, n0=case.n0)
     om_bar0 = float(y0[2])
-    th_p, lam_p, om_p = perturbation_from_c_xi(body, case.theta0, om_bar0, MU, case.c, case.xi)
+    th_p, lam_p, om_p = pk.perturbation_from_c_xi(body, case.theta0, om_bar0, MU, case.c, case.xi)
     y = y0.copy()
     # O(mu) mean state: the drift U = F_y / Omega of (2.7b) and the rise rate mu dtheta/dT of (3.16b);
     # without them the start carries an extra nutation of a few times c.
-    _, dth_dT, vhat, _ = slow_rates(body, case.theta0, om_bar0)
+    _, dth_dT, vhat, _ = pk.slow_rates(body, case.theta0, om_bar0)
     y[0] += -MU * vhat / om_bar0
     y[3] += MU * dth_dT
     y[4] += th_p
     y[3] += lam_p
     y[2] += om_p
     model = pk.Model(body, pk.Coulomb(MU))
-    rise = 0.05 if case.a > 1 else np.pi / 2 - 0.05
-    probe = pk.simulate(model, y, t_max, rise_theta=rise, track_minima=False)
-    te = np.arange(0.0, probe.t, dt)
-    r = pk.simulate(model, y, t_max, rise_theta=rise, t_eval=te)
-    J = float(jellett_constant(body, case.theta0, om_bar0))
-    ts, ys = r.ts, r.ys
+    # the rise is complete when theta passes 0.05 (prolate, falling) or pi/2 - 0.05 (oblate, rising)
+    rise = (pk.Event("theta", 0.05, direction=-1, name="rise-complete") if case.a > 1 else
+            pk.Event("theta", np.pi / 2 - 0.05, direction=+1, name="rise-complete"))
+    r = pk.simulate(model, y, t_max, events=[rise])  # dense output (the default), sampled below
+    J = float(pk.jellett_constant(body, case.theta0, om_bar0))
+    ts = np.arange(0.0, r.t, dt)
+    ys = r.states(ts)  # the Euler chart: the paper's (U, V, Omega, Lambda, theta, n)
+    theta, Omega = ys[:, 4], ys[:, 2]
     tm, Rm = r.minima[:, 0], r.minima[:, 1]
     # fast-period means between successive minima of R
-    t_mid, th_bar = mean_over_periods(ts, ys[:, 4], tm)
-    _, om_bar = mean_over_periods(ts, ys[:, 2], tm)
-    th_gyro, om_gyro = gyroscopic_closed(case.a, J, case.theta0, MU * t_mid)
+    t_mid, th_bar = pk.mean_over_periods(ts, theta, tm)
+    _, om_bar = pk.mean_over_periods(ts, Omega, tm)
+    th_gyro, om_gyro = pk.gyroscopic_closed(case.a, J, case.theta0, MU * t_mid)
     # Sigma at the simulated mean inclination at each minimum of R
     th_at_min = np.interp(tm, t_mid, th_bar) if t_mid.size else np.full_like(tm, np.nan)
     valid = (tm >= t_mid[0]) & (tm <= t_mid[-1]) if t_mid.size else np.zeros_like(tm, bool)
@@ -90,19 +88,19 @@ def run_case(case: Case, t_max: float, dt: float):
     sig_fit = np.full_like(tm, np.nan)
     c_eff = np.nan
     if valid.any():
-        sig[valid] = Sigma(body, J, case.theta0, th_at_min[valid], case.c, form="closed")
+        sig[valid] = pk.Sigma(body, J, case.theta0, th_at_min[valid], case.c, form="closed")
         # effective amplitude of the start: fitted on the first 30% of the minima only, so that
         # the rest of the rise tests the growth law Gamma(theta-bar) out of sample
         idx = np.flatnonzero(valid)
         early = idx[: max(3, int(0.3 * idx.size))]
         th_e = th_at_min[early]
         om_e = J / (body.A * body.h(th_e)[0])
-        scale = np.abs(body.h(th_e)[1] * omega_gyro(body, th_e, om_e) ** 2 * Gamma_closed(body, J, case.theta0, th_e))
+        scale = np.abs(body.h(th_e)[1] * pk.omega_gyro(body, th_e, om_e) ** 2 * pk.Gamma_closed(body, J, case.theta0, th_e))
         c_eff = float(np.median((1 - d_rm(Rm, early)) / scale)) * np.sign(case.c)
-        sig_fit[valid] = Sigma(body, J, case.theta0, th_at_min[valid], c_eff, form="closed")
-    return dict(case=case, body=body, res=r, ts=ts, ys=ys, R=model.normal_reaction(ys), tm=tm, Rm=Rm, t_mid=t_mid,
+        sig_fit[valid] = pk.Sigma(body, J, case.theta0, th_at_min[valid], c_eff, form="closed")
+    return dict(case=case, body=body, res=r, ts=ts, theta=theta, R=model.normal_reaction(ys), tm=tm, Rm=Rm, t_mid=t_mid,
                 th_bar=th_bar, om_bar=om_bar, th_gyro=th_gyro, om_gyro=om_gyro, th_at_min=th_at_min, sigma=sig,
-                sigma_fit=sig_fit, c_eff=c_eff, J=J, omega_fast=float(np.sqrt(omega2(body, case.theta0, om_bar0))), valid=valid)
+                sigma_fit=sig_fit, c_eff=c_eff, J=J, omega_fast=float(np.sqrt(pk.omega2(body, case.theta0, om_bar0))), valid=valid)
 
 
 def d_rm(Rm, idx):
@@ -130,38 +128,25 @@ def literal_starts():
         ("(5.2) prolate Omega0=10.5", b15, [7e-5, 2e-6, 10.5, -1e-4, np.pi / 2 - 1e-3, 2e-2], 300.0),
         ("(5.1) oblate n0=10.5", b23, [8e-7, 4e-6, 0.4 * 10.5 / b23.A, 1e-5, 4e-6, 10.5], 300.0),
     ]:
-        chart = choose_formulation(y[4])
+        chart = pk.choose_formulation(y[4])
         m = pk.Model(body, pk.Coulomb(MU), chart)
         r = pk.simulate(m, pk.to_chart(chart, y), t_max)
         out.append((label, r))
     return out
 
 
-def main(argv=None) -> dict:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true", help="coarser output grid; trend in Omega0 only")
-    args = ap.parse_args(argv)
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    t0 = time.perf_counter()
-    dt = 0.01 if args.quick else 0.003
-    runs = [run_case(c, 400.0, dt) for c in PAPER_CASES]
-    trend_cases = TREND[:3] if args.quick else TREND
-    trends = [run_case(c, 400.0, dt) for c in trend_cases]
-    lits = literal_starts()
-
-    # --- figure: 3 rows x 2 columns (oblate | prolate)
+def draw(plt, runs):
+    """3 rows x 2 columns (oblate | prolate): the mean state against the gyroscopic solution,
+    then R with its minima and Sigma for the two cases of each figure."""
     fig, axes = plt.subplots(3, 2, figsize=(12, 9))
     for col, pair in enumerate((runs[0:2], runs[2:4])):
         d = pair[1]  # the jumping (larger) case for the mean-state panel
         ax = axes[0, col]
-        ax.plot(d["ts"], d["ys"][:, 4], color="0.6", lw=0.5, label=r"$\theta$ simulated")
+        ax.plot(d["ts"], d["theta"], color="0.6", lw=0.5, label=r"$\theta$ simulated")
         ax.plot(d["t_mid"], d["th_bar"], color="k", lw=1.0, label=r"$\bar\theta$ (period means)")
         ax.plot(d["t_mid"], d["th_gyro"], color="C3", lw=2, ls="--", label=r"$\bar\theta$ gyroscopic (3.18)")
         ax.set_ylabel(r"$\theta$ (rad)")
+        ax.set_xlabel(r"time $t$ (units $\sqrt{b/g}$)")
         ax2 = ax.twinx()
         ax2.plot(d["t_mid"], d["om_bar"], color="C0", lw=1.0, label=r"$\bar\Omega$ simulated")
         ax2.plot(d["t_mid"], d["om_gyro"], color="C0", lw=2, ls=":", label=r"$\bar\Omega = J/(Ah)$")
@@ -184,23 +169,40 @@ def main(argv=None) -> dict:
             ax.set_ylim(-0.1, 2.2)
             ax.legend(fontsize=7, loc="upper left")
         axes[2, col].set_xlabel(r"time $t$ (units $\sqrt{b/g}$)")
-    fig.suptitle(r"Figs. 3 and 4: exact dynamics (Coulomb $\mu=0.1$) against the gyroscopic solution and $\Sigma$", fontsize=11)
+    fig.suptitle(r"Figs. 3 and 4: exact dynamics (Coulomb $\mu=0.1$, rtol $10^{-9}$) against the gyroscopic solution and $\Sigma$;"
+                 "\nstarts on the sliding branch with the nutation of amplitude $c$ (3.46); minima of $R$ located as events",
+                 fontsize=11)
     fig.tight_layout()
-    FIGURES.mkdir(exist_ok=True)
-    png = FIGURES / "envelope_vs_simulation.png"
-    fig.savefig(png, dpi=120)
-    plt.close(fig)
+    return fig
+
+
+def main(argv=None) -> dict:
+    ap = study_parser(__doc__, default_out=FIGURES, quick_help="coarser output grid; trend in Omega0 only")
+    args = ap.parse_args(argv)
+    out_dir = output_dir(args)
+    plt = pyplot()
+
+    t0 = time.perf_counter()
+    dt = 0.01 if args.quick else 0.003
+    trend_cases = TREND[:3] if args.quick else TREND
+    runs, trends = [], []
+    with progress(total=len(PAPER_CASES) + len(trend_cases) + 2, desc="simulations", enabled=not args.no_progress) as bar:
+        for cases, out in ((PAPER_CASES, runs), (trend_cases, trends)):
+            for c in cases:
+                out.append(run_case(c, 400.0, dt))
+                bar.update()
+        lits = literal_starts()
+        bar.update(2)
+
+    fig = draw(plt, runs)
+    png = save_figure(fig, out_dir / "envelope_vs_simulation.png", dpi=120)
 
     # --- csv
-    path = FIGURES / "envelope_vs_simulation.csv"
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["case", "t", "theta_bar", "sigma", "r_min_sim", "sigma_c_eff", "c", "c_eff"])
-        for d in runs + trends:
-            for t, th, s, rm, sf, ok in zip(d["tm"], d["th_at_min"], d["sigma"], d["Rm"], d["sigma_fit"], d["valid"]):
-                if ok:
-                    w.writerow([d["case"].label, f"{t:.6f}", f"{th:.8f}", f"{s:.8f}", f"{rm:.8f}", f"{sf:.8f}",
-                                d["case"].c, f"{d['c_eff']:.6g}"])
+    rows = [[d["case"].label, f"{t:.6f}", f"{th:.8f}", f"{s:.8f}", f"{rm:.8f}", f"{sf:.8f}", d["case"].c, f"{d['c_eff']:.6g}"]
+            for d in runs + trends
+            for t, th, s, rm, sf, ok in zip(d["tm"], d["th_at_min"], d["sigma"], d["Rm"], d["sigma_fit"], d["valid"]) if ok]
+    path = write_csv(out_dir / "envelope_vs_simulation.csv",
+                     ["case", "t", "theta_bar", "sigma", "r_min_sim", "sigma_c_eff", "c", "c_eff"], rows)
 
     # --- report
     print(f"Figure {png.name}: R(t), Sigma and the gyroscopic mean state for {len(runs)} cases; table {path.name}; "
@@ -220,10 +222,10 @@ def main(argv=None) -> dict:
     print("Jellett constants: the paper quotes J = 4, 4.2 (Fig. 3, oblate; = C n0) and 6.63, 6.83 (Fig. 4, prolate; = A Omega0 h);"
           " here J = A Omega h (3.17) throughout (NOTES pitfall 4).")
     for label, r in lits:
-        ev = ", ".join(f"{e.kind} t={e.t:.4g}" for e in r.events[:3])
+        ev = ", ".join(f"{e.name} t={e.t:.4g}" for e in r.events[:3])
         print(f"literal start {label}: {r.status.value}, events: {ev or 'none'}; theta_end = {r.euler_end[4]:.6f}")
     return out
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main)

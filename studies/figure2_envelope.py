@@ -5,21 +5,20 @@ J in {6.20, 6.50, 6.63, 6.70, 6.83, 7.15, 8.45, 13}, Sigma from (3.64) with the 
 (3.47) and (3.58) as in the paper; dashed after Sigma first reaches 0 (the jump, beyond which
 the envelope no longer applies). Also prints, for each J, the inclination of the predicted
 jump with the closed form and with the quadrature form of I (exact I2 instead of its
-dominant part (3.57)). Writes figures/figure2_envelope.png.
+dominant part (3.57)). Writes figure2_envelope.png (figures/ by default).
 
-    python studies/figure2_envelope.py
+    python studies/figure2_envelope.py [--quick] [--out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
 import time
 from pathlib import Path
 
 import numpy as np
 
 import phasekit as pk
-from phasekit.multiscale import Sigma
+from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 J_VALUES = (6.20, 6.50, 6.63, 6.70, 6.83, 7.15, 8.45, 13.0)
@@ -38,22 +37,20 @@ def first_zero(theta, sig):
 
 
 def main(argv=None) -> dict:
-    argparse.ArgumentParser(description=__doc__).parse_args(argv)
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    args = study_parser(__doc__, default_out=FIGURES, quick_help="the same run (it is short)").parse_args(argv)
+    out_dir = output_dir(args)
+    plt = pyplot()
 
     t0 = time.perf_counter()
     body = pk.Spheroid(A_RATIO)
     theta = np.linspace(THETA0, 0.02, 1500)
     coarse = np.linspace(THETA0, 0.02, 120)
-    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    fig, ax = plt.subplots(figsize=(9.2, 4.8))
     out = {}
-    for k, J in enumerate(J_VALUES):
-        sig = Sigma(body, J, THETA0, theta, C_AMP, form="closed")
+    for k, J in enumerate(progress(J_VALUES, desc="Jellett constants", enabled=not args.no_progress)):
+        sig = pk.Sigma(body, J, THETA0, theta, C_AMP, form="closed")
         z = first_zero(theta, sig)
-        zq = first_zero(coarse, Sigma(body, J, THETA0, coarse, C_AMP, form="gyro"))
+        zq = first_zero(coarse, pk.Sigma(body, J, THETA0, coarse, C_AMP, form="gyro"))
         out[J] = (z, zq)
         thick = J >= 8.0
         col = plt.get_cmap("viridis")(k / (len(J_VALUES) - 1))
@@ -67,15 +64,12 @@ def main(argv=None) -> dict:
     ax.set_ylim(-0.6, 1.05)
     ax.set_xlim(0, np.pi / 2)
     ax.invert_xaxis()  # the body rises from theta-bar = pi/2 toward 0
-    ax.set_xlabel(r"mean inclination $\bar\theta$ (rad); the rise runs right to left")
+    ax.set_xlabel(r"mean inclination $\bar\theta$ (rad); the rise runs left to right")
     ax.set_ylabel(r"envelope $\Sigma$ of the minima of $R$ (units $Mg$)")
     ax.set_title(r"Fig. 2: $a=1.5$, $c=-0.00054$, $\bar\theta_0=\pi/2-10^{-4}$; dashed after $\Sigma=0$ (jump)", fontsize=10)
-    ax.legend(fontsize=8, ncol=2, loc="lower left")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), title="Jellett constant\n" + r"$J = A\Omega h$", title_fontsize=8)
     fig.tight_layout()
-    FIGURES.mkdir(exist_ok=True)
-    path = FIGURES / "figure2_envelope.png"
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    path = save_figure(fig, out_dir / "figure2_envelope.png")
     print(f"Figure {path.name}: Sigma (3.64) against theta-bar, closed forms (3.47), (3.58); {time.perf_counter() - t0:.1f} s.")
     print(f"{'J':>6s} {'theta-bar at Sigma = 0 (closed form)':>38s} {'(quadrature, exact I2)':>24s}")
     for J, (z, zq) in out.items():
@@ -85,4 +79,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main)

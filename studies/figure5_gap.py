@@ -8,118 +8,132 @@ computed Omega* and W*. (d) Delta_max for an ensemble of random perturbations of
 steady precession, for Omega0 from 10 to 40: the exact maximum of the flight and (4.23), with
 the paper's bound (4.65/Omega0)^5; prints how many points exceed it.
 
-Writes figures/figure5_gap.png and figures/figure5_gap.csv (one row per ensemble member).
+Writes figure5_gap.png and figure5_gap.csv (one row per ensemble member) to figures/
+(figures/quick/ with --quick, or --out DIR).
 
-    python studies/figure5_gap.py [--quick] [--seed N]
+    python studies/figure5_gap.py [--quick] [--seed N] [--out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
-import csv
 import time
 from pathlib import Path
 
 import numpy as np
 
 import phasekit as pk
-from phasekit.fixedpoints import horizontal_state
-from phasekit.flight import flight_constants, fly, gap_exact, gap_max_series, gap_series
+from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 MU, A_RATIO = 0.1, 1.5
 
 
-def first_flight(model, x0, t_max=400.0):
-    r = pk.simulate(model, x0, t_max, stop_at="touchdown", rise_theta=0.05, track_minima=False)
-    return r
+#: the rise is complete (no jump any more) once theta falls through 0.05
+RISE = pk.Event("theta", 0.05, direction=-1, name="rise-complete")
 
 
-def main(argv=None) -> dict:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--seed", type=int, default=2006)
-    args = ap.parse_args(argv)
-    import matplotlib
+def first_flight(model, x0, t_max=400.0, dense=False):
+    """To the first touchdown (status "touchdown"), or the end of the rise ("stopped")."""
+    return pk.simulate(model, x0, t_max, stop_at="touchdown", events=[RISE], track_minima=False, dense=dense)
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
 
-    t0 = time.perf_counter()
-    body = pk.Spheroid(A_RATIO)
-    model = pk.Model(body, pk.Coulomb(MU))
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8))
+def flights_abc(axes, model, body) -> list:
+    """(a-c): the first flight from the sliding-branch start for Omega0 = 11, 20, 30, drawn
+    and tabulated."""
     print("Figure 5a-c: first flight from the sliding-branch start (theta0 = pi/2 - 0.01)")
     print(f"{'Omega0':>6s} {'t*':>8s} {'W*':>9s} {'Omega*':>8s} {'W* Omega*':>9s} {'flight':>8s} {'Dmax exact':>11s} "
           f"{'(4.23)':>11s} {'rel err':>8s} {'(4.22) curve err':>16s}")
     rows_abc = []
-    for ax, om in zip(axes.flat[:3], (11.0, 20.0, 30.0)):
+    for ax, om in zip(axes, (11.0, 20.0, 30.0)):
         y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=om)
         r = first_flight(model, y0)
         fl = r.flights[0]
         T = fl.t_touchdown - fl.t_liftoff
         te = fl.t_liftoff + np.linspace(0, T, 400)
-        dense = fly(model, r.x_jump, r.t_jump, r.t_jump + 2 * T, rtol=1e-13, t_eval=te)
-        k = flight_constants(body, r.x_jump, fl.W_star)
-        tt = dense.ts - fl.t_liftoff
-        exact = gap_exact(body, k, tt)
-        series = gap_series(fl.Omega_star, fl.W_star, tt)
-        gm, tgm = gap_max_series(fl.Omega_star, fl.W_star)
+        # the flight again at rtol 1e-13, its states (with the gap, index 8) from the dense output
+        gaps = pk.fly(model, r.x_jump, r.t_jump, r.t_jump + 2 * T, rtol=1e-13).segments[0].states(te)[:, 8]
+        k = pk.flight_constants(body, r.x_jump, fl.W_star)
+        tt = te - fl.t_liftoff
+        exact = pk.gap_exact(body, k, tt)
+        series = pk.gap_series(fl.Omega_star, fl.W_star, tt)
+        gm, tgm = pk.gap_max_series(fl.Omega_star, fl.W_star)
         rel = gm / fl.gap_max - 1
         curve = float(np.max(np.abs(series - exact)) / np.max(exact))
         rows_abc.append((om, rel, curve, fl.W_star * fl.Omega_star))
         print(f"{om:6.1f} {r.t_jump:8.3f} {fl.W_star:9.5f} {fl.Omega_star:8.3f} {fl.W_star * fl.Omega_star:9.4f} {T:8.5f} "
               f"{fl.gap_max:11.4e} {gm:11.4e} {rel:+8.3f} {curve:16.3e}")
-        ax.plot(tt, dense.gaps, color="k", lw=1.8, label="numerical flight")
+        ax.plot(tt, gaps, color="k", lw=1.8, label="numerical flight")
         ax.plot(tt, exact, color="C2", lw=1, ls=":", label="exact (4.1)+(4.12)")
         ax.plot(tt, np.maximum(series, 0), color="C3", ls="--", label=r"series (4.22)")
-        ax.set_title(fr"({'abc'[len(rows_abc) - 1]}) $\Omega_0={om:g}$: $W_*={fl.W_star:.4f}$, $\Omega_*={fl.Omega_star:.2f}$", fontsize=9)
+        ax.set_title(fr"({'abc'[len(rows_abc) - 1]}) $\Omega_0={om:g}$: $W_*={fl.W_star:.4f}$, $\Omega_*={fl.Omega_star:.2f}$; "
+                     fr"$\Delta_{{max}}$ of (4.23) {100 * rel:+.1f}%", fontsize=9)
         ax.set_xlabel(r"time since lift-off $t-t_*$ (units $\sqrt{b/g}$)")
         ax.set_ylabel(r"gap $\Delta$ (units $b$)")
         ax.legend(fontsize=8)
+    return rows_abc
 
-    # (d) ensemble
-    rng = np.random.default_rng(args.seed)
-    omegas = np.arange(10.0, 41.0, 5.0 if args.quick else 2.5)
-    n_each = 5 if args.quick else 10
+
+def ensemble(model, omegas, n_each, seed, show_progress) -> list:
+    """(d): first flights from random perturbations of amplitude 0.05 of the horizontal state."""
+    rng = np.random.default_rng(seed)
     recs = []
-    for om in omegas:
-        for j in range(n_each):
-            v = rng.standard_normal(6)
-            v /= np.linalg.norm(v)
-            x0 = horizontal_state(om) + 0.05 * v
-            r = first_flight(model, x0)
-            if r.status is not pk.Status.TOUCHDOWN:
-                recs.append((om, j, r.status.value, np.nan, np.nan, np.nan, np.nan, r.stuck))
-                continue
-            fl = r.flights[0]
-            gm, _ = gap_max_series(fl.Omega_star, fl.W_star)
-            recs.append((om, j, "touchdown", fl.gap_max, gm, fl.W_star, fl.Omega_star, r.stuck))
+    with progress(total=len(omegas) * n_each, desc="ensemble", enabled=show_progress) as bar:
+        for om in omegas:
+            for j in range(n_each):
+                v = rng.standard_normal(6)
+                v /= np.linalg.norm(v)
+                x0 = pk.horizontal_state(om) + 0.05 * v
+                r = first_flight(model, x0)
+                bar.update()
+                if r.status is not pk.Status.TOUCHDOWN:
+                    recs.append((om, j, r.status.value, np.nan, np.nan, np.nan, np.nan, r.stuck))
+                    continue
+                fl = r.flights[0]
+                gm, _ = pk.gap_max_series(fl.Omega_star, fl.W_star)
+                recs.append((om, j, "touchdown", fl.gap_max, gm, fl.W_star, fl.Omega_star, r.stuck))
+    return recs
+
+
+def draw_ensemble(ax, recs, omegas, seed) -> tuple[int, int, np.ndarray]:
     recs_a = np.array([(q[0], q[3], q[4]) for q in recs], dtype=float)
     ok = np.isfinite(recs_a[:, 1])
     bound = (4.65 / recs_a[:, 0]) ** 5
     over_exact = int(np.sum(recs_a[ok, 1] > bound[ok]))
     over_series = int(np.sum(recs_a[ok, 2] > bound[ok]))
-    ax = axes[1, 1]
     ax.semilogy(recs_a[ok, 0] - 0.3, recs_a[ok, 1], "k.", ms=4, label=r"$\Delta_{max}$ exact (numerical flight)")
     ax.semilogy(recs_a[ok, 0] + 0.3, recs_a[ok, 2], "C3x", ms=4, label=r"$\Delta_{max}$ from (4.23)")
     oo = np.linspace(omegas[0], omegas[-1], 200)
     ax.semilogy(oo, (4.65 / oo) ** 5, "b-", lw=1.2, label=r"bound $(4.65/\Omega_0)^5$")
     ax.set_xlabel(r"initial precession rate $\Omega_0$ (units $\sqrt{g/b}$)")
     ax.set_ylabel(r"maximum gap $\Delta_{max}$ (units $b$)")
-    ax.set_title(f"(d) {int(ok.sum())} jumps from perturbations of amplitude 0.05 (seed {args.seed})", fontsize=9)
+    ax.set_title(f"(d) {int(ok.sum())} jumps from perturbations of amplitude 0.05 (seed {seed})", fontsize=9)
     ax.legend(fontsize=8)
-    fig.suptitle(r"Fig. 5: the gap during the first flight; prolate $a=1.5$, Coulomb $\mu=0.1$", fontsize=11)
+    return over_exact, over_series, ok
+
+
+def main(argv=None) -> dict:
+    ap = study_parser(__doc__, default_out=FIGURES, quick_help="Omega0 step 5 instead of 2.5, 5 members each instead of 10")
+    ap.add_argument("--seed", type=int, default=2006, help="seed of the ensemble's perturbations (default 2006)")
+    args = ap.parse_args(argv)
+    out_dir = output_dir(args)
+    plt = pyplot()
+
+    t0 = time.perf_counter()
+    body = pk.Spheroid(A_RATIO)
+    model = pk.Model(body, pk.Coulomb(MU))
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8))
+    rows_abc = flights_abc(axes.flat[:3], model, body)
+    omegas = np.arange(10.0, 41.0, 5.0 if args.quick else 2.5)
+    recs = ensemble(model, omegas, 5 if args.quick else 10, args.seed, not args.no_progress)
+    over_exact, over_series, ok = draw_ensemble(axes[1, 1], recs, omegas, args.seed)
+    fig.suptitle(r"Fig. 5: the gap during the first flight; prolate $a=1.5$, Coulomb $\mu=0.1$" "\n"
+                 r"(a-c) from the sliding-branch start $\theta_0=\pi/2-0.01$, flight integrated at rtol $10^{-13}$; "
+                 r"(d) from random perturbations of the horizontal steady precession, rtol $10^{-9}$", fontsize=10)
     fig.tight_layout()
-    FIGURES.mkdir(exist_ok=True)
-    png = FIGURES / "figure5_gap.png"
-    fig.savefig(png, dpi=120)
-    plt.close(fig)
-    with open(FIGURES / "figure5_gap.csv", "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["omega0", "member", "status", "gap_max_exact", "gap_max_4_23", "W_star", "Omega_star", "stuck", "bound"])
-        for q in recs:
-            w.writerow([q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], (4.65 / q[0]) ** 5])
+    png = save_figure(fig, out_dir / "figure5_gap.png", dpi=120)
+    write_csv(out_dir / "figure5_gap.csv",
+              ["omega0", "member", "status", "gap_max_exact", "gap_max_4_23", "W_star", "Omega_star", "stuck", "bound"],
+              [[*q, (4.65 / q[0]) ** 5] for q in recs])
     n_stuck = sum(1 for q in recs if q[2] != "touchdown")
     touch = [q for q in recs if q[2] == "touchdown"]
     print(f"\nFigure {png.name}; ensemble of {len(recs)} runs ({n_stuck} without a jump: stuck or rose without losing contact).")
@@ -135,4 +149,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main)

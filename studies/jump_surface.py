@@ -7,69 +7,98 @@ README), ending where R = 0 (black points). Surface: (6.3) coloured by n; green 
 exact boundary R = 0 of (6.1) at the median |Lambda| of the crossings (at Lambda = 0 it is (6.3)).
 
 Also tabulates, for more Omega0 values, the relative error in n of (6.3) at each crossing
-(crossings only: no dense output). Writes figures/jump_surface.png (prolate),
-figures/jump_surface_oblate.png, figures/jump_surface.csv, and with --gltf / --html an
-interactive export of the prolate scene.
+(crossings only: no dense output), and measures whether that error has a trend in the start
+value: a log-log fit over 41 log-spaced starts per branch (11 with --quick) from 10 (prolate)
+or 9 (oblate) to 40, for the seed distances d = 0.005, 0.01, 0.02, split into its two factors:
+the error is (A/C) h_tt Lambda*^2 / (Omega* h_theta sin theta* n*), the Lambda^2 term that
+(6.3) drops, so it is set by the nutation rate Lambda* at the crossing.
 
-    python studies/jump_surface.py [--quick] [--gltf] [--html]
+Writes jump_surface.png (prolate), jump_surface_oblate.png, jump_surface.csv (the table),
+jump_surface_trend.csv (the fit's crossings), and with --gltf / --html an interactive export
+of the prolate scene, to figures/ (figures/quick/ with --quick, or --out DIR).
+
+    python studies/jump_surface.py [--quick] [--gltf] [--html] [--out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
-import csv
+import contextlib
+import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-from phasekit.surface import Scene, compute_scene
+import phasekit as pk
+from phasekit.viz import atomic_path, output_dir, progress, run_study, study_parser, write_csv
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 ALL = frozenset({"surface", "exact_boundary", "trajectories", "crossings", "fixed_points", "axes", "colorbar"})
+CROSSINGS = frozenset({"crossings"})
+#: starts of the error table: (branch, a, Omega0 or n0 values)
+TABLE = (("prolate", 1.5, (10.0, 11.0, 12.5, 15.0, 17.5, 20.0, 25.0, 30.0, 40.0)),
+         ("oblate", 2 / 3, (9.0, 10.0, 12.5, 15.0, 17.5, 20.0, 25.0, 30.0, 40.0)))
+#: the trend fit: seed distances d of the sliding-branch starts, and the range of the starts
+TREND_D = (0.005, 0.01, 0.02)
+TREND_RANGE = {"prolate": (1.5, 10.0, 40.0), "oblate": (2 / 3, 9.0, 40.0)}
 
 
-def main(argv=None) -> dict:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--gltf", action="store_true", help="also write figures/jump_surface.gltf")
-    ap.add_argument("--html", action="store_true", help="also write figures/jump_surface.html (needs trame)")
-    args = ap.parse_args(argv)
+def render(scenes, out, args, bar) -> tuple[dict, list]:
+    """Compute and draw each scene (files renamed into place when whole); the exports asked
+    for that could not be written."""
     from phasekit.viz import render_scene  # the only place pyvista is needed
 
-    t0 = time.perf_counter()
-    res = 60 if args.quick else 140
-    scenes = {
-        "jump_surface": Scene("prolate", 1.5, values=(10.0, 12.0, 15.0, 20.0, 30.0), show=ALL, resolution=res),
-        "jump_surface_oblate": Scene("oblate", 2 / 3, values=(9.0, 10.0, 12.0, 15.0, 20.0), show=ALL, resolution=res),
-    }
-    infos = {}
+    infos, missing = {}, []
     for stem, sc in scenes.items():
-        data = compute_scene(sc)
+        data = pk.compute_scene(sc)
         what = "horizontal precession, Omega0" if sc.branch == "prolate" else "vertical spin, n0"
-        title = (f"Fig. 6a, {sc.branch} a = {sc.a:.4g}, mu = {sc.mu:g}: surface (6.3) (colour), exact R = 0 at "
+        title = (f"Fig. 6a, {sc.branch} a = {sc.a:.4g}, Coulomb mu = {sc.mu:g}, rtol 1e-9: surface (6.3) (colour), exact R = 0 at "
                  f"Lambda = +-{data.exact_lambda:.3f} (green),\ntrajectories from the {what} = "
-                 + ", ".join(f"{v:g}" for v in sc.values) + " (lines), R = 0 crossings (black), fixed points (red)")
-        extra = {}
-        if stem == "jump_surface":
-            if args.gltf:
-                extra["gltf"] = str(FIGURES / "jump_surface.gltf")
-            if args.html:
-                extra["html"] = str(FIGURES / "jump_surface.html")
-        infos[stem] = (data, render_scene(data, FIGURES / f"{stem}.png", title=title, **extra))
-    # the error of (6.3) at the crossings, over more starts
-    table = []
-    for branch, a, vals in (("prolate", 1.5, (10.0, 11.0, 12.5, 15.0, 17.5, 20.0, 25.0, 30.0, 40.0)),
-                            ("oblate", 2 / 3, (9.0, 10.0, 12.5, 15.0, 17.5, 20.0, 25.0, 30.0, 40.0))):
-        if args.quick:
-            vals = vals[::2]
-        d = compute_scene(Scene(branch, a, values=vals, show=frozenset({"crossings"})))
-        for c in d.crossings:
-            table.append((branch, a, c.value, c.t, c.Omega, c.theta, c.n, c.Lambda, c.n_surface, c.rel_error))
-    with open(FIGURES / "jump_surface.csv", "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["branch", "a", "start", "t_cross", "Omega", "theta", "n", "Lambda", "n_63", "rel_error_n"])
-        w.writerows(table)
+                 + ", ".join(f"{v:g}" for v in sc.values) + f" (sliding-branch starts, d = {sc.seed_distance:g}; lines), "
+                 "R = 0 crossings (black), fixed points (red)")
+        exports = {"gltf": args.gltf, "html": args.html} if stem == "jump_surface" else {}
+        with contextlib.ExitStack() as stack:  # every file written under a temporary name, then renamed
+            png = stack.enter_context(atomic_path(out / f"{stem}.png"))
+            extra = {k: str(stack.enter_context(atomic_path(out / f"{stem}.{k}"))) for k, on in exports.items() if on}
+            info = render_scene(data, png, title=title, **extra)
+            missing += [k for k, path in extra.items() if path not in info.exported]
+        infos[stem] = (data, info)
+        bar.update()
+    return infos, missing
+
+
+def crossings(branch, a, values, d, bar) -> list:
+    """The R = 0 crossing of the trajectory from each start (none if it does not jump)."""
+    out = []
+    for v in values:
+        out += pk.compute_scene(pk.Scene(branch, a, values=(v,), seed_distance=d, show=CROSSINGS)).crossings
+        bar.update()
+    return out
+
+
+def loglog(x, y) -> tuple[float, float, float]:
+    """Slope of log y against log x, its standard error, and the correlation coefficient."""
+    X, Y = np.log(x), np.log(y)
+    (slope, _), cov = np.polyfit(X, Y, 1, cov=True)
+    return float(slope), float(np.sqrt(cov[0, 0])), float(np.corrcoef(X, Y)[0, 1])
+
+
+def trend(starts, bar) -> tuple[list, list]:
+    """Fits over many starts per (branch, d): of the error, of its geometric factor
+    error / Lambda*^2, and of |Lambda*|."""
+    rows, fits = [], []
+    for branch, (a, lo, hi) in TREND_RANGE.items():
+        values = np.round(np.geomspace(lo, hi, starts), 4)
+        for d in TREND_D:
+            cs = crossings(branch, a, values, d, bar)
+            v, e, lam = (np.array([getattr(c, k) for c in cs]) for k in ("value", "rel_error", "Lambda"))
+            rows += [(branch, a, d, c.value, c.t, c.Omega, c.theta, c.n, c.Lambda, c.rel_error) for c in cs]
+            fits.append((branch, d, len(cs), len(values), e.min(), np.median(e), e.max(), *loglog(v, e),
+                         loglog(v, e / lam**2)[0], loglog(v, np.abs(lam))[0]))
+    return rows, fits
+
+
+def report(infos, table, fits, starts) -> None:
     for stem, (data, info) in infos.items():
         print(f"Figure {stem}.png: {data.scene.branch} a = {data.scene.a:g}; {data.n_simulations} trajectories; "
               f"points drawn {info.n_points}")
@@ -80,10 +109,47 @@ def main(argv=None) -> dict:
     for branch in ("prolate", "oblate"):
         rows = [r for r in table if r[0] == branch]
         slope = np.polyfit(np.log([r[2] for r in rows]), np.log([r[9] for r in rows]), 1)[0]
-        print(f"{branch}: log-log trend of the error against the start value: slope {slope:.2f}")
+        print(f"{branch}: log-log trend of the error against the start value: slope {slope:.2f} "
+              f"(these {len(rows)} starts only; see the fit below)")
+    print(f"\nfit over {starts} log-spaced starts per branch and seed distance d: log-log slope of the error against "
+          "the start value (+- standard error, r: correlation), and of its factors error/Lambda*^2 and |Lambda*|")
+    print(f"{'branch':<8s} {'d':>5s} {'jumps':>7s} {'min err':>8s} {'median':>8s} {'max err':>8s} {'slope':>13s} {'r':>6s} "
+          f"{'err/L^2':>8s} {'|L*|':>6s}")
+    for br, d, n, m, lo, med, hi, s, se, r, s_geo, s_lam in fits:
+        print(f"{br:<8s} {d:5.3f} {n:3d}/{m:<3d} {lo:8.1e} {med:8.1e} {hi:8.1e} {s:+6.2f} +- {se:4.2f} {r:+6.2f} {s_geo:+8.2f} {s_lam:+6.2f}")
+
+
+def main(argv=None) -> dict:
+    ap = study_parser(__doc__, default_out=FIGURES, quick_help="coarser surface, every other start in the error table, 11 starts in the fit")
+    ap.add_argument("--gltf", action="store_true", help="also write jump_surface.gltf (the prolate scene)")
+    ap.add_argument("--html", action="store_true", help="also write jump_surface.html (needs the trame packages)")
+    args = ap.parse_args(argv)
+    out = output_dir(args)
+
+    t0 = time.perf_counter()
+    res, starts = (60, 11) if args.quick else (140, 41)
+    scenes = {
+        "jump_surface": pk.Scene("prolate", 1.5, values=(10.0, 12.0, 15.0, 20.0, 30.0), show=ALL, resolution=res),
+        "jump_surface_oblate": pk.Scene("oblate", 2 / 3, values=(9.0, 10.0, 12.0, 15.0, 20.0), show=ALL, resolution=res),
+    }
+    table_starts = [(branch, a, vals[::2] if args.quick else vals) for branch, a, vals in TABLE]
+    n_runs = len(scenes) + sum(len(v) for *_, v in table_starts) + starts * len(TREND_RANGE) * len(TREND_D)
+    with progress(total=n_runs, desc="scenes and crossings", enabled=not args.no_progress) as bar:
+        infos, missing = render(scenes, out, args, bar)
+        table = [(branch, a, c.value, c.t, c.Omega, c.theta, c.n, c.Lambda, c.n_surface, c.rel_error)
+                 for branch, a, vals in table_starts for c in crossings(branch, a, vals, 0.01, bar)]
+        trend_rows, fits = trend(starts, bar)
+    write_csv(out / "jump_surface.csv", ["branch", "a", "start", "t_cross", "Omega", "theta", "n", "Lambda", "n_63", "rel_error_n"],
+              table)
+    write_csv(out / "jump_surface_trend.csv", ["branch", "a", "d", "start", "t_cross", "Omega", "theta", "n", "Lambda", "rel_error_n"],
+              trend_rows)
+    report(infos, table, fits, starts)
     print(f"{time.perf_counter() - t0:.1f} s")
-    return {"infos": infos, "table": table}
+    if missing:  # asked for, not written: say so and fail (after everything else was written)
+        sys.stderr.write(f"error: the {' and '.join(missing)} export could not be written (--html needs the trame packages)\n")
+        raise SystemExit(1)
+    return {"infos": infos, "table": table, "fits": fits}
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main)

@@ -7,62 +7,54 @@ drawn over the computed map. Colour: the dimension of the unstable subspace
 of CasADi's exact linearisation. Writes figures/stability_map.png and prints a summary
 (including how many grid points disagree with the criterion).
 
-    python studies/stability_map.py [--quick] [--mu MU]
+    python studies/stability_map.py [--quick] [--mu MU] [--out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
 import time
 from pathlib import Path
 
 import numpy as np
 
 import phasekit as pk
-from phasekit.fixedpoints import horizontal_state, linearise, vertical_state
-from phasekit.manifolds import (
-    horizontal_is_unstable,
-    horizontal_stability_threshold,
-    vertical_is_stable,
-    vertical_stability_threshold,
-)
+from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 
 
-def stability_grid(kind, a_values, s_values, mu):
+def stability_grid(kind, a_values, s_values, mu, bar):
     out = np.zeros((len(s_values), len(a_values)), dtype=int)
     for j, a in enumerate(a_values):
         body = pk.Spheroid(a)
         m = pk.Model(body, pk.Viscous(mu), "euler" if kind == "horizontal" else "vector")
         for i, s in enumerate(s_values):
-            x = horizontal_state(s) if kind == "horizontal" else vertical_state(s)
-            out[i, j] = linearise(m, x, kind=kind).n_unstable
+            x = pk.horizontal_state(s) if kind == "horizontal" else pk.vertical_state(s)
+            out[i, j] = pk.linearise(m, x, kind=kind).n_unstable
+        bar.update(len(s_values))
     return out
 
 
 def main(argv=None) -> dict:
-    ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--mu", type=float, default=0.1)
+    ap = study_parser(__doc__, default_out=FIGURES, quick_help="25x25 grids instead of 80x80")
+    ap.add_argument("--mu", type=float, default=0.1, help="viscous friction coefficient (default 0.1)")
     args = ap.parse_args(argv)
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    out = output_dir(args)
+    plt = pyplot()
 
     n = 25 if args.quick else 80
     t0 = time.perf_counter()
     a_vals = np.linspace(0.3, 3.0, n)
     om_vals = np.linspace(0.2, 15.0, n)
     n0_vals = np.linspace(0.2, 15.0, n)
-    H = stability_grid("horizontal", a_vals, om_vals, args.mu)
-    V = stability_grid("vertical", a_vals, n0_vals, args.mu)
+    with progress(total=2 * n * n, desc="linearisations", enabled=not args.no_progress) as bar:
+        H = stability_grid("horizontal", a_vals, om_vals, args.mu, bar)
+        V = stability_grid("vertical", a_vals, n0_vals, args.mu, bar)
     wall = time.perf_counter() - t0
     # agreement of the vertical map with the criterion
     bodies = [pk.Spheroid(a) for a in a_vals]
-    crit_v = np.array([[vertical_is_stable(b.A, b.C, b.a, s) for b in bodies] for s in n0_vals])
-    crit_h = np.array([[horizontal_is_unstable(b.A, b.C, b.a, s) for b in bodies] for s in om_vals])
+    crit_v = np.array([[pk.vertical_is_stable(b.A, b.C, b.a, s) for b in bodies] for s in n0_vals])
+    crit_h = np.array([[pk.horizontal_is_unstable(b.A, b.C, b.a, s) for b in bodies] for s in om_vals])
     disagree = int(np.sum(crit_v != (V == 0))) + int(np.sum(crit_h != (H > 0)))
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.6), sharey=True)
@@ -77,21 +69,18 @@ def main(argv=None) -> dict:
         ax.set_title(title, fontsize=10)
         ax.set_ylabel(ylabel)
     aa = np.linspace(a_vals[0], a_vals[-1], 300)
-    axes[1].plot(aa, [vertical_stability_threshold(pk.Spheroid(x).A, pk.Spheroid(x).C, x) or np.nan for x in aa],
+    axes[1].plot(aa, [pk.vertical_stability_threshold(pk.Spheroid(x).A, pk.Spheroid(x).C, x) or np.nan for x in aa],
                  "r--", lw=1.2, label=r"$n_0=\sqrt{5a^3}$: $(a^2C-A)n_0^2=a^3(a^2-1)$")
     axes[1].set_ylim(n0_vals[0], n0_vals[-1])
-    axes[0].plot(aa, [horizontal_stability_threshold(pk.Spheroid(x).A, pk.Spheroid(x).C, x) or np.nan for x in aa],
+    axes[0].plot(aa, [pk.horizontal_stability_threshold(pk.Spheroid(x).A, pk.Spheroid(x).C, x) or np.nan for x in aa],
                  "r--", lw=1.2, label=r"$\Omega_0=\sqrt{5}$: $(a^2C-A)\Omega_0^2=a^2-1$")
     axes[0].legend(loc="upper left", fontsize=8)
     axes[1].legend(loc="upper left", fontsize=8)
     cb = fig.colorbar(im, ax=axes, ticks=[0, 1, 2])
     cb.set_label("dimension of the unstable subspace")
     fig.suptitle(f"Linear stability, viscous friction $\\mu={args.mu:g}$, uniform spheroids (exact CasADi Jacobians)", fontsize=10)
-    FIGURES.mkdir(exist_ok=True)
-    out = FIGURES / "stability_map.png"
-    fig.savefig(out, dpi=130, bbox_inches="tight")
-    plt.close(fig)
-    print(f"Figure {out.name}: {n}x{n} grids, mu = {args.mu:g}, {2 * n * n} linearisations in {wall:.1f} s.")
+    png = save_figure(fig, out / "stability_map.png", bbox_inches="tight")
+    print(f"Figure {png.name}: {n}x{n} grids, mu = {args.mu:g}, {2 * n * n} linearisations in {wall:.1f} s.")
     print("criteria: horizontal unstable iff (a^2 C - A) Omega0^2 > a^2 - 1 (Omega0 = sqrt 5 for uniform bodies); "
           "vertical stable iff (a^2 C - A) n0^2 > a^3 (a^2 - 1) (n0 = sqrt(5 a^3))")
     print(f"the two criteria disagree with the computed maps at {disagree} of {2 * n * n} grid points")
@@ -99,4 +88,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main)

@@ -8,15 +8,14 @@ or the end inclination, the invariant drift (mu = 0: relative change of energy a
 must stay ~0; mu > 0: the largest energy increase between samples, which must be <= 0), steps
 and wall time. A case the integrator cannot do ends with status "failed" and its reason.
 
-Writes figures/stiff_extreme.csv and prints the table.
+Writes stiff_extreme.csv (figures/ by default; figures/quick/ with --quick, or --out DIR) and
+prints the table.
 
-    python studies/stiff_extreme.py [--quick]
+    python studies/stiff_extreme.py [--quick] [--out DIR]
 """
 
 from __future__ import annotations
 
-import argparse
-import csv
 import math
 import time
 from dataclasses import dataclass
@@ -25,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 import phasekit as pk
-from phasekit.api import choose_formulation
+from phasekit.viz import output_dir, progress, run_study, study_parser, write_csv
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 P2 = math.pi / 2
@@ -108,13 +107,16 @@ def run_case(c: Case) -> dict:
             y0 = np.array(c.start["state"], dtype=float)
         else:
             y0 = pk.gyroscopic_start(body, c.start["theta0"], omega0=c.start.get("omega0"), n0=c.start.get("n0"))
-        chart = choose_formulation(float(y0[4]))
+        chart = pk.choose_formulation(float(y0[4]))
         model = pk.Model(body, c.law, chart)
         x0 = pk.to_chart(chart, y0)
         te = np.linspace(0.0, c.t_end, 201)
-        rise = 0.05 if c.a > 1 else P2 - 0.05
+        # with friction, stop once the rise is complete: theta falls through 0.05 (prolate) or
+        # rises through pi/2 - 0.05 (oblate)
+        rise = (pk.Event("theta", 0.05, direction=-1, name="rise-complete") if c.a > 1 else
+                pk.Event("theta", P2 - 0.05, direction=+1, name="rise-complete"))
         r = pk.simulate(model, x0, c.t_end, rtol=c.rtol, t_eval=te, track_minima=False, max_steps=c.max_steps,
-                        rise_theta=rise if c.law.mu > 0 else None)
+                        events=[rise] if c.law.mu > 0 else [], dense=False)
         # the start, the samples and the end state: a run that ends early still has two points
         X = np.vstack([x0[None, :]] + ([r.ys] if r.ys is not None and len(r.ys) else []) + [r.x[None, :]])
         E = model.evaluate("energy", X)
@@ -134,18 +136,15 @@ def run_case(c: Case) -> dict:
 
 
 def main(argv=None) -> list[dict]:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true")
+    ap = study_parser(__doc__, default_out=FIGURES, quick_help="horizons up to t = 2000, no eps = 1e-12")
     args = ap.parse_args(argv)
+    out = output_dir(args)
     t0 = time.perf_counter()
-    rows = [run_case(c) for c in cases(args.quick)]
-    FIGURES.mkdir(exist_ok=True)
+    todo = cases(args.quick)
+    rows = [run_case(c) for c in progress(todo, desc="cases", enabled=not args.no_progress)]
     fields = ["case", "a", "law", "t_end", "rtol", "status", "reason", "t_jump", "t_reached", "theta_end", "stuck",
               "n_events", "invariant_drift", "steps", "backend", "chart", "finite", "wall_s"]
-    with open(FIGURES / "stiff_extreme.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=fields, extrasaction="ignore")
-        w.writeheader()
-        w.writerows(rows)
+    write_csv(out / "stiff_extreme.csv", fields, rows)
     print(f"{len(rows)} cases; table stiff_extreme.csv; {time.perf_counter() - t0:.1f} s")
     print(f"{'case':<46s} {'status':<10s} {'t_jump':>9s} {'theta_end':>9s} {'drift':>9s} {'steps':>8s} {'backend':>13s} {'wall s':>7s}  note")
     for r in rows:
@@ -161,4 +160,4 @@ def main(argv=None) -> list[dict]:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main)

@@ -2,7 +2,7 @@
 matplotlib is imported by the functions that draw, pyvista only when a 3-D scene is drawn."""
 
 from .mpl import LABELS, label, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
-from .output import output_dir, progress, pyplot, save_figure, study_parser, write_csv
+from .output import atomic_path, output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
 from .pv import RenderInfo, render_scene
 
 __all__ = [
@@ -20,5 +20,7 @@ __all__ = [
     "pyplot",
     "save_figure",
     "write_csv",
+    "atomic_path",
     "progress",
+    "run_study",
 ]

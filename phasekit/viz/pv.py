@@ -214,7 +214,7 @@ def _draw(pl, data, title, window_size) -> dict:
         grid = _clipped_grid(pv, f, *data.surface, n_lo, n_hi)
         counts["surface"] = grid.n_points
         if grid.n_points:
-            bar = dict(title="n on (6.3)", color="k", vertical=True, title_font_size=16, fmt="%.3g", label_font_size=14,
+            bar = dict(title="n on (6.3)\n(units sqrt(g/b))", color="k", vertical=True, title_font_size=16, fmt="%.3g", label_font_size=14,
                        position_x=0.86, position_y=0.08, width=0.05, height=0.6)
             pl.add_mesh(grid, scalars="n", cmap="coolwarm", opacity=0.55, show_scalar_bar="colorbar" in show,
                         clim=(n_lo, n_hi), scalar_bar_args=bar, smooth_shading=True)
