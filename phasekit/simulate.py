@@ -146,7 +146,7 @@ class _Run:
         self.mode, self.t, self.x = Mode.SLIDING, 0.0, None
         self.status = self.reason = None
         self.segments, self.records = [], []
-        self.resume, self.engines = False, {}
+        self.resume, self.engines, self.steps_done = False, {}, 0
 
     def record(self, name, t, before, after, x, detail="") -> None:
         chart = self.model.chart
@@ -234,13 +234,14 @@ class _Run:
         return rest, ev
 
     def _call(self, cflow, engine, events, x, t, t_stop) -> tuple[Propagation, Event | None]:
-        self.budget.steps = self.opts.max_steps - sum(s.n_steps for s in self.segments)
+        self.budget.steps = self.opts.max_steps - self.steps_done
         prop = engine.propagate(cflow, x, t, t_stop, self.model.p, [e.level for e in events],
                                 budget=self.budget, dense=self.dense, resume=self.resume)
         self.resume = False
         return prop, (events[prop.event] if prop.event is not None else None)
 
     def add_segment(self, prop: Propagation, engine: str, ev, extend: bool) -> None:
+        self.steps_done += prop.n_steps
         end = "failed" if prop.outcome == "failed" else "time" if prop.outcome == "time" else ev.name
         if extend and self.segments and self.segments[-1].mode is self.mode:
             last = self.segments[-1]
