@@ -151,6 +151,8 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key) -> Compile
     fn["slip"] = _function("slip", x, p, slip)
     fn["slip_speed2"] = _function("slip_speed2", x, p, speed2)
     fn["slip_speed"] = _function("slip_speed", x, p, ca.sqrt(speed2))
+    # what picks the starting mode, in one call: the slip speed and R while sliding
+    fn["start_probe"] = _function("start_probe", x, p, ca.vertcat(ca.sqrt(speed2), R_sl))
     # d|u|^2/dt while sliding: extrapolates a stick event to the exact zero of the slip.
     fn["slip_speed2_rate"] = _function("slip_speed2_rate", x, p, 2 * ca.dot(slip, ca.jtimes(slip, x, rhs_sl)))
     # Guards of the stick event: the slip speed falls to STICK_SLIP (exact Coulomb), or to

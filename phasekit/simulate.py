@@ -130,6 +130,7 @@ def _declare_cached(model, stop_at, restitution, events, _reset_ids):
     return declare(model, stop_at=stop_at, restitution=restitution, events=events)
 
 
+@functools.lru_cache(maxsize=64)
 def _tracked(flow, track_minima: bool):
     """``flow``, without its monitor of the minima of R when they are not wanted: the
     integrator then carries no non-terminal event (fewer steps; the flight's gap maximum stays)."""
@@ -258,7 +259,7 @@ class _Run:
                           reason=self.reason, segments=segs, events=self.records, wall_s=time.perf_counter() - self.wall0,
                           stop_at=stop_at, restitution=restitution, user_events=events, t_eval=te,
                           x_end=None if segs else self.x, mode_end=None if segs else self.mode)
-        if not self.opts.dense:  # dense output was kept only to answer t_eval
+        if not self.opts.dense and self.dense:  # dense output was kept only to answer t_eval
             traj.segments = tuple(replace(s, dense=()) for s in traj.segments)
         return traj
 

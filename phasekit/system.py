@@ -21,8 +21,11 @@ A new event is one more :class:`phasekit.hybrid.Event` passed to :func:`phasekit
 
 from __future__ import annotations
 
+import numpy as np
+
 from .errors import ParameterError, Status
 from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
+from .model import STICK_SLIP
 from .resets import LiftOff, SlipOnset, Stick, SwitchMode, Touchdown, contact_start, flight_start_state
 from .validate import check_choice, check_range
 
@@ -84,6 +87,9 @@ def _initial(stop_at: str, stiff: bool):
         state that would need R <= 0 lifts off at once."""
         if mode is Mode.FLIGHT:
             return _flight_start(model, t, x)
+        speed, R = np.asarray(model.function("start_probe")(x, model.p)).ravel()
+        if speed > STICK_SLIP + 10 * model.friction.eps and R > 0.0:  # the common case, in one call
+            return Transition(Mode.SLIDING, t, x)
         start = contact_start(model, t, x, stiff=stiff)
         if start.stop is not None or float(model.evaluate("R", start.x, start.mode)) > 0.0:
             return start
