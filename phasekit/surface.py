@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .body import Spheroid
+from .body import Body, Spheroid
 from .friction import Coulomb
 from .model import Model
 
@@ -88,6 +88,7 @@ class Scene:
     resolution: int = 120
     exact_lambda: float | None = None
     dt: float = 0.02  # output spacing of the drawn trajectories
+    body: Body | None = None  # any body (overrides `a`); default: the uniform Spheroid(a)
 
     def __post_init__(self):
         unknown = set(self.show) - ELEMENTS
@@ -95,8 +96,15 @@ class Scene:
             raise ValueError(f"`show` must be a subset of {sorted(ELEMENTS)}; unknown: {sorted(unknown)}.")
         if self.branch not in ("prolate", "oblate"):
             raise ValueError(f"`branch` must be prolate or oblate, got {self.branch!r}.")
-        if (self.a > 1) != (self.branch == "prolate"):
+        if self.body is not None and not isinstance(self.body, Body):
+            raise ValueError(f"`body` must be a phasekit Body, got {self.body!r}.")
+        if self.body is not None and self.body.is_prolate != (self.branch == "prolate"):
+            raise ValueError(f"`body` must be prolate for the prolate branch and oblate for the oblate one, got {self.body!r}.")
+        if self.body is None and (self.a > 1) != (self.branch == "prolate"):
             raise ValueError(f"`a` must be > 1 for the prolate branch and < 1 for the oblate one, got {self.a!r}.")
+
+    def make_body(self) -> Body:
+        return self.body if self.body is not None else Spheroid(self.a)
 
 
 @dataclass(frozen=True)
@@ -133,7 +141,7 @@ def _simulate(scene: Scene, value: float, dense: bool):
     from .simulate import simulate
     from .starts import gyroscopic_start
 
-    body = Spheroid(scene.a)
+    body = scene.make_body()
     model = Model(body, Coulomb(scene.mu))
     if scene.branch == "prolate":
         y0 = gyroscopic_start(body, math.pi / 2 - scene.seed_distance, omega0=value)
@@ -148,7 +156,7 @@ def compute_scene(scene: Scene) -> SceneData:
     """Compute exactly the data the scene's elements need."""
     show = scene.show
     data = SceneData(scene)
-    body = Spheroid(scene.a)
+    body = scene.make_body()
     need_sims = bool({"trajectories", "crossings"} & show)
     if need_sims:
         for v in scene.values:
