@@ -227,3 +227,46 @@ def test_asymmetric_custom_body_in_a_few_lines():
     assert np.ptp(E) < 1e-10 * abs(E[0])
     kinds = [p.kind for p in fixed_points(pk.Model(body, pk.Viscous(0.1)), n0=8.0)]
     assert kinds[:2] == ["vertical", "inverted"]
+
+
+# -- real units ----------------------------------------------------------------------------------
+def test_scale_converts_by_dimension():
+    """phasekit.Scale against hand conversion: time unit sqrt(b/g), rates, lengths, forces."""
+    sc = pk.Scale("21.5 mm", mass="57 g")
+    T = math.sqrt(0.0215 / 9.81)
+    assert sc.time_unit.to("s").magnitude == pytest.approx(T, rel=1e-14)
+    assert sc.dimensionless("30 rev/s") == pytest.approx(30 * 2 * math.pi * T, rel=1e-14)
+    assert sc.dimensionless("1800 rpm") == pytest.approx(sc.dimensionless("30 rev/s"), rel=1e-14)
+    assert sc.dimensionless("12 ms") == pytest.approx(0.012 / T, rel=1e-14)
+    assert sc.dimensionless("0.1 mm") == pytest.approx(0.1 / 21.5, rel=1e-14)
+    assert sc.quantity(9.7, "rate").to("rev/s").magnitude == pytest.approx(9.7 / T / (2 * math.pi), rel=1e-14)
+    assert sc.quantity(1.0, "force").to("N").magnitude == pytest.approx(0.057 * 9.81, rel=1e-14)
+    assert sc.quantity(0.4, "inertia").to("kg*m**2").magnitude == pytest.approx(0.4 * 0.057 * 0.0215**2, rel=1e-14)
+    for kind in ("time", "length", "rate", "speed", "energy"):
+        q = sc.quantity(0.37, kind)
+        assert sc.dimensionless(q, kind) == pytest.approx(0.37, rel=1e-14)
+
+
+@pytest.mark.parametrize("call, param", [
+    (lambda: pk.Scale("3 s"), "b"),
+    (lambda: pk.Scale("21.5 mm", g="9.81 m/s"), "g"),
+    (lambda: pk.Scale("-1 mm"), "b"),
+    (lambda: pk.Scale("21.5 mm").dimensionless("30 Hz"), "value"),  # pint reads 1 Hz as 1 rad/s
+    (lambda: pk.Scale("21.5 mm").dimensionless("3 kg", "length"), "length"),
+    (lambda: pk.Scale("21.5 mm").quantity(1.0, "force"), "mass"),
+    (lambda: pk.Scale("twenty mm"), "b"),
+])
+def test_scale_rejects_bad_quantities_by_name(call, param):
+    with pytest.raises(pk.ParameterError) as err:
+        call()
+    assert err.value.param == param
+
+
+def test_bodies_of_a_given_size():
+    egg, sc = pk.egg_of_size("57 mm", "4.3 cm", w=0.05, mass="57 g")
+    assert egg.a == pytest.approx(57 / 43, rel=1e-14) and egg.w == 0.05
+    assert sc.b.to("mm").magnitude == pytest.approx(21.5, rel=1e-14)
+    top, sc = pk.tippe_top_of_size("15 mm", "4.5 mm", A=0.38, C=0.4)
+    assert top.offset == pytest.approx(0.3, rel=1e-14) and (top.A, top.C) == (0.38, 0.4)
+    top, sc = pk.tippe_top_of_size("15 mm", "4.5 mm", A="0.38 * 20 g * (15 mm)**2", C=0.4, mass="20 g")
+    assert top.A == pytest.approx(0.38, rel=1e-14)
