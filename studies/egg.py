@@ -16,7 +16,9 @@ Friction: exact Coulomb, mu = 0.1 (the paper's value, an assumption for an egg o
    zero-slip angle of the gyroscopic theory; Sasaki 2004's critical angle is of this kind). Starts
    below theta_h rise toward the fat end, starts above it toward the thin end.
 2. Jump threshold against w: pk.find_threshold with the default sliding-branch start
-   (theta0 = pi/2 - 0.01, Omega0 from the balance). An egg with w > 0 does not stand upright on
+   (theta0 = pi/2 - 0.01, Omega0 from the balance), and with the start 0.01 below the egg's
+   unstable horizontal-like state theta_h(Omega0) (which moves away from pi/2 as w grows, so
+   that the default start lies ever farther from it). An egg with w > 0 does not stand upright on
    its fat end at moderate spin (phasekit.manifolds.pole_stability_threshold: the fat end is
    flatter than the spheroid's end), it settles in a tilted precession where exact Coulomb
    friction alternates stick and slip for very long. The default definition's end of the rise
@@ -84,7 +86,18 @@ class EndRow:
 @dataclass(frozen=True)
 class EggDefinition(pk.Definition):
     """The default sliding-branch threshold definition with one more stop: the rise is over
-    when the slip falls to SETTLED (the egg rolls in its tilted end state)."""
+    when the slip falls to SETTLED (the egg rolls in its tilted end state). With
+    ``from_horizontal_like`` the start is d below the horizontal-like precession theta_h(Omega0)
+    (the egg's unstable state) instead of d below pi/2."""
+
+    from_horizontal_like: bool = False
+
+    def start(self, body, value: float):
+        if not self.from_horizontal_like or body.flip_symmetric:
+            return super().start(body, value)
+        th_h = pk.horizontal_like_angle(body, pk.precession_angles(body, omega0=value))
+        y0 = pk.gyroscopic_start(body, th_h - self.amplitude, omega0=value)
+        return pk.Model(body, self.friction(), "euler"), y0
 
     def outcome(self, body, value: float) -> "pk.Outcome":
         model, x0 = self.start(body, value)
@@ -146,21 +159,22 @@ def plot_which_end(rows: list[EndRow], cfg: dict, path: Path, quick: bool) -> No
 
 
 def threshold_rows(cfg: dict, show: bool) -> tuple[list[dict], list[dict]]:
-    defn = EggDefinition("egg-sliding", "sliding", mu=MU, t_max=cfg["t_max"])
-    out, guess = [], None
-    for w in progress(cfg["threshold_ws"], desc="egg thresholds", enabled=show):
-        th = pk.find_threshold(defn, pk.Egg(A_HEN, w), hi=40.0, lo=3.0, guess=guess, tol=2e-3)
-        jumps = [o for o in th.outcomes if o.jumped]
-        out.append({"w": w, "threshold": th.value, "bracket_lo": th.bracket[0], "bracket_hi": th.bracket[1],
-                    "status": th.status.value, "n_sims": th.n_sims, "n_settled": sum(1 for o in th.outcomes if o.status is pk.Status.STOPPED),
-                    "wall_s": th.wall_s})
-        guess = th.value or guess
+    out = []
+    for start, rel in (("pi/2 - 0.01", False), ("theta_h - 0.01", True)):
+        defn = EggDefinition("egg-sliding", "sliding", mu=MU, t_max=cfg["t_max"], from_horizontal_like=rel)
+        guess = None
+        for w in progress(cfg["threshold_ws"], desc=f"egg thresholds from {start}", enabled=show):
+            th = pk.find_threshold(defn, pk.Egg(A_HEN, w), hi=40.0, lo=3.0, guess=guess, tol=2e-3)
+            out.append({"start": start, "w": w, "threshold": th.value, "bracket_lo": th.bracket[0], "bracket_hi": th.bracket[1],
+                        "status": th.status.value, "n_sims": th.n_sims,
+                        "n_settled": sum(1 for o in th.outcomes if o.status is pk.Status.STOPPED), "wall_s": th.wall_s})
+            guess = th.value or guess
     checks = []
     default = pk.Definition("sliding", "sliding", mu=MU, t_max=cfg["t_max"])
     for w in (0.0, 0.02):
         if w not in cfg["threshold_ws"]:
             continue
-        ref = next(r for r in out if r["w"] == w)
+        ref = next(r for r in out if r["w"] == w and r["start"] == "pi/2 - 0.01")
         th = pk.find_threshold(default, pk.Egg(A_HEN, w), hi=40.0, lo=3.0, guess=ref["threshold"], tol=2e-3)
         checks.append({"w": w, "default_definition": th.value, "status": th.status.value, "egg_definition": ref["threshold"],
                        "wall_s": th.wall_s, "n_t_max": sum(1 for o in th.outcomes if o.status is pk.Status.COMPLETED)})
@@ -170,8 +184,10 @@ def threshold_rows(cfg: dict, show: bool) -> tuple[list[dict], list[dict]]:
 def plot_threshold(rows: list[dict], sc, path: Path, quick: bool) -> None:
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7.2, 4.8))
-    pts = [(r["w"], r["threshold"]) for r in rows if r["threshold"] is not None]
-    ax.plot(*zip(*pts), "ko-", label="threshold (bisection, relative width 2e-3)")
+    labels = {"pi/2 - 0.01": r"start $\theta_0 = \pi/2 - 0.01$", "theta_h - 0.01": r"start $\theta_0 = \theta_h(\Omega_0) - 0.01$"}
+    for start, style in (("pi/2 - 0.01", "ko-"), ("theta_h - 0.01", "C1s--")):
+        pts = [(r["w"], r["threshold"]) for r in rows if r["threshold"] is not None and r["start"] == start]
+        ax.plot(*zip(*pts), style, label=labels[start] + " (bisected to relative width 2e-3)")
     ax.set_xlabel(r"asymmetry $w$ (shift of the widest section / length)")
     ax.set_ylabel(r"threshold precession rate $\Omega_0$ (units $\sqrt{g/b}$)")
     per_rev = sc.dimensionless("1 rev/s")  # Omega0 of one revolution per second
@@ -179,7 +195,7 @@ def plot_threshold(rows: list[dict], sc, path: Path, quick: bool) -> None:
     sec.set_ylabel("rev/s for the 57 x 43 mm egg")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    ax.set_title(f"Jump threshold of the egg family, a = {A_HEN:.4f}, Coulomb mu = {MU}, start theta0 = pi/2 - 0.01"
+    ax.set_title(f"Jump threshold of the egg family, a = {A_HEN:.4f}, Coulomb mu = {MU}, sliding-branch starts"
                  f"{' [quick]' if quick else ''}", fontsize=9)
     fig.tight_layout()
     save_figure(fig, path)
@@ -245,7 +261,7 @@ def main(argv=None) -> dict:
     plot_threshold(thr, sc, out / "egg_threshold.png", args.quick)
     real = []
     for w in sorted({0.0, W_HEN} & set(cfg["threshold_ws"])):
-        real += real_egg(next(r["threshold"] for r in thr if r["w"] == w), w)
+        real += real_egg(next(r["threshold"] for r in thr if r["w"] == w and r["start"] == "pi/2 - 0.01"), w)
     write_csv(out / "egg_real_units.csv", list(real[0]), [list(r.values()) for r in real])
     ok = [r for r in rows if r.end != "failed"]
     summary = {"which_end": {"n": len(rows), "as_predicted": sum(1 for r in ok if r.end == r.predicted),
