@@ -255,23 +255,13 @@ def _regular(body, theta):
 
 
 def _height_slope_many(body, c):
-    f = _slope_map(body)
-    c = np.atleast_1d(np.asarray(c, dtype=float))
-    H, dH = f(c)
-    return H, dH
-
-
-def _slope_map(body):
+    """(H, dH/dc) at an array of c, by the body's compiled slope function mapped over c."""
     from .body import _slope_function
 
-    fn = _slope_function(body)
+    c = np.atleast_1d(np.asarray(c, dtype=float))
     shape = np.asarray(body.shape_params, dtype=float)
-
-    def evaluate(c):
-        out = fn.map(c.size)(c[None, :], np.tile(shape[:, None], (1, c.size)))
-        return np.asarray(out[0]).ravel(), np.asarray(out[1]).ravel()
-
-    return evaluate
+    H, dH = _slope_function(body).map(c.size)(c[None, :], np.tile(shape[:, None], (1, c.size)))
+    return np.asarray(H).ravel(), np.asarray(dH).ravel()
 
 
 def precession_residual(body, theta, *, omega0: float | None = None, n0: float | None = None):

@@ -132,10 +132,13 @@ def vertical_is_stable(A: float, C: float, a: float, n0: float) -> bool:
 
 
 def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None:
-    """Precession rate at which the horizontal steady precession changes stability under
+    """Precession rate at which the horizontal steady precession changes stability under weak
     friction: (a^2 C - A) Omega0^2 = a^2 - 1 (Omega0 = sqrt(5) for every uniform spheroid).
-    Found from the exact linearisations (stability_map study) and tested; the same
-    zero-slip-crossing mechanism as at the vertical. None when there is no crossing."""
+    The zero-slip crossing of the frictionless tilt oscillation, as at the vertical; found from
+    the exact linearisations (stability_map study) and tested. It holds for viscous friction up to
+    a coefficient of about 0.8 (a = 1.5, measured); above, a second mode goes unstable first and
+    the threshold falls (mu = 1: 1.9652, mu = 5: 1.4710). :func:`equator_stability_threshold` is
+    the same criterion for any flip-symmetric body. None when there is no crossing."""
     D = a * a * C - A
     if D == 0 or (a * a - 1) / D <= 0:
         return None
@@ -144,7 +147,7 @@ def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None
 
 def horizontal_is_unstable(A: float, C: float, a: float, omega0: float) -> bool:
     """The horizontal steady precession has a (real, rising) unstable mode iff
-    (a^2 C - A) Omega0^2 > a^2 - 1."""
+    (a^2 C - A) Omega0^2 > a^2 - 1 (weak friction; see horizontal_stability_threshold)."""
     return (a * a * C - A) * omega0 * omega0 > a * a - 1
 
 

@@ -74,7 +74,7 @@ class EndRow:
     theta0: float
     theta_h: float | None  # the horizontal-like precession at omega0 (the predicted separatrix)
     theta_2: float
-    end: str  # fat | thin | failed
+    end: str  # the side of pi/2 it ends on: fat | thin | failed (see risen())
     predicted: str
     theta_reached: float
     how: str  # rise-fat | rise-thin | settled | t_max | jumped | failed
@@ -133,14 +133,23 @@ def which_end(w: float, omega0: float, theta0: float, t_max: float) -> EndRow:
                   time.perf_counter() - t0)
 
 
+def risen(r: EndRow) -> str:
+    """fat | thin, or "none" when the start's slip vanished at once (the egg stuck and rolls
+    where it was put: within 0.05 rad of theta0, t < 1), or "failed"."""
+    if r.how == "settled" and abs(r.theta_reached - r.theta0) < 0.05:
+        return "none"
+    return r.end
+
+
 def plot_which_end(rows: list[EndRow], cfg: dict, path: Path, quick: bool) -> None:
     plt = pyplot()
     fig, axes = plt.subplots(1, len(cfg["omegas"]), figsize=(6.2 * len(cfg["omegas"]), 5.0), squeeze=False)
     for ax, om in zip(axes[0], cfg["omegas"]):
         sub = [r for r in rows if r.omega0 == om]
         for r in sub:
-            c = {"fat": "#2166ac", "thin": "#b2182b", "failed": "k"}[r.end]
-            ax.scatter(r.w, r.theta0 - math.pi / 2, c=c, marker="o" if r.end == r.predicted else "X", s=50, zorder=3)
+            end = risen(r)
+            c = {"fat": "#2166ac", "thin": "#b2182b", "none": "0.6", "failed": "k"}[end]
+            ax.scatter(r.w, r.theta0 - math.pi / 2, c=c, marker="o" if end in (r.predicted, "none") else "X", s=50, zorder=3)
         ws = sorted({r.w for r in sub})
         th_h = [next(r.theta_h for r in sub if r.w == w) for w in ws]
         ax.plot(ws, np.array(th_h) - math.pi / 2, "k-", lw=1.5, label=r"$\theta_h(\Omega_0)$: horizontal-like state (predicted separatrix)")
@@ -150,7 +159,8 @@ def plot_which_end(rows: list[EndRow], cfg: dict, path: Path, quick: bool) -> No
         ax.axhline(0.0, color="0.7", lw=0.8)
         ax.set_xlabel(r"asymmetry $w$ (shift of the widest section / length)")
         ax.set_ylabel(r"$\theta_0 - \pi/2$ (rad; > 0: thin end lower)")
-        ax.set_title(rf"$\Omega_0$ = {om:g}: blue = ends on the fat end, red = thin end (X: not as predicted)", fontsize=9)
+        ax.set_title(rf"$\Omega_0$ = {om:g}: blue = rises onto the fat end, red = thin end, grey = stuck at once"
+                     "\n(X: not as predicted)", fontsize=9)
         ax.legend(fontsize=8, loc="lower right")
     fig.suptitle(f"Egg a = L/B = {A_HEN:.4f} (57 x 43 mm), uniform, Coulomb mu = {MU}: which end it rises onto"
                  f"{' [quick run]' if quick else ''}", fontsize=10)
@@ -263,9 +273,10 @@ def main(argv=None) -> dict:
     for w in sorted({0.0, W_HEN} & set(cfg["threshold_ws"])):
         real += real_egg(next(r["threshold"] for r in thr if r["w"] == w and r["start"] == "pi/2 - 0.01"), w)
     write_csv(out / "egg_real_units.csv", list(real[0]), [list(r.values()) for r in real])
-    ok = [r for r in rows if r.end != "failed"]
-    summary = {"which_end": {"n": len(rows), "as_predicted": sum(1 for r in ok if r.end == r.predicted),
+    ok = [r for r in rows if risen(r) in ("fat", "thin")]
+    summary = {"which_end": {"n": len(rows), "rose": len(ok), "as_predicted": sum(1 for r in ok if r.end == r.predicted),
                              "not_as_predicted": [r.key for r in ok if r.end != r.predicted],
+                             "stuck_at_start": [r.key for r in rows if risen(r) == "none"],
                              "failed": [r.key for r in rows if r.end == "failed"],
                              "theta_2": {f"{w:g}": pk.side_equilibrium(pk.Egg(A_HEN, w))[1] for w in cfg["ws"]}},
                "threshold": thr, "default_definition_check": checks, "real_units": real, "scale": repr(sc),
