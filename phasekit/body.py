@@ -30,7 +30,7 @@ import numpy as np
 from .errors import ParameterError
 from .validate import check_nonnegative, check_positive, check_range
 
-__all__ = ["Body", "Spheroid", "EccentricSphere", "CustomBody", "MassProperties", "uniform_mass_properties", "TIPPE_TOP_OFFSET_MAX"]
+__all__ = ["TIPPE_TOP_OFFSET_MAX", "Body", "CustomBody", "EccentricSphere", "MassProperties", "Spheroid", "uniform_mass_properties"]
 
 #: aspect ratios outside this range give moments of inertia that overflow or vanish
 ASPECT_RANGE = (1e-4, 1e4)

@@ -25,7 +25,7 @@ import math
 
 from .errors import ParameterError
 
-__all__ = ["Scale", "units", "as_quantity", "egg_of_size", "tippe_top_of_size", "STANDARD_GRAVITY", "KINDS"]
+__all__ = ["KINDS", "STANDARD_GRAVITY", "Scale", "as_quantity", "egg_of_size", "tippe_top_of_size", "units"]
 
 #: g used unless another is given (the value the issue and most experiments quote)
 STANDARD_GRAVITY = "9.81 m/s**2"

@@ -99,7 +99,7 @@ class EggDefinition(pk.Definition):
         y0 = pk.gyroscopic_start(body, th_h - self.amplitude, omega0=value)
         return pk.Model(body, self.friction(), "euler"), y0
 
-    def outcome(self, body, value: float) -> "pk.Outcome":
+    def outcome(self, body, value: float) -> pk.Outcome:
         model, x0 = self.start(body, value)
         settled = pk.Event("slip_speed", SETTLED, direction=-1, name="settled")
         r = pk.simulate(model, x0, self.t_max, rtol=self.rtol, events=[self.rise_event(body), settled], track_minima=False,

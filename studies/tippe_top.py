@@ -302,7 +302,7 @@ def convergence(out: Path) -> list[dict]:
     print(f"{'eps':>8s} " + " ".join(f"{'rtol ' + format(rt, 'g'):>20s}" for rt in (1e-8, 1e-9, 1e-10, 1e-11, 1e-12)))
     for eps in (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, "exact"):
         line = [r for r in rows if r["eps"] == eps]
-        print(f"{str(eps):>8s} " + " ".join(f"{r['t_stop']:20.15f}" for r in line))
+        print(f"{eps!s:>8s} " + " ".join(f"{r['t_stop']:20.15f}" for r in line))
     return rows
 
 

@@ -11,7 +11,7 @@ import pytest
 import phasekit as pk
 from phasekit.body import TIPPE_TOP_OFFSET_MAX, uniform_mass_properties
 from phasekit.egg import Egg
-from phasekit.fixedpoints import fixed_points, horizontal_state, linearise, vertical_state
+from phasekit.fixedpoints import fixed_points, horizontal_state, vertical_state
 from phasekit.threshold import Definition, find_threshold
 
 #: Regression values of the previous version (phasekit before the general-body rework, measured
@@ -78,7 +78,7 @@ def test_general_path_spheroid_eigenvalues(law):
         assert [p.kind for p in ps] == [p.kind for p in pc]
         for p, q in zip(ps, pc):
             np.testing.assert_allclose(q.x, p.x, rtol=0, atol=1e-12)
-            key = lambda z: (round(z.real, 8), round(z.imag, 8))  # noqa: E731
+            key = lambda z: (round(z.real, 8), round(z.imag, 8))
             np.testing.assert_allclose(sorted(q.eigenvalues, key=key), sorted(p.eigenvalues, key=key), rtol=0, atol=1e-12)
         x = horizontal_state(10.0) if "omega0" in kw else vertical_state(kw["n0"])
         m_s, m_c = pk.Model(sph, law, chart), pk.Model(cus, law, chart)

@@ -8,10 +8,23 @@ import pytest
 
 import phasekit as pk
 from phasekit.egg import Egg
-from phasekit.fixedpoints import (fixed_points, horizontal_state, inverted_state, linearise, precession_angles,
-                                  precession_residual, side_equilibrium, vertical_state)
-from phasekit.manifolds import (equator_stability_threshold, horizontal_stability_threshold, pole_stability_threshold,
-                                unstable_manifold_start, vertical_stability_threshold)
+from phasekit.fixedpoints import (
+    fixed_points,
+    horizontal_state,
+    inverted_state,
+    linearise,
+    precession_angles,
+    precession_residual,
+    side_equilibrium,
+    vertical_state,
+)
+from phasekit.manifolds import (
+    equator_stability_threshold,
+    horizontal_stability_threshold,
+    pole_stability_threshold,
+    unstable_manifold_start,
+    vertical_stability_threshold,
+)
 
 EZ = np.array([0.0, 0.0, 1.0])
 
@@ -128,7 +141,7 @@ def test_horizontal_like_state_continues_the_horizontal_state():
     """As the odd term eps -> 0 the horizontal-like state of the lopsided body tends to the
     horizontal state of the spheroid it perturbs (theta -> pi/2, n -> 0) with its spectrum."""
     ref = linearise(pk.Model(pk.Spheroid(1.5, A=0.62, C=0.4), pk.Viscous(0.1)), horizontal_state(8.0))
-    key = lambda z: (round(z.real, 6), round(z.imag, 6))  # noqa: E731
+    key = lambda z: (round(z.real, 6), round(z.imag, 6))
     prev = None
     for eps in (1e-2, 1e-3, 1e-4):
         body = lopsided(eps)
@@ -171,10 +184,11 @@ def test_unstable_manifold_of_the_inverted_tippe_top_and_the_horizontal_like_egg
 
 
 def test_cli_fixed_points_for_the_tippe_top():
-    from phasekit.cli import main
     import contextlib
     import io
     import json
+
+    from phasekit.cli import main
 
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):

@@ -22,8 +22,7 @@ from .test_tippetop_theory import rhs as reference_rhs
 ALPHA, A, C, MU = 0.3, 0.38, 0.4, 0.3
 THETA0, N0 = 0.1, 15.0
 #: the README example, word for word
-EXAMPLE = ("simulate --body tippe-top --offset 0.3 --A 0.38 --C 0.4 --mu 0.3 --friction coulomb --slip-eps 1e-8 "
-           "--theta0 0.1 --spin-about-vertical 15 --stop-at theta=0.4 --t-end 30 --rtol 1e-10 --json").split()
+EXAMPLE = ["simulate", "--body", "tippe-top", "--offset", "0.3", "--A", "0.38", "--C", "0.4", "--mu", "0.3", "--friction", "coulomb", "--slip-eps", "1e-8", "--theta0", "0.1", "--spin-about-vertical", "15", "--stop-at", "theta=0.4", "--t-end", "30", "--rtol", "1e-10", "--json"]
 LAWS = [pk.Coulomb(MU), pk.RegularisedCoulomb(MU, 1e-6), pk.Viscous(MU)]
 
 
