@@ -8,7 +8,10 @@ hybrid system (modes, events, resets) is data: see :mod:`phasekit.system`.
 This module is the one place users import from; drawing is in :mod:`phasekit.viz`.
 """
 
-from .body import Body, CustomBody, EccentricSphere, Spheroid
+from .body import Body, CustomBody, EccentricSphere, MassProperties, Spheroid, uniform_mass_properties
+from .egg import Egg
+from .units import Scale, as_quantity, egg_of_size, tippe_top_of_size
+from . import tippetop
 from .charts import EULER, FLIGHT, PAPER_NAMES, VECTOR, Chart, euler_to_vector, vector_to_euler
 from .errors import ConvergenceError, ParameterError, PhasekitError, Status
 from .friction import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous, friction_law
@@ -26,14 +29,23 @@ from .fixedpoints import (
     continue_family,
     find_fixed_point,
     fixed_points,
+    horizontal_like_angle,
     horizontal_state,
     intermediate_omega,
     intermediate_state,
+    inverted_state,
     linearise,
+    precession_angles,
+    precession_residual,
+    precession_state,
+    side_equilibrium,
     vertical_state,
 )
 from .manifolds import (
+    PoleCriterion,
+    equator_stability_threshold,
     horizontal_is_unstable,
+    pole_stability_threshold,
     horizontal_stability_threshold,
     vertical_is_stable,
     unstable_manifold_start,
@@ -83,6 +95,23 @@ __all__ = [
     "Spheroid",
     "EccentricSphere",
     "CustomBody",
+    "Egg",
+    "MassProperties",
+    "uniform_mass_properties",
+    "Scale",
+    "as_quantity",
+    "egg_of_size",
+    "tippe_top_of_size",
+    "tippetop",
+    "inverted_state",
+    "precession_angles",
+    "precession_residual",
+    "precession_state",
+    "side_equilibrium",
+    "horizontal_like_angle",
+    "PoleCriterion",
+    "pole_stability_threshold",
+    "equator_stability_threshold",
     "FrictionLaw",
     "Coulomb",
     "RegularisedCoulomb",

@@ -20,7 +20,9 @@ expression in c and the shape parameters) and :attr:`Body.shape_params`, or use
 from __future__ import annotations
 
 import hashlib
+import math
 import threading
+from typing import NamedTuple
 
 import casadi as ca
 import numpy as np
@@ -28,7 +30,7 @@ import numpy as np
 from .errors import ParameterError
 from .validate import check_nonnegative, check_positive, check_range
 
-__all__ = ["Body", "Spheroid", "EccentricSphere", "CustomBody"]
+__all__ = ["TIPPE_TOP_OFFSET_MAX", "Body", "CustomBody", "EccentricSphere", "MassProperties", "Spheroid", "uniform_mass_properties"]
 
 #: aspect ratios outside this range give moments of inertia that overflow or vanish
 ASPECT_RANGE = (1e-4, 1e4)
@@ -194,6 +196,43 @@ def _theta_functions(body: Body):
         return evaluate
 
 
+class MassProperties(NamedTuple):
+    """Mass properties of the uniform solid bounded by a body's surface, per unit mass
+    (lengths in b). ``z_centroid`` is the centroid's coordinate along k measured from the
+    body's G (0 when G is the centroid); ``A`` is about the centroid."""
+
+    volume: float
+    z_centroid: float
+    A: float
+    C: float
+
+
+def uniform_mass_properties(body: Body, n: int = 400) -> MassProperties:
+    """Volume, centroid and moments of the uniform solid bounded by ``body``'s surface,
+    computed from its support function alone.
+
+    The contact point at inclination theta traces the meridian: relative to G it lies at
+    z = h_t sin(theta) - h cos(theta) along k and at distance x_P = h sin(theta) + h_t cos(theta)
+    from the axis, with dz/dtheta = (h + h_tt) sin(theta) >= 0 (from the pole at -k, theta = 0,
+    to the pole at +k). Discs of radius x_P give V = pi int x_P^2 dz, C = (pi/2V) int x_P^4 dz and
+    A = (pi/V) int x_P^2 (x_P^2/4 + (z - z_c)^2) dz. Gauss-Legendre quadrature in theta with
+    ``n`` nodes (spectrally accurate for a smooth support function: 1e-14 for the spheroid).
+    """
+    x, wq = np.polynomial.legendre.leggauss(int(n))
+    th = 0.5 * np.pi * (x + 1.0)
+    wq = 0.5 * np.pi * wq
+    h, h1, h2 = body.h(th)
+    s, c = np.sin(th), np.cos(th)
+    z = h1 * s - h * c
+    r2 = (h * s + h1 * c) ** 2
+    dz = wq * (h + h2) * s
+    V = np.pi * np.sum(r2 * dz)
+    zc = np.pi * np.sum(r2 * z * dz) / V
+    C = 0.5 * np.pi * np.sum(r2 * r2 * dz) / V
+    A = np.pi * np.sum(r2 * (0.25 * r2 + (z - zc) ** 2) * dz) / V
+    return MassProperties(float(V), float(zc), float(A), float(C))
+
+
 class Spheroid(Body):
     """Spheroid with semi-axes (1, 1, a), G at its centre: prolate for a > 1, oblate for a < 1.
 
@@ -214,6 +253,7 @@ class Spheroid(Body):
     def __init__(self, a: float, A: float | None = None, C: float | None = None):
         self.a = check_range("a", a, *ASPECT_RANGE, closed="lr", label=f"[{ASPECT_RANGE[0]:g}, {ASPECT_RANGE[1]:g}]")
         super().__init__((1.0 + self.a * self.a) / 5.0 if A is None else A, 0.4 if C is None else C)
+        self.check_convex("a")
 
     @property
     def shape_params(self) -> tuple[float, ...]:
@@ -245,30 +285,52 @@ class Spheroid(Body):
         return f"Spheroid(a={self.a:g}, A={self.A:g}, C={self.C:g})"
 
 
+#: the largest offset for the default tippe-top moments: an isotropic inertia 2/5 about the
+#: ball's centre O allows offset^2 <= 1/5 (Cauchy-Schwarz; the same bound as C <= 2A)
+TIPPE_TOP_OFFSET_MAX = math.sqrt(0.2)
+
+
 class EccentricSphere(Body):
     """A sphere of radius 1 whose centre of mass G lies ``offset`` below its centre O along the
     axis k (the tippe top). theta = 0: resting on the ball with G below O (axis up);
     theta = pi: inverted, resting on the other side with G above O.
 
-    Support function: h = 1 - offset cos(theta), so h_t = offset sin(theta) and the radius
-    of curvature h + h_tt = 1 everywhere.
+    Support function: h = 1 - offset cos(theta), so h_t = offset sin(theta) and both radii of
+    curvature equal 1 everywhere.
 
     Parameters
     ----------
     offset : float in [0, 1)
         Distance OG over the radius (alpha in the tippe-top literature).
     A, C : float, optional
-        Moments about G. Default: C = 2/5 and A = 2/5 - offset^2, the moments about G of a
-        body whose moments about the centre O are the uniform ball's (parallel-axis theorem).
+        Moments about G in M b^2 (b the radius). Default: C = 2/5 and A = 2/5 - offset^2.
+
+    Notes
+    -----
+    Default moments. They are those of a ball whose inertia about its centre O is the uniform
+    ball's, 2/5 about every axis, moved to G by the parallel-axis theorem. The standard physical
+    example is a ball made of two solid hemispheres of different uniform densities rho_1 (the
+    lower half when upright) and rho_2: each hemisphere has moment 2/5 m_i about every axis
+    through O, and G lies (3/8)(rho_1 - rho_2)/(rho_1 + rho_2) below O, so offset <= 3/8 covers
+    all such balls. No density >= 0 gives these moments beyond offset^2 = 1/5 (Cauchy-Schwarz:
+    (int z dm)^2 <= M int z^2 dm = M A_O / 2), which is also where C <= 2A fails; such offsets
+    need explicit A and C. The default gamma = A/C = 1 - 5 offset^2/2 lies inside the classical
+    inversion interval (1 - offset, 1 + offset) for every offset < 2/5, so every default top
+    inverts when spun fast enough (phasekit.tippetop.classical_inversion). Commercial tippe tops
+    (a truncated ball with a stem) have gamma closer to 1; the example in the README uses
+    offset 0.3, A = 0.38, C = 0.4 (gamma = 0.95).
     """
 
     def __init__(self, offset: float, A: float | None = None, C: float | None = None):
         self.offset = check_nonnegative("offset", offset)
         if self.offset >= 1.0:
             raise ParameterError("offset", "must lie in [0, 1) (G inside the ball)", offset)
-        if A is None and 0.4 - self.offset**2 <= 0.2:
-            raise ParameterError("offset", "must be < 0.447 for the default moments (give A and C for larger offsets)", offset)
+        if A is None and self.offset > TIPPE_TOP_OFFSET_MAX:
+            raise ParameterError("offset", f"must be <= {TIPPE_TOP_OFFSET_MAX:.6g} (sqrt(1/5)) for the default moments "
+                                           "(no ball with inertia 2/5 about its centre has a larger offset); give A and C",
+                                 offset)
         super().__init__(0.4 - self.offset**2 if A is None else A, 0.4 if C is None else C)
+        self.check_convex("offset")
 
     @property
     def shape_params(self) -> tuple[float, ...]:
@@ -291,7 +353,7 @@ class EccentricSphere(Body):
 class CustomBody(Body):
     """A body from a user's support function, in a few lines::
 
-        body = pk.CustomBody(lambda th: ca.sqrt(4 * ca.cos(th) ** 2 + ca.sin(th) ** 2), A=1.0, C=0.4)
+        body = pk.CustomBody(lambda th: ca.sqrt(4 * ca.cos(th) ** 2 + ca.sin(th) ** 2))  # = Spheroid(2)
 
     Parameters
     ----------
@@ -300,8 +362,10 @@ class CustomBody(Body):
         (``variable="theta"``), or of c = cos(theta) (``variable="cos"``). Given in theta,
         the vector chart evaluates it at theta = acos(k_Z), whose derivative is singular
         exactly at theta = 0 and pi: give it in cos(theta) to work at the poles.
-    A, C : float
-        Moments about G (units M b^2).
+    A, C : float, optional
+        Moments about G (units M b^2). Default: those of the uniform solid bounded by the
+        surface (:func:`uniform_mass_properties`); this needs G at that solid's centroid
+        (otherwise the density is not uniform and A, C must be given).
     name : str
         Shown in reports.
 
@@ -309,19 +373,28 @@ class CustomBody(Body):
     curvature > 0); a bad one raises ParameterError naming `height`.
     """
 
-    def __init__(self, height, A: float, C: float, *, variable: str = "theta", name: str = "custom"):
+    def __init__(self, height, A: float | None = None, C: float | None = None, *, variable: str = "theta",
+                 name: str = "custom"):
         if not callable(height):
             raise ParameterError("height", "must be a function of theta (or of cos(theta)) returning a CasADi expression", height)
         if variable not in ("theta", "cos"):
             raise ParameterError("variable", "must be one of theta, cos", variable)
-        super().__init__(A, C)
-        self._fn, self.variable, self.name = height, variable, str(name)
+        self._fn, self.variable, self.name, self._key = height, variable, str(name), None
         try:
             self.structure_key
         except Exception as exc:  # the function is not CasADi-expressible
             raise ParameterError("height", f"must return a CasADi expression ({type(exc).__name__}: {exc})", show_value=False) from None
         interior = (1e-6, np.pi - 1e-6) if variable == "theta" else (0.0, np.pi)
         self.check_convex("height", interior)
+        if A is None or C is None:
+            props = uniform_mass_properties(self)
+            if abs(props.z_centroid) > 1e-9 * max(1.0, abs(self.h(0.0)[0])):
+                raise ParameterError("A", f"and `C` are required: G is not the centroid of the solid (centroid at "
+                                          f"{props.z_centroid:.6g} along k), so the density is not uniform",
+                                     show_value=False)
+            A = props.A if A is None else A
+            C = props.C if C is None else C
+        super().__init__(A, C)
 
     @property
     def shape_params(self) -> tuple[float, ...]:

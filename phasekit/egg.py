@@ -69,8 +69,6 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-import scipy.fft
-from scipy.integrate import quad
 
 from .body import Body
 from .errors import ParameterError
@@ -219,6 +217,8 @@ def mass_properties(a: float, w: float) -> EggMassProperties:
     vanishing first moment at w = 0 and makes QUADPACK warn).
     """
 
+    from scipy.integrate import quad  # imported here: scipy.integrate costs 0.3 s at import
+
     def g(s):
         return (1.0 - s * s) / (1.0 + 4.0 * w * s + 4.0 * w * w)
 
@@ -246,6 +246,8 @@ def _chebyshev_coefficients(a: float, w: float, degree: int) -> np.ndarray:
     the DCT replaces numpy's ``chebinterpolate``, whose Vandermonde solve lets rounding grow
     to ~1e-14 at degree 200.
     """
+    import scipy.fft
+
     n = degree + 1
     theta = np.pi * (np.arange(n) + 0.5) / n
     h, _, h2 = support(theta, a, w)

@@ -1,20 +1,45 @@
-"""Steady states, their exact linearisation and stability (part I of the series).
+"""Steady states, their exact linearisation and stability (part I of the series), for any body.
 
-Classes of steady states of (2.7) for a flip-symmetric body
------------------------------------------------------------
-vertical       theta = 0, spin n0 about the vertical, U = V = 0. The Euler chart is
-               singular there, so it is found and linearised in the vector chart
-               (k = e_Z, w = n0 e_Z, v = 0).
+Classes of steady states of (2.7)
+---------------------------------
+vertical       theta = 0, spin n0 about the vertical, U = V = 0 (resting on the end at -k).
+               The Euler chart is singular there, so it is found and linearised in the
+               vector chart (k = e_Z, w = n0 e_Z, v = 0).
+inverted       theta = pi: k = -e_Z, w = n0 k (spin n = w.k = n0), v = 0, resting on the end
+               at +k. For a flip-symmetric body (h(pi - theta) = h(theta)) this is the vertical
+               state with k reversed, so it is reported only for bodies without that symmetry.
+               The state is exact (r_P is vertical at both poles); it is linearised in the
+               vector chart.
 horizontal     steady precession with the axis horizontal: U = V = Lambda = n = 0,
-               theta = pi/2, any Omega0 (rotating frame of the Euler chart).
+               theta = pi/2, any Omega0. It exists only where h_theta(pi/2) = 0 (flip-symmetric
+               bodies): otherwise G is not above P when the axis is horizontal.
 intermediate   steady precession at 0 < theta* < pi: Lambda = U = V = 0, zero slip
                V_P = 0, i.e. n = Omega (cos theta - h_theta / x_P), and the torque balance
-               (2.7d) with R = 1:
+               (2.7d) with R = 1 and no friction force:
                    Omega^2 = h_theta / (sin theta [(A - C) cos theta + C h_theta / x_P]),
-               a family in theta* where the right-hand side is positive.
-inverted vertical (theta = pi) is the vertical with k reversed: for a flip-symmetric body
-               it is the same physical state, so it is not reported separately.
+               a family in theta* where the right-hand side is positive. Nothing here assumes
+               flip symmetry (derived from (2.7a-f) with U = V = Lambda = 0: (2.7a, b) give
+               F = 0, (2.7c, e, f) hold identically, (2.4) gives the spin, (2.7d) the rate).
+horizontal-like for a body with h_theta(pi/2) != 0 (an egg), the member of the Omega-family
+               that continues the horizontal state: the branch that leaves the static
+               equilibrium lying on the side (theta_1, where h_theta = 0) at Omega -> 0 and tends,
+               as Omega -> infinity, to theta_2 where (A - C) cos theta x_P + C h_theta = 0
+               (the rate diverges there). For a flip-symmetric body theta_1 = theta_2 = pi/2.
 All of them have zero slip, so friction does no work on them and they exist for every law.
+
+Locating the precessions. With q = h_theta / sin(theta) = -H'(cos theta) and the azimuthal
+radius of curvature rho_2 = x_P / sin(theta) (both regular at the poles), the states with
+rate Omega0 are the roots in theta of the smooth function
+
+    G_Omega(theta) = q rho_2 - Omega0^2 [(A - C) cos(theta) rho_2 + C q],
+
+and those with spin n0 (n = Omega z / rho_2, z = h cos - h_theta sin) the roots of
+
+    G_n(theta) = q z^2 - n0^2 rho_2 [(A - C) cos(theta) rho_2 + C q].
+
+They are bracketed on a fine grid and refined by Brent's method, then polished by Newton on
+the full equations (:func:`find_fixed_point`). For the eccentric sphere G_n is
+alpha (cos - alpha)^2 - n0^2 ((A - C) cos + C alpha), phasekit.tippetop's steady states.
 
 Linearisation
 -------------
@@ -28,6 +53,8 @@ of Coulomb friction" needs a meaning:
   manifold (velocity of O slaved to u = 0). Rolling does no work: the rolling spectrum has
   no friction-induced decay or growth of the kind viscous friction gives, and the
   regularised spectrum tends to it, plus two fast slip modes, as eps -> 0 (tested).
+  Closed-form criteria for sliding friction (phasekit.manifolds) are then reported beside
+  the rolling spectrum in ``FixedPoint.parameter``.
 
 Families have a structural zero eigenvalue (the family parameter), and in the vector chart
 a second one (|k|, which the field leaves invariant); these count as neutral.
@@ -35,7 +62,7 @@ a second one (|k|, which the field leaves invariant); these count as neutral.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import casadi as ca
 import numpy as np
@@ -53,8 +80,14 @@ __all__ = [
     "fixed_points",
     "horizontal_state",
     "vertical_state",
+    "inverted_state",
     "intermediate_state",
     "intermediate_omega",
+    "precession_state",
+    "precession_angles",
+    "precession_residual",
+    "side_equilibrium",
+    "horizontal_like_angle",
     "continue_family",
     "linearise",
 ]
@@ -69,7 +102,7 @@ class FixedPoint:
 
     Attributes
     ----------
-    kind : "vertical", "horizontal" or "intermediate"
+    kind : "vertical", "inverted", "horizontal", "horizontal-like" or "intermediate"
     chart : the chart of ``x`` ("euler" or "vector")
     x : chart state; ``y`` the same in the paper's variables (Omega is NaN at theta = 0)
     eigenvalues : complex, sorted by descending real part
@@ -77,6 +110,8 @@ class FixedPoint:
         exact Coulomb the no-slip manifold coordinates, lifted to the chart state)
     residual : max |f(x)| of the mode's vector field at x
     law : the linearised law ("viscous", "coulomb-regularised", "coulomb-rolling")
+    parameter : the family parameter (Omega0 or n0), and for the poles the closed-form
+        stability criterion under sliding friction (phasekit.manifolds.pole_stability)
     """
 
     kind: str
@@ -189,14 +224,136 @@ def horizontal_state(omega0: float) -> np.ndarray:
 
 
 def vertical_state(n0: float) -> np.ndarray:
-    """Vector-chart state k = e_Z, w = n0 e_Z, v = 0."""
+    """Vector-chart state k = e_Z, w = n0 e_Z, v = 0 (theta = 0)."""
     return np.array([0.0, 0.0, 1.0, 0.0, 0.0, check_finite("n0", n0), 0.0, 0.0])
+
+
+def inverted_state(n0: float) -> np.ndarray:
+    """Vector-chart state k = -e_Z, w = n0 k = -n0 e_Z, v = 0 (theta = pi, spin w.k = n0).
+    An exact steady state of every body (the contact point lies straight below G)."""
+    return np.array([0.0, 0.0, -1.0, 0.0, 0.0, -check_finite("n0", n0), 0.0, 0.0])
 
 
 def _geometry(body, theta):
     h, ht, _ = body.h(theta)
     s, c = np.sin(theta), np.cos(theta)
     return h, ht, s, c, h * s + ht * c
+
+
+def _regular(body, theta):
+    """(q, rho_2, z, D) at theta (arrays): q = h_theta / sin = -H'(cos), rho_2 = x_P / sin,
+    z = h cos - h_theta sin, D = (A - C) cos rho_2 + C q; all regular at the poles."""
+    theta = np.asarray(theta, dtype=float)
+    c = np.cos(theta)
+    H, dH = _height_slope_many(body, c)
+    q = -dH
+    h, ht, s = H, q * np.sin(theta), np.sin(theta)
+    rho2 = h + q * c  # x_P / sin = h + h_theta cos / sin
+    z = h * c - ht * s
+    D = (body.A - body.C) * c * rho2 + body.C * q
+    return q, rho2, z, D
+
+
+def _height_slope_many(body, c):
+    """(H, dH/dc) at an array of c, by the body's compiled slope function mapped over c."""
+    from .body import _slope_function
+
+    c = np.atleast_1d(np.asarray(c, dtype=float))
+    shape = np.asarray(body.shape_params, dtype=float)
+    H, dH = _slope_function(body).map(c.size)(c[None, :], np.tile(shape[:, None], (1, c.size)))
+    return np.asarray(H).ravel(), np.asarray(dH).ravel()
+
+
+def precession_residual(body, theta, *, omega0: float | None = None, n0: float | None = None):
+    """G_Omega(theta) (given ``omega0``) or G_n(theta) (given ``n0``): zero exactly where a
+    steady precession with that rate or spin exists (module notes). ``theta`` may be an array."""
+    q, rho2, z, D = _regular(body, theta)
+    if omega0 is not None:
+        out = q * rho2 - omega0 * omega0 * D
+    else:
+        out = q * z * z - n0 * n0 * rho2 * D
+    return out if np.ndim(theta) else float(out[0])
+
+
+def precession_angles(body, *, omega0: float | None = None, n0: float | None = None, theta_range=None,
+                      n_grid: int = 4001) -> list[float]:
+    """Every theta in ``theta_range`` (default (0, pi), or (0, pi/2) for a flip-symmetric body)
+    at which a steady precession with rate ``omega0`` (or spin ``n0``) exists: sign changes of
+    :func:`precession_residual` on ``n_grid`` points, refined by Brent's method to ~1e-15.
+    For a flip-symmetric body the neighbourhood of pi/2 (the horizontal family, where
+    G vanishes identically) is left out."""
+    from scipy.optimize import brentq
+
+    if (omega0 is None) == (n0 is None):
+        raise ValueError("give exactly one of `omega0` or `n0`.")
+    if theta_range is None:
+        theta_range = (0.0, np.pi / 2 - 1e-3) if body.flip_symmetric else (0.0, np.pi)
+    lo, hi = theta_range
+    grid = np.linspace(lo, hi, n_grid)[1:-1]
+    g = precession_residual(body, grid, omega0=omega0, n0=n0)
+    roots = []
+    for k in np.flatnonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0):
+        f = lambda t: precession_residual(body, t, omega0=omega0, n0=n0)  # noqa: E731
+        roots.append(float(brentq(f, grid[k], grid[k + 1], xtol=1e-15, rtol=4 * np.finfo(float).eps)))
+    roots += [float(grid[k]) for k in np.flatnonzero(g == 0.0)]
+    return sorted(roots)
+
+
+def precession_state(body, theta: float, *, omega0: float | None = None, n0: float | None = None) -> np.ndarray:
+    """The steady precession at ``theta`` with rate ``omega0`` or spin ``n0`` (Euler chart):
+    (0, 0, Omega, 0, theta, n) with n = Omega z / rho_2 (zero slip). ``theta`` should be one
+    of :func:`precession_angles`; no check that the torque balance holds is made here."""
+    q, rho2, z, D = (float(v[0]) for v in _regular(body, np.array([theta])))
+    if omega0 is not None:
+        om = float(omega0)
+        n = om * z / rho2
+    else:
+        n = float(n0)
+        om = n * rho2 / z
+    return np.array([0.0, 0.0, om, 0.0, float(theta), n])
+
+
+def side_equilibrium(body) -> tuple[float, float]:
+    """(theta_1, theta_2) nearest pi/2: theta_1 where h_theta = 0 (the body at rest on its side),
+    theta_2 where (A - C) cos(theta) x_P + C h_theta = 0 (the fast-precession limit of the
+    horizontal-like state). Both are pi/2 for a flip-symmetric body."""
+    from scipy.optimize import brentq
+
+    if body.flip_symmetric:
+        return np.pi / 2, np.pi / 2
+    grid = np.linspace(1e-3, np.pi - 1e-3, 2001)
+    out = []
+    for idx in (0, 3):
+        v = _regular(body, grid)[idx]
+        k = np.flatnonzero(np.sign(v[:-1]) * np.sign(v[1:]) <= 0)
+        if k.size == 0:
+            out.append(float("nan"))
+            continue
+        k = k[np.argmin(np.abs(grid[k] - np.pi / 2))]
+        f = lambda t, i=idx: float(_regular(body, np.array([t]))[i][0])  # noqa: E731
+        out.append(float(brentq(f, grid[k], grid[k + 1], xtol=1e-15)))
+    return out[0], out[1]
+
+
+#: a precession within this of [theta_1, theta_2] continues the horizontal state
+HORIZONTAL_LIKE_WINDOW = 0.25
+
+
+def horizontal_like_angle(body, thetas) -> float | None:
+    """Among precession angles ``thetas`` of one Omega-family, the one continuing the
+    horizontal state of a body with h_theta(pi/2) != 0: the nearest to the interval between
+    theta_1 and theta_2 (:func:`side_equilibrium`), if within HORIZONTAL_LIKE_WINDOW. The
+    symmetric pitchfork of the spheroid (the intermediate family branching off the horizontal
+    state at the stability threshold) unfolds for such a body: at slow precession the state
+    near theta_1 (the body lying on its side) continues the horizontal state, at fast
+    precession the unstable state near theta_2 does. None for flip-symmetric bodies."""
+    if body.flip_symmetric or not len(thetas):
+        return None
+    th1, th2 = side_equilibrium(body)
+    lo, hi = min(th1, th2), max(th1, th2)
+    dist = [max(lo - t, t - hi, 0.0) for t in thetas]
+    k = int(np.argmin(dist))
+    return float(thetas[k]) if dist[k] <= HORIZONTAL_LIKE_WINDOW else None
 
 
 def intermediate_omega(body, theta: float) -> float | None:
@@ -348,11 +505,14 @@ def linearise(model: Model, x, *, kind: str = "state") -> FixedPoint:
 
 def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: float | None = None,
                  n0: float | None = None) -> list[FixedPoint]:
-    """Every class of steady state at the given family parameter.
+    """Every class of steady state at the given family parameter, for any body.
 
-    ``omega0``: the horizontal precession and the intermediate precessions with that
-    Omega. ``n0``: the vertical spin (found in the vector chart: ``model_vector``, by
-    default ``model`` in the vector chart) and the intermediate precessions with that spin.
+    ``omega0``: the horizontal precession (where h_theta(pi/2) = 0) and the precessions with
+    rate Omega0 (the one continuing the horizontal state of an asymmetric body is labelled
+    "horizontal-like"). ``n0``: the vertical spin at theta = 0, the inverted one at theta = pi
+    (bodies without flip symmetry; both in the vector chart: ``model_vector``, by default
+    ``model`` in the vector chart) and the precessions with spin n0. Each pole carries its
+    closed-form stability criterion under sliding friction in ``parameter``.
     """
     model_euler = model if model.chart is EULER else model.with_chart("euler")
     model_vector = model_vector or model.with_chart("vector")
@@ -360,34 +520,42 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
         raise ValueError("give exactly one of `omega0` or `n0`.")
     body = model_euler.body
     out: list[FixedPoint] = []
-    thetas = np.linspace(1e-3, np.pi / 2 - 1e-3, 400)
     if omega0 is not None:
         omega0 = check_finite("omega0", omega0)
-        out.append(find_fixed_point(model_euler, horizontal_state(omega0), kind="horizontal", value=omega0))
-        target = lambda st: st[2] - abs(omega0)  # noqa: E731
-        sign = np.sign(omega0) or 1.0
+        if body.flip_symmetric or abs(body.h(np.pi / 2)[1]) < 1e-14:
+            out.append(find_fixed_point(model_euler, horizontal_state(omega0), kind="horizontal", value=omega0))
+        fixed, value = "Omega", omega0
     else:
         n0 = check_finite("n0", n0)
-        out.append(find_fixed_point(model_vector, vertical_state(n0), kind="vertical", value=n0))
-        target = lambda st: st[5] - abs(n0)  # noqa: E731
-        sign = np.sign(n0) or 1.0
-    # intermediate family: bracket the parameter along theta*, then Newton from the bracket
-    vals = []
-    for th in thetas:
-        st = intermediate_state(body, th)
-        vals.append(np.nan if st is None else target(st))
-    vals = np.array(vals)
-    for k in range(len(thetas) - 1):
-        if np.isfinite(vals[k]) and np.isfinite(vals[k + 1]) and vals[k] * vals[k + 1] < 0:
-            frac = vals[k] / (vals[k] - vals[k + 1])
-            guess = intermediate_state(body, thetas[k] + frac * (thetas[k + 1] - thetas[k]))
-            guess = guess * np.array([1, 1, sign, 1, 1, sign])  # reversal: (Omega, n) -> -(Omega, n)
-            fixed, value = ("Omega", omega0) if omega0 is not None else ("n", n0)
-            try:
-                out.append(find_fixed_point(model_euler, guess, kind="intermediate", value=value, fixed=fixed))
-            except ConvergenceError:
-                continue
+        out.append(_pole(model_vector, n0, "upright"))
+        if not body.flip_symmetric:
+            out.append(_pole(model_vector, n0, "inverted"))
+        fixed, value = "n", n0
+    thetas = precession_angles(body, omega0=omega0, n0=n0)
+    like = horizontal_like_angle(body, thetas) if omega0 is not None else None
+    for theta in thetas:
+        guess = precession_state(body, theta, omega0=omega0, n0=n0)
+        kind = "horizontal-like" if theta == like else "intermediate"
+        try:
+            fp = find_fixed_point(model_euler, guess, kind=kind, value=value, fixed=fixed)
+        except ConvergenceError:
+            continue
+        out.append(replace(fp, parameter={fixed: value, "theta": float(fp.x[4])}))
     return out
+
+
+def _pole(model_vector: Model, n0: float, pole: str) -> FixedPoint:
+    """The spinning state at theta = 0 (Newton, as every family) or theta = pi (exact), with the
+    closed-form criterion under sliding friction attached."""
+    from .manifolds import pole_stability_threshold
+
+    if pole == "upright":
+        fp = find_fixed_point(model_vector, vertical_state(n0), kind="vertical", value=n0)
+    else:
+        fp = linearise(model_vector, inverted_state(n0), kind="inverted")
+    crit = pole_stability_threshold(model_vector.body, pole)
+    info = {"n0": n0, "theta": 0.0 if pole == "upright" else float(np.pi), **crit.to_dict(n0)}
+    return replace(fp, parameter=info)
 
 
 def continue_family(model: Model, kind: str, values, *, start=None) -> Branch:

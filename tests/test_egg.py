@@ -260,3 +260,23 @@ def test_construction_is_fast():
         Egg(1.2345 + 0.001 * k, 0.0678)
         times.append(time.perf_counter() - start)
     assert min(times) < 0.5  # the minimum, so that a busy machine does not fail the test
+
+
+# -- dynamics: which end rises -------------------------------------------------------------------
+def test_the_horizontal_like_state_separates_the_two_ends():
+    """Started on the sliding branch just below the horizontal-like precession theta_h(Omega0)
+    the egg rises toward its fat end (theta decreases), just above it toward its thin end,
+    although both starts have the thin end lower (theta0 > pi/2): the separatrix is not pi/2."""
+    import phasekit as pk
+
+    egg = Egg(57 / 43, 0.05)
+    th_h = pk.horizontal_like_angle(egg, pk.precession_angles(egg, omega0=6.0))
+    assert th_h - np.pi / 2 > 0.15
+    ends = {}
+    for d in (-0.02, 0.02):
+        y0 = pk.gyroscopic_start(egg, th_h + d, omega0=6.0)
+        r = pk.simulate(pk.Model(egg, pk.Coulomb(0.1)), y0, 60.0, rtol=1e-9, track_minima=False,
+                        events=[pk.Event("theta", 1.2, direction=-1, name="fat"), pk.Event("theta", 2.4, direction=+1, name="thin")])
+        assert r.status is pk.Status.STOPPED
+        ends[d] = r.events[-1].name
+    assert ends == {-0.02: "fat", 0.02: "thin"}

@@ -1,0 +1,166 @@
+"""Real units: millimetres, grams, revolutions per second in and out, by pint.
+
+phasekit computes in the paper's units: mass M, length b (the equatorial radius of a
+spheroid or egg, the radius of a tippe top's ball), acceleration g, hence time sqrt(b/g),
+rates sqrt(g/b), speeds sqrt(g b), forces M g, energies M g b and moments of inertia M b^2.
+A :class:`Scale` holds b, g (and M when forces or moments are wanted) as pint quantities and
+converts both ways by dimensional analysis, so that a user never converts by hand::
+
+    sc = pk.Scale("21.5 mm")                  # g = 9.81 m/s^2
+    sc.dimensionless("30 rev/s")              # -> 4.40..., a spin in units sqrt(g/b)
+    sc.quantity(9.7, "rate").to("rev/s")      # -> 66.2... rev/s
+    egg, sc = pk.egg_of_size("57 mm", "43 mm", w=0.05, mass="57 g")
+
+Angles: pint takes the radian as dimensionless, so 1 rev/s = 2 pi rad/s = 2 pi (1/s). A rate
+in hertz is refused: pint converts 1 Hz to 1 rad/s, which is a factor 2 pi away from one
+revolution per second; write "rev/s" (or "rps", "rpm", "rad/s").
+
+pint is imported on first use (building its registry takes ~0.6 s), not with phasekit.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+from .errors import ParameterError
+
+__all__ = ["KINDS", "STANDARD_GRAVITY", "Scale", "as_quantity", "egg_of_size", "tippe_top_of_size", "units"]
+
+#: g used unless another is given (the value the issue and most experiments quote)
+STANDARD_GRAVITY = "9.81 m/s**2"
+
+#: kinds of quantity and their unit in phasekit: (pint dimensionality, factor as powers of (b, g, M))
+KINDS = {
+    "length": ("[length]", (1, 0, 0)),
+    "time": ("[time]", (0.5, -0.5, 0)),
+    "rate": ("1 / [time]", (-0.5, 0.5, 0)),
+    "speed": ("[length] / [time]", (0.5, 0.5, 0)),
+    "acceleration": ("[length] / [time] ** 2", (0, 1, 0)),
+    "mass": ("[mass]", (0, 0, 1)),
+    "force": ("[mass] * [length] / [time] ** 2", (0, 1, 1)),
+    "energy": ("[length] ** 2 * [mass] / [time] ** 2", (1, 1, 1)),
+    "inertia": ("[length] ** 2 * [mass]", (2, 0, 1)),
+    "angular_momentum": ("[length] ** 2 * [mass] / [time]", (1.5, 0.5, 1)),
+}
+
+
+@functools.lru_cache(maxsize=1)
+def units():
+    """phasekit's pint UnitRegistry (built once, on first use)."""
+    import pint
+
+    ureg = pint.UnitRegistry()
+    ureg.define("rev = revolution")  # "30 rev/s", as people write it
+    return ureg
+
+
+def as_quantity(value, name: str, default_unit: str | None = None):
+    """A pint Quantity from a Quantity, a string such as "21.5 mm", or a number in
+    ``default_unit``. ParameterError naming ``name`` if it does not parse."""
+    import pint
+
+    ureg = units()
+    if isinstance(value, pint.Quantity):
+        q = value if value._REGISTRY is ureg else ureg.Quantity(value.magnitude, str(value.units))
+    elif isinstance(value, str):
+        try:
+            q = ureg.Quantity(value)
+        except Exception:
+            raise ParameterError(name, "must be a quantity such as '21.5 mm' or '30 rev/s'", value) from None
+    elif isinstance(value, (int, float)) and not isinstance(value, bool) and default_unit is not None:
+        q = ureg.Quantity(float(value), default_unit)
+    else:
+        raise ParameterError(name, "must be a pint Quantity or a string with units such as '21.5 mm'", value)
+    if not math.isfinite(float(q.magnitude)):
+        raise ParameterError(name, "must be finite", value)
+    if "hertz" in str(q.units) or "Hz" in str(q.units):
+        raise ParameterError(name, "must not be in hertz (pint reads 1 Hz as 1 rad/s): use rev/s, rpm or rad/s", value)
+    return q
+
+
+class Scale:
+    """The dimensional scales of one body: length b, gravity g and (optionally) mass M.
+
+    Parameters
+    ----------
+    b : quantity
+        The unit of length: the equatorial radius (spheroid, egg: half the maximum breadth)
+        or the ball's radius (tippe top). A pint Quantity or a string ("21.5 mm").
+    g : quantity
+        Gravity, default 9.81 m/s^2.
+    mass : quantity, optional
+        The body's mass, needed only for forces, energies and moments of inertia.
+
+    Attributes
+    ----------
+    time_unit : Quantity
+        sqrt(b/g), phasekit's unit of time.
+    """
+
+    def __init__(self, b, g=STANDARD_GRAVITY, mass=None):
+        self.b = as_quantity(b, "b")
+        self.g = as_quantity(g, "g")
+        self.mass = None if mass is None else as_quantity(mass, "mass")
+        checks = (("b", self.b, "[length]"), ("g", self.g, "[length] / [time] ** 2"))
+        checks += (("mass", self.mass, "[mass]"),) if self.mass is not None else ()
+        for name, q, dim in checks:
+            if q.dimensionality != units().get_dimensionality(dim):
+                raise ParameterError(name, f"must have dimension {dim}", str(q))
+            if not q.magnitude > 0:
+                raise ParameterError(name, "must be > 0", str(q))
+        self.time_unit = (self.b / self.g) ** 0.5
+
+    def unit(self, kind: str):
+        """phasekit's unit of ``kind`` (a key of :data:`KINDS`) as a Quantity."""
+        if kind not in KINDS:
+            raise ParameterError("kind", f"must be one of {', '.join(KINDS)}", kind)
+        pb, pg, pm = KINDS[kind][1]
+        if pm and self.mass is None:
+            raise ParameterError("mass", f"is needed to express a {kind} (give Scale(..., mass=...))", show_value=False)
+        q = self.b**pb * self.g**pg
+        return q * self.mass**pm if pm else q
+
+    def quantity(self, value, kind: str):
+        """A phasekit (dimensionless) value as a Quantity of ``kind``, in SI base units."""
+        return (float(value) * self.unit(kind)).to_base_units()
+
+    def dimensionless(self, value, kind: str | None = None) -> float:
+        """A quantity (Quantity or string such as "30 rev/s", "57 mm", "12 ms") in phasekit's
+        units; its kind is read from its dimensionality (or checked against ``kind``)."""
+        q = as_quantity(value, kind or "value")
+        dims = {k: units().get_dimensionality(d) for k, (d, _) in KINDS.items()}
+        found = [k for k, d in dims.items() if d == q.dimensionality]
+        if not found:
+            raise ParameterError(kind or "value", f"has dimension {q.dimensionality}, which is none of {', '.join(KINDS)}",
+                                 str(q))
+        if kind is not None and kind not in found:
+            raise ParameterError(kind, f"must have the dimension of a {kind} ({KINDS[kind][0]})", str(q))
+        return float((q / self.unit(found[0])).to("dimensionless").magnitude)
+
+    def __repr__(self) -> str:
+        m = f", mass={self.mass:~P}" if self.mass is not None else ""
+        return f"Scale(b={self.b:~P}, g={self.g:~P}{m}; time unit {self.time_unit.to('ms'):.4g~P})"
+
+
+def egg_of_size(length, breadth, *, w: float = 0.0, mass=None, g=STANDARD_GRAVITY):
+    """An :class:`~phasekit.egg.Egg` of the given length and maximum breadth (uniform density)
+    and its :class:`Scale` (b = breadth / 2). ``w`` is the egg's asymmetry (w/L)."""
+    from .egg import Egg
+
+    L, B = as_quantity(length, "length"), as_quantity(breadth, "breadth")
+    a = float((L / B).to("dimensionless").magnitude)
+    return Egg(a, w), Scale(B / 2, g=g, mass=mass)
+
+
+def tippe_top_of_size(radius, offset, *, A=None, C=None, mass=None, g=STANDARD_GRAVITY):
+    """An :class:`~phasekit.body.EccentricSphere` of the given ball radius with its centre of
+    mass ``offset`` (a length) below the centre, and its :class:`Scale` (b = radius). ``A``
+    and ``C`` may be numbers (units M b^2) or quantities of a moment of inertia (need ``mass``)."""
+    from .body import EccentricSphere
+
+    sc = Scale(radius, g=g, mass=mass)
+    alpha = sc.dimensionless(offset, "length")
+    moments = [None if m is None else (float(m) if isinstance(m, (int, float)) else sc.dimensionless(m, "inertia"))
+               for m in (A, C)]
+    return EccentricSphere(alpha, A=moments[0], C=moments[1]), sc

@@ -1,0 +1,290 @@
+"""Spinning eggs: which end rises, the jump threshold against the asymmetry, and a real egg's jump.
+
+Bodies. phasekit.Egg(a, w): the solid of revolution of Hugelschaffer's egg curve (Narushin,
+Romanov & Griffin 2021), uniform density, a = length / breadth, w = shift of the widest section
+toward the fat end over the length (w = 0 is the spheroid). theta = 0 rests on the fat end,
+theta = pi on the thin end. A hen's egg of length 57 mm and breadth 43 mm gives a = 1.3256 (used
+throughout); its asymmetry is not measured here: w/L = 0.05 (the widest section 2.9 mm from the
+middle) is ASSUMED for the real-units part, and the threshold is given for w in [0, 0.1].
+Friction: exact Coulomb, mu = 0.1 (the paper's value, an assumption for an egg on a table).
+
+1. Which end rises. Starts on the gyroscopic-balance (sliding) branch at theta0 on both sides
+   of pi/2, precession rate Omega0. Outcome: the end the egg comes to spin on (theta < pi/2:
+   fat end down; > pi/2: thin end down), the angle reached and the time. Prediction
+   (phasekit.fixedpoints): the separatrix is the horizontal-like steady precession theta_h(Omega0),
+   which tends as Omega0 -> infinity to theta_2, where (A - C) cos(theta) x_P + C h_theta = 0 (the
+   zero-slip angle of the gyroscopic theory; Sasaki 2004's critical angle is of this kind). Starts
+   below theta_h rise toward the fat end, starts above it toward the thin end.
+2. Jump threshold against w: pk.find_threshold with the default sliding-branch start
+   (theta0 = pi/2 - 0.01, Omega0 from the balance), and with the start 0.01 below the egg's
+   unstable horizontal-like state theta_h(Omega0) (which moves away from pi/2 as w grows, so
+   that the default start lies ever farther from it). An egg with w > 0 does not stand upright on
+   its fat end at moderate spin (phasekit.manifolds.pole_stability_threshold: the fat end is
+   flatter than the spheroid's end), it settles in a tilted precession where exact Coulomb
+   friction alternates stick and slip for very long. The default definition's end of the rise
+   (theta < 0.1) is then never reached and each no-jump run goes on to t_max (measured: minutes).
+   The definition used here adds one stop: the rise is over when the slip first falls to 1e-6
+   (the egg rolls) or theta < 0.1. A jump (R = 0) before that counts as a jump. Checked against
+   the default definition at w = 0 and 0.02 (the same thresholds) in the output.
+3. Real units (phasekit.Scale, pint): the hen's egg above spinning at its threshold and at the
+   rates of Mitsui et al. (2006): the spin in rev/s, the first flight's
+   duration (ms) and largest gap (mm), beside the experiment (Proc. R. Soc. A 462, 2897-2905;
+   its abstract: durations of the first loss of contact measured for various spin rates and
+   three aspect ratios, agreeing with simulations; Science News's report of it: egg-shaped
+   aluminium bodies spun at up to 2500 rpm left the table by a fraction of a millimetre for up
+   to a few hundredths of a second, and gaps were seen under hard-boiled eggs at 1800 rpm).
+
+Outputs (figures/ or --out DIR; --quick writes to figures/quick/): egg_which_end.csv/.png,
+egg_threshold.csv/.png, egg_real_units.csv, egg_summary.json.
+
+    python studies/egg.py [--quick] [--out DIR] [--no-progress] [--fresh]
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+import phasekit as pk
+from phasekit.viz import output_dir, progress, pyplot, save_figure, study_parser, write_csv
+
+FIGURES = Path(__file__).resolve().parents[1] / "figures"
+A_HEN = 57.0 / 43.0
+MU = 0.1
+RTOL = 1e-9
+W_HEN = 0.05  # assumed
+FULL = dict(ws=(0.0, 0.01, 0.02, 0.03, 0.05, 0.08, 0.1), omegas=(6.0, 10.0),
+            offsets=(-0.3, -0.15, -0.05, -0.01, 0.01, 0.05, 0.15, 0.25, 0.35), t_max=400.0,
+            threshold_ws=(0.0, 0.01, 0.02, 0.03, 0.05, 0.08, 0.1))
+QUICK = dict(ws=(0.0, 0.05), omegas=(6.0,), offsets=(-0.05, 0.05, 0.25), t_max=300.0, threshold_ws=(0.0, 0.05))
+SETTLED = 1e-6
+
+
+@dataclass(frozen=True)
+class EndRow:
+    key: str
+    w: float
+    omega0: float
+    theta0: float
+    theta_h: float | None  # the horizontal-like precession at omega0 (the predicted separatrix)
+    theta_2: float
+    end: str  # the side of pi/2 it ends on: fat | thin | failed (see risen())
+    predicted: str
+    theta_reached: float
+    how: str  # rise-fat | rise-thin | settled | t_max | jumped | failed
+    t: float
+    n_liftoff: int
+    wall_s: float
+
+
+@dataclass(frozen=True)
+class EggDefinition(pk.Definition):
+    """The default sliding-branch threshold definition with one more stop: the rise is over
+    when the slip falls to SETTLED (the egg rolls in its tilted end state). With
+    ``from_horizontal_like`` the start is d below the horizontal-like precession theta_h(Omega0)
+    (the egg's unstable state) instead of d below pi/2."""
+
+    from_horizontal_like: bool = False
+
+    def start(self, body, value: float):
+        if not self.from_horizontal_like or body.flip_symmetric:
+            return super().start(body, value)
+        th_h = pk.horizontal_like_angle(body, pk.precession_angles(body, omega0=value))
+        y0 = pk.gyroscopic_start(body, th_h - self.amplitude, omega0=value)
+        return pk.Model(body, self.friction(), "euler"), y0
+
+    def outcome(self, body, value: float) -> pk.Outcome:
+        model, x0 = self.start(body, value)
+        settled = pk.Event("slip_speed", SETTLED, direction=-1, name="settled")
+        r = pk.simulate(model, x0, self.t_max, rtol=self.rtol, events=[self.rise_event(body), settled], track_minima=False,
+                        dense=False, max_steps=self.max_steps)
+        jumped = None if r.status is pk.Status.FAILED else r.status is pk.Status.JUMPED
+        return pk.Outcome(value, jumped, r.status, r.t, r.stuck, r.reason, r.wall_s)
+
+
+def which_end(w: float, omega0: float, theta0: float, t_max: float) -> EndRow:
+    t0 = time.perf_counter()
+    egg = pk.Egg(A_HEN, w)
+    thetas = pk.precession_angles(egg, omega0=omega0)
+    th_h = pk.horizontal_like_angle(egg, thetas) if w > 0 else math.pi / 2
+    th2 = pk.side_equilibrium(egg)[1]
+    y0 = pk.gyroscopic_start(egg, theta0, omega0=omega0)
+    events = [pk.Event("theta", 0.1, direction=-1, name="rise-fat"), pk.Event("theta", math.pi - 0.1, direction=+1, name="rise-thin"),
+              pk.Event("slip_speed", SETTLED, direction=-1, name="settled")]
+    r = pk.simulate(pk.Model(egg, pk.Coulomb(MU)), y0, t_max, rtol=RTOL, stop_at="none", events=events, track_minima=False,
+                    max_wall=120.0)
+    key = f"w={w:g}|omega0={omega0:g}|theta0={theta0:.6f}|t_max={t_max:g}"
+    if r.status is pk.Status.FAILED:
+        how = "failed"
+    elif r.status is pk.Status.STOPPED:
+        how = r.events[-1].name
+    else:
+        how = "t_max"
+    theta_end = float(r.euler_end[4])
+    end = "failed" if how == "failed" else ("fat" if theta_end < math.pi / 2 else "thin")
+    predicted = "fat" if th_h is not None and theta0 < th_h else "thin"
+    return EndRow(key, w, omega0, theta0, th_h, th2, end, predicted, theta_end, how, r.t, len(r.events_named("lift-off")),
+                  time.perf_counter() - t0)
+
+
+def risen(r: EndRow) -> str:
+    """fat | thin, or "none" when the start's slip vanished at once (the egg stuck and rolls
+    where it was put: within 0.05 rad of theta0, t < 1), or "failed"."""
+    if r.how == "settled" and abs(r.theta_reached - r.theta0) < 0.05:
+        return "none"
+    return r.end
+
+
+def plot_which_end(rows: list[EndRow], cfg: dict, path: Path, quick: bool) -> None:
+    plt = pyplot()
+    fig, axes = plt.subplots(1, len(cfg["omegas"]), figsize=(6.2 * len(cfg["omegas"]), 5.0), squeeze=False)
+    for ax, om in zip(axes[0], cfg["omegas"]):
+        sub = [r for r in rows if r.omega0 == om]
+        for r in sub:
+            end = risen(r)
+            c = {"fat": "#2166ac", "thin": "#b2182b", "none": "0.6", "failed": "k"}[end]
+            ax.scatter(r.w, r.theta0 - math.pi / 2, c=c, marker="o" if end in (r.predicted, "none") else "X", s=50, zorder=3)
+        ws = sorted({r.w for r in sub})
+        th_h = [next(r.theta_h for r in sub if r.w == w) for w in ws]
+        ax.plot(ws, np.array(th_h) - math.pi / 2, "k-", lw=1.5, label=r"$\theta_h(\Omega_0)$: horizontal-like state (predicted separatrix)")
+        wf = np.linspace(0.0, max(ws), 30)
+        ax.plot(wf, [pk.side_equilibrium(pk.Egg(A_HEN, w))[1] - math.pi / 2 if w > 0 else 0.0 for w in wf], "k:", lw=1,
+                label=r"$\theta_2$: its $\Omega_0\to\infty$ limit")
+        ax.axhline(0.0, color="0.7", lw=0.8)
+        ax.set_xlabel(r"asymmetry $w$ (shift of the widest section / length)")
+        ax.set_ylabel(r"$\theta_0 - \pi/2$ (rad; > 0: thin end lower)")
+        ax.set_title(rf"$\Omega_0$ = {om:g}: blue = rises onto the fat end, red = thin end, grey = stuck at once"
+                     "\n(X: not as predicted)", fontsize=9)
+        ax.legend(fontsize=8, loc="lower right")
+    fig.suptitle(f"Egg a = L/B = {A_HEN:.4f} (57 x 43 mm), uniform, Coulomb mu = {MU}: which end it rises onto"
+                 f"{' [quick run]' if quick else ''}", fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, path)
+
+
+def threshold_rows(cfg: dict, show: bool) -> tuple[list[dict], list[dict]]:
+    out = []
+    for start, rel in (("pi/2 - 0.01", False), ("theta_h - 0.01", True)):
+        defn = EggDefinition("egg-sliding", "sliding", mu=MU, t_max=cfg["t_max"], from_horizontal_like=rel)
+        guess = None
+        for w in progress(cfg["threshold_ws"], desc=f"egg thresholds from {start}", enabled=show):
+            th = pk.find_threshold(defn, pk.Egg(A_HEN, w), hi=40.0, lo=3.0, guess=guess, tol=2e-3)
+            out.append({"start": start, "w": w, "threshold": th.value, "bracket_lo": th.bracket[0], "bracket_hi": th.bracket[1],
+                        "status": th.status.value, "n_sims": th.n_sims,
+                        "n_settled": sum(1 for o in th.outcomes if o.status is pk.Status.STOPPED), "wall_s": th.wall_s})
+            guess = th.value or guess
+    checks = []
+    default = pk.Definition("sliding", "sliding", mu=MU, t_max=cfg["t_max"])
+    for w in (0.0, 0.02):
+        if w not in cfg["threshold_ws"]:
+            continue
+        ref = next(r for r in out if r["w"] == w and r["start"] == "pi/2 - 0.01")
+        th = pk.find_threshold(default, pk.Egg(A_HEN, w), hi=40.0, lo=3.0, guess=ref["threshold"], tol=2e-3)
+        checks.append({"w": w, "default_definition": th.value, "status": th.status.value, "egg_definition": ref["threshold"],
+                       "wall_s": th.wall_s, "n_t_max": sum(1 for o in th.outcomes if o.status is pk.Status.COMPLETED)})
+    return out, checks
+
+
+def plot_threshold(rows: list[dict], sc, path: Path, quick: bool) -> None:
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(7.2, 4.8))
+    labels = {"pi/2 - 0.01": r"start $\theta_0 = \pi/2 - 0.01$", "theta_h - 0.01": r"start $\theta_0 = \theta_h(\Omega_0) - 0.01$"}
+    for start, style in (("pi/2 - 0.01", "ko-"), ("theta_h - 0.01", "C1s--")):
+        pts = [(r["w"], r["threshold"]) for r in rows if r["threshold"] is not None and r["start"] == start]
+        ax.plot(*zip(*pts), style, label=labels[start] + " (bisected to relative width 2e-3)")
+    ax.set_xlabel(r"asymmetry $w$ (shift of the widest section / length)")
+    ax.set_ylabel(r"threshold precession rate $\Omega_0$ (units $\sqrt{g/b}$)")
+    per_rev = sc.dimensionless("1 rev/s")  # Omega0 of one revolution per second
+    sec = ax.secondary_yaxis("right", functions=(lambda x: x / per_rev, lambda y: y * per_rev))
+    sec.set_ylabel("rev/s for the 57 x 43 mm egg")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(f"Jump threshold of the egg family, a = {A_HEN:.4f}, Coulomb mu = {MU}, sliding-branch starts"
+                 f"{' [quick]' if quick else ''}", fontsize=9)
+    fig.tight_layout()
+    save_figure(fig, path)
+
+
+def real_egg(threshold: float | None, w: float) -> list[dict]:
+    """The hen's egg (57 x 43 mm, 57 g) in real units: its first jump at 1.02, 1.2 and 1.5 x its
+    threshold, and at 1800 rpm (Mitsui et al.'s hard-boiled eggs) and 2500 rpm (their fastest)."""
+    egg, sc = pk.egg_of_size("57 mm", "43 mm", w=w, mass="57 g")
+    rows = []
+    spins = [(f"{f:g} x threshold", f * threshold) for f in (1.02, 1.2, 1.5)] if threshold else []
+    spins += [(q, sc.dimensionless(q)) for q in ("1800 rpm", "2500 rpm")]
+    for label, om in spins:
+        y0 = pk.gyroscopic_start(egg, math.pi / 2 - 0.01, omega0=om)
+        r = pk.simulate(pk.Model(egg, pk.Coulomb(MU)), y0, 400.0, rtol=1e-12, stop_at="touchdown",
+                        events=[pk.Event("slip_speed", SETTLED, direction=-1, name="settled")], track_minima=False)
+        fl = r.flights[0] if r.flights else None
+        row = {"w": w, "case": label, "Omega0": om, "spin_rev_per_s": sc.quantity(om, "rate").to("rev/s").magnitude,
+               "status": str(r.status), "t_liftoff_s": None, "theta_liftoff": None, "flight_ms": None, "gap_max_mm": None}
+        if fl is not None and fl.t_touchdown is not None:
+            row.update(t_liftoff_s=sc.quantity(fl.t_liftoff, "time").to("s").magnitude,
+                       theta_liftoff=float(pk.vector_to_euler(fl.x_liftoff[:8])[4]),
+                       flight_ms=sc.quantity(fl.t_touchdown - fl.t_liftoff, "time").to("ms").magnitude,
+                       gap_max_mm=sc.quantity(fl.gap_max, "length").to("mm").magnitude)
+        rows.append(row)
+    return rows
+
+
+def write_json(path: Path, obj) -> None:
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(json.dumps(obj, indent=1, default=str))
+    os.replace(tmp, path)
+
+
+def main(argv=None) -> dict:
+    ap = study_parser(__doc__, default_out=FIGURES)
+    ap.add_argument("--fresh", action="store_true", help="discard stored rows and recompute")
+    args = ap.parse_args(argv)
+    out = output_dir(args)
+    cfg = QUICK if args.quick else FULL
+    t0 = time.perf_counter()
+    meta = pk.provenance({"study": "egg", "a": A_HEN, "mu": MU, "rtol": RTOL, "config": {k: list(v) if isinstance(v, tuple) else v
+                                                                                         for k, v in cfg.items()}})
+    store = pk.ResultStore(out / "egg_which_end.csv", out / "egg_which_end.json", EndRow, meta, fresh=args.fresh)
+    tasks = []
+    for w in cfg["ws"]:
+        for om in cfg["omegas"]:
+            egg = pk.Egg(A_HEN, w)
+            th_h = pk.horizontal_like_angle(egg, pk.precession_angles(egg, omega0=om)) if w > 0 else math.pi / 2
+            starts = [(th_h if th_h is not None else math.pi / 2) + d for d in cfg["offsets"]]
+            starts += [math.pi / 2 - 0.05, math.pi / 2 + 0.05]  # both sides of the horizontal
+            for th in starts:
+                tasks.append((w, om, th))
+    keys = {f"w={w:g}|omega0={om:g}|theta0={th:.6f}|t_max={cfg['t_max']:g}" for w, om, th in tasks}
+    for w, om, th in progress([t for t in tasks if f"w={t[0]:g}|omega0={t[1]:g}|theta0={t[2]:.6f}|t_max={cfg['t_max']:g}"
+                               not in store], desc="which end", enabled=not args.no_progress):
+        store.add(which_end(w, om, th, cfg["t_max"]))
+    rows = [r for r in store.rows() if r.key in keys]
+    plot_which_end(rows, cfg, out / "egg_which_end.png", args.quick)
+    thr, checks = threshold_rows(cfg, not args.no_progress)
+    write_csv(out / "egg_threshold.csv", list(thr[0]), [list(r.values()) for r in thr])
+    sc = pk.Scale("21.5 mm")
+    plot_threshold(thr, sc, out / "egg_threshold.png", args.quick)
+    real = []
+    for w in sorted({0.0, W_HEN} & set(cfg["threshold_ws"])):
+        real += real_egg(next(r["threshold"] for r in thr if r["w"] == w and r["start"] == "pi/2 - 0.01"), w)
+    write_csv(out / "egg_real_units.csv", list(real[0]), [list(r.values()) for r in real])
+    ok = [r for r in rows if risen(r) in ("fat", "thin")]
+    summary = {"which_end": {"n": len(rows), "rose": len(ok), "as_predicted": sum(1 for r in ok if r.end == r.predicted),
+                             "not_as_predicted": [r.key for r in ok if r.end != r.predicted],
+                             "stuck_at_start": [r.key for r in rows if risen(r) == "none"],
+                             "failed": [r.key for r in rows if r.end == "failed"],
+                             "theta_2": {f"{w:g}": pk.side_equilibrium(pk.Egg(A_HEN, w))[1] for w in cfg["ws"]}},
+               "threshold": thr, "default_definition_check": checks, "real_units": real, "scale": repr(sc),
+               "wall_s": time.perf_counter() - t0}
+    write_json(out / "egg_summary.json", summary)
+    print(json.dumps(summary, indent=1, default=str))
+    return summary
+
+
+if __name__ == "__main__":
+    main()
