@@ -211,7 +211,7 @@ def test_custom_body_scene_equals_the_spheroid_scene(custom15):
     assert [c.t for c in d_c.crossings] == pytest.approx([c.t for c in d_s.crossings], rel=1e-12)
     for tc, ts in zip(d_c.trajectories, d_s.trajectories):
         np.testing.assert_allclose(tc, ts, rtol=0, atol=1e-10)
-    with pytest.raises(ValueError, match="`body`"):
+    with pytest.raises(ValueError, match="`branch` prolate does not match the body"):
         pk.Scene(body=pk.Spheroid(0.6))  # oblate body on the prolate branch
 
 
