@@ -150,6 +150,8 @@ class _Run:
     def step(self) -> None:
         """Propagate the current mode to its first event and handle that event."""
         flow = self.system.flow(self.mode)
+        if not self.opts.track_minima:  # the monitor costs ~3x in steps and callbacks: only when asked
+            flow = replace(flow, monitor=None)
         engine = self.engine(flow)
         events = watched(self.system, self.mode, engine.name)
         extend = self.resume  # a non-terminal event or a graze: the same segment goes on
