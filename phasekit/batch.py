@@ -407,6 +407,8 @@ def _lane_step(hy, res, k, L, job, opts, late) -> str:
     outcome, code = res[0], int(res[0].value)
     job.seg_steps += int(res[3])
     t, x = float(L.ta.time[k]), np.array(L.ta.state[:, k], copy=True)
+    if outcome in (hy.taylor_outcome.success, hy.taylor_outcome.step_limit) and t >= job.t_end:
+        outcome = hy.taylor_outcome.time_limit  # the slice ended on the lane's last step
     if outcome in (hy.taylor_outcome.success, hy.taylor_outcome.step_limit):
         if not np.all(np.isfinite(x)):
             return "non-finite state in a lane"
