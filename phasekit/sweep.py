@@ -37,7 +37,7 @@ from .errors import Status
 
 __all__ = ["ModelPack", "ResultStore", "TaskSpec", "run_tasks", "make_client", "provenance", "ThresholdRow",
            "threshold_task", "threshold_key", "critical_path", "SearchRow", "search_task", "search_job", "search_group_task", "group_search_tasks", "store_groups", "job_key", "search_key", "OutcomeRow",
-           "outcome_task", "outcome_key"]
+           "outcome_task", "outcome_key", "client_evaluator"]
 
 _INSTALLED: set[int] = set()
 
@@ -330,6 +330,36 @@ def run_tasks(specs: list[TaskSpec], *, store_get: Callable[[str], object | None
     return results
 
 
+def _evaluate_part(pack, jobs, engine):
+    from .threshold import evaluate_outcomes
+
+    if pack is not None:
+        pack.install()
+    return evaluate_outcomes(jobs, engine=engine)
+
+
+def client_evaluator(client, *, engine: str = "batch", pack: ModelPack | None = None, parts: int | None = None):
+    """``evaluate(jobs)`` for :func:`phasekit.find_threshold` and
+    :func:`phasekit.threshold.run_searches` on a Dask client: each round's simulations are
+    split into one part per worker (interleaved, so the parts cost about the same) and run
+    there on ``engine``. With k-section (``levels`` > 1) a single search then uses every
+    worker: parallel bracketing when the workers have nothing else to do."""
+    n = parts or max(1, len(client.scheduler_info()["workers"]))
+    pack_f = client.scatter(pack, broadcast=True) if pack is not None else None
+
+    def evaluate(jobs):
+        chunks = [list(range(i, len(jobs), n)) for i in range(n)]
+        chunks = [c for c in chunks if c]
+        futures = [client.submit(_evaluate_part, pack_f, [jobs[j] for j in c], engine, pure=False) for c in chunks]
+        out = [None] * len(jobs)
+        for c, part in zip(chunks, client.gather(futures)):
+            for j, o in zip(c, part):
+                out[j] = o
+        return out
+
+    return evaluate
+
+
 # -- threshold rows --------------------------------------------------------------------------
 
 
@@ -464,10 +494,12 @@ class SearchRow:
     reason: str
 
 
-def search_key(defn, a: float, search: dict, kind: str = "threshold", value: float | None = None) -> str:
+def search_key(defn, a: float, search: dict, kind: str = "threshold", value: float | None = None,
+               sensitivity: bool = False) -> str:
     """Key of a stored search row: every input that changes the answer (the engine does not)."""
     v = "" if value is None else f"|value={value:.10g}"
-    return f"{kind}|{defn.key()}|a={a:.10g}{v}|search={json.dumps(search, sort_keys=True)}"
+    sens = "|sensitivity" if sensitivity else ""
+    return f"{kind}|{defn.key()}|a={a:.10g}{v}|search={json.dumps(search, sort_keys=True)}{sens}"
 
 
 def search_job(defn_fields: dict, a: float, search: dict, *, kind: str = "threshold", value: float | None = None,
@@ -522,7 +554,7 @@ def job_key(job: dict) -> str:
     """The stored row key of a :func:`search_job`."""
     from .threshold import Definition
 
-    return search_key(Definition(**job["defn"]), job["a"], job["search"], job["kind"], job["value"])
+    return search_key(Definition(**job["defn"]), job["a"], job["search"], job["kind"], job["value"], job["sensitivity"])
 
 
 def group_search_tasks(jobs: list[dict], costs: list[float], *, per_task: int, study: str = "",
@@ -568,7 +600,7 @@ def store_groups(store: "ResultStore", members: dict[str, list[str]]):
 
 def _search_row(job, defn, th, study, engine, wall, reason) -> SearchRow:
     kind, a = job["kind"], job["a"]
-    base = dict(key=search_key(defn, a, job["search"], kind, job["value"]), study=study, kind=kind,
+    base = dict(key=search_key(defn, a, job["search"], kind, job["value"], job["sensitivity"]), study=study, kind=kind,
                 branch="prolate" if a > 1 else "oblate", a=a, mu=defn.mu, d=defn.amplitude if kind == "threshold" else None,
                 value=job["value"], levels=int(job["search"].get("levels", 1)), engine=engine, rtol=defn.rtol, t_max=defn.t_max,
                 eps=repr(defn.eps) if defn.eps else ("exact" if defn.seed != "viscous" else ""), wall_s=wall, reason=reason)

@@ -69,8 +69,10 @@ def build_tasks(quick: bool, engine: str, per_task: int | None = None, workers: 
     first. Returns the tasks and the row keys of each."""
     jobs, costs = [], []
     for defn, a in definitions(quick):
-        jobs.append(pk.search_job(asdict(defn), a, SEARCH))
-        costs.append((MU_REF / defn.mu) ** 0.5 * (1.0 + 0.2 / abs(a - 1.0)))
+        # at the paper's mu the threshold's sensitivity to d (d/2 and 2d) is measured too
+        sens = defn.mu == MU_REF and defn.amplitude == BASE.amplitude
+        jobs.append(pk.search_job(asdict(defn), a, SEARCH, sensitivity=sens))
+        costs.append((MU_REF / defn.mu) ** 0.5 * (1.0 + 0.2 / abs(a - 1.0)) * (3 if sens else 1))
     per_task = per_task or max(1, round(len(jobs) / (8 * workers)))
     return pk.group_search_tasks(jobs, costs, per_task=per_task, study=STEM, engine=engine)
 
@@ -186,9 +188,14 @@ def plot(rows, g, coll, png: Path, quick: bool) -> None:
             pts = sorted((r.d, r.threshold) for r in rows if abs(r.a - a) < 1e-12 and r.mu == mu and r.threshold)
             if len(pts) > 1:
                 ax.plot(*zip(*pts), marker="o", ls=ls, color=colour.get(mu, "k"), ms=4,
-                        label=f"a = {a:.3g}" if mu == g["d_mu"][0] else None)
+                        label=f"a = {a:.3g} ({'solid' if ls == '-' else 'dashed'})" if mu == g["d_mu"][-1] else None)
+    ds = np.array([2.5e-3, 1e-2])
+    ax.plot(ds, 30.0 * (ds / ds[0]) ** -0.5, "k:", lw=1, label=r"slope $-1/2$ ($d\,\Omega_0^2$ = const: the sticking boundary)")
     ax.set_xscale("log")
     ax.set_yscale("log")
+    from matplotlib.ticker import NullFormatter
+
+    ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel(r"seed distance $d$ from the fixed point (rad)")
     ax.set_ylabel(r"threshold $\Omega_0^*$ or $n_0^*$")
     ax.set_title(r"threshold against $d$ (one colour per $\mu$; solid a = 1.5, dashed a = 2/3)", fontsize=9)
@@ -222,6 +229,14 @@ def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
         th = ", ".join(f"{t:.4f}" if t else s for t, s in zip(v["threshold"], v["status"]))
         ch = ", ".join(f"{c:+.3f}" if c is not None else "-" for c in v["change_per_halving"])
         print(f"  {k}: d = {v['d']}: {th}; change per halving: {ch}")
+    sens = sorted((r for r in main if r.sens_dominant), key=lambda r: (r.branch, r.a))
+    if sens:
+        print(f"sensitivity to the seed distance at mu = {MU_REF:g} (thresholds at d/2 and 2d; slope = d ln T*/d ln d):")
+        for r in sens:
+            width = r.bracket_hi / r.bracket_lo - 1
+            print(f"  {r.branch:<8s} a={r.a:6.3f} T*={r.threshold:8.4f} T*(d/2)={r.sens_half or float('nan'):8.4f} "
+                  f"T*(2d)={r.sens_double or float('nan'):8.4f} slope={r.sens_slope if r.sens_slope is not None else float('nan'):+.3f} "
+                  f"max shift={r.sens_shift if r.sens_shift is not None else float('nan'):.3%} bracket={width:.1e} -> {r.sens_dominant}")
     n_sims = sum(r.n_sims for r in rows)
     return {"n_sims": n_sims, "task_s": sum(r.wall_s for r in rows), "critical_path": max((r.n_rounds for r in rows), default=0)}
 

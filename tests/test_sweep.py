@@ -4,7 +4,7 @@ resumable stores of the new row types."""
 
 import csv
 import math
-from dataclasses import dataclass, replace
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 import pytest
@@ -211,3 +211,28 @@ def test_threshold_on_the_batch_engine_is_the_published_one():
     fast = find_threshold(defn, 1.5, engine="batch", levels=3, **kw)
     assert fast.bracket == ref.bracket and fast.n_rounds < ref.n_rounds
     assert ref.value == pytest.approx(9.7433, abs=5e-5)  # README, "Thresholds", prolate a = 1.5
+
+
+@pytest.mark.slow
+def test_dask_k_section_round_and_grouped_searches_equal_the_serial_ones(tmp_path):
+    """One search's k-section rounds spread over 2 workers, and grouped search tasks on the
+    cluster, give the serial brackets."""
+    defn = Definition("sliding", "sliding")
+    pack = pk.ModelPack.build(lambda: defn.prepare(1.5, engine="batch"))
+    client, cluster = pk.make_client(workers=2)
+    try:
+        ev = pk.client_evaluator(client, pack=pack)
+        far = find_threshold(defn, 1.5, hi=120.0, levels=3, evaluate=ev)
+        near = find_threshold(defn, 1.5, hi=120.0, levels=3, engine="batch")
+        assert far.bracket == near.bracket and far.n_rounds == near.n_rounds
+        jobs = [pk.search_job(asdict(replace(defn, amplitude=d)), 1.5, dict(hi=120.0, levels=3)) for d in (0.01, 0.02, 0.04)]
+        specs, members = pk.group_search_tasks(jobs, [1.0, 2.0, 3.0], per_task=2)
+        store = ResultStore(tmp_path / "g.csv", tmp_path / "g.json", SearchRow, {})
+        get, add = pk.store_groups(store, members)
+        run_tasks(specs, store_get=get, on_result=add, client=client, pack=pack, progress=False)
+    finally:
+        client.close()
+        cluster.close()
+    rows = {r.d: r for r in store.rows()}
+    assert len(specs) == 2 and rows[0.01].threshold == near.value
+    assert rows[0.04].threshold < rows[0.02].threshold < rows[0.01].threshold  # README: the threshold falls as d grows
