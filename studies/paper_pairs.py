@@ -116,11 +116,12 @@ def table(rows, eps_list) -> list[dict]:
     return out
 
 
-def plot(rows, eps_list, png: Path, quick: bool) -> None:
+def plot(rows, tab, png: Path, quick: bool) -> None:
     plt = pyplot()
-    fig, axes = plt.subplots(1, 2, figsize=(13, 5.2))
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.4))
+    top = {"rise": 1.12 * T_END, "stuck": 1.22 * T_END, "slow": 1.22 * T_END, "failed": 1.3 * T_END}
     for ax, (label, case) in zip(axes, pk.PAPER_CASES.items()):
-        for chart, ls in zip(CHARTS, ("-", "--")):
+        for chart, ls, dy in zip(CHARTS, ("-", "--"), (1.0, 1.03)):
             for role, colour in (("no_jump", "C0"), ("jump", "C3")):
                 value = case.no_jump if role == "no_jump" else case.jump
                 pts = sorted((float(r.eps), r) for r in rows if r.label == label and r.role == role and r.chart == chart
@@ -128,21 +129,29 @@ def plot(rows, eps_list, png: Path, quick: bool) -> None:
                 jumped = [(e, r.t_jump) for e, r in pts if r.outcome == "jump"]
                 if jumped:
                     ax.plot(*zip(*jumped), marker="o", ls=ls, color=colour, ms=4,
-                            label=f"{case.parameter} = {value:g}, {chart} chart: jumps at t*")
-                other = [(e, T_END) for e, r in pts if r.outcome != "jump"]
-                if other:
-                    ax.plot(*zip(*other), ls="none", marker="x" if chart == "euler" else "+", color=colour, ms=8,
-                            label=f"{case.parameter} = {value:g}, {chart}: no jump by t = {T_END:g}")
+                            label=f"{case.parameter} = {value:g} jumps at t* ({chart})")
+                for kind, marker in (("rise", "o"), ("stuck", "x")):
+                    sel = [e for e, r in pts if r.outcome == kind]
+                    if sel:
+                        y = top[kind] * dy + (0.0 if role == "no_jump" else 0.07 * T_END)
+                        ax.plot(sel, [y] * len(sel), ls="none", marker=marker, mfc="none", color=colour, ms=6,
+                                label=f"{case.parameter} = {value:g}: {'rises, no jump' if kind == 'rise' else 'sticks, no rise'}"
+                                      f" by t = {T_END:g} ({chart})")
+        for t in tab:
+            if t["label"] == label and t["as_printed"] and t["chart"] == "euler":
+                ax.axvline(float(t["eps"]), color="g", lw=1.5, alpha=0.6, label="as printed (both charts)")
         ax.axhspan(case.t_jump * (1 - T_TOLERANCE), case.t_jump * (1 + T_TOLERANCE), color="m", alpha=0.15,
                    label=f"printed t* ~ {case.t_jump:g} (+-{T_TOLERANCE:.0%})")
         ax.set_xscale("log")
-        ax.set_xlabel(r"regularisation $\epsilon$ of $|u_P|$ (units $\sqrt{gb}$)")
+        ax.set_ylim(0, 1.45 * T_END)
+        ax.set_xlabel(r"regularisation $\epsilon$ of $|u_P|$ (units $\sqrt{gb}$); exact Coulomb: sticks in both")
         ax.set_ylabel(r"jump time $t^*$ (units $\sqrt{b/g}$)")
-        ax.set_title(f"{case.figure}: start ({label}), a = {case.a:.4g}", fontsize=10)
+        ax.set_title(f"{case.figure}: start ({label}), a = {case.a:.4g}: {case.parameter} = {case.no_jump:g} and {case.jump:g}",
+                     fontsize=10)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7)
-    fig.suptitle(r"The paper's trajectory pairs under regularised Coulomb friction ($\mu$ = 0.1, rtol $10^{-9}$)"
-                 + (" (quick run)" if quick else ""), fontsize=11)
+        ax.legend(fontsize=6.5, loc="center left")
+    fig.suptitle(r"The paper's trajectory pairs under regularised Coulomb friction ($\mu$ = 0.1, rtol $10^{-9}$; "
+                 r"markers above the axis: no jump)" + (" (quick run)" if quick else ""), fontsize=11)
     fig.tight_layout(rect=(0, 0, 1, 0.95))
     save_figure(fig, png)
 
@@ -166,7 +175,7 @@ def main(argv=None) -> dict:
     keys = {row_key(r[0], r[2], r[3], r[4]) for r in runs}
     rows = [r for r in store.rows() if r.key in keys]
     tab = table(rows, eps_list)
-    plot(rows, eps_list, out / f"{STEM}.png", args.quick)
+    plot(rows, tab, out / f"{STEM}.png", args.quick)
     print(f"\n{STEM}: {len(rows)} runs ({len(todo)} now), {time.perf_counter() - t0:.1f} s")
     for t in tab:
         nj = "-" if t["no_jump"] is None else f"{t['no_jump'][0]} (t = {t['no_jump'][1]:.1f})"
