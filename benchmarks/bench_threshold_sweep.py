@@ -12,10 +12,13 @@ In one run (compiled code loaded before any timing, "warm cache"):
    excluded, printed separately), and the parallel efficiency serial / (2 x Dask). Both runs
    must give the same thresholds (checked).
 2. The default Fig. 6b,c curves: the default definition at the 24 aspect ratios of
-   studies/threshold_vs_aspect.py, bisected to 1e-3 (independent searches, k-section on the
-   batch integrator), on the same 2 workers: ``default_curve_wall_s``; also serially, and
-   with the scalar engine and plain bisection, which is what batch mode and k-section are
-   measured against (simulations, rounds, wall).
+   studies/threshold_vs_aspect.py, bisected to 1e-3 (independent searches, 3 per task
+   traced in lock-step, k-section with 7 values per round on the batch integrator), on the
+   same 2 workers: ``default_curve_wall_s``; also serially. Then, serially, the engine
+   variants batch mode and k-section are measured against: one search at a time with the
+   scalar engine and plain bisection (the old engine without its chains), batch mode with
+   bisection and with k-section, each one search per task or all 24 in lock-step (so that
+   the batch lanes fill across searches).
 
     python benchmarks/bench_threshold_sweep.py [--quick] [--json]
 
@@ -51,20 +54,24 @@ def load(name: str):
 
 
 def run(specs, client=None, pack=None) -> tuple[dict, float]:
-    """Run the tasks (nothing stored), return {key: row} and the wall time."""
+    """Run the tasks (nothing stored), return {row key: row} and the wall time."""
     t0 = time.perf_counter()
     res = pk.run_tasks(specs, store_get=lambda k: None, on_result=lambda s, r: None, client=client, pack=pack,
                        progress=False)
-    return res, time.perf_counter() - t0
+    wall = time.perf_counter() - t0
+    return {r.key: r for rows in res.values() for r in (rows if isinstance(rows, list) else [rows])}, wall
 
 
-def default_curve_specs(aspect, engine: str, levels: int) -> list[pk.TaskSpec]:
-    """The default definition at the 24 aspect ratios, one independent search each."""
+def default_curve_specs(aspect, engine: str, levels: int, per_task: int):
+    """The default definition at the 24 aspect ratios, independent searches, ``per_task``
+    of them traced in lock-step per task."""
     search = dict(aspect.SEARCH, levels=levels)
     defn = next(d for d in pk.DEFAULT_DEFINITIONS if d.name == aspect.DEFAULT_NAME)
-    task = partial(pk.search_task, study="bench", engine=engine)
-    return [pk.TaskSpec(pk.search_key(defn, a, search), task, (asdict(defn), a, search), cost=1.0 / abs(a - 1.0))
-            for a in aspect.PROLATE + aspect.OBLATE]
+    a_list = aspect.PROLATE + aspect.OBLATE
+    jobs = [pk.search_job(asdict(defn), a, search) for a in a_list]
+    specs, _ = pk.group_search_tasks(jobs, [1.0 / abs(a - 1.0) for a in a_list], per_task=per_task, study="bench",
+                                     engine=engine)
+    return specs
 
 
 def summary(rows: dict) -> dict:
@@ -90,7 +97,7 @@ def main(argv=None) -> dict:
 def measure(quick: bool, log) -> dict:
     mu_study, aspect = load("threshold_vs_mu"), load("threshold_vs_aspect")
     load_avg = os.getloadavg()
-    specs = mu_study.build_tasks(quick, "batch")
+    specs, _ = mu_study.build_tasks(quick, "batch", workers=2)
     pack = pk.ModelPack.build(mu_study.warm_up)  # compile or load everything before timing
     serial_rows, wall_serial = run(specs)
     t0 = time.perf_counter()
@@ -100,16 +107,17 @@ def measure(quick: bool, log) -> dict:
         client.run(pk.ModelPack.install, pack)  # the workers get the compiled code before timing
         dask_rows, wall_dask = run(specs, client, pack)
         same = all(serial_rows[k].threshold == dask_rows[k].threshold for k in serial_rows)
-        curve_rows, curve_dask = run(default_curve_specs(aspect, "batch", 3), client, pack)
+        curve_rows, curve_dask = run(default_curve_specs(aspect, "batch", 3, per_task=3), client, pack)
     finally:
         client.close()
         cluster.close()
     m = summary(serial_rows)
-    curve_serial_rows, curve_serial = run(default_curve_specs(aspect, "batch", 3))
+    curve_serial_rows, curve_serial = run(default_curve_specs(aspect, "batch", 3, per_task=3))
     variants = {}
-    for engine, levels in (("scalar", 1), ("batch", 1), ("batch", 3)):
-        rows, wall = run(default_curve_specs(aspect, engine, levels))
-        variants[f"{engine}, levels={levels}"] = {**summary(rows), "wall_serial_s": wall}
+    for engine, levels, per_task in (("scalar", 1, 1), ("batch", 1, 1), ("batch", 1, 24), ("batch", 3, 1), ("batch", 3, 24)):
+        specs_v = default_curve_specs(aspect, engine, levels, per_task)
+        rows, wall = run(specs_v)
+        variants[f"{engine}, levels={levels}, {len(specs_v)} tasks"] = {**summary(rows), "wall_serial_s": wall}
     c = summary(curve_rows)
     res = {
         "simulations": m["simulations"],
@@ -139,7 +147,7 @@ def measure(quick: bool, log) -> dict:
     print(f"default Fig. 6b,c curves (24 a, bisection to 1e-3): {curve_dask:.1f} s on 2 workers (goal <= 10 s), "
           f"{curve_serial:.1f} s serial; {c['simulations']} simulations, critical path {c['critical_path']} rounds", file=log)
     for k, v in variants.items():
-        print(f"  default curve, {k:<17s}: {v['simulations']:4d} simulations, critical path {v['critical_path']:2d} rounds, "
+        print(f"  default curve, {k:<30s}: {v['simulations']:4d} simulations, critical path {v['critical_path']:2d} rounds, "
               f"serial {v['wall_serial_s']:.1f} s", file=log)
     print(f"load average at start {load_avg[0]:.2f} on {os.cpu_count()} cores", file=log)
     return res
