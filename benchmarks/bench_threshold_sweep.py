@@ -53,13 +53,28 @@ def load(name: str):
     return mod
 
 
-def run(specs, client=None, pack=None) -> tuple[dict, float]:
-    """Run the tasks (nothing stored), return {row key: row} and the wall time."""
+def _timed(func, prev, *args):
+    """Run a task and measure its CPU time (this process) next to its wall time: on a shared
+    machine the difference is the time other jobs took from it."""
+    c0, w0 = time.process_time(), time.perf_counter()
+    out = func(prev, *args)
+    return out, time.process_time() - c0, time.perf_counter() - w0
+
+
+def run(specs, client=None, pack=None, times=None) -> tuple[dict, float]:
+    """Run the tasks (nothing stored), return {row key: row} and the wall time; ``times``
+    (a dict) gets the tasks' summed CPU and wall time."""
+    timed = [pk.TaskSpec(s.key, partial(_timed, s.func), s.args, s.after, s.label, s.meta, s.cost) for s in specs]
     t0 = time.perf_counter()
-    res = pk.run_tasks(specs, store_get=lambda k: None, on_result=lambda s, r: None, client=client, pack=pack,
+    res = pk.run_tasks(timed, store_get=lambda k: None, on_result=lambda s, r: None, client=client, pack=pack,
                        progress=False)
     wall = time.perf_counter() - t0
-    return {r.key: r for rows in res.values() for r in (rows if isinstance(rows, list) else [rows])}, wall
+    if times is not None:
+        times["task_cpu_s"] = sum(r[1] for r in res.values())
+        times["task_wall_s"] = sum(r[2] for r in res.values())
+        times["longest_task_s"] = max(r[2] for r in res.values())
+    rows = [r[0] for r in res.values()]
+    return {x.key: x for rs in rows for x in (rs if isinstance(rs, list) else [rs])}, wall
 
 
 def default_curve_specs(aspect, engine: str, levels: int, per_task: int):
@@ -85,37 +100,43 @@ def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="the quick (a, mu) grid of the study")
     ap.add_argument("--json", action="store_true", help="one JSON object on the last line of stdout")
+    ap.add_argument("--per-task", type=int, default=1, help="searches per Dask task on the (a, mu) map (default 1)")
     args = ap.parse_args(argv)
+    if args.per_task < 1:
+        ap.error(f"argument --per-task: must be >= 1, got {args.per_task}")
     log = sys.stderr if args.json else sys.stdout
     with contextlib.redirect_stdout(log):
-        out = measure(args.quick, log)
+        out = measure(args.quick, log, args.per_task)
     if args.json:
         print(json.dumps(out))
     return out
 
 
-def measure(quick: bool, log) -> dict:
+def measure(quick: bool, log, per_task: int = 1) -> dict:
     mu_study, aspect = load("threshold_vs_mu"), load("threshold_vs_aspect")
     load_avg = os.getloadavg()
-    specs, _ = mu_study.build_tasks(quick, "batch", workers=2)
+    specs, _ = mu_study.build_tasks(quick, "batch", per_task=per_task)
     pack = pk.ModelPack.build(mu_study.warm_up)  # compile or load everything before timing
-    serial_rows, wall_serial = run(specs)
+    t_serial, t_dask = {}, {}
+    serial_rows, wall_serial = run(specs, times=t_serial)
+    load_mid = os.getloadavg()
     t0 = time.perf_counter()
     client, cluster = pk.make_client(workers=2)
     cluster_start = time.perf_counter() - t0
     try:
         client.run(pk.ModelPack.install, pack)  # the workers get the compiled code before timing
-        dask_rows, wall_dask = run(specs, client, pack)
+        dask_rows, wall_dask = run(specs, client, pack, times=t_dask)
+        load_end = os.getloadavg()
         same = all(serial_rows[k].threshold == dask_rows[k].threshold for k in serial_rows)
         curve_rows, curve_dask = run(default_curve_specs(aspect, "batch", 3, per_task=3), client, pack)
     finally:
         client.close()
         cluster.close()
     m = summary(serial_rows)
-    curve_serial_rows, curve_serial = run(default_curve_specs(aspect, "batch", 3, per_task=3))
+    _, curve_serial = run(default_curve_specs(aspect, "batch", 3, per_task=3))
     variants = {}
-    for engine, levels, per_task in (("scalar", 1, 1), ("batch", 1, 1), ("batch", 1, 24), ("batch", 3, 1), ("batch", 3, 24)):
-        specs_v = default_curve_specs(aspect, engine, levels, per_task)
+    for engine, levels, group in (("scalar", 1, 1), ("batch", 1, 1), ("batch", 1, 24), ("batch", 3, 1), ("batch", 3, 24)):
+        specs_v = default_curve_specs(aspect, engine, levels, group)
         rows, wall = run(specs_v)
         variants[f"{engine}, levels={levels}, {len(specs_v)} tasks"] = {**summary(rows), "wall_serial_s": wall}
     c = summary(curve_rows)
@@ -136,7 +157,14 @@ def measure(quick: bool, log) -> dict:
         "same_thresholds_serial_and_dask": same,
         "engine_variants_default_curve": variants,
         "grid": "quick" if quick else "full",
+        "tasks": len(specs),
+        "searches_per_task": per_task,
+        "serial_task_times": t_serial,
+        "dask_task_times": t_dask,
+        "efficiency_cpu": t_serial["task_cpu_s"] / (2 * wall_dask),
         "load_average_at_start": load_avg,
+        "load_average_after_serial": load_mid,
+        "load_average_after_dask": load_end,
         "cpu_count": os.cpu_count(),
     }
     print(f"\n=== threshold sweep benchmark ({res['grid']} (a, mu) grid: {m['searches']} searches) ===", file=log)
@@ -149,7 +177,11 @@ def measure(quick: bool, log) -> dict:
     for k, v in variants.items():
         print(f"  default curve, {k:<30s}: {v['simulations']:4d} simulations, critical path {v['critical_path']:2d} rounds, "
               f"serial {v['wall_serial_s']:.1f} s", file=log)
-    print(f"load average at start {load_avg[0]:.2f} on {os.cpu_count()} cores", file=log)
+    print(f"tasks: {len(specs)} of {per_task} search(es); serial: task CPU {t_serial['task_cpu_s']:.1f} s, "
+          f"task wall {t_serial['task_wall_s']:.1f} s; Dask: task CPU {t_dask['task_cpu_s']:.1f} s, task wall "
+          f"{t_dask['task_wall_s']:.1f} s, longest task {t_dask['longest_task_s']:.1f} s", file=log)
+    print(f"load average (1 min) at start {load_avg[0]:.2f}, after the serial run {load_mid[0]:.2f}, after the Dask run "
+          f"{load_end[0]:.2f}, on {os.cpu_count()} cores", file=log)
     return res
 
 

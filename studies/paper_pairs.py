@@ -24,7 +24,6 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
 
 import phasekit as pk
 from phasekit.viz import output_dir, progress, pyplot, save_figure, study_parser
@@ -72,7 +71,6 @@ def run_one(label: str, role: str, value: float, eps, chart: str) -> PairRow:
     m = model.with_chart(chart)
     x = pk.to_chart(chart, model.chart.to_paper(x0))
     prolate = m.body.is_prolate
-    theta_f = 0.0 if prolate else math.pi / 2
     ev = pk.Event("theta", 0.1 if prolate else math.pi / 2 - 0.1, direction=-1 if prolate else +1, name="rise-complete")
     t0 = time.perf_counter()
     try:

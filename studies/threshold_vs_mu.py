@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import time
 from dataclasses import asdict, replace
 from pathlib import Path
@@ -62,7 +61,7 @@ def definitions(quick: bool) -> list[tuple[pk.Definition, float]]:
     return out
 
 
-def build_tasks(quick: bool, engine: str, per_task: int | None = None, workers: int = 2):
+def build_tasks(quick: bool, engine: str, per_task: int | None = None):
     """Independent tasks of several searches each (traced in lock-step, so that the batch
     integrator's lanes fill across searches); the cost estimate (slower rise at small mu,
     longer scans near a = 1) groups similar searches and orders the Dask queue longest
@@ -72,8 +71,12 @@ def build_tasks(quick: bool, engine: str, per_task: int | None = None, workers: 
         # at the paper's mu the threshold's sensitivity to d (d/2 and 2d) is measured too
         sens = defn.mu == MU_REF and defn.amplitude == BASE.amplitude
         jobs.append(pk.search_job(asdict(defn), a, SEARCH, sensitivity=sens))
-        costs.append((MU_REF / defn.mu) ** 0.5 * (1.0 + 0.2 / abs(a - 1.0)) * (3 if sens else 1))
-    per_task = per_task or max(1, round(len(jobs) / (8 * workers)))
+        # measured: the slow rise at small mu and the stick-slip chatter near the end of the
+        # rise at large mu are the costly searches, and scans near a = 1 are long
+        costs.append(((MU_REF / defn.mu) ** 0.5 + defn.mu / MU_REF) * (1.0 + 0.2 / abs(a - 1.0)) * (3 if sens else 1))
+    # One search per task by default: a few chattering searches cost as much as all the others
+    # (measured: one group of 10 took 36% of the map), so lock-step groups unbalance the workers.
+    per_task = per_task or 1
     return pk.group_search_tasks(jobs, costs, per_task=per_task, study=STEM, engine=engine)
 
 
@@ -247,7 +250,7 @@ def main(argv=None) -> dict:
     ap.add_argument("--scheduler", default=None, help="address of a running Dask scheduler")
     ap.add_argument("--workers", type=int, default=None, help="LocalCluster workers (default: one per core)")
     ap.add_argument("--engine", default="batch", choices=("batch", "scalar"), help="simulations in batch (default) or one by one")
-    ap.add_argument("--per-task", type=int, default=None, help="searches per Dask task (default: ~8 tasks per worker)")
+    ap.add_argument("--per-task", type=int, default=None, help="searches per Dask task, traced in lock-step (default 1)")
     ap.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
     args = ap.parse_args(argv)
     if args.per_task is not None and args.per_task < 1:
@@ -257,7 +260,7 @@ def main(argv=None) -> dict:
     out = output_dir(args)
     t0 = time.perf_counter()
     g = grid(args.quick)
-    specs, members = build_tasks(args.quick, args.engine, args.per_task, args.workers or os.cpu_count() or 1)
+    specs, members = build_tasks(args.quick, args.engine, args.per_task)
     meta = pk.provenance({"study": STEM, "search": SEARCH, "definition": asdict(BASE), "mu": g["mu"], "a": g["a"],
                           "d_lines": g["d_lines"], "d_mu": g["d_mu"], "engine": args.engine,
                           "jump": "R reaches 0 with dR/dt < 0 before the rise completes (theta within 0.1 of its end)"})

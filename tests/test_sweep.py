@@ -138,7 +138,8 @@ def test_search_rows_survive_a_kill_and_resume(tmp_path):
     later = []
     run_tasks(specs, store_get=again.get, on_result=lambda s, r: (later.append(s.key), again.add(r)), progress=False)
     assert later == ["k2", "k1", "k0"]
-    rows = list(csv.DictReader(open(csv_path)))
+    with open(csv_path) as fh:
+        rows = list(csv.DictReader(fh))
     assert [r["key"] for r in rows] == ["k4", "k3", "k2", "k1", "k0"] and rows[0]["sens_half"] == ""
     assert defn.key() != replace(defn, amplitude=0.1).key()
 
