@@ -199,6 +199,7 @@ def plot(rows, g, coll, png: Path, quick: bool) -> None:
     from matplotlib.ticker import NullFormatter
 
     ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_xticks(g["d_lines"]["d"], [f"{d:g}" for d in g["d_lines"]["d"]])
     ax.set_xlabel(r"seed distance $d$ from the fixed point (rad)")
     ax.set_ylabel(r"threshold $\Omega_0^*$ or $n_0^*$")
     ax.set_title(r"threshold against $d$ (one colour per $\mu$; solid a = 1.5, dashed a = 2/3)", fontsize=9)
