@@ -190,11 +190,12 @@ def main(argv=None) -> dict:
                     help="simulations one by one (default) or on heyoka's batch integrator; the same brackets")
     ap.add_argument("--levels", type=int, default=1, help="bisection steps per round (k-section, 2^L - 1 values; default 1)")
     ap.add_argument("--no-progress", action="store_true")
-    ap.add_argument("--out", default=str(FIGURES), help="directory for the csv, json manifest and png (default figures/)")
+    ap.add_argument("--out", default=None,
+                    help="directory for the csv, json manifest and png (default figures/, with --quick figures/quick/)")
     args = ap.parse_args(argv)
     if not 1 <= args.levels <= 8:
         ap.error(f"argument --levels: must be in [1, 8], got {args.levels}")
-    out = Path(args.out)
+    out = Path(args.out) if args.out else (FIGURES / "quick" if args.quick else FIGURES)
     out.mkdir(parents=True, exist_ok=True)
     csv_path, manifest_path, png = out / f"{STEM}.csv", out / f"{STEM}.json", out / f"{STEM}.png"
     t0 = time.perf_counter()
