@@ -52,7 +52,20 @@ from .manifolds import (
     unstable_seeds,
     vertical_stability_threshold,
 )
-from .threshold import DEFAULT_DEFINITIONS, Definition, Outcome, Threshold, continue_threshold, find_threshold
+from .threshold import (
+    DEFAULT_DEFINITIONS,
+    Definition,
+    Outcome,
+    Sensitivity,
+    Threshold,
+    ThresholdSearch,
+    continue_threshold,
+    evaluate_outcomes,
+    find_stick_boundary,
+    find_threshold,
+    run_searches,
+)
+from .batch import LANES, BatchStats, compile_batch, simulate_batch
 from .gyroscopic import gyroscopic_closed, gyroscopic_numeric, gyroscopic_solution, jellett_constant, mean_slip, rise_time
 from .multiscale import (
     Gamma,
@@ -86,7 +99,30 @@ from .surface import Scene, compute_scene, exact_boundary, surface_n
 from .paper import PAPER_CASES, paper_start
 from .api import choose_formulation
 from .baseline import numpy_normal_reaction, numpy_rhs, solve_ivp_to_jump
-from .sweep import ModelPack, ResultStore, TaskSpec, ThresholdRow, make_client, provenance, run_tasks, threshold_key, threshold_task
+from .sweep import (
+    ModelPack,
+    OutcomeRow,
+    ResultStore,
+    SearchRow,
+    TaskSpec,
+    ThresholdRow,
+    client_evaluator,
+    critical_path,
+    make_client,
+    outcome_key,
+    outcome_task,
+    provenance,
+    run_tasks,
+    group_search_tasks,
+    job_key,
+    search_group_task,
+    store_groups,
+    search_job,
+    search_key,
+    search_task,
+    threshold_key,
+    threshold_task,
+)
 
 __version__ = "0.2.0"
 
@@ -215,6 +251,28 @@ __all__ = [
     "run_tasks",
     "threshold_key",
     "threshold_task",
+    "Sensitivity",
+    "ThresholdSearch",
+    "evaluate_outcomes",
+    "find_stick_boundary",
+    "run_searches",
+    "LANES",
+    "BatchStats",
+    "compile_batch",
+    "simulate_batch",
+    "OutcomeRow",
+    "SearchRow",
+    "critical_path",
+    "client_evaluator",
+    "outcome_key",
+    "outcome_task",
+    "search_key",
+    "search_task",
+    "search_job",
+    "search_group_task",
+    "group_search_tasks",
+    "store_groups",
+    "job_key",
     "horizontal_is_unstable",
     "vertical_is_stable",
     "intermediate_omega",

@@ -18,6 +18,7 @@ from __future__ import annotations
 import csv
 import dataclasses
 import datetime as _dt
+import hashlib
 import io
 import json
 import math
@@ -35,7 +36,8 @@ from pathlib import Path
 from .errors import Status
 
 __all__ = ["ModelPack", "ResultStore", "TaskSpec", "run_tasks", "make_client", "provenance", "ThresholdRow",
-           "threshold_task", "threshold_key"]
+           "threshold_task", "threshold_key", "critical_path", "SearchRow", "search_task", "search_job", "search_group_task", "group_search_tasks", "store_groups", "job_key", "search_key", "OutcomeRow",
+           "outcome_task", "outcome_key", "client_evaluator"]
 
 _INSTALLED: set[int] = set()
 
@@ -53,10 +55,11 @@ class ModelPack:
         then snapshot the caches."""
         from . import model as _model
         from .backends import TaylorEngine
+        from .batch import _Integrators
 
         if warm is not None:
             warm()
-        blob = pickle.dumps((dict(_model._CACHE), dict(TaylorEngine._memory)))
+        blob = pickle.dumps((dict(_model._CACHE), dict(TaylorEngine._memory), dict(_Integrators.memory)))
         return cls(blob, hash(blob))
 
     def install(self) -> None:
@@ -65,12 +68,15 @@ class ModelPack:
             return
         from . import model as _model
         from .backends import TaylorEngine
+        from .batch import _Integrators
 
-        models, taylor = pickle.loads(self.blob)
+        models, taylor, batch = pickle.loads(self.blob)
         for k, v in models.items():
             _model._CACHE.setdefault(k, v)
         for k, v in taylor.items():
             TaylorEngine._memory.setdefault(k, v)
+        for k, v in batch.items():
+            _Integrators.memory.setdefault(k, v)
         _INSTALLED.add(self.token)
 
     @property
@@ -222,6 +228,11 @@ class ResultStore:
                 os.fsync(fh.fileno())
         self._write_manifest()
 
+    def annotate(self, **fields) -> None:
+        """Add fields (e.g. a study's summary) to the manifest and write it."""
+        self.meta.update(fields)
+        self._write_manifest()
+
     def _write_manifest(self) -> None:
         self.meta["updated"] = _dt.datetime.now().isoformat(timespec="seconds")
         self.meta["n_rows"] = len(self._rows)
@@ -236,7 +247,10 @@ class ResultStore:
 
 @dataclass
 class TaskSpec:
-    """One task: ``func(previous_result, *args)``; ``after`` is the key of the task it continues."""
+    """One task: ``func(previous_result, *args)``; ``after`` is the key of the task it
+    continues (None: independent). ``cost`` is a relative estimate of its run time: Dask
+    starts the costliest tasks first (longest-processing-time order), which keeps the
+    workers busy to the end."""
 
     key: str
     func: Callable
@@ -244,6 +258,7 @@ class TaskSpec:
     after: str | None = None
     label: str = ""
     meta: dict = field(default_factory=dict)
+    cost: float = 1.0
 
 
 def _call(func, pack, prev, *args):
@@ -284,7 +299,10 @@ def run_tasks(specs: list[TaskSpec], *, store_get: Callable[[str], object | None
     bar = tqdm(total=len(todo), desc=desc, unit="task", disable=not progress, file=sys.stderr)
     try:
         if client is None:
-            for s in todo:  # specs are listed so that every task comes after the one it continues
+            order = {s.key: i for i, s in enumerate(todo)}
+            independent = sorted((s for s in todo if not s.after), key=lambda s: (-s.cost, order[s.key]))
+            chained = [s for s in todo if s.after]
+            for s in independent + chained:  # every chained task comes after the one it continues
                 prev = results.get(s.after) if s.after else None
                 r = _call(s.func, pack, prev, *s.args)
                 results[s.key] = r
@@ -297,7 +315,8 @@ def run_tasks(specs: list[TaskSpec], *, store_get: Callable[[str], object | None
             futures, by_future = {}, {}
             for s in todo:
                 prev = futures.get(s.after, results.get(s.after)) if s.after else None
-                f = client.submit(_call, s.func, pack_f, prev, *s.args, key=f"task-{abs(hash(s.key))}", pure=False)
+                f = client.submit(_call, s.func, pack_f, prev, *s.args, key=f"task-{abs(hash(s.key))}", pure=False,
+                                  priority=int(round(1000 * s.cost)))
                 futures[s.key] = f
                 by_future[f] = s
             for f in as_completed(list(futures.values())):
@@ -309,6 +328,36 @@ def run_tasks(specs: list[TaskSpec], *, store_get: Callable[[str], object | None
     finally:
         bar.close()
     return results
+
+
+def _evaluate_part(pack, jobs, engine):
+    from .threshold import evaluate_outcomes
+
+    if pack is not None:
+        pack.install()
+    return evaluate_outcomes(jobs, engine=engine)
+
+
+def client_evaluator(client, *, engine: str = "batch", pack: ModelPack | None = None, parts: int | None = None):
+    """``evaluate(jobs)`` for :func:`phasekit.find_threshold` and
+    :func:`phasekit.threshold.run_searches` on a Dask client: each round's simulations are
+    split into one part per worker (interleaved, so the parts cost about the same) and run
+    there on ``engine``. With k-section (``levels`` > 1) a single search then uses every
+    worker: parallel bracketing when the workers have nothing else to do."""
+    n = parts or max(1, len(client.scheduler_info()["workers"]))
+    pack_f = client.scatter(pack, broadcast=True) if pack is not None else None
+
+    def evaluate(jobs):
+        chunks = [list(range(i, len(jobs), n)) for i in range(n)]
+        chunks = [c for c in chunks if c]
+        futures = [client.submit(_evaluate_part, pack_f, [jobs[j] for j in c], engine, pure=False) for c in chunks]
+        out = [None] * len(jobs)
+        for c, part in zip(chunks, client.gather(futures)):
+            for j, o in zip(c, part):
+                out[j] = o
+        return out
+
+    return evaluate
 
 
 # -- threshold rows --------------------------------------------------------------------------
@@ -351,10 +400,11 @@ def threshold_key(defn, a: float, search: dict) -> str:
 
 
 def threshold_task(prev: ThresholdRow | None, defn_fields: dict, a: float, group: str, is_default: bool,
-                   search: dict) -> ThresholdRow:
+                   search: dict, engine: str = "scalar", levels: int = 1) -> ThresholdRow:
     """One sweep task: the threshold at aspect ratio ``a`` (the search seeded by the previous
     point's row ``prev``), then the self-consistency check (1.02 x jumps, 0.98 x does not).
-    Failures become a row with status "failed" and the reason."""
+    ``engine`` and ``levels`` (k-section) change the cost, not the bracket, and are not
+    part of the key. Failures become a row with status "failed" and the reason."""
     from .threshold import Definition, find_threshold
 
     defn = Definition(**defn_fields)
@@ -365,7 +415,7 @@ def threshold_task(prev: ThresholdRow | None, defn_fields: dict, a: float, group
                 eps=repr(defn.eps) if defn.eps else ("exact" if defn.seed != "viscous" else ""))
     guess = prev.threshold if prev is not None else None
     try:
-        th = find_threshold(defn, a, guess=guess, **search)
+        th = find_threshold(defn, a, guess=guess, engine=engine, levels=levels, **search)
     except Exception as exc:  # a sweep tabulates failures instead of stopping
         return ThresholdRow(**base, threshold=None, bracket_lo=None, bracket_hi=None, n_sims=0, status=Status.FAILED.value,
                             transitions="[]", stuck_near=None, check_above_jumped=None, check_below_jumped=None,
@@ -374,7 +424,7 @@ def threshold_task(prev: ThresholdRow | None, defn_fields: dict, a: float, group
     above = below = consistent = None
     n_check = 0
     if th.value is not None and th.status in (Status.CONVERGED, Status.NON_MONOTONE):  # not for bracket_only
-        above, below = defn.outcome(a, 1.02 * th.value).jumped, defn.outcome(a, 0.98 * th.value).jumped
+        above, below = (o.jumped for o in defn.outcomes(a, [1.02 * th.value, 0.98 * th.value], engine=engine))
         n_check = 2
         consistent = bool(above) and below is False
     return ThresholdRow(**base, threshold=th.value, bracket_lo=th.bracket[0], bracket_hi=th.bracket[1], n_sims=th.n_sims,
@@ -386,3 +436,230 @@ def threshold_task(prev: ThresholdRow | None, defn_fields: dict, a: float, group
 
 def row_dict(row) -> dict:
     return asdict(row)
+
+
+# -- search and outcome rows (the outcome map and the (a, mu) map) ------------------------------
+
+
+def critical_path(specs: list[TaskSpec], rounds: dict[str, int]) -> int:
+    """The longest chain of dependent simulation rounds: a task's own rounds (``rounds[key]``)
+    plus those of the task it continues (``after``), maximised over tasks."""
+    by_key = {s.key: s for s in specs}
+    memo: dict[str, int] = {}
+
+    def depth(key: str) -> int:
+        if key not in memo:
+            s = by_key.get(key)
+            memo[key] = rounds.get(key, 0) + (depth(s.after) if s is not None and s.after else 0)
+        return memo[key]
+
+    return max((depth(s.key) for s in specs), default=0)
+
+
+@dataclass(frozen=True)
+class SearchRow:
+    """One traced boundary point, as stored: a jump threshold in the family parameter at
+    seed distance ``d`` (kind "threshold"), or the sticking boundary d_min in the seed
+    distance at the family parameter ``value`` (kind "stick"). ``threshold`` is the
+    boundary (Omega0*/n0* or d_min), ``n_rounds`` its search's rounds of independent
+    simulations, ``sens_*`` the sensitivity to d when asked (d/2 and 2d)."""
+
+    key: str
+    study: str
+    kind: str
+    branch: str
+    a: float
+    mu: float
+    d: float | None
+    value: float | None
+    threshold: float | None
+    bracket_lo: float | None
+    bracket_hi: float | None
+    status: str
+    n_sims: int
+    n_rounds: int
+    levels: int
+    engine: str
+    eps: str
+    rtol: float
+    t_max: float
+    transitions: str
+    stuck_near: bool
+    sens_half: float | None
+    sens_double: float | None
+    sens_slope: float | None
+    sens_shift: float | None
+    sens_dominant: str
+    wall_s: float
+    reason: str
+
+
+def search_key(defn, a: float, search: dict, kind: str = "threshold", value: float | None = None,
+               sensitivity: bool = False) -> str:
+    """Key of a stored search row: every input that changes the answer (the engine does not)."""
+    v = "" if value is None else f"|value={value:.10g}"
+    sens = "|sensitivity" if sensitivity else ""
+    return f"{kind}|{defn.key()}|a={a:.10g}{v}|search={json.dumps(search, sort_keys=True)}{sens}"
+
+
+def search_job(defn_fields: dict, a: float, search: dict, *, kind: str = "threshold", value: float | None = None,
+               sensitivity: bool = False) -> dict:
+    """One boundary point to trace, as :func:`search_group_task` takes it: a jump threshold
+    at seed distance ``defn_fields["amplitude"]`` (kind "threshold"), or the sticking
+    boundary d_min at the family parameter ``value`` (kind "stick"); ``search`` holds the
+    keywords of :func:`phasekit.threshold.threshold_searches` or ``stick_search``."""
+    return dict(defn=dict(defn_fields), a=float(a), search=dict(search), kind=kind, value=value, sensitivity=sensitivity)
+
+
+def search_task(prev, defn_fields: dict, a: float, search: dict, *, kind: str = "threshold", value: float | None = None,
+                study: str = "", engine: str = "batch", sensitivity: bool = False) -> SearchRow:
+    """One boundary point of a map, independent of ``prev`` (see :func:`search_job`)."""
+    job = search_job(defn_fields, a, search, kind=kind, value=value, sensitivity=sensitivity)
+    return search_group_task(prev, [job], study=study, engine=engine)[0]
+
+
+def search_group_task(prev, jobs: list[dict], *, study: str = "", engine: str = "batch") -> list[SearchRow]:
+    """Several boundary points (:func:`search_job`) traced in lock-step: each round
+    simulates what every unfinished search asks for in one batch (so the batch integrator's
+    lanes fill across searches); each search keeps its own rounds, bracket and result.
+    Failures become rows with status "failed" and the reason."""
+    from .threshold import Definition, run_searches, stick_search, threshold_result, threshold_searches
+
+    t0 = time.perf_counter()
+    plans, rows = [], [None] * len(jobs)
+    for i, job in enumerate(jobs):
+        defn = Definition(**job["defn"])
+        try:
+            if job["kind"] == "stick":
+                searches = [stick_search(defn, job["a"], job["value"], **job["search"])]
+            else:
+                searches = threshold_searches(defn, job["a"], sensitivity=job["sensitivity"], **job["search"])
+            plans.append((i, defn, searches))
+        except Exception as exc:
+            rows[i] = _search_row(job, defn, None, study, engine, 0.0, f"{type(exc).__name__}: {exc}")
+    try:
+        run_searches([s for _, _, ss in plans for s in ss], engine=engine)
+    except Exception as exc:  # a sweep tabulates failures instead of stopping
+        for i, defn, _ in plans:
+            rows[i] = _search_row(jobs[i], defn, None, study, engine, time.perf_counter() - t0, f"{type(exc).__name__}: {exc}")
+        return rows
+    wall = (time.perf_counter() - t0) / max(1, len(plans))  # lock-step: the group's time, shared
+    for i, defn, searches in plans:
+        th = searches[0].result(wall) if jobs[i]["kind"] == "stick" else threshold_result(searches, wall)
+        rows[i] = _search_row(jobs[i], defn, th, study, engine, wall, th.reason or "")
+    return rows
+
+
+def job_key(job: dict) -> str:
+    """The stored row key of a :func:`search_job`."""
+    from .threshold import Definition
+
+    return search_key(Definition(**job["defn"]), job["a"], job["search"], job["kind"], job["value"], job["sensitivity"])
+
+
+def group_search_tasks(jobs: list[dict], costs: list[float], *, per_task: int, study: str = "",
+                       engine: str = "batch") -> tuple[list[TaskSpec], dict[str, list[str]]]:
+    """Independent tasks of up to ``per_task`` searches each, traced in lock-step by
+    :func:`search_group_task`: searches of one branch (one batch integrator) and of similar
+    cost share a task. Returns the tasks (cost: the sum of their searches') and, per task
+    key, the row keys it produces (a task is done when all of them are stored)."""
+    from functools import partial
+
+    task = partial(search_group_task, study=study, engine=engine)
+    order = sorted(range(len(jobs)), key=lambda i: (jobs[i]["a"] > 1, -costs[i]))
+    specs, members = [], {}
+    for branch in (False, True):
+        idx = [i for i in order if (jobs[i]["a"] > 1) == branch]
+        for k in range(0, len(idx), per_task):
+            part = idx[k:k + per_task]
+            keys = [job_key(jobs[i]) for i in part]
+            key = "group|" + hashlib.sha256("|".join(keys).encode()).hexdigest()[:20]
+            specs.append(TaskSpec(key, task, ([jobs[i] for i in part],), cost=sum(costs[i] for i in part),
+                                  label=f"{len(part)} searches"))
+            members[key] = keys
+    return specs, members
+
+
+def store_groups(store: "ResultStore", members: dict[str, list[str]]):
+    """(store_get, on_result) for grouped tasks: a group is done when all its rows are
+    stored; a finished group's rows are added (those not stored yet)."""
+
+    def get(key):
+        if key not in members:
+            return store.get(key)
+        rows = [store.get(k) for k in members[key]]
+        return rows if all(r is not None for r in rows) else None
+
+    def on_result(spec, result):
+        for r in result if isinstance(result, list) else [result]:
+            if r.key not in store:
+                store.add(r)
+
+    return get, on_result
+
+
+def _search_row(job, defn, th, study, engine, wall, reason) -> SearchRow:
+    kind, a = job["kind"], job["a"]
+    base = dict(key=search_key(defn, a, job["search"], kind, job["value"], job["sensitivity"]), study=study, kind=kind,
+                branch="prolate" if a > 1 else "oblate", a=a, mu=defn.mu, d=defn.amplitude if kind == "threshold" else None,
+                value=job["value"], levels=int(job["search"].get("levels", 1)), engine=engine, rtol=defn.rtol, t_max=defn.t_max,
+                eps=repr(defn.eps) if defn.eps else ("exact" if defn.seed != "viscous" else ""), wall_s=wall, reason=reason)
+    if th is None:
+        return SearchRow(**base, threshold=None, bracket_lo=None, bracket_hi=None, status=Status.FAILED.value, n_sims=0,
+                         n_rounds=0, transitions="[]", stuck_near=False, sens_half=None, sens_double=None, sens_slope=None,
+                         sens_shift=None, sens_dominant="")
+    sens = th.sensitivity
+    return SearchRow(**base, threshold=th.value, bracket_lo=th.bracket[0], bracket_hi=th.bracket[1], status=th.status.value,
+                     n_sims=th.n_sims + (0 if sens is None else sens.n_sims), n_rounds=th.n_rounds,
+                     transitions=json.dumps([list(t) for t in th.transitions]),
+                     stuck_near=th.stuck_near if kind == "threshold" else False,
+                     sens_half=None if sens is None else sens.values[0], sens_double=None if sens is None else sens.values[2],
+                     sens_slope=None if sens is None else sens.slope, sens_shift=None if sens is None else sens.shift,
+                     sens_dominant="" if sens is None or sens.dominant is None else sens.dominant)
+
+
+@dataclass(frozen=True)
+class OutcomeRow:
+    """One sampled start of an outcome map: its class ("jump", "rise", "stuck", "slow",
+    "failed"), when it ended (``t_end``; ``t_jump`` for a jump) and where (``theta_end``,
+    ``rise_fraction``: the share of the rise done when it ended)."""
+
+    key: str
+    study: str
+    branch: str
+    a: float
+    mu: float
+    d: float
+    value: float
+    outcome: str
+    t_jump: float | None
+    t_end: float
+    theta_end: float | None
+    rise_fraction: float | None
+    stuck: bool
+    status: str
+    wall_s: float
+    reason: str
+
+
+def outcome_key(defn, a: float, value: float) -> str:
+    return f"outcome|{defn.key()}|a={a:.10g}|value={value:.10g}"
+
+
+def outcome_task(prev, defn_fields: dict, points: list, *, study: str = "", engine: str = "batch") -> list[OutcomeRow]:
+    """Classify a list of starts (a, d, value) of one definition (d replaces its amplitude),
+    all at once on the batch integrator."""
+    from dataclasses import replace
+
+    from .threshold import Definition, evaluate_outcomes
+
+    defn = Definition(**defn_fields)
+    jobs = [(replace(defn, amplitude=d), a, v) for a, d, v in points]
+    outs = evaluate_outcomes(jobs, engine=engine)
+    rows = []
+    for (d_defn, a, v), o in zip(jobs, outs):
+        rows.append(OutcomeRow(key=outcome_key(d_defn, a, v), study=study, branch="prolate" if a > 1 else "oblate", a=a,
+                               mu=d_defn.mu, d=d_defn.amplitude, value=v, outcome=o.kind,
+                               t_jump=o.t if o.jumped else None, t_end=o.t, theta_end=o.theta, rise_fraction=o.rise_fraction,
+                               stuck=o.stuck, status=o.status.value, wall_s=o.wall_s, reason=o.reason or ""))
+    return rows

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 
@@ -47,7 +47,9 @@ from .simulate import simulate
 from .starts import gyroscopic_start, to_chart
 from .validate import check_choice, check_int, check_positive, check_range
 
-__all__ = ["Definition", "Outcome", "Threshold", "find_threshold", "continue_threshold", "DEFAULT_DEFINITIONS", "as_body"]
+__all__ = ["Definition", "Outcome", "Threshold", "Sensitivity", "ThresholdSearch", "find_threshold", "continue_threshold",
+           "run_searches", "evaluate_outcomes", "find_stick_boundary",
+           "threshold_searches", "threshold_result", "stick_search", "DEFAULT_DEFINITIONS", "ENGINES", "as_body"]
 
 
 def as_body(body) -> Body:
@@ -146,14 +148,75 @@ class Definition:
         model, x0 = self.start(body, value)
         r = simulate(model, x0, self.t_max, rtol=self.rtol, events=[self.rise_event(body)], track_minima=False,
                      dense=False, max_steps=self.max_steps)
+        return self.classify(body, value, model, x0, r)
+
+    def classify(self, body, value: float, model, x0, r) -> "Outcome":
+        """The Outcome of the trajectory ``r`` started from ``x0`` (scalar or batch run)."""
         jumped = None if r.status is Status.FAILED else r.status is Status.JUMPED
-        return Outcome(value, jumped, r.status, r.t, r.stuck, r.reason, r.wall_s)
+        theta = frac = None
+        if r.status is not Status.FAILED:
+            theta0 = float(model.chart.to_paper(x0)[4])
+            theta = float(r.euler_end[4])
+            final = 0.0 if body.is_prolate else math.pi / 2
+            frac = (theta0 - theta) / (theta0 - final) if theta0 != final else None
+        return Outcome(value, jumped, r.status, r.t, r.stuck, r.reason, r.wall_s, theta, frac)
+
+    def prepare(self, body, engine: str = "batch") -> None:
+        """Compile (or load) the integrators this definition's runs use for ``body``'s
+        branch, without simulating: the scalar flows by a short run, and with
+        ``engine="batch"`` the batch integrators of :mod:`phasekit.batch`."""
+        body = as_body(body)
+        value = 2.0 * self.lower_bound(body)
+        model, x0 = self.start(body, value)
+        simulate(model, x0, 1e-3, rtol=self.rtol, events=[self.rise_event(body)], track_minima=False, dense=False)
+        if check_choice("engine", engine, ENGINES) == "batch":
+            from .batch import compile_batch
+
+            compile_batch(model, [self.rise_event(body)], rtol=self.rtol, track_minima=False, dense=False)
+
+    def outcomes(self, body, values, engine: str = "scalar", stats=None) -> list["Outcome"]:
+        """Outcomes of several values of the family parameter: one :meth:`outcome` each
+        (``engine="scalar"``), or on heyoka's SIMD batch integrator (``"batch"``, see
+        :mod:`phasekit.batch`: the same outcomes, event times to ~1e-12)."""
+        return evaluate_outcomes([(self, body, v) for v in values], engine=engine, stats=stats)
+
+
+ENGINES = ("scalar", "batch")
+
+
+def evaluate_outcomes(jobs, engine: str = "scalar", stats=None) -> list["Outcome"]:
+    """Outcomes of (definition, body, value) jobs, in order. ``engine="batch"`` runs the
+    jobs of plain Definitions through :func:`phasekit.batch.simulate_batch` (one call per
+    stop event and tolerance); a Definition subclass with its own ``outcome`` is called."""
+    check_choice("engine", engine, ENGINES)
+    out: list[Outcome | None] = [None] * len(jobs)
+    groups: dict = {}
+    for i, (defn, body, value) in enumerate(jobs):
+        if engine == "scalar" or type(defn).outcome is not Definition.outcome:
+            out[i] = defn.outcome(body, value)
+            continue
+        body = as_body(body)
+        ev = defn.rise_event(body)
+        groups.setdefault((ev.level, ev.direction, defn.rtol, defn.max_steps), []).append((i, defn, body, value))
+    if groups:
+        from .batch import simulate_batch
+
+        for (_, _, rtol, max_steps), items in groups.items():
+            starts = [d.start(b, v) for _, d, b, v in items]
+            ev = items[0][1].rise_event(items[0][2])
+            runs = simulate_batch([m for m, _ in starts], [x for _, x in starts], [d.t_max for _, d, _, _ in items],
+                                  events=[ev], rtol=rtol, max_steps=max_steps, track_minima=False, dense=False, stats=stats)
+            for (i, d, b, v), (m, x0), r in zip(items, starts, runs):
+                out[i] = d.classify(b, v, m, x0, r)
+    return out
 
 
 @dataclass(frozen=True)
 class Outcome:
     """One trajectory of a threshold search: did it jump, and how did it end
-    (``status``: jumped; stopped = the rise completed; completed = reached t_max; failed)."""
+    (``status``: jumped; stopped = the rise completed; completed = reached t_max; failed).
+    ``theta``: the inclination where it ended (at lift-off for a jump); ``rise_fraction``:
+    how much of the rise from theta0 to the final state (0 prolate, pi/2 oblate) was done."""
 
     value: float
     jumped: bool | None  # None: the run failed
@@ -162,10 +225,66 @@ class Outcome:
     stuck: bool
     reason: str | None
     wall_s: float
+    theta: float | None = None
+    rise_fraction: float | None = None
 
     @property
     def how(self) -> str:
         return {Status.JUMPED: "jumped", Status.STOPPED: "rise-complete", Status.COMPLETED: "t_max"}.get(self.status, "failed")
+
+    @property
+    def kind(self) -> str:
+        """The outcome map's classes: "jump" (lost contact before the rise completed),
+        "rise" (the rise completed in contact), "stuck" (neither by t_max: the body stuck and
+        rolls), "slow" (neither, without sticking) or "failed"."""
+        if self.jumped is None:
+            return "failed"
+        if self.jumped:
+            return "jump"
+        if self.status is Status.STOPPED:
+            return "rise"
+        return "stuck" if self.stuck else "slow"
+
+
+@dataclass(frozen=True)
+class Sensitivity:
+    """How a threshold moves with the definition's seed distance (``amplitude``: d on the
+    sliding branch, delta for eigenvector seeds), against the bisection bracket.
+
+    ``amplitudes`` and ``values``: (d/2, d, 2d) and the thresholds there (None where there
+    is none); ``slope``: d ln(threshold) / d ln(d), from the two outer points;
+    ``shift``: the largest relative change of the threshold over the three; ``bracket``:
+    the relative width of the bisection bracket at d; ``dominant``: which of the two is
+    larger ("seed distance" or "bracket")."""
+
+    amplitudes: tuple[float, float, float]
+    values: tuple[float | None, float | None, float | None]
+    brackets: tuple[tuple, tuple, tuple]
+    statuses: tuple[str, str, str]
+    slope: float | None
+    shift: float | None
+    bracket: float | None
+    dominant: str | None
+    n_sims: int = 0  # simulations of the two extra searches
+
+    @classmethod
+    def from_thresholds(cls, amps, ths) -> "Sensitivity":
+        vals = tuple(t.value for t in ths)
+        mid = ths[1]
+        slope = shift = width = dominant = None
+        if vals[0] is not None and vals[2] is not None:
+            slope = math.log(vals[2] / vals[0]) / math.log(amps[2] / amps[0])
+        if vals[1] is not None and all(v is not None for v in vals):
+            shift = max(abs(v / vals[1] - 1) for v in vals)
+        if mid.bracket[0] is not None and mid.bracket[1] is not None:
+            width = mid.bracket[1] / mid.bracket[0] - 1
+        if shift is not None and width is not None:
+            dominant = "seed distance" if shift > width else "bracket"
+        return cls(tuple(amps), vals, tuple(t.bracket for t in ths), tuple(t.status.value for t in ths), slope, shift,
+                   width, dominant, ths[0].n_sims + ths[2].n_sims)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
 
 
 @dataclass(frozen=True)
@@ -176,8 +295,9 @@ class Threshold:
     jump/no-jump transition: ``transitions`` holds every bracket, ``value`` the lowest
     no-jump -> jump one), BRACKET_ONLY (a run failed inside the bracket, which is returned as
     far as it was narrowed; ``value`` is its geometric midpoint), NO_JUMP_IN_RANGE,
-    JUMPS_AT_LOWER_BOUND, or FAILED (no run succeeded). ``sensitivity`` holds, when asked
-    for, how the value moves with the definition's seed distance.
+    JUMPS_AT_LOWER_BOUND, or FAILED (no run succeeded). ``n_rounds``: rounds of mutually
+    independent simulations the search needed (its critical path). ``sensitivity`` is
+    filled when asked (``find_threshold(..., sensitivity=True)``).
     """
 
     a: float
@@ -189,7 +309,8 @@ class Threshold:
     outcomes: tuple[Outcome, ...] = field(default=(), repr=False)
     wall_s: float = 0.0
     reason: str | None = None
-    sensitivity: dict = field(default_factory=dict)
+    sensitivity: Sensitivity | None = None
+    n_rounds: int = 0
 
     @property
     def stuck_near(self) -> bool:
@@ -199,57 +320,180 @@ class Threshold:
         return any(o.stuck for o in self.outcomes if abs(o.value / self.value - 1) < 0.05)
 
 
-def _bisect(defn, body, lo, hi, tol, outcomes):
-    """Shrink a [no jump, jump] (or reverse) bracket geometrically to relative width tol."""
-    o_lo = next(o for o in outcomes if o.value == lo)
-    while hi / lo - 1 > tol:
-        mid = math.sqrt(lo * hi)
-        o = defn.outcome(body, mid)
-        outcomes.append(o)
-        if o.jumped is None:
-            return lo, hi, False
-        if o.jumped == o_lo.jumped:
-            lo, o_lo = mid, o
-        else:
-            hi = mid
-    return lo, hi, True
+def _tree(lo: float, hi: float, tol: float, depth: int) -> list[float]:
+    """Every midpoint sequential bisection of [lo, hi] could visit in ``depth`` steps (the
+    same floating-point operations, so the walk in :meth:`_Bracket.walk` reproduces it)."""
+    if depth == 0 or not hi / lo - 1 > tol:
+        return []
+    mid = math.sqrt(lo * hi)
+    return _tree(lo, mid, tol, depth - 1) + [mid] + _tree(mid, hi, tol, depth - 1)
 
 
-def _scan(defn, body, lo, hi, guess, n_coarse, window, outcomes) -> list[tuple[float, float]]:
-    """Coarse geometric scan, widened until a transition shows; returns every transition."""
-    w_lo, w_hi = (max(lo, guess / window), min(hi, guess * window)) if guess is not None else (lo, hi)
-    trans: list[tuple[float, float]] = []
-    for _ in range(30):  # widening steps; each multiplies the window by window**2
-        done = {o.value for o in outcomes}
-        for v in np.geomspace(w_lo, w_hi, n_coarse):
-            if float(v) not in done:
-                outcomes.append(defn.outcome(body, float(v)))
-        scan = sorted((o for o in outcomes if o.jumped is not None), key=lambda o: o.value)
-        trans = [(scan[k].value, scan[k + 1].value) for k in range(len(scan) - 1) if scan[k].jumped != scan[k + 1].jumped]
-        if trans or not scan:
-            break
-        if not scan[0].jumped:  # no jump anywhere yet: look higher, up to hi
-            if w_hi >= hi:
-                break
-            w_lo, w_hi = w_hi, min(hi, w_hi * window**2)
-        else:  # jumps everywhere yet: look lower, down to lo
-            if w_lo <= lo:
-                break
-            w_lo, w_hi = max(lo, w_lo / window**2), w_lo
-    return trans
+@dataclass
+class _Bracket:
+    """One transition being narrowed: [lo, hi] with the outcome at lo."""
+
+    lo: float
+    hi: float
+    o_lo: Outcome
+    active: bool = True
+    good: bool = True
+
+    def walk(self, results: dict, tol: float) -> None:
+        """Follow sequential bisection through the outcomes of this round."""
+        while self.active:
+            if not self.hi / self.lo - 1 > tol:
+                self.active = False
+                return
+            mid = math.sqrt(self.lo * self.hi)
+            if mid not in results:
+                return  # beyond this round's tree
+            o = results[mid]
+            if o.jumped is None:
+                self.active, self.good = False, False
+            elif o.jumped == self.o_lo.jumped:
+                self.lo, self.o_lo = mid, o
+            else:
+                self.hi = mid
 
 
-def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float = 60.0, guess: float | None = None,
-                   n_coarse: int = 8, window: float = 1.5, tol: float = 1e-3, throw: bool = False) -> Threshold:
-    """Bracket and bisect the jump/no-jump transition in Omega0 (prolate) or n0 (oblate).
+class ThresholdSearch:
+    """:func:`find_threshold` as a state machine, so that many searches (and several values
+    of one search) can be simulated at once: :meth:`ask` gives the values of the next round
+    (mutually independent), :meth:`tell` takes their outcomes, :meth:`result` gives the
+    Threshold once :attr:`done`.
 
-    A coarse geometric scan of ``n_coarse`` >= 2 points (over [lo, hi], or over
-    [guess/window, guess*window] when a guess from a neighbouring body is given, widened until
-    a transition shows) finds every transition on the grid; each is then bisected to relative
-    width ``tol`` in [1e-12, 0.5]. ``body`` is a Body or an aspect ratio a (uniform spheroid).
-    ``throw``: raise ConvergenceError instead of returning status FAILED.
+    With ``levels = m`` a refinement round simulates every midpoint that sequential bisection
+    could visit in its next m steps (a dyadic tree: k = 2^m - 1 values, k-section) and then
+    walks the tree as bisection would: the bracket is the one sequential bisection gives, in
+    ceil(steps / m) rounds instead of steps. The coarse scan is one round of ``n_coarse``
+    values (more if it has to widen).
     """
-    t0 = time.perf_counter()
+
+    def __init__(self, defn, body, *, lo, hi, guess, n_coarse, window, tol, levels=1, job=None, flag=None):
+        self.defn, self.body = defn, body
+        # a search over another parameter p of the same simulations: job(p) -> (definition,
+        # body, value) and flag(outcome) -> bool or None; its outcomes then carry p as
+        # ``value`` and the flag as ``jumped``
+        self.job = job or (lambda p: (defn, body, p))
+        self.flag = flag
+        self.lo, self.hi, self.tol, self.n_coarse, self.window = lo, hi, tol, n_coarse, window
+        self.levels = levels
+        self.w_lo, self.w_hi = (max(lo, guess / window), min(hi, guess * window)) if guess is not None else (lo, hi)
+        self.outcomes: list[Outcome] = []
+        self.phase, self.widenings, self.n_rounds = "scan", 0, 0
+        self.trans: list[tuple[float, float]] = []
+        self.brackets: list[_Bracket] = []
+        self._asked: list[float] = []
+
+    @property
+    def done(self) -> bool:
+        return self.phase == "done"
+
+    def ask(self) -> list[float]:
+        """The values to simulate next (empty once done)."""
+        while not self.done:
+            if self.phase == "scan":
+                known = {o.value for o in self.outcomes}
+                vals = [float(v) for v in np.geomspace(self.w_lo, self.w_hi, self.n_coarse) if float(v) not in known]
+                if vals:
+                    self._asked = vals
+                    return vals
+                self._after_scan()
+            else:
+                vals = [v for b in self.brackets if b.active for v in _tree(b.lo, b.hi, self.tol, self.levels)]
+                if vals:
+                    self._asked = vals
+                    return vals
+                self.phase = "done"
+        return []
+
+    def tell(self, outcomes) -> None:
+        outcomes = list(outcomes)
+        if len(outcomes) != len(self._asked):
+            raise ValueError("tell() needs the outcomes of the values ask() gave, in order")
+        outcomes = [replace(o, value=v) if o.value != v else o for o, v in zip(outcomes, self._asked)]
+        self.n_rounds += 1
+        self._asked = []
+        if self.flag is not None:
+            outcomes = [replace(o, jumped=self.flag(o)) for o in outcomes]
+        self.outcomes.extend(outcomes)
+        if self.phase == "scan":
+            self._after_scan()
+        else:
+            results = {o.value: o for o in outcomes}
+            for b in self.brackets:
+                b.walk(results, self.tol)
+            if not any(b.active for b in self.brackets):
+                self.phase = "done"
+
+    def _after_scan(self) -> None:
+        """Transitions on the scan so far; widen the window or go on to refine them."""
+        self.widenings += 1
+        scan = sorted((o for o in self.outcomes if o.jumped is not None), key=lambda o: o.value)
+        self.trans = [(scan[k].value, scan[k + 1].value) for k in range(len(scan) - 1) if scan[k].jumped != scan[k + 1].jumped]
+        stop = bool(self.trans) or not scan or self.widenings >= 30
+        if not stop and not scan[0].jumped:  # no jump anywhere yet: look higher, up to hi
+            stop = self.w_hi >= self.hi
+            self.w_lo, self.w_hi = self.w_hi, min(self.hi, self.w_hi * self.window**2)
+        elif not stop:  # jumps everywhere yet: look lower, down to lo
+            stop = self.w_lo <= self.lo
+            self.w_lo, self.w_hi = max(self.lo, self.w_lo / self.window**2), self.w_lo
+        if stop:
+            first = {}
+            for o in self.outcomes:
+                first.setdefault(o.value, o)
+            self.brackets = [_Bracket(lo, hi, first[lo]) for lo, hi in self.trans]
+            self.phase = "refine" if self.brackets else "done"
+
+    def result(self, wall_s: float = 0.0) -> Threshold:
+        a = getattr(self.body, "a", float("nan"))
+        outs, n = tuple(self.outcomes), len(self.outcomes)
+        if not self.trans:
+            valid = [o for o in self.outcomes if o.jumped is not None]
+            if not valid:
+                reason = next((o.reason for o in self.outcomes if o.reason), "no run succeeded")
+                return Threshold(a, None, (None, None), Status.FAILED, n, (), outs, wall_s, reason, n_rounds=self.n_rounds)
+            if all(o.jumped for o in valid):
+                return Threshold(a, None, (None, self.lo), Status.JUMPS_AT_LOWER_BOUND, n, (), outs, wall_s, n_rounds=self.n_rounds)
+            return Threshold(a, None, (self.hi, None), Status.NO_JUMP_IN_RANGE, n, (), outs, wall_s, n_rounds=self.n_rounds)
+        brackets = [(b.lo, b.hi) for b in self.brackets]
+        ok = all(b.good for b in self.brackets)
+        # the threshold: the lowest transition from no jump (below) to jump (above)
+        ups = [(b.lo, b.hi) for b in self.brackets if not b.o_lo.jumped]
+        first = ups[0] if ups else brackets[0]
+        status = Status.BRACKET_ONLY if not ok else (Status.NON_MONOTONE if len(brackets) > 1 else Status.CONVERGED)
+        value = math.sqrt(first[0] * first[1]) if ups else None
+        reason = None if ok else next((o.reason for o in self.outcomes if o.jumped is None), None)
+        return Threshold(a, value, first, status, n, tuple(brackets), outs, wall_s, reason, n_rounds=self.n_rounds)
+
+
+def run_searches(searches, *, engine: str = "scalar", evaluate=None, stats=None) -> int:
+    """Drive searches in lock-step: each round simulates the values every unfinished search
+    asks for, all at once (on the batch integrator with ``engine="batch"``, or through
+    ``evaluate(jobs) -> outcomes`` with jobs (definition, body, value), e.g. on a cluster).
+    Returns the number of rounds."""
+    rounds = 0
+    while True:
+        asks = [(s, s.ask()) for s in searches if not s.done]
+        asks = [(s, v) for s, v in asks if v]
+        if not asks:
+            return rounds
+        jobs = [s.job(x) for s, vals in asks for x in vals]
+        outs = evaluate(jobs) if evaluate is not None else evaluate_outcomes(jobs, engine=engine, stats=stats)
+        k = 0
+        for s, vals in asks:
+            s.tell(outs[k:k + len(vals)])
+            k += len(vals)
+        rounds += 1
+
+
+def threshold_searches(defn: Definition, body, *, lo: float | None = None, hi: float = 60.0, guess: float | None = None,
+                       n_coarse: int = 8, window: float = 1.5, tol: float = 1e-3, levels: int = 1,
+                       sensitivity: bool = False) -> list[ThresholdSearch]:
+    """The searches :func:`find_threshold` runs (validated): the threshold search, and with
+    ``sensitivity`` the same search at the seed distance halved and doubled (list order
+    d/2, d, 2d). Run them, alone or with other searches, by :func:`run_searches`."""
     if not isinstance(defn, Definition):
         raise ParameterError("defn", "must be a phasekit threshold Definition", defn)
     body = as_body(body)
@@ -257,6 +501,7 @@ def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float
         raise ParameterError("a", "must differ from 1 (a sphere has no jump threshold: h_theta = 0)", body.a)
     tol = check_range("tol", tol, 1e-12, 0.5, closed="lr")
     n_coarse = check_int("n_coarse", n_coarse, minimum=2, maximum=1000)
+    levels = check_int("levels", levels, minimum=1, maximum=8)
     window = check_range("window", window, 1.0, 1e3, closed="r")
     hi = check_positive("hi", hi)
     lo = defn.lower_bound(body) if lo is None else check_positive("lo", lo)
@@ -264,38 +509,88 @@ def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float
         raise ParameterError("lo", f"must be < hi = {hi:g}", lo)
     if guess is not None:
         guess = check_positive("guess", guess)
-    outcomes: list[Outcome] = []
-    trans = _scan(defn, body, lo, hi, guess, n_coarse, window, outcomes)
-    a = getattr(body, "a", float("nan"))
-    th = _conclude(defn, body, a, lo, hi, tol, trans, outcomes, time.perf_counter() - t0)
+    kw = dict(lo=lo, hi=hi, guess=guess, n_coarse=n_coarse, window=window, tol=tol, levels=levels)
+    main = ThresholdSearch(defn, body, **kw)
+    if not sensitivity:
+        return [main]
+    d = defn.amplitude
+    return [ThresholdSearch(replace(defn, amplitude=d / 2), body, **kw), main,
+            ThresholdSearch(replace(defn, amplitude=min(2 * d, 0.5)), body, **kw)]
+
+
+def threshold_result(searches: list[ThresholdSearch], wall_s: float = 0.0) -> Threshold:
+    """The Threshold of finished :func:`threshold_searches` (with the sensitivity if asked)."""
+    if len(searches) == 1:
+        return searches[0].result(wall_s)
+    main = searches[1]
+    th = main.result(wall_s)
+    amps = tuple(s.defn.amplitude for s in searches)
+    sens = Sensitivity.from_thresholds(amps, [s.result() for s in searches])
+    return replace(th, sensitivity=sens, n_rounds=max(s.n_rounds for s in searches))
+
+
+def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float = 60.0, guess: float | None = None,
+                   n_coarse: int = 8, window: float = 1.5, tol: float = 1e-3, levels: int = 1, engine: str = "scalar",
+                   sensitivity: bool = False, evaluate=None, throw: bool = False) -> Threshold:
+    """Bracket and bisect the jump/no-jump transition in Omega0 (prolate) or n0 (oblate).
+
+    A coarse geometric scan of ``n_coarse`` >= 2 points (over [lo, hi], or over
+    [guess/window, guess*window] when a guess from a neighbouring body is given, widened until
+    a transition shows) finds every transition on the grid; each is then bisected to relative
+    width ``tol`` in [1e-12, 0.5]. ``body`` is a Body or an aspect ratio a (uniform spheroid).
+
+    ``levels`` = m >= 1: bisect m steps per round by simulating the 2^m - 1 midpoints those
+    steps could need at once (k-section; the same bracket as bisection in fewer rounds, at
+    more simulations). ``engine``: "scalar" (one :func:`simulate` per value) or "batch"
+    (heyoka's SIMD batch integrator, :mod:`phasekit.batch`); ``evaluate(jobs)`` replaces
+    both (jobs: (definition, body, value); e.g. a cluster's map). ``sensitivity=True`` also
+    searches at the seed distance (``defn.amplitude``) halved and doubled, in the same
+    rounds, and fills :attr:`Threshold.sensitivity`. ``throw``: raise ConvergenceError
+    instead of returning status FAILED.
+    """
+    t0 = time.perf_counter()
+    check_choice("engine", engine, ENGINES)
+    searches = threshold_searches(defn, body, lo=lo, hi=hi, guess=guess, n_coarse=n_coarse, window=window, tol=tol,
+                                  levels=levels, sensitivity=sensitivity)
+    run_searches(searches, engine=engine, evaluate=evaluate)
+    th = threshold_result(searches, time.perf_counter() - t0)
     if throw and th.status is Status.FAILED:
         raise ConvergenceError(f"threshold search failed: {th.reason}", th)
     return th
 
 
-def _conclude(defn, body, a, lo, hi, tol, trans, outcomes, wall0) -> Threshold:
+def stick_search(defn: Definition, body, value: float, *, lo: float = 1e-4, hi: float = 0.2, n_coarse: int = 8,
+                 tol: float = 1e-2, levels: int = 1) -> ThresholdSearch:
+    """The search :func:`find_stick_boundary` runs (validated)."""
+    if not isinstance(defn, Definition):
+        raise ParameterError("defn", "must be a phasekit threshold Definition", defn)
+    body = as_body(body)
+    value = check_positive("value", value)
+    lo, hi = check_range("lo", lo, 0.0, 0.5, closed="r"), check_range("hi", hi, 0.0, 0.5, closed="r")
+    if not lo < hi:
+        raise ParameterError("lo", f"must be < hi = {hi:g}", lo)
+    return ThresholdSearch(defn, body, lo=lo, hi=hi, guess=None, n_coarse=check_int("n_coarse", n_coarse, minimum=2),
+                           window=1.5, tol=check_range("tol", tol, 1e-12, 0.5, closed="lr"),
+                           levels=check_int("levels", levels, minimum=1, maximum=8),
+                           job=lambda d: (replace(defn, amplitude=d), body, value),
+                           flag=lambda o: None if o.jumped is None else o.kind != "stuck")
+
+
+def find_stick_boundary(defn: Definition, body, value: float, *, lo: float = 1e-4, hi: float = 0.2, n_coarse: int = 8,
+                        tol: float = 1e-2, levels: int = 1, engine: str = "scalar", evaluate=None) -> Threshold:
+    """The sticking boundary d_min at one value of the family parameter: the smallest seed
+    distance ``d`` (``defn.amplitude``) in [lo, hi] whose start does not stick and roll
+    (outcome kind "stuck"), bracketed and bisected in d to relative width ``tol``.
+
+    Returns a :class:`Threshold` over d: ``value`` is d_min (the lowest transition from
+    stuck below to not stuck above), its outcomes carry d as ``value`` and "not stuck" as
+    ``jumped``.
+    """
     t0 = time.perf_counter()
-    if not trans:
-        valid = [o for o in outcomes if o.jumped is not None]
-        if not valid:
-            reason = next((o.reason for o in outcomes if o.reason), "no run succeeded")
-            return Threshold(a, None, (None, None), Status.FAILED, len(outcomes), (), tuple(outcomes), wall0, reason)
-        if all(o.jumped for o in valid):
-            return Threshold(a, None, (None, lo), Status.JUMPS_AT_LOWER_BOUND, len(outcomes), (), tuple(outcomes), wall0)
-        return Threshold(a, None, (hi, None), Status.NO_JUMP_IN_RANGE, len(outcomes), (), tuple(outcomes), wall0)
-    brackets, ok = [], True
-    for t_lo, t_hi in trans:
-        b_lo, b_hi, good = _bisect(defn, body, t_lo, t_hi, tol, outcomes)
-        brackets.append((b_lo, b_hi))
-        ok = ok and good
-    # the threshold: the lowest transition from no jump (below) to jump (above)
-    ups = [b for b in brackets if not next(o for o in outcomes if o.value == b[0]).jumped]
-    first = ups[0] if ups else brackets[0]
-    status = Status.BRACKET_ONLY if not ok else (Status.NON_MONOTONE if len(brackets) > 1 else Status.CONVERGED)
-    value = math.sqrt(first[0] * first[1]) if ups else None
-    reason = None if ok else next((o.reason for o in outcomes if o.jumped is None), None)
-    return Threshold(a, value, first, status, len(outcomes), tuple(brackets), tuple(outcomes),
-                     wall0 + time.perf_counter() - t0, reason)
+    check_choice("engine", engine, ENGINES)
+    search = stick_search(defn, body, value, lo=lo, hi=hi, n_coarse=n_coarse, tol=tol, levels=levels)
+    run_searches([search], engine=engine, evaluate=evaluate)
+    return search.result(time.perf_counter() - t0)
 
 
 def continue_threshold(defn: Definition, bodies, **kw) -> list[Threshold]:

@@ -1,0 +1,286 @@
+"""Jump thresholds over (aspect ratio a, friction coefficient mu), both branches.
+
+For each (a, mu): the smallest Omega0 (prolate) / n0 (oblate) whose trajectory loses contact
+before its rise completes, under the default definition (exact Coulomb friction, starts on
+the sliding branch at d = 0.01) with mu from 0.02 to 0.5 (7 values, log-spaced by 5^(1/3),
+including the paper's 0.1). Each threshold is an independent search (coarse scan of 8
+values over [1.05 x the stability threshold, 120], then bisection to 1e-3 relative by
+k-section: 7 values per round on heyoka's SIMD batch integrator). At a = 1.5 and 2/3 the
+seed distance d is varied (0.0025 ... 0.04) at every mu, to see whether a d-independent
+limit of the threshold exists. The collapse test: does one factor f(mu) map every curve
+threshold(a) onto the mu = 0.1 one? f is fitted (geometric mean over a) and the spread
+that remains is reported.
+
+Runs on Dask (LocalCluster with one worker per core, or --scheduler ADDRESS), the compiled
+models shipped once; every finished search is appended to figures/threshold_vs_mu.csv at
+once (manifest .json) and a rerun skips it, so a killed run resumes. Writes
+figures/threshold_vs_mu.png.
+
+    python studies/threshold_vs_mu.py [--quick] [--out DIR] [--serial] [--scheduler ADDRESS] [--fresh]
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from dataclasses import asdict, replace
+from pathlib import Path
+
+import numpy as np
+
+import phasekit as pk
+from phasekit.viz import output_dir, pyplot, save_figure, study_parser
+
+FIGURES = Path(__file__).resolve().parents[1] / "figures"
+STEM = "threshold_vs_mu"
+SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5, levels=3)
+MU = [float(0.1 * 5.0 ** (k / 3)) for k in range(-3, 4)]  # 0.02 ... 0.5, log-spaced, with 0.1
+PROLATE = [1.1, 1.2, 1.3, 1.5, 1.75, 2.0, 2.5, 3.0]
+OBLATE = [0.3, 0.4, 0.5, 0.6, 2 / 3, 0.75, 0.8, 0.9]
+D_LINES = {"a": [1.5, 2 / 3], "d": [0.0025, 0.005, 0.01, 0.02, 0.04]}
+QUICK = dict(mu=[0.02, 0.1, 0.5], prolate=[1.2, 1.5, 2.0], oblate=[0.5, 2 / 3, 0.8],
+             d_lines={"a": [1.5], "d": [0.005, 0.01, 0.02]}, d_mu=[0.02, 0.5])
+BASE = pk.Definition("sliding", "sliding")
+MU_REF = 0.1
+
+
+def grid(quick: bool) -> dict:
+    if quick:
+        return dict(mu=QUICK["mu"], a=QUICK["prolate"] + QUICK["oblate"], d_lines=QUICK["d_lines"], d_mu=QUICK["d_mu"])
+    return dict(mu=MU, a=PROLATE + OBLATE, d_lines=D_LINES, d_mu=MU)
+
+
+def definitions(quick: bool) -> list[tuple[pk.Definition, float]]:
+    """(definition, a) of every search: the (a, mu) map at d = 0.01 and the d-lines."""
+    g = grid(quick)
+    out = [(replace(BASE, mu=mu), a) for mu in g["mu"] for a in g["a"]]
+    for mu in g["d_mu"]:
+        for a in g["d_lines"]["a"]:
+            out += [(replace(BASE, mu=mu, amplitude=d), a) for d in g["d_lines"]["d"] if d != BASE.amplitude]
+    return out
+
+
+def build_tasks(quick: bool, engine: str, per_task: int | None = None):
+    """Independent tasks of several searches each (traced in lock-step, so that the batch
+    integrator's lanes fill across searches); the cost estimate (slower rise at small mu,
+    longer scans near a = 1) groups similar searches and orders the Dask queue longest
+    first. Returns the tasks and the row keys of each."""
+    jobs, costs = [], []
+    for defn, a in definitions(quick):
+        # at the paper's mu the threshold's sensitivity to d (d/2 and 2d) is measured too
+        sens = defn.mu == MU_REF and defn.amplitude == BASE.amplitude
+        jobs.append(pk.search_job(asdict(defn), a, SEARCH, sensitivity=sens))
+        # measured: the slow rise at small mu and the stick-slip chatter near the end of the
+        # rise at large mu are the costly searches, and scans near a = 1 are long
+        costs.append(((MU_REF / defn.mu) ** 0.5 + defn.mu / MU_REF) * (1.0 + 0.2 / abs(a - 1.0)) * (3 if sens else 1))
+    # One search per task by default: a few chattering searches cost as much as all the others
+    # (measured: one group of 10 took 36% of the map), so lock-step groups unbalance the workers.
+    per_task = per_task or 1
+    return pk.group_search_tasks(jobs, costs, per_task=per_task, study=STEM, engine=engine)
+
+
+def warm_up() -> None:
+    """Compile (or load) every integrator the sweep uses, so the pack carries them."""
+    for a in (1.5, 2 / 3):
+        BASE.prepare(a, engine="batch")
+
+
+def run(specs, members, store, args, desc: str) -> str:
+    """Run the pending tasks on Dask (or serially) into ``store``; returns how it ran."""
+    get, on_result = pk.store_groups(store, members)
+    pending = [s for s in specs if get(s.key) is None]
+    client = cluster = pack = None
+    mode = "serial"
+    if pending:
+        pack = pk.ModelPack.build(warm_up)
+        if not args.serial:
+            client, cluster = pk.make_client(args.scheduler, args.workers)
+            mode = f"dask: {len(client.scheduler_info()['workers'])} workers, model pack {pack.size_mb:.1f} MB shipped once"
+    try:
+        pk.run_tasks(specs, store_get=get, on_result=on_result, client=client, pack=pack, progress=not args.no_progress,
+                     desc=desc)
+    finally:
+        if client is not None:
+            client.close()
+        if cluster is not None:
+            cluster.close()
+    return f"{len(pending)} of {len(specs)} tasks computed now ({mode})"
+
+
+def collapse(rows, mus) -> dict:
+    """Test whether thresholds at every mu are one factor f(mu) times those at mu = 0.1:
+    f(mu) is the geometric mean over a of T(a, mu)/T(a, 0.1) (per branch), and the spread
+    is the largest |ln(T / (f T_ref))| that remains."""
+    out = {}
+    for branch in ("prolate", "oblate"):
+        ref = {r.a: r.threshold for r in rows if r.branch == branch and r.mu == MU_REF and r.threshold}
+        per_mu = {}
+        for mu in mus:
+            ratios = [math.log(r.threshold / ref[r.a]) for r in rows
+                      if r.branch == branch and r.mu == mu and r.threshold and r.a in ref]
+            if len(ratios) < 2:
+                continue
+            lnf = float(np.mean(ratios))
+            per_mu[mu] = {"f": math.exp(lnf), "spread": float(max(abs(x - lnf) for x in ratios)),
+                          "raw_spread": float(max(abs(x) for x in ratios)), "n": len(ratios)}
+        out[branch] = per_mu
+    spreads = [v["spread"] for b in out.values() for v in b.values()]
+    raw = [v["raw_spread"] for b in out.values() for v in b.values()]
+    out["max_spread"] = max(spreads) if spreads else None
+    out["max_raw_spread"] = max(raw) if raw else None
+    return out
+
+
+def d_limit(rows, a_list, mus) -> dict:
+    """For each (a, mu) d-line: the thresholds against d, the relative change per halving of
+    d, and whether the smallest d still slides (a stuck start has no threshold)."""
+    out = {}
+    for a in a_list:
+        for mu in mus:
+            pts = sorted((r.d, r) for r in rows if abs(r.a - a) < 1e-12 and r.mu == mu and r.d is not None)
+            if len(pts) < 2:
+                continue
+            ds = [d for d, _ in pts]
+            th = [r.threshold for _, r in pts]
+            steps = [(th[i] / th[i + 1] - 1) if th[i] and th[i + 1] else None for i in range(len(th) - 1)]
+            out[f"a={a:.4g} mu={mu:.4g}"] = {"d": ds, "threshold": th, "status": [r.status for _, r in pts],
+                                            "change_per_halving": steps}
+    return out
+
+
+def plot(rows, g, coll, png: Path, quick: bool) -> None:
+    plt = pyplot()
+    fig, axes = plt.subplots(2, 2, figsize=(13, 10))
+    cmap = plt.get_cmap("viridis")
+    mus = g["mu"]
+    colour = {mu: cmap(i / max(1, len(mus) - 1)) for i, mu in enumerate(mus)}
+    main = [r for r in rows if r.d == BASE.amplitude]
+    for ax, branch in zip(axes[0], ("prolate", "oblate")):
+        for mu in mus:
+            pts = sorted((r.a, r.threshold) for r in main if r.branch == branch and r.mu == mu and r.threshold)
+            if pts:
+                ax.plot(*zip(*pts), "o-", color=colour[mu], ms=4, label=fr"$\mu$ = {mu:.3g}")
+        ax.set_yscale("log")
+        ax.set_xlabel(r"aspect ratio $a$")
+        ax.grid(alpha=0.3, which="both")
+    axes[0, 0].set_ylabel(r"threshold $\Omega_0^*$ (units $\sqrt{g/b}$)")
+    axes[0, 1].set_ylabel(r"threshold $n_0^*$ (units $\sqrt{g/b}$)")
+    axes[0, 0].set_title("prolate, from the horizontal precession", fontsize=10)
+    axes[0, 1].set_title("oblate, from the vertical spin", fontsize=10)
+    axes[0, 0].legend(fontsize=8, ncol=2)
+    ax = axes[1, 0]
+    for branch, marker in (("prolate", "o"), ("oblate", "s")):
+        for mu in mus:
+            f = coll.get(branch, {}).get(mu, {}).get("f")
+            if f is None:
+                continue
+            pts = sorted((r.a, r.threshold / f) for r in main if r.branch == branch and r.mu == mu and r.threshold)
+            ax.plot(*zip(*pts), marker=marker, ls="-", color=colour[mu], ms=3, lw=0.8)
+    ax.set_yscale("log")
+    ax.set_xlabel(r"aspect ratio $a$")
+    ax.set_ylabel(r"threshold / $f(\mu)$")
+    spread = coll.get("max_spread")
+    ax.set_title(r"collapse test: threshold / $f(\mu)$, $f$ fitted per $\mu$ and branch" + "\n"
+                 + (f"remaining spread max |ln| = {spread:.3f} (raw, f = 1: {coll['max_raw_spread']:.3f})" if spread else ""),
+                 fontsize=9)
+    ax.grid(alpha=0.3, which="both")
+    ax = axes[1, 1]
+    for a, ls in zip(g["d_lines"]["a"], ("-", "--")):
+        for mu in g["d_mu"]:
+            pts = sorted((r.d, r.threshold) for r in rows if abs(r.a - a) < 1e-12 and r.mu == mu and r.threshold)
+            if len(pts) > 1:
+                ax.plot(*zip(*pts), marker="o", ls=ls, color=colour.get(mu, "k"), ms=4,
+                        label=f"a = {a:.3g} ({'solid' if ls == '-' else 'dashed'})" if mu == g["d_mu"][-1] else None)
+    ds = np.array([2.5e-3, 1e-2])
+    ax.plot(ds, 30.0 * (ds / ds[0]) ** -0.5, "k:", lw=1, label=r"slope $-1/2$ ($d\,\Omega_0^2$ = const: the sticking boundary)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    from matplotlib.ticker import NullFormatter
+
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_xticks(g["d_lines"]["d"], [f"{d:g}" for d in g["d_lines"]["d"]])
+    ax.set_xlabel(r"seed distance $d$ from the fixed point (rad)")
+    ax.set_ylabel(r"threshold $\Omega_0^*$ or $n_0^*$")
+    ax.set_title(r"threshold against $d$ (one colour per $\mu$; solid a = 1.5, dashed a = 2/3)", fontsize=9)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    fig.suptitle(r"Jump thresholds over $(a, \mu)$: exact Coulomb friction, sliding-branch starts at $d$ = 0.01, "
+                 r"bisection to $10^{-3}$" + (" (quick run)" if quick else ""), fontsize=11)
+    fig.tight_layout(rect=(0, 0, 1, 0.97))
+    save_figure(fig, png)
+
+
+def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
+    main = [r for r in rows if r.d == BASE.amplitude]
+    print(f"\n{STEM}: {len(rows)} searches ({n_new} computed now, {mode}), {wall:.1f} s wall")
+    print(f"{'branch':<8s} {'a':>6s} " + " ".join(f"{'mu=' + format(mu, '.3g'):>10s}" for mu in g["mu"]))
+    for branch in ("prolate", "oblate"):
+        for a in sorted({r.a for r in main if r.branch == branch}):
+            cells = []
+            for mu in g["mu"]:
+                r = next((r for r in main if r.a == a and r.mu == mu), None)
+                cells.append(f"{r.threshold:10.4f}" if r and r.threshold else f"{(r.status if r else '-'):>10s}")
+            print(f"{branch:<8s} {a:6.3f} " + " ".join(cells))
+    bad = [r for r in rows if r.status not in ("converged",)]
+    print(f"not converged: {len(bad)} " + ", ".join(f"(a={r.a:.3g}, mu={r.mu:.3g}, d={r.d:g}: {r.status})" for r in bad[:10]))
+    print("collapse test, f(mu) and remaining spread (max |ln T/(f T_ref)|):")
+    for branch in ("prolate", "oblate"):
+        for mu, v in sorted(coll[branch].items()):
+            print(f"  {branch:<8s} mu={mu:<7.3g} f={v['f']:.4f} spread={v['spread']:.4f} (f = 1: {v['raw_spread']:.4f})")
+    print("threshold against d (relative change per halving of d, from the largest d down):")
+    for k, v in dl.items():
+        th = ", ".join(f"{t:.4f}" if t else s for t, s in zip(v["threshold"], v["status"]))
+        ch = ", ".join(f"{c:+.3f}" if c is not None else "-" for c in v["change_per_halving"])
+        print(f"  {k}: d = {v['d']}: {th}; change per halving: {ch}")
+    sens = sorted((r for r in main if r.sens_dominant), key=lambda r: (r.branch, r.a))
+    if sens:
+        print(f"sensitivity to the seed distance at mu = {MU_REF:g} (thresholds at d/2 and 2d; slope = d ln T*/d ln d):")
+        for r in sens:
+            width = r.bracket_hi / r.bracket_lo - 1
+            print(f"  {r.branch:<8s} a={r.a:6.3f} T*={r.threshold:8.4f} T*(d/2)={r.sens_half or float('nan'):8.4f} "
+                  f"T*(2d)={r.sens_double or float('nan'):8.4f} slope={r.sens_slope if r.sens_slope is not None else float('nan'):+.3f} "
+                  f"max shift={r.sens_shift if r.sens_shift is not None else float('nan'):.3%} bracket={width:.1e} -> {r.sens_dominant}")
+    n_sims = sum(r.n_sims for r in rows)
+    return {"n_sims": n_sims, "task_s": sum(r.wall_s for r in rows), "critical_path": max((r.n_rounds for r in rows), default=0)}
+
+
+def main(argv=None) -> dict:
+    ap = study_parser(__doc__, default_out=FIGURES)
+    ap.add_argument("--serial", action="store_true", help="run in this process, without Dask")
+    ap.add_argument("--scheduler", default=None, help="address of a running Dask scheduler")
+    ap.add_argument("--workers", type=int, default=None, help="LocalCluster workers (default: one per core)")
+    ap.add_argument("--engine", default="batch", choices=("batch", "scalar"), help="simulations in batch (default) or one by one")
+    ap.add_argument("--per-task", type=int, default=None, help="searches per Dask task, traced in lock-step (default 1)")
+    ap.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
+    args = ap.parse_args(argv)
+    if args.per_task is not None and args.per_task < 1:
+        ap.error(f"argument --per-task: must be >= 1, got {args.per_task}")
+    if args.workers is not None and args.workers < 1:
+        ap.error(f"argument --workers: must be >= 1, got {args.workers}")
+    out = output_dir(args)
+    t0 = time.perf_counter()
+    g = grid(args.quick)
+    specs, members = build_tasks(args.quick, args.engine, args.per_task)
+    meta = pk.provenance({"study": STEM, "search": SEARCH, "definition": asdict(BASE), "mu": g["mu"], "a": g["a"],
+                          "d_lines": g["d_lines"], "d_mu": g["d_mu"], "engine": args.engine,
+                          "jump": "R reaches 0 with dR/dt < 0 before the rise completes (theta within 0.1 of its end)"})
+    store = pk.ResultStore(out / f"{STEM}.csv", out / f"{STEM}.json", pk.SearchRow, meta, fresh=args.fresh)
+    keys = {k for ks in members.values() for k in ks}
+    n_new = sum(k not in store for k in keys)
+    mode = run(specs, members, store, args, "thresholds (a, mu)")
+    rows = [r for r in store.rows() if r.key in keys]
+    coll = collapse([r for r in rows if r.d == BASE.amplitude], g["mu"])
+    dl = d_limit(rows, g["d_lines"]["a"], g["d_mu"])
+    plot(rows, g, coll, out / f"{STEM}.png", args.quick)
+    wall = time.perf_counter() - t0
+    stats = report(rows, g, coll, dl, wall, mode, n_new)
+    summary = {"collapse": {b: {f"{mu:.4g}": v for mu, v in coll[b].items()} for b in ("prolate", "oblate")},
+               "max_spread": coll["max_spread"], "max_raw_spread": coll["max_raw_spread"], "d_lines": dl, **stats}
+    store.annotate(summary=summary)
+    print(json.dumps({"wall_s": wall, **stats}))
+    return {"rows": rows, "wall_s": wall, "n_computed": n_new, "specs": specs, **summary}
+
+
+if __name__ == "__main__":
+    main()
