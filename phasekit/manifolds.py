@@ -16,7 +16,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .validate import check_choice, check_positive
+from .body import Spheroid
+from .errors import ParameterError
+from .validate import check_choice, check_finite, check_positive
 from .fixedpoints import FixedPoint, find_fixed_point, horizontal_state, vertical_state
 from .friction import Viscous
 from .model import Model
@@ -60,26 +62,45 @@ def unstable_manifold_start(body, friction, *, state: str, delta: float, omega0=
     """
     check_choice("unstable_manifold", state, ("horizontal", "vertical"))
     check_choice("seed_law", seed_law, ("viscous", "same"))
-    chart = "euler" if state == "horizontal" else "vector"
-    if state == "horizontal":
-        if omega0 is None:
-            raise ValueError("`omega0` is required with --unstable-manifold horizontal.")
-        value, guess = omega0, horizontal_state(omega0)
-    else:
-        if n0 is None:
-            raise ValueError("`n0` is required with --unstable-manifold vertical.")
-        value, guess = n0, vertical_state(n0)
+    model = Model(body, friction, "euler" if state == "horizontal" else "vector")
+    name, value = ("omega0", omega0) if state == "horizontal" else ("n0", n0)
+    other = "n0" if state == "horizontal" else "omega0"
+    if value is None:
+        what = "precession rate Omega0" if state == "horizontal" else "spin n0"
+        raise ParameterError(name, f"is required for the {state} state (its {what})", show_value=False)
+    if (omega0 if state == "vertical" else n0) is not None:
+        raise ParameterError(other, f"does not apply to the {state} state (give `{name}`)", omega0 if other == "omega0" else n0)
+    value = check_finite(name, value)
+    guess = horizontal_state(value) if state == "horizontal" else vertical_state(value)
     law = Viscous(friction.mu) if seed_law == "viscous" else friction
-    fp = find_fixed_point(Model(body, law, chart), guess, kind=state, value=value)
+    fp = find_fixed_point(Model(body, law, model.chart), guess, kind=state, value=value)
     seeds = dict(unstable_seeds(fp, delta))
     if not seeds:
-        raise ValueError(
-            f"`unstable_manifold`: the {state} state is linearly stable here ({fp.classification}); "
-            f"it has no unstable manifold to seed."
-        )
-    if branch not in seeds:
-        raise ValueError(f"`branch` must be one of {', '.join(seeds)}; got {branch!r}.")
-    return Model(body, friction, chart), seeds[branch], fp
+        raise ParameterError(name, f"gives a {state} state without an unstable direction under {fp.law} friction "
+                                   f"({fp.classification}), so it has no unstable manifold to seed"
+                                   + _unstable_hint(body, state, seed_law, friction), value)
+    if not isinstance(branch, str) or branch not in seeds:
+        raise ParameterError("branch", f"must be one of {', '.join(seeds)} (sign and index of an unstable direction "
+                                       f"of this {state} state)", branch)
+    return model, seeds[branch], fp
+
+
+def _unstable_hint(body, state: str, seed_law: str, friction) -> str:
+    if seed_law == "same" and friction.has_rolling_mode:
+        return "; exact Coulomb friction makes it neutral: `seed_law`='viscous' takes the viscous direction"
+    if isinstance(body, Spheroid):
+        fn = horizontal_stability_threshold if state == "horizontal" else vertical_stability_threshold
+        crit = fn(body.A, body.C, body.a)
+        if crit is not None:
+            name = "omega0" if state == "horizontal" else "n0"
+            D = body.a**2 * body.C - body.A  # the sign of D fixes on which side the mode grows
+            side = ">" if (D > 0) == (state == "horizontal") else "<"
+            return f" (for this body it is unstable for |{name}| {side} {crit:.6g})"
+    return ""
+
+
+def _moments(A, C, a) -> tuple[float, float, float]:
+    return check_positive("A", A), check_positive("C", C), check_positive("a", a)
 
 
 def vertical_stability_threshold(A: float, C: float, a: float) -> float | None:
@@ -92,6 +113,7 @@ def vertical_stability_threshold(A: float, C: float, a: float) -> float | None:
     frictionless mode crosses it: (a^2 C - A) n^2 = a^3 (a^2 - 1). For the uniform spheroid
     this is n0 = sqrt(5 a^3). Returns None when there is no crossing.
     """
+    A, C, a = _moments(A, C, a)
     D = a * a * C - A
     if D == 0 or (a * a - 1) / D <= 0:
         return None
@@ -100,6 +122,8 @@ def vertical_stability_threshold(A: float, C: float, a: float) -> float | None:
 
 def vertical_is_stable(A: float, C: float, a: float, n0: float) -> bool:
     """Linear stability of the vertical spin with friction: (a^2 C - A) n0^2 > a^3 (a^2 - 1)."""
+    A, C, a = _moments(A, C, a)
+    n0 = check_finite("n0", n0)
     return (a * a * C - A) * n0 * n0 > a**3 * (a * a - 1)
 
 
@@ -108,6 +132,7 @@ def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None
     friction: (a^2 C - A) Omega0^2 = a^2 - 1 (Omega0 = sqrt(5) for every uniform spheroid).
     Found from the exact linearisations (stability_map study) and tested; the same
     zero-slip-crossing mechanism as at the vertical. None when there is no crossing."""
+    A, C, a = _moments(A, C, a)
     D = a * a * C - A
     if D == 0 or (a * a - 1) / D <= 0:
         return None
@@ -117,4 +142,6 @@ def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None
 def horizontal_is_unstable(A: float, C: float, a: float, omega0: float) -> bool:
     """The horizontal steady precession has a (real, rising) unstable mode iff
     (a^2 C - A) Omega0^2 > a^2 - 1."""
+    A, C, a = _moments(A, C, a)
+    omega0 = check_finite("omega0", omega0)
     return (a * a * C - A) * omega0 * omega0 > a * a - 1

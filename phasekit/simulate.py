@@ -19,12 +19,14 @@ from .model import Model
 from .options import SolverOptions
 from .system import declare, watched
 from .trajectory import EventRecord, Segment, Trajectory
-from .validate import check_finite, check_times, check_vector
+from .validate import check_bool, check_finite, check_range, check_times, check_vector
 
 __all__ = ["simulate", "solver_options", "taylor_integrator"]
 
 #: theta within this of 0 or pi cannot be integrated in the Euler chart (2.7c divides by sin)
 POLE_GUARD = 1e-12
+#: the largest |t0| a run may start at (see simulate)
+T_MAX = 1e6
 
 
 def solver_options(options: SolverOptions | None = None, **overrides) -> SolverOptions:
@@ -78,10 +80,16 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     opts = solver_options(options, **option_fields)
     if not isinstance(model, Model):
         raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
-    start_mode = None if mode is None else Mode(mode)
+    if mode is not None and mode not in ("flight", Mode.FLIGHT):
+        raise ParameterError("mode", "must be None (start in contact) or 'flight'", mode)
+    start_mode = None if mode is None else Mode.FLIGHT
+    check_bool("throw", throw)
+    if isinstance(events, Event) or not isinstance(events, (list, tuple)):
+        raise ParameterError("events", "must be a list of phasekit Event objects, e.g. [pk.Event('theta', 0.4)]", events)
     n = FLIGHT.n_states if start_mode is Mode.FLIGHT and np.size(x0) == FLIGHT.n_states else model.n_states
     x0 = check_vector("x0", x0, n)
-    t0 = check_finite("t0", t0)
+    # beyond |t| = T_MAX the spacing of doubles (> 1e-10) is coarser than the located events
+    t0 = check_range("t0", t0, -T_MAX, T_MAX, closed="lr", label=f"[-{T_MAX:g}, {T_MAX:g}]")
     t_end = check_finite("t_end", t_end)
     if not t_end > t0:
         raise ParameterError("t_end", f"must be > t0 = {t0:g}", t_end)
