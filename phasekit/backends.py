@@ -290,7 +290,8 @@ class CvodesEngine:
         p = ca.SX.sym("p", n_params)
         T = ca.SX.sym("T")
         dae = {"x": x, "p": ca.vertcat(p, T), "ode": T * flow.field(x, p)}
-        opts = {"reltol": self.rtol, "abstol": self.atol, "max_num_steps": self.mxstep}
+        # SUNDIALS would print its warnings (mxstep, ...) itself; the reason of a failed run carries them
+        opts = {"reltol": self.rtol, "abstol": self.atol, "max_num_steps": self.mxstep, "disable_internal_warnings": True}
         if self.plugin == "cvodes":
             opts["linear_multistep_method"] = self.method
             if self.method == "adams":

@@ -59,13 +59,28 @@ class _Parser(argparse.ArgumentParser):
         self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|nan)$", re.I)
 
     def error(self, message):  # one line, no usage block
-        flag = re.search(r"argument (--[\w-]+)|required: (--[\w-]+)$|unrecognized arguments: (-[\w-]*)", message)
+        flag = re.search(r"argument (--[\w-]+)|required: (--[\w-]+)$|unrecognized arguments: (\S+)", message)
         flag = next((g for g in flag.groups() if g), None) if flag else None
         if message.startswith("unrecognized arguments") and flag:
-            close = difflib.get_close_matches(flag, sorted(getattr(self, "known_flags", self._option_string_actions)), n=1)
-            if close:
-                message += f" (did you mean {close[0]}?)"
+            if flag.startswith("--"):
+                known = sorted(getattr(self, "known_flags", self._option_string_actions))
+                close = difflib.get_close_matches(flag, known, n=1)
+                message += f" (did you mean {close[0]}?)" if close else ""
+            else:  # a stray value: more values than the option before it takes
+                flag = self._owner_of(flag)
+                counts = getattr(self, "value_counts", {})
+                takes = {0: "no value", 1: "one value"}.get(counts.get(flag), f"exactly {counts.get(flag)} numbers")
+                message += f" (a value that follows no option: {flag} takes {takes})" if flag else \
+                    " (a value that follows no option)"
         raise _UsageError(message, flag)
+
+    def _owner_of(self, token: str) -> str | None:
+        """The option written last before a stray ``token`` on the command line."""
+        argv = list(getattr(self, "argv", ()))
+        if token not in argv:
+            return None
+        before = [a for a in argv[:argv.index(token)] if a.startswith("--")]
+        return before[-1] if before else None
 
 
 def _real(text: str) -> float:
@@ -199,6 +214,8 @@ def _build_parser() -> _Parser:
     gy.add_argument("--t", type=_real, nargs="+", required=True, help="times (units sqrt(b/g))")
     gy.add_argument("--json", action="store_true", help="print one JSON object")
     parser.known_flags = {f for p in (sim, fx, gy) for f in p._option_string_actions if f.startswith("--")}
+    parser.value_counts = {f: (0 if a.nargs == 0 else 1 if a.nargs is None else a.nargs)
+                           for p in (sim, fx, gy) for f, a in p._option_string_actions.items()}
     return parser
 
 
@@ -415,6 +432,7 @@ DEBUG_ENV = "PHASEKIT_DEBUG"
 def _run(argv, as_json: bool):
     """Parse and compute: (output dict, args), or raise."""
     parser = _build_parser()
+    parser.argv = argv
     args = parser.parse_args(argv)
     if args.command is None:
         raise _UsageError("a command is required: " + ", ".join(COMMANDS))
@@ -441,8 +459,8 @@ def main(argv=None) -> int:
     except _UsageError as exc:
         return _error(str(exc), exc.flag, as_json)
     except ParameterError as exc:
-        flag = FLAGS.get(exc.param)  # None: a parameter the CLI does not set (named as in Python)
-        return _error(exc.render(flag or f"`{exc.param}`"), flag, as_json)
+        name = FLAGS.get(exc.param)  # None: a parameter the CLI does not set (named as in Python)
+        return _error(exc.render(name or f"`{exc.param}`"), name and name.split(" (")[0], as_json)
     except PhasekitError as exc:
         return _error(str(exc), None, as_json, code=1)
     except KeyboardInterrupt:

@@ -275,7 +275,7 @@ def _newton_system(model: Model, kind: str, fixed: str):
     zeta, sz, se = ca.SX.sym("zeta", nz), ca.SX.sym("sz", nz), ca.SX.sym("se", nz)
     scaled = ca.substitute(eqs, z, sz * zeta) / se
     G = ca.Function("G", [zeta, ca.vertcat(p, val, sz, se)], [scaled])
-    opts = {"abstol": 1e-15, "abstolStep": 1e-15, "max_iter": 50, "error_on_fail": False}
+    opts = {"abstol": 1e-15, "abstolStep": 1e-15, "max_iter": 50, "error_on_fail": False, "show_eval_warnings": False}
     _SOLVERS[key] = (ca.rootfinder("fixed_point_newton", "newton", G, opts), lift, nz, jac)
     return _SOLVERS[key]
 

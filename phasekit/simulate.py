@@ -17,6 +17,7 @@ from .errors import ConvergenceError, ParameterError, Status
 from .hybrid import Event, Mode, Transition
 from .model import Model
 from .options import SolverOptions
+from .starts import RATE_MAX
 from .system import declare, watched
 from .trajectory import EventRecord, Segment, Trajectory
 from .validate import check_bool, check_finite, check_range, check_times, check_vector
@@ -88,6 +89,9 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
         raise ParameterError("events", "must be a list of phasekit Event objects, e.g. [pk.Event('theta', 0.4)]", events)
     n = FLIGHT.n_states if start_mode is Mode.FLIGHT and np.size(x0) == FLIGHT.n_states else model.n_states
     x0 = check_vector("x0", x0, n)
+    if np.max(np.abs(x0)) > RATE_MAX:
+        raise ParameterError("x0", f"must have entries of at most {RATE_MAX:g} in size (larger rates are beyond double "
+                                   "precision)", x0)
     # beyond |t| = T_MAX the spacing of doubles (> 1e-10) is coarser than the located events
     t0 = check_range("t0", t0, -T_MAX, T_MAX, closed="lr", label=f"[-{T_MAX:g}, {T_MAX:g}]")
     t_end = check_finite("t_end", t_end)
@@ -162,9 +166,14 @@ class _Run:
         events = watched(self.system, self.mode, engine.name)
         extend = self.resume  # a non-terminal event or a graze: the same segment goes on
         prop, ev = self.propagate(flow, engine, events)
+        if not (np.isfinite(prop.t) and np.all(np.isfinite(prop.x))):
+            # never a non-finite number in a result: the run ends at its last finite state
+            self.status = Status.FAILED
+            self.reason = f"the integration diverged after t = {self.t:.6g} (non-finite state)"
+            return
         self.add_segment(prop, engine.name, ev, extend)
         self.t, self.x = prop.t, prop.x
-        if prop.outcome == "failed" or not np.all(np.isfinite(prop.x)):
+        if prop.outcome == "failed":
             self.status = Status.FAILED
             self.reason = prop.reason or f"non-finite state at t = {prop.t:.6g}"
         elif prop.outcome == "time":
