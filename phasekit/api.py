@@ -110,7 +110,7 @@ def _start(body, law, start: dict, formulation: str):
         # the printed start belongs to one body: refuse another rather than ignore it
         if not (isinstance(body, Spheroid) and body.uniform and abs(body.a - case.a) <= 1e-4 * case.a):
             raise ParameterError("a", f"must be {case.a:.6g} for the paper's start ({case.label}), a uniform spheroid "
-                                      "(no --A, --C)", getattr(body, "a", None))
+                                      "(no `A`, `C`)", getattr(body, "a", None))
         if formulation not in ("auto", model.chart.name):
             raise ParameterError("formulation", f"must be auto or {model.chart.name} for the paper's start "
                                                 f"({start['label']})", formulation)
@@ -146,7 +146,12 @@ def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, om
 
     if (omega0 is None) == (n0 is None):
         raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
+    from .fixedpoints import FAMILY_MAX
+    from .validate import check_range
+
     law = friction_law(friction, mu, slip_eps)
+    name, value = ("omega0", omega0) if omega0 is not None else ("n0", n0)
+    check_range(name, value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")
     pts = fixed_points(Model(body, law, "euler"), omega0=omega0, n0=n0)
     note = ("the inverted vertical (theta = pi) is the vertical with k reversed: the same state for a flip-symmetric body"
             if body.flip_symmetric else "theta = 0 and theta = pi are different states of this body")

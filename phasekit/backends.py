@@ -270,8 +270,11 @@ class CvodesEngine:
     #: output points per chunk (the chunk length adapts to the rotation rate). Measured: 100
     #: is 2x faster than 40 (fewer restarts of CVODES) and no slower than 200.
     n_grid = 100
-    #: CVODES' own step limit per output interval (the run's budget is checked between chunks)
-    mxstep = 500_000
+    #: CVODES' own step limit per output interval. The run's budgets are checked between
+    #: chunks, so a chunk may take up to n_grid * mxstep = 2e6 steps (~4 s for Adams on a stiff
+    #: field) past them; 500 000 let one chunk run 14.5 million steps (32 s) past --max-wall 2.
+    #: Non-stiff output intervals take tens to hundreds of steps.
+    mxstep = 20_000
 
     def __init__(self, rtol: float, atol: float | None = None, method: str = "bdf", plugin: str = "cvodes"):
         self.rtol = float(rtol)

@@ -1,9 +1,17 @@
 """Command line: ``phasekit <command> ... [--json]`` (also ``python -m phasekit``).
 
 Every command prints one JSON object with ``--json`` (and nothing else on stdout: library
-output is sent to stderr while it runs). Bad input prints one line naming the flag as
-typed, its valid range and the value, on stderr (and, with ``--json``, as a JSON object
-with status "error" on stdout), and exits with status 2; a failed run exits with 1.
+output is sent to stderr while it runs). Exit codes and what stderr holds:
+
+0    a result (stderr: at most one ``phasekit: warning:`` line per option that has no
+     effect in the chosen mode, e.g. ``--restitution`` with ``--stop-at jump``);
+1    a run that failed (status "failed" and its reason), or a solver error in one line;
+2    bad input: one line naming the flag as typed, its valid range and the plain value;
+130  interrupted.
+With ``--json`` an error is also one JSON object on stdout: status "error" (or "failed"),
+the flag, the message. A non-finite number never reaches the output: the run is reported
+failed, saying where. An unexpected exception (a bug) prints one line too; set
+PHASEKIT_DEBUG=1 for its traceback (the tests do).
 """
 
 from __future__ import annotations
@@ -159,7 +167,8 @@ def _build_parser() -> _Parser:
 
     sim = sub.add_parser("simulate", help="integrate the exact equations from a start",
                          description="Integrate the contact dynamics (2.7) from a start, through stick, slip, "
-                                     "lift-off and impacts, to a jump, a stop or --t-end.", epilog=EXAMPLES)
+                                     "lift-off and impacts, to a jump, a stop or --t-end.",
+                         epilog=STABILITY + "\n" + EXAMPLES)
     _add_body(sim)
     _add_friction(sim)
     g = sim.add_argument_group("start (exactly one)")

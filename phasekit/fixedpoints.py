@@ -44,7 +44,7 @@ from .charts import EULER, PAPER_NAMES, VECTOR
 from .errors import ConvergenceError, ParameterError
 from .hybrid import Mode
 from .model import Model
-from .validate import check_array, check_choice, check_finite, check_vector
+from .validate import check_array, check_choice, check_finite, check_range, check_vector
 
 __all__ = [
     "FixedPoint",
@@ -234,6 +234,9 @@ KINDS = ("vertical", "horizontal", "intermediate")
 #: test cannot serve every scale: at Omega0 = 1e6 the field's terms are ~Omega0^2 = 1e12 and
 #: rounding alone leaves ~1e-5; with eps = 1e-12 a slip rounded to 1e-16 leaves mu * 1e-4.
 NEWTON_RTOL = 1e-10
+#: the largest |Omega0| or |n0| of a family: beyond it the field's ~rate^2 terms leave too few
+#: significant digits for the test above (and overflow near 1e154)
+FAMILY_MAX = 1e12
 
 
 def _newton_system(model: Model, kind: str, fixed: str):
@@ -323,7 +326,10 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
     """
     model = _check_model(model)
     check_choice("kind", kind, KINDS)
-    value = check_finite("value", value)
+    if (model.chart is EULER) == (kind == "vertical"):
+        raise ParameterError("kind", f"does not go with a model in the {model.chart.name} chart (the vertical state is "
+                                     "found in the vector chart, the others in the Euler chart)", kind)
+    value = check_range("value", value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")
     allowed = ("Omega", "n") if model.chart is EULER else ("n",)
     fixed = check_choice("fixed", fixed or allowed[0], allowed)
     guess = check_vector("guess", guess, model.n_states)
@@ -352,9 +358,10 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
             last = linearise(model, x, kind=kind)
         except (ParameterError, ConvergenceError):
             last = None
+        miss = (f"residual {residual:.2e} is {err:.1e} of the state's scale, above the tolerance {NEWTON_RTOL:g}"
+                if np.isfinite(err) else "the field or its Jacobian is not finite at the last iterate")
         raise ConvergenceError(f"Newton did not converge to {article} {kind} fixed point with {fixed} = {value:g}: "
-                               f"residual {residual:.2e} is {err:.1e} of the state's scale, above the tolerance "
-                               f"{NEWTON_RTOL:g}", last)
+                               + miss, last)
     return linearise(model, x, kind=kind)
 
 

@@ -106,6 +106,8 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     run.apply(system.initial(model, t0, x0, start_mode))
     while run.status is None:
         run.step()
+        if run.status is None and run.budget.wall_exceeded():  # many short segments (stick-slip chatter)
+            run.status, run.reason = Status.FAILED, f"wall-time limit ({opts.max_wall:g} s) reached at t = {run.t:.6g}"
     traj = run.result(x0, t0, stop_at, restitution, events, te)
     if throw and traj.status is Status.FAILED:
         raise ConvergenceError(f"simulation failed: {traj.reason}", traj)

@@ -13,7 +13,8 @@ must end in one of three outcomes:
 Anything else (another exception, a traceback, NaN on stdout, two JSON documents, a hang)
 fails the test. Cases are bounded in time by small end times and step/wall budgets. The
 examples are derandomised, so the counts printed at the end (``pytest -s``) are reproducible;
-set PHASEKIT_FUZZ_REPORT=FILE to also write them to FILE as JSON.
+set PHASEKIT_FUZZ_REPORT=FILE to also write them to FILE as JSON, PHASEKIT_FUZZ_LOG=FILE to
+append every CLI case to FILE before it runs.
 """
 
 import collections
@@ -224,7 +225,12 @@ def flags_of(command: str) -> set[str]:
 
 def classify_cli(argv: list[str], code: int, out: str, err: str, seconds: float) -> str:
     """The outcome of one CLI case, after checking every rule of the module docstring."""
-    assert seconds < CASE_SECONDS, f"{argv} took {seconds:.1f} s"
+    bound = CASE_SECONDS
+    if "--max-wall" in argv:  # the run must keep its wall budget (plus compiling and start-up)
+        with contextlib.suppress(ValueError, IndexError):
+            wall = float(argv[len(argv) - 1 - argv[::-1].index("--max-wall") + 1])
+            bound = min(bound, wall + 10.0) if math.isfinite(wall) else bound
+    assert seconds < bound, f"{argv} took {seconds:.1f} s"
     as_json = "--json" in argv
     err_lines = err.strip().splitlines()
     assert "Traceback" not in err and "np.float64" not in err + out
@@ -270,6 +276,9 @@ def check_cli(suite: str, argv: list[str]) -> None:
     argv = list(argv)
     if argv[0] == "simulate" and "--max-wall" not in argv:
         argv += ["--max-wall", "2"]  # every generated run is bounded in wall time
+    if os.environ.get("PHASEKIT_FUZZ_LOG"):  # the case about to run, for finding a slow one
+        with open(os.environ["PHASEKIT_FUZZ_LOG"], "a") as fh:
+            fh.write(" ".join(argv) + "\n")
     code, out, err, seconds = run_main(argv)
     SLOWEST.append((seconds, argv))
     SLOWEST.sort(key=lambda q: -q[0])
@@ -442,10 +451,12 @@ def test_api_find_fixed_point(model, guess, kind, value, fixed):
 
 
 @fuzz_settings(100)
-@given(models(), st.sampled_from(["omega0", "n0"]), real_or_wrong(10.0, 2.0, 1e6, 12.0))
+@given(models(), st.sampled_from(["omega0", "n0"]),
+       mostly(reals(10.0, 2.0, 1e6, 12.0), st.sampled_from(["1.5", [1.0], True, 1j]), n_good=12))
 def test_api_fixed_points(model, which, value):
-    # exactly one family parameter, of a valid model: fixed_points' own checks of these are
-    # not ParameterErrors yet (see the report of issue 17)
+    # exactly one family parameter (not None), of a valid model: fixed_points' own checks of
+    # these are not ParameterErrors yet, and a family parameter beyond FAMILY_MAX is named
+    # `value` by find_fixed_point (see the report of issue 17)
     outcome, pts = classify_api({"omega0", "n0", "value"}, lambda: pk.fixed_points(model, **{which: value}))
     if outcome == "valid":
         assert pts and all(check_fixed_point(p) == "valid" for p in pts)
@@ -495,7 +506,7 @@ def test_api_find_threshold(defn_kw, search_kw, body):
 
 
 @fuzz_settings(120)
-@given(st.sampled_from(["spheroid", "eccentric", "custom"]), real_or_wrong(1.5, 0.3, 0.6),
+@given(st.sampled_from(["spheroid", "eccentric", "custom"]), reals(1.5, 0.3, 0.6),
        st.one_of(st.none(), real_or_wrong(0.65, 0.4)), st.one_of(st.none(), real_or_wrong(0.4, 0.2)))
 def test_api_bodies(kind, p, A, C):
     import casadi as ca

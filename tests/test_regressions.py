@@ -311,6 +311,8 @@ Y = [0.0, 0.0, 10.0, 0.0, 1.5, 0.0]
     (lambda: pk.find_fixed_point(M, [1.0, 2.0, 3.0], kind="horizontal", value=10.0), "guess"),
     (lambda: pk.find_fixed_point(M, pk.horizontal_state(10.0), kind="xyz", value=10.0), "kind"),
     (lambda: pk.find_fixed_point(M, pk.horizontal_state(10.0), kind="horizontal", value=10.0, fixed="q"), "fixed"),
+    (lambda: pk.find_fixed_point(M.with_chart("vector"), pk.vertical_state(10.0), kind="horizontal", value=10.0),
+     "kind"),  # the vector chart's Newton system is the vertical family's
     (lambda: pk.linearise(M, [np.nan] * 6), "x"),
     (lambda: pk.linearise(M, [0, 0, 1e308, 0, 1, 1e308]), "x"),  # finite, but the Jacobian overflows
     (lambda: pk.linearise(None, Y), "model"),
@@ -405,7 +407,7 @@ def _library_messages():
 
 
 def test_library_messages_give_python_advice_not_cli_flags():
-    flagged = [(f, s) for f, s in _library_messages() if re.search(r"(?<![\w-])--[a-z]", s)]
+    flagged = [(f, s) for f, s in _library_messages() if re.search(r"(?<![\w-])--[A-Za-z]", s)]
     assert flagged == []
 
 
@@ -496,3 +498,30 @@ def test_api_simulate_refuses_rates_beyond_double_precision():
     model = pk.Model(pk.Spheroid(0.6), pk.Coulomb(0.1))
     with pytest.raises(pk.ParameterError, match="^`x0` must have entries of at most 100000"):
         pk.simulate(model, [0.0, 0.0, 10.0, 76523426.0, 3.0, 5.0], 1.0)
+
+
+@pytest.mark.parametrize("a, family, below, above", [(1.5, "--omega0", 2.2, 2.3), (0.6, "--n0", 1.0, 1.08)])
+def test_help_stability_statements_hold_for_the_law_they_name(a, family, below, above):
+    """--help: with --friction viscous the horizontal state of a uniform prolate spheroid loses
+    stability at Omega0 = sqrt(5) (2.236) and the vertical oblate spin at n0 = sqrt(5 a^3)
+    (1.039 for a = 0.6); with the default exact Coulomb law the same states are neutral."""
+    kind = "horizontal" if family == "--omega0" else "vertical"
+
+    def state(value, *law):
+        code, out, _ = run_cli("fixed-points", "--a", a, "--mu", 0.1, family, value, *law, "--json")
+        assert code == 0
+        return next(p for p in strict_json(out)["fixed_points"] if p["kind"] == kind)
+
+    assert state(below, "--friction", "viscous")["n_unstable"] == 0
+    assert state(above, "--friction", "viscous")["n_unstable"] > 0
+    for value in (below, above):
+        assert state(value)["classification"] == "neutral (spectrally stable)"
+
+
+def test_wall_budget_holds_for_runs_of_many_short_segments():
+    """Stick-slip chatter (mu = 1000): ~1000 segments, each far below the 20 000-step chunk
+    after which the integrator checked the clock, so --max-wall 0.5 let a 7 s run complete."""
+    code, out, _ = run_cli("simulate", "--a", 0.6, "--mu", 1000, "--state", 0, 0, 10, 0, 1, 0, "--max-wall", 0.5, "--json")
+    d = strict_json(out)
+    assert code == 1 and d["status"] == "failed" and d["reason"].startswith("wall-time limit (0.5 s) reached at t = ")
+    assert d["t_end"] < 200 and d["wall_s"] < 3.0
