@@ -226,8 +226,9 @@ def _mode_for(model: Model) -> Mode:
 
 _SOLVERS: dict = {}
 
-#: the classes of steady state (:class:`FixedPoint` ``kind``)
-KINDS = ("vertical", "horizontal", "intermediate")
+#: the classes of steady state (:class:`FixedPoint` ``kind``; "inverted" and "horizontal-like"
+#: are those of bodies without flip symmetry)
+KINDS = ("vertical", "inverted", "horizontal", "horizontal-like", "intermediate")
 #: a Newton solution is accepted when each component of the field is at most NEWTON_RTOL
 #: times that component's scale sum_j |J_ij| max(|x_j|, 1): a residual that a relative
 #: change of the state by NEWTON_RTOL explains (a componentwise backward error). An absolute
@@ -326,6 +327,8 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
     """
     model = _check_model(model)
     check_choice("kind", kind, KINDS)
+    if kind == "inverted":
+        raise ParameterError("kind", "'inverted' needs no Newton solve: the state is exact (linearise it)", kind)
     if (model.chart is EULER) == (kind == "vertical"):
         raise ParameterError("kind", f"does not go with a model in the {model.chart.name} chart (the vertical state is "
                                      "found in the vector chart, the others in the Euler chart)", kind)
@@ -486,7 +489,7 @@ def continue_family(model: Model, kind: str, values, *, start=None) -> Branch:
     "intermediate" (values of Omega0; ``start`` is a state on the family near values[0]).
     """
     model = _check_model(model)
-    check_choice("kind", kind, KINDS)
+    check_choice("kind", kind, tuple(k for k in KINDS if k != "inverted"))
     values = check_array("values", values, ndim=1)
     chart = "vector" if kind == "vertical" else "euler"
     if model.chart.name != chart:
@@ -499,8 +502,8 @@ def continue_family(model: Model, kind: str, values, *, start=None) -> Branch:
         guess = vertical_state(values[0])
     else:
         if start is None:
-            raise ParameterError("start", "is required to continue the intermediate family (a state on it near "
-                                          "values[0], e.g. intermediate_state(body, theta))", show_value=False)
+            raise ParameterError("start", f"is required to continue the {kind} family (a state on it near values[0], "
+                                          "e.g. intermediate_state(body, theta))", show_value=False)
         guess = check_vector("start", start, model.n_states)
     prev = None
     for v in values:
