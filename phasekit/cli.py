@@ -127,8 +127,8 @@ STABILITY = """stability (which law each statement is for):
   --friction coulomb --slip-eps E  the regularised field's linearisation: the rolling spectrum
       plus two fast slip modes (rates ~ mu/E).
   --friction viscous  part I's wet friction F = -mu u: friction drives or damps the modes; for
-      uniform spheroids the horizontal state is unstable for Omega0 > sqrt(5) (prolate) and the
-      vertical spin for n0 > sqrt(5 a^3) (oblate).
+      uniform spheroids and weak friction (mu below ~0.8) the horizontal state is unstable for
+      Omega0 > sqrt(5) (prolate) and the vertical spin for n0 > sqrt(5 a^3) (oblate).
   Unstable-manifold starts take their direction from the viscous linearisation by default
   (--seed-law viscous), since exact Coulomb friction gives none.
 """

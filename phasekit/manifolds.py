@@ -95,7 +95,7 @@ def _unstable_hint(body, state: str, seed_law: str, friction) -> str:
             name = "omega0" if state == "horizontal" else "n0"
             D = body.a**2 * body.C - body.A  # the sign of D fixes on which side the mode grows
             side = ">" if (D > 0) == (state == "horizontal") else "<"
-            return f" (for this body it is unstable for |{name}| {side} {crit:.6g})"
+            return f" (for this body and weak friction it is unstable for |{name}| {side} {crit:.6g})"
     return ""
 
 
