@@ -77,7 +77,7 @@ def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, 
     if body.is_prolate:
         warnings.warn("`n0` given for a prolate body: its gyroscopic start is normally given `omega0` (the precession "
                       "rate; n then follows from the balance); with `n0`, Omega is put on the fast branch, "
-                      f"|Omega| ~ C n0 / (A cos theta0)", stacklevel=2)
+                      "|Omega| ~ C n0 / (A cos theta0)", stacklevel=2)
     if c <= 0.0:
         raise ParameterError("theta0", "must lie in (0, pi/2) for a start given n0 (the fast branch)", theta0)
     disc = (C * n0) ** 2 + 4.0 * A * c * q

@@ -141,7 +141,7 @@ def check_array(name: str, value, *, allow_empty: bool = False, nonnegative: boo
     """Finite real numbers (a scalar or an array of any shape, order kept) as a float array;
     ``nonnegative``: all >= 0; ``ndim``: of exactly that many dimensions."""
     what = "finite numbers >= 0" if nonnegative else "finite real numbers"
-    if value is None or isinstance(value, (str, bytes, dict, set)) or isinstance(value, (bool, np.bool_)):
+    if value is None or isinstance(value, (str, bytes, dict, set, bool, np.bool_)):
         raise ParameterError(name, f"must be {what}", value)
     try:
         arr = np.array(value, dtype=float)

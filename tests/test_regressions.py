@@ -448,8 +448,8 @@ def test_unexpected_exception_is_one_line_with_exit_1(monkeypatch):
     monkeypatch.setitem(cli.COMMANDS, "fixed-points", boom)
     code, out, err = run_cli("fixed-points", "--a", 1.5, "--mu", 0.1, "--omega0", 10, "--json")
     assert code == 1 and strict_json(out)["status"] == "failed"
-    assert err.strip().splitlines() == ["phasekit: error: internal error: RuntimeError: a bug (please report it; "
-                                        "set PHASEKIT_DEBUG=1 for the traceback)"]
+    line = "phasekit: error: internal error: RuntimeError: a bug (please report it; set PHASEKIT_DEBUG=1 for the traceback)"
+    assert err.strip().splitlines() == [line]
     monkeypatch.setenv(cli.DEBUG_ENV, "1")  # and tests see the real exception
     with pytest.raises(RuntimeError):
         run_cli("fixed-points", "--a", 1.5, "--mu", 0.1, "--omega0", 10)
