@@ -103,11 +103,21 @@ def _start(body, law, start: dict, formulation: str):
     elif kind == "spin-about-vertical":
         y0 = vertical_spin_start(start["theta0"], start["n0"])
     elif kind == "paper":
-        from .paper import paper_start
+        from .paper import PAPER_CASES, paper_start
 
-        return (*paper_start(start["label"], n0=start.get("n0"), omega0=start.get("omega0"), friction=law), None)
+        model, x0 = paper_start(start["label"], n0=start.get("n0"), omega0=start.get("omega0"), friction=law)
+        case = PAPER_CASES[start["label"]]
+        # the printed start belongs to one body: refuse another rather than ignore it
+        if not (isinstance(body, Spheroid) and body.uniform and abs(body.a - case.a) <= 1e-4 * case.a):
+            raise ParameterError("a", f"must be {case.a:.6g} for the paper's start ({case.label}), a uniform spheroid "
+                                      "(no `A`, `C`)", getattr(body, "a", None))
+        if formulation not in ("auto", model.chart.name):
+            raise ParameterError("formulation", f"must be auto or {model.chart.name} for the paper's start "
+                                                f"({start['label']})", formulation)
+        return model, x0, None
     else:
-        y0 = raw_start(start["state"], chart="vector" if formulation == "vector" else "euler")
+        # the Euler chart only if asked for: "auto" takes a state at a pole into the vector chart
+        y0 = raw_start(start["state"], chart="euler" if formulation == "euler" else "vector")
     chart = choose_formulation(float(y0[4]), formulation)
     if chart == "euler":
         raw_start(y0, chart="euler")  # theta strictly inside (0, pi)
@@ -136,11 +146,28 @@ def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, om
 
     if (omega0 is None) == (n0 is None):
         raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
+    from .fixedpoints import FAMILY_MAX
+    from .validate import check_range
+
     law = friction_law(friction, mu, slip_eps)
+    name, value = ("omega0", omega0) if omega0 is not None else ("n0", n0)
+    check_range(name, value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")
     pts = fixed_points(Model(body, law, "euler"), omega0=omega0, n0=n0)
     note = ("the inverted vertical (theta = pi) is the vertical with k reversed: the same state for a flip-symmetric body"
             if body.flip_symmetric else "theta = 0 and theta = pi are different states of this body")
-    return {"fixed_points": [p.to_dict() for p in pts], "model": Model(body, law).to_dict(), "note": note}
+    linearised = "coulomb-rolling" if law.has_rolling_mode else law.name
+    return {"fixed_points": [p.to_dict() for p in pts], "model": Model(body, law).to_dict(), "note": note,
+            "linearised_law": linearised, "stability": STABILITY_MEANING.get(linearised, "the law's own field")}
+
+
+#: what "stable" means for each linearisation (see phasekit.fixedpoints)
+STABILITY_MEANING = {
+    "coulomb-rolling": "exact Coulomb friction: the rolling (no-slip) linearisation, in which zero-slip states are "
+                       "neutral; the viscous law gives the friction-driven instabilities of part I",
+    "coulomb-regularised": "regularised Coulomb friction: the smooth field's linearisation (the rolling spectrum plus "
+                           "two fast slip modes)",
+    "viscous": "viscous friction (part I): friction drives or damps the modes",
+}
 
 
 def gyroscopic_report(*, body: Body, mu, theta0, t, omega0=None, n0=None) -> dict:

@@ -335,8 +335,11 @@ class CvodesEngine:
     #: output points per chunk (the chunk length adapts to the rotation rate). Measured: 100
     #: is 2x faster than 40 (fewer restarts of CVODES) and no slower than 200.
     n_grid = 100
-    #: CVODES' own step limit per output interval (the run's budget is checked between chunks)
-    mxstep = 500_000
+    #: CVODES' own step limit per output interval. The run's budgets are checked between
+    #: chunks, so a chunk may take up to n_grid * mxstep = 2e6 steps (~4 s for Adams on a stiff
+    #: field) past them; 500 000 let one chunk run 14.5 million steps (32 s) past --max-wall 2.
+    #: Non-stiff output intervals take tens to hundreds of steps.
+    mxstep = 20_000
 
     def __init__(self, rtol: float, atol: float | None = None, method: str = "bdf", plugin: str = "cvodes"):
         self.rtol = float(rtol)
@@ -355,7 +358,8 @@ class CvodesEngine:
         p = ca.SX.sym("p", n_params)
         T = ca.SX.sym("T")
         dae = {"x": x, "p": ca.vertcat(p, T), "ode": T * flow.field(x, p)}
-        opts = {"reltol": self.rtol, "abstol": self.atol, "max_num_steps": self.mxstep}
+        # SUNDIALS would print its warnings (mxstep, ...) itself; the reason of a failed run carries them
+        opts = {"reltol": self.rtol, "abstol": self.atol, "max_num_steps": self.mxstep, "disable_internal_warnings": True}
         if self.plugin == "cvodes":
             opts["linear_multistep_method"] = self.method
             if self.method == "adams":

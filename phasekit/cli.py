@@ -1,15 +1,24 @@
 """Command line: ``phasekit <command> ... [--json]`` (also ``python -m phasekit``).
 
 Every command prints one JSON object with ``--json`` (and nothing else on stdout: library
-output is sent to stderr while it runs). Bad input prints one line naming the flag as
-typed, its valid range and the value, on stderr (and, with ``--json``, as a JSON object
-with status "error" on stdout), and exits with status 2; a failed run exits with 1.
+output is sent to stderr while it runs). Exit codes and what stderr holds:
+
+0    a result (stderr: at most one ``phasekit: warning:`` line per option that has no
+     effect in the chosen mode, e.g. ``--restitution`` with ``--stop-at jump``);
+1    a run that failed (status "failed" and its reason), or a solver error in one line;
+2    bad input: one line naming the flag as typed, its valid range and the plain value;
+130  interrupted.
+With ``--json`` an error is also one JSON object on stdout: status "error" (or "failed"),
+the flag, the message. A non-finite number never reaches the output: the run is reported
+failed, saying where. An unexpected exception (a bug) prints one line too; set
+PHASEKIT_DEBUG=1 for its traceback (the tests do).
 """
 
 from __future__ import annotations
 
 import argparse
 import contextlib
+import difflib
 import json
 import math
 import os
@@ -38,7 +47,7 @@ FLAGS = {
     "V": "--state (V)", "Omega": "--state (Omega)", "Lambda": "--state (Lambda)", "n": "--state (n)",
     "delta": "--delta", "branch": "--branch", "seed_law": "--seed-law", "formulation": "--formulation",
     "max_steps": "--max-steps", "max_wall": "--max-wall", "unstable_manifold": "--unstable-manifold",
-    "t": "--t", "label": "--paper-start", "level": "--stop-at", "max_switches": "--max-switches",
+    "t": "--t", "T": "--t", "label": "--paper-start", "level": "--stop-at", "max_switches": "--max-switches",
 }
 
 
@@ -58,8 +67,28 @@ class _Parser(argparse.ArgumentParser):
         self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|nan)$", re.I)
 
     def error(self, message):  # one line, no usage block
-        flag = re.search(r"argument (--[\w-]+)", message)
-        raise _UsageError(message, flag.group(1) if flag else None)
+        flag = re.search(r"argument (--[\w-]+)|required: (--[\w-]+)$|unrecognized arguments: (\S+)", message)
+        flag = next((g for g in flag.groups() if g), None) if flag else None
+        if message.startswith("unrecognized arguments") and flag:
+            if flag.startswith("--"):
+                known = sorted(getattr(self, "known_flags", self._option_string_actions))
+                close = difflib.get_close_matches(flag, known, n=1)
+                message += f" (did you mean {close[0]}?)" if close else ""
+            else:  # a stray value: more values than the option before it takes
+                flag = self._owner_of(flag)
+                counts = getattr(self, "value_counts", {})
+                takes = {0: "no value", 1: "one value"}.get(counts.get(flag), f"exactly {counts.get(flag)} numbers")
+                message += f" (a value that follows no option: {flag} takes {takes})" if flag else \
+                    " (a value that follows no option)"
+        raise _UsageError(message, flag)
+
+    def _owner_of(self, token: str) -> str | None:
+        """The option written last before a stray ``token`` on the command line."""
+        argv = list(getattr(self, "argv", ()))
+        if token not in argv:
+            return None
+        before = [a for a in argv[:argv.index(token)] if a.startswith("--")]
+        return before[-1] if before else None
 
 
 def _real(text: str) -> float:
@@ -91,14 +120,30 @@ def _add_body(p):
     g.add_argument("--C", dest="C", type=_real, default=None, help="axial moment of inertia about G (default: the body's, e.g. 2/5)")
 
 
+STABILITY = """stability (which law each statement is for):
+  --friction coulomb (default)  exact stick-slip. The steady states have zero slip and static
+      friction holds them, so small disturbances roll: stability is that of the rolling
+      (no-slip) linearisation, in which the zero-slip states are neutral (no growth, no decay).
+  --friction coulomb --slip-eps E  the regularised field's linearisation: the rolling spectrum
+      plus two fast slip modes (rates ~ mu/E).
+  --friction viscous  part I's wet friction F = -mu u: friction drives or damps the modes; for
+      uniform spheroids and weak friction (mu below ~0.8) the horizontal state is unstable for
+      Omega0 > sqrt(5) (prolate) and the vertical spin for n0 > sqrt(5 a^3) (oblate).
+  Unstable-manifold starts take their direction from the viscous linearisation by default
+  (--seed-law viscous), since exact Coulomb friction gives none.
+"""
+
+
 def _add_friction(p):
     g = p.add_argument_group("friction")
-    g.add_argument("--mu", type=_real, required=True, help="friction coefficient mu in [0, 1000]")
+    g.add_argument("--mu", type=_real, required=True,
+                   help="friction coefficient mu (coulomb) or drag coefficient (viscous), in [0, 1000]")
     g.add_argument("--friction", default="coulomb",
-                   help="coulomb (exact stick-slip; stability of fixed points then means the rolling linearisation) "
-                        "| viscous (part I's wet friction) (default: %(default)s)")
+                   help="coulomb: exact stick-slip, F = -mu R u/|u| while sliding | viscous: part I's wet friction "
+                        "F = -mu u (default: %(default)s; see 'stability' below for what stability means with each)")
     g.add_argument("--slip-eps", type=_real, default=None,
-                   help="regularise Coulomb friction as -mu R u/sqrt(|u|^2+eps^2) (default: exact stick-slip)")
+                   help="regularise Coulomb friction as -mu R u/sqrt(|u|^2+eps^2), eps in [1e-14, 1] "
+                        "(default: exact stick-slip; no effect with --friction viscous)")
 
 
 def _add_solver(p):
@@ -120,7 +165,10 @@ def _build_parser() -> _Parser:
     parser.add_argument("--version", action="version", version=f"phasekit {__version__}")
     sub = parser.add_subparsers(dest="command", parser_class=_Parser, metavar="{simulate,fixed-points,gyroscopic}")
 
-    sim = sub.add_parser("simulate", help="integrate the exact equations from a start", epilog=EXAMPLES)
+    sim = sub.add_parser("simulate", help="integrate the exact equations from a start",
+                         description="Integrate the contact dynamics (2.7) from a start, through stick, slip, "
+                                     "lift-off and impacts, to a jump, a stop or --t-end.",
+                         epilog=STABILITY + "\n" + EXAMPLES)
     _add_body(sim)
     _add_friction(sim)
     g = sim.add_argument_group("start (exactly one)")
@@ -136,9 +184,13 @@ def _build_parser() -> _Parser:
     g.add_argument("--theta0", type=_real, default=None, help="initial inclination of the axis, radians")
     g.add_argument("--omega0", type=_real, default=None, help="precession rate Omega0 (prolate starts)")
     g.add_argument("--n0", type=_real, default=None, help="spin n0 (oblate starts)")
-    g.add_argument("--delta", type=_real, default=0.01, help="seed amplitude on the unstable manifold (default: %(default)s)")
-    g.add_argument("--branch", default="+0", help="unstable direction and sign: +0, -0, +1, ... (default: %(default)s)")
-    g.add_argument("--seed-law", default="viscous", help="linearisation giving the direction: viscous | same (default: %(default)s)")
+    g.add_argument("--delta", type=_real, default=None,
+                   help="seed amplitude on the unstable manifold (with --unstable-manifold; default: 0.01)")
+    g.add_argument("--branch", default=None,
+                   help="unstable direction and sign: +0, -0, +1, ... (with --unstable-manifold; default: +0)")
+    g.add_argument("--seed-law", default=None,
+                   help="linearisation giving the direction: viscous | same (with --unstable-manifold; default: viscous, "
+                        "the only one with an unstable direction under exact Coulomb friction)")
     r = sim.add_argument_group("run")
     r.add_argument("--t-end", type=_real, default=200.0, help="end time, units sqrt(b/g) (default: %(default)s)")
     r.add_argument("--stop-at", default="jump",
@@ -151,7 +203,9 @@ def _build_parser() -> _Parser:
     o.add_argument("--json", action="store_true", help="print one JSON object")
     o.add_argument("--events", action="store_true", help="list every event (human output)")
 
-    fx = sub.add_parser("fixed-points", help="steady states and their linear stability", epilog=EXAMPLES)
+    fx = sub.add_parser("fixed-points", help="steady states and their linear stability",
+                        description="Steady states (vertical, horizontal, intermediate) at one Omega0 or n0, "
+                                    "with the eigenvalues of their linearisation.", epilog=STABILITY + "\n" + EXAMPLES)
     _add_body(fx)
     _add_friction(fx)
     grp = fx.add_mutually_exclusive_group(required=True)
@@ -168,6 +222,9 @@ def _build_parser() -> _Parser:
     gy.add_argument("--theta0", type=_real, required=True, help="initial inclination, radians, in (0, pi)")
     gy.add_argument("--t", type=_real, nargs="+", required=True, help="times (units sqrt(b/g))")
     gy.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.known_flags = {f for p in (sim, fx, gy) for f in p._option_string_actions if f.startswith("--")}
+    parser.value_counts = {f: (0 if a.nargs == 0 else 1 if a.nargs is None else a.nargs)
+                           for p in (sim, fx, gy) for f, a in p._option_string_actions.items()}
     return parser
 
 
@@ -177,15 +234,32 @@ def _body(args):
     return make_body(args.body, a=args.a, offset=args.offset, w=args.w, A=args.A, C=args.C)
 
 
+def _law_args(args) -> tuple[str, float, float | None]:
+    """(friction, mu, slip_eps), warning (and dropping) --slip-eps where it does nothing."""
+    eps = args.slip_eps
+    if eps is not None and args.friction == "viscous":
+        from .validate import check_positive
+
+        check_positive("eps", eps, upper=1.0)
+        warnings.warn("--slip-eps has no effect with --friction viscous (it regularises Coulomb friction only)")
+        eps = None
+    return args.friction, args.mu, eps
+
+
 def _cmd_simulate(args) -> dict:
     from .api import simulate_start
 
     start = _start_of(args)
     if args.restitution is not None and args.stop_at in ("jump", "touchdown"):
-        warnings.warn(f"--restitution has no effect with --stop-at {args.stop_at} (impacts happen with --stop-at none)")
+        warnings.warn(f"--restitution has no effect with --stop-at {args.stop_at} (impacts happen with --stop-at none "
+                      "or --stop-at NAME=VALUE)")
+    if args.atol is not None and args.backend == "taylor":
+        warnings.warn("--atol has no effect with --backend taylor (the Taylor method has the one tolerance --rtol)")
+    friction, mu, eps = _law_args(args)
     opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall)
-    return simulate_start(body=_body(args), friction=args.friction, mu=args.mu, slip_eps=args.slip_eps, start=start,
-                          t_end=args.t_end, stop_at=args.stop_at, restitution=args.restitution or 0.0,
+    return simulate_start(body=_body(args), friction=friction, mu=mu, slip_eps=eps, start=start,
+                          t_end=args.t_end, stop_at=args.stop_at,
+                          restitution=0.0 if args.restitution is None else args.restitution,
                           formulation=args.formulation, options=opts)
 
 
@@ -198,11 +272,16 @@ def _refuse(args, names, why):
 def _start_of(args) -> dict:
     if args.unstable_manifold is not None:
         _refuse(args, ["theta0"], "does not go with --unstable-manifold (the fixed point fixes theta)")
-        return dict(kind="unstable-manifold", state=args.unstable_manifold, delta=args.delta, omega0=args.omega0,
-                    n0=args.n0, branch=args.branch, seed_law=args.seed_law)
+        return dict(kind="unstable-manifold", state=args.unstable_manifold,
+                    delta=0.01 if args.delta is None else args.delta, omega0=args.omega0, n0=args.n0,
+                    branch="+0" if args.branch is None else args.branch,
+                    seed_law="viscous" if args.seed_law is None else args.seed_law)
+    _refuse(args, ["delta", "branch", "seed_law"], "goes with --unstable-manifold only")
     if args.gyroscopic:
         if args.theta0 is None:
             raise _UsageError("--theta0 is required with --gyroscopic (a number in (0, pi))", "--theta0")
+        if (args.omega0 is None) == (args.n0 is None):
+            raise _UsageError("--gyroscopic needs exactly one of --omega0 (prolate) or --n0 (oblate)", "--omega0")
         return dict(kind="gyroscopic", theta0=args.theta0, omega0=args.omega0, n0=args.n0)
     if args.spin_about_vertical is not None:
         if args.theta0 is None:
@@ -220,8 +299,8 @@ def _start_of(args) -> dict:
 def _cmd_fixed_points(args) -> dict:
     from .api import fixed_points_report
 
-    return fixed_points_report(body=_body(args), mu=args.mu, friction=args.friction, slip_eps=args.slip_eps,
-                               omega0=args.omega0, n0=args.n0)
+    friction, mu, eps = _law_args(args)
+    return fixed_points_report(body=_body(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0, n0=args.n0)
 
 
 def _cmd_gyroscopic(args) -> dict:
@@ -230,21 +309,22 @@ def _cmd_gyroscopic(args) -> dict:
     return gyroscopic_report(body=_body(args), mu=args.mu, theta0=args.theta0, t=args.t, omega0=args.omega0, n0=args.n0)
 
 
-def _fmt(v) -> str:
-    return f"{v:.10g}" if isinstance(v, float) else str(v)
+def _fmt(v, spec: str = ".10g") -> str:
+    return format(v, spec) if isinstance(v, float) else "undefined" if v is None else str(v)
 
 
 def _print_human(out: dict, events: bool) -> None:
     if "fixed_points" in out:
+        print(f"linearisation: {out['linearised_law']} ({out['stability']})")
         for fp in out["fixed_points"]:
-            st = ", ".join(f"{k}={'undefined' if v is None else f'{v:.8g}'}" for k, v in fp["state"].items())
-            print(f"{fp['kind']:<13s} {fp['classification']:<45s} residual {fp['residual']:.1e}  [{st}]")
+            st = ", ".join(f"{k}={_fmt(v, '.8g')}" for k, v in fp["state"].items())
+            print(f"{fp['kind']:<13s} {fp['classification']}; residual {_fmt(fp['residual'], '.1e')}  [{st}]")
         print(f"({out['note']})")
         return
     if "J" in out:
-        print(f"J = {out['J']:.10g} ({out['J_definition']}), {out['method']}")
+        print(f"J = {_fmt(out['J'])} ({out['J_definition']}), {out['method']}")
         for t, th, om in zip(out["t"], out["theta"], out["Omega"]):
-            print(f"t = {t:12.6g}   theta = {th:.12f}   Omega = {om:.12f}")
+            print(f"t = {_fmt(t, '12.6g')}   theta = {_fmt(th, '.12f')}   Omega = {_fmt(om, '.12f')}")
         return
     print(f"status: {out['status']}" + (f" ({out['reason']})" if out.get("reason") else ""))
     for key in ("t_jump", "t_stop", "t_end", "theta_end", "R_min", "stuck", "mode_end"):
@@ -256,7 +336,25 @@ def _print_human(out: dict, events: bool) -> None:
           f"{out['formulation']} chart, {out['backend']}" + ("" if events else " (list the events with --events)"))
     if events:
         for e in out["events"]:
-            print(f"  {e['kind']:<12s} t = {e['t']:.10g}  {e['mode_before']} -> {e['mode_after']}")
+            print(f"  {e['kind']:<12s} t = {_fmt(e['t'])}  {e['mode_before']} -> {e['mode_after']}"
+                  + (f"  ({e['detail']})" if e.get("detail") else ""))
+
+
+def _nonfinite(obj, path: str = "") -> str | None:
+    """The path of the first non-finite float in a JSON-ready object, or None."""
+    if isinstance(obj, float):
+        return None if math.isfinite(obj) else path or "(top)"
+    if isinstance(obj, dict):
+        items = obj.items()
+    elif isinstance(obj, (list, tuple)):
+        items = ((f"[{i}]", v) for i, v in enumerate(obj))
+    else:
+        return None
+    for k, v in items:
+        found = _nonfinite(v, f"{path}.{k}" if isinstance(obj, dict) and path else f"{path}{k}")
+        if found:
+            return found
+    return None
 
 
 def _finite_json(obj):
@@ -270,15 +368,26 @@ def _finite_json(obj):
     return obj
 
 
-def _json_default(obj):
+def _plain_types(obj):
+    """numpy scalars and arrays -> Python floats, ints, lists (so that every check sees them)."""
     import numpy as np
 
-    if isinstance(obj, np.floating):
-        return float(obj)
+    if isinstance(obj, dict):
+        return {k: _plain_types(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_plain_types(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return _plain_types(obj.tolist())
+    if isinstance(obj, (bool, np.bool_)):
+        return bool(obj)
     if isinstance(obj, np.integer):
         return int(obj)
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
+    if isinstance(obj, np.floating):
+        return float(obj)
+    return obj
+
+
+def _json_default(obj):
     return str(obj)
 
 
@@ -304,19 +413,45 @@ def _stdout_to_stderr():
         os.close(saved)
 
 
+def _flags_in(text: str) -> str:
+    """Python parameter names written `name` in a library message -> the CLI's flags."""
+    text = re.sub(r"`(\w+)`\s*=\s*'([^']*)'", lambda m: f"{FLAGS[m.group(1)]} {m.group(2)}" if m.group(1) in FLAGS
+                  else m.group(0), text)
+    return re.sub(r"`(\w+)`", lambda m: FLAGS.get(m.group(1), m.group(0)), text)
+
+
 def _error(message: str, flag: str | None, as_json: bool, code: int = 2) -> int:
-    message = " ".join(message.split())
+    message = " ".join(_flags_in(str(message)).split())
     print(f"phasekit: error: {message}", file=sys.stderr)
     if as_json:
-        print(json.dumps({"status": "error", "parameter": flag, "message": message}))
+        status = "error" if code == 2 else "interrupted" if code == 130 else "failed"
+        print(json.dumps({"status": status, "parameter": flag, "message": message}))
     return code
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):
-    print(f"phasekit: warning: {' '.join(str(message).split())}", file=sys.stderr)
+    print(f"phasekit: warning: {' '.join(_flags_in(str(message)).split())}", file=sys.stderr)
 
 
 COMMANDS = {"simulate": _cmd_simulate, "fixed-points": _cmd_fixed_points, "gyroscopic": _cmd_gyroscopic}
+#: set (to anything) to let unexpected exceptions propagate with their traceback (debugging, tests)
+DEBUG_ENV = "PHASEKIT_DEBUG"
+
+
+def _run(argv, as_json: bool):
+    """Parse and compute: (output dict, args), or raise."""
+    parser = _build_parser()
+    parser.argv = argv
+    args = parser.parse_args(argv)
+    if args.command is None:
+        raise _UsageError("a command is required: " + ", ".join(COMMANDS))
+    with _stdout_to_stderr():
+        out = _plain_types(COMMANDS[args.command](args))
+    where = _nonfinite(out)
+    if where is not None and out.get("status") != "failed":
+        # a non-finite number is never a result: the run failed there
+        out["status"], out["reason"] = "failed", f"non-finite value in the result at {where}"
+    return _finite_json(out), args
 
 
 def main(argv=None) -> int:
@@ -325,26 +460,26 @@ def main(argv=None) -> int:
 
     argv = list(sys.argv[1:] if argv is None else argv)
     as_json = "--json" in argv
-    parser = _build_parser()
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("default")
             warnings.showwarning = _show_warning
-            args = parser.parse_args(argv)
-            if args.command is None:
-                raise _UsageError("a command is required: " + ", ".join(COMMANDS))
-            with _stdout_to_stderr():
-                out = COMMANDS[args.command](args)
+            out, args = _run(argv, as_json)
     except _UsageError as exc:
         return _error(str(exc), exc.flag, as_json)
     except ParameterError as exc:
-        flag = FLAGS.get(exc.param, "--" + exc.param.replace("_", "-"))
-        return _error(exc.render(flag), flag, as_json)
+        name = FLAGS.get(exc.param)  # None: a parameter the CLI does not set (named as in Python)
+        return _error(exc.render(name or f"`{exc.param}`"), name and name.split(" (")[0], as_json)
     except PhasekitError as exc:
         return _error(str(exc), None, as_json, code=1)
     except KeyboardInterrupt:
-        return _error("interrupted", None, as_json, code=130)
-    out = _finite_json(out)
+        return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
+    except Exception as exc:  # a bug: one line, not a traceback (PHASEKIT_DEBUG=1 shows it)
+        if os.environ.get(DEBUG_ENV):
+            raise
+        first = (str(exc).strip().splitlines() or [""])[0][:200]
+        return _error(f"internal error: {type(exc).__name__}: {first} (please report it; set {DEBUG_ENV}=1 for the "
+                      "traceback)", None, as_json, code=1)
     if as_json:
         print(json.dumps(out, default=_json_default, allow_nan=False))
     else:

@@ -68,10 +68,10 @@ import casadi as ca
 import numpy as np
 
 from .charts import EULER, PAPER_NAMES, VECTOR
-from .errors import ConvergenceError
+from .errors import ConvergenceError, ParameterError
 from .hybrid import Mode
 from .model import Model
-from .validate import check_finite
+from .validate import check_array, check_choice, check_finite, check_range, check_vector
 
 __all__ = [
     "FixedPoint",
@@ -383,11 +383,28 @@ def _mode_for(model: Model) -> Mode:
 
 _SOLVERS: dict = {}
 
+#: the classes of steady state (:class:`FixedPoint` ``kind``; "inverted" and "horizontal-like"
+#: are those of bodies without flip symmetry)
+KINDS = ("vertical", "inverted", "horizontal", "horizontal-like", "intermediate")
+#: a Newton solution is accepted when each component of the field is at most NEWTON_RTOL
+#: times that component's scale sum_j |J_ij| max(|x_j|, 1): a residual that a relative
+#: change of the state by NEWTON_RTOL explains (a componentwise backward error). An absolute
+#: test cannot serve every scale: at Omega0 = 1e6 the field's terms are ~Omega0^2 = 1e12 and
+#: rounding alone leaves ~1e-5; with eps = 1e-12 a slip rounded to 1e-16 leaves mu * 1e-4.
+NEWTON_RTOL = 1e-10
+#: the largest |Omega0| or |n0| of a family: beyond it the field's ~rate^2 terms leave too few
+#: significant digits for the test above (and overflow near 1e154)
+FAMILY_MAX = 1e12
+
 
 def _newton_system(model: Model, kind: str, fixed: str):
     """CasADi rootfinder for a square system: the chart's field with one redundant equation
     replaced by the family constraint (fixed Omega or n), or, at the vertical, the tilt
-    coordinates of k and w with |k| = 1 and w.k = n0 imposed."""
+    coordinates of k and w with |k| = 1 and w.k = n0 imposed.
+
+    The unknowns and equations are scaled at run time (unknown z = sz * zeta, equation i
+    divided by se_i), so that the rootfinder's absolute tolerances act as relative ones at
+    any scale of the state. Returns (solver, lift, n_unknowns, Jacobian of the equations)."""
     key = (model.compiled.key, kind, fixed)
     if key in _SOLVERS:
         return _SOLVERS[key]
@@ -405,7 +422,6 @@ def _newton_system(model: Model, kind: str, fixed: str):
         drop, idx = (2, 2) if fixed == "Omega" else (5, 5)
         eqs = ca.vertcat(*[r[i] for i in range(6) if i != drop], x[idx] - val)
         z = x
-        lift = ca.Function("lift", [z, p, val], [x])
     else:
         # vertical family: unknown tilt coordinates, k_z and w_z from |k| = 1, w.k = n0
         z = ca.SX.sym("z", 6)  # k_x, k_y, w_x, w_y, v_x, v_y
@@ -414,11 +430,33 @@ def _newton_system(model: Model, kind: str, fixed: str):
         x = ca.vertcat(z[0], z[1], kz, z[2], z[3], wz, z[4], z[5])
         r = f(x, p)
         eqs = ca.vertcat(r[0], r[1], r[3], r[4], r[6], r[7])
-        lift = ca.Function("lift", [z, p, val], [x])
-    G = ca.Function("G", [z, ca.vertcat(p, val)], [eqs])
-    solver = ca.rootfinder("fixed_point_newton", "newton", G, {"abstol": 1e-14, "max_iter": 50, "error_on_fail": False})
-    _SOLVERS[key] = (solver, lift, z.shape[0])
+    nz = z.shape[0]
+    lift = ca.Function("lift", [z, p, val], [x])
+    jac = ca.Function("newton_jac", [z, p, val], [ca.jacobian(eqs, z)])
+    zeta, sz, se = ca.SX.sym("zeta", nz), ca.SX.sym("sz", nz), ca.SX.sym("se", nz)
+    scaled = ca.substitute(eqs, z, sz * zeta) / se
+    G = ca.Function("G", [zeta, ca.vertcat(p, val, sz, se)], [scaled])
+    opts = {"abstol": 1e-15, "abstolStep": 1e-15, "max_iter": 50, "error_on_fail": False, "show_eval_warnings": False}
+    _SOLVERS[key] = (ca.rootfinder("fixed_point_newton", "newton", G, opts), lift, nz, jac)
     return _SOLVERS[key]
+
+
+def _backward_error(model: Model, x: np.ndarray) -> float:
+    """max_i |f_i(x)| / sum_j |J_ij| max(|x_j|, 1) for the law's own field (see NEWTON_RTOL)."""
+    mode = _mode_for(model)
+    f, J = model.rhs(x, mode), model.jacobian(x, mode)
+    if not (np.all(np.isfinite(f)) and np.all(np.isfinite(J))):
+        return float("inf")
+    scale = np.abs(J) @ np.maximum(np.abs(x), 1.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(np.abs(f) == 0.0, 0.0, np.abs(f) / scale)
+    return float(np.max(ratio))
+
+
+def _check_model(model) -> Model:
+    if not isinstance(model, Model):
+        raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
+    return model
 
 
 def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str | None = None) -> FixedPoint:
@@ -426,25 +464,65 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
     parameter held at ``value`` (Omega for the Euler chart unless ``fixed="n"``; the spin
     n0 for the vertical in the vector chart), then linearise it.
 
-    Raises ConvergenceError (with the last iterate's residual) if Newton fails.
-    """
-    value = check_finite("value", value)
-    fixed = fixed or ("Omega" if model.chart is EULER else "n")
-    newton_model = model
-    if model.friction.has_rolling_mode:  # exact Coulomb: any smooth law has the same zero-slip states
-        from .friction import Viscous
+    Parameters
+    ----------
+    model : Model
+    guess : array of model.n_states numbers
+    kind : {"vertical", "horizontal", "intermediate"}
+    value : float
+        The family parameter (Omega0 or n0).
+    fixed : {"Omega", "n"}, optional
+        Which rate ``value`` fixes (Euler chart; the vector chart fixes n).
 
-        newton_model = Model(model.body, Viscous(1.0), model.chart)
-    solver, lift, nz = _newton_system(newton_model, kind, fixed)
-    guess = np.asarray(guess, dtype=float)
+    Raises
+    ------
+    ParameterError
+        For an invalid argument.
+    ConvergenceError
+        When Newton does not reach a state whose residual is within NEWTON_RTOL of the
+        state's scale (the message gives both); ``result`` holds the last iterate.
+    """
+    model = _check_model(model)
+    check_choice("kind", kind, KINDS)
+    if kind == "inverted":
+        raise ParameterError("kind", "'inverted' needs no Newton solve: the state is exact (linearise it)", kind)
+    if (model.chart is EULER) == (kind == "vertical"):
+        raise ParameterError("kind", f"does not go with a model in the {model.chart.name} chart (the vertical state is "
+                                     "found in the vector chart, the others in the Euler chart)", kind)
+    value = check_range("value", value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")
+    allowed = ("Omega", "n") if model.chart is EULER else ("n",)
+    fixed = check_choice("fixed", fixed or allowed[0], allowed)
+    guess = check_vector("guess", guess, model.n_states)
+    # any smooth law has the zero-slip states of every law; Viscous(1) keeps Newton well
+    # conditioned where the law's own field is stiff (a regularised Coulomb law, eps -> 0)
+    from .friction import Viscous
+
+    newton_model = Model(model.body, Viscous(1.0), model.chart)
+    solver, lift, nz, jac = _newton_system(newton_model, kind, fixed)
     z0 = guess if model.chart is EULER else guess[[0, 1, 3, 4, 6, 7]]
-    pv = np.concatenate([newton_model.p, [value]])
-    z = np.asarray(solver(z0, pv)).ravel()
+    sz = np.maximum(np.abs(z0), 1.0)
+    J0 = np.asarray(jac(z0, newton_model.p, value))
+    se = np.abs(J0) @ sz if np.all(np.isfinite(J0)) else np.ones(nz)
+    se = np.maximum(se, 1e-12 * max(float(se.max()), 1.0))
+    pv = np.concatenate([newton_model.p, [value], sz, se])
+    z = sz * np.asarray(solver(z0 / sz, pv)).ravel()
     x = np.asarray(lift(z, newton_model.p, value)).ravel()
-    fp = linearise(model, x, kind=kind)
-    if not np.all(np.isfinite(x)) or fp.residual > 1e-10:
-        raise ConvergenceError(f"Newton did not converge to a {kind} fixed point (residual {fp.residual:.2e})", fp)
-    return fp
+    article = "an" if kind[0] in "aeiou" else "a"
+    if not np.all(np.isfinite(x)):
+        raise ConvergenceError(f"Newton did not converge to {article} {kind} fixed point with {fixed} = {value:g}: "
+                               "the iterate left the domain of the equations (non-finite state)", None)
+    err = _backward_error(model, x)
+    if not err <= NEWTON_RTOL:
+        residual = float(np.max(np.abs(model.rhs(x, _mode_for(model)))))
+        try:
+            last = linearise(model, x, kind=kind)
+        except (ParameterError, ConvergenceError):
+            last = None
+        miss = (f"residual {residual:.2e} is {err:.1e} of the state's scale, above the tolerance {NEWTON_RTOL:g}"
+                if np.isfinite(err) else "the field or its Jacobian is not finite at the last iterate")
+        raise ConvergenceError(f"Newton did not converge to {article} {kind} fixed point with {fixed} = {value:g}: "
+                               + miss, last)
+    return linearise(model, x, kind=kind)
 
 
 # -- linearisation -------------------------------------------------------------------------
@@ -481,18 +559,32 @@ def _rolling_reduced_jacobian(model: Model, x: np.ndarray):
 
 
 def linearise(model: Model, x, *, kind: str = "state") -> FixedPoint:
-    """Eigen-decomposition of the exact Jacobian at ``x`` (see the module notes for Coulomb)."""
-    x = np.asarray(x, dtype=float)
+    """Eigen-decomposition of the exact Jacobian at ``x`` (see the module notes for Coulomb).
+
+    Raises ParameterError for a model that is not a Model, a state of the wrong length or
+    with non-finite entries, or a state where the Jacobian overflows; ConvergenceError if
+    the eigenvalue iteration does not converge."""
+    model = _check_model(model)
+    if not isinstance(kind, str) or not kind:
+        raise ParameterError("kind", "must be a label such as 'horizontal' or 'state'", kind)
+    x = check_vector("x", x, model.n_states)
     mode = _mode_for(model)
     residual = float(np.max(np.abs(model.rhs(x, mode))))
     if mode is Mode.ROLLING:
         Jr, L = _rolling_reduced_jacobian(model, x)
-        lam, V = np.linalg.eig(Jr)
-        V = L @ V  # tangent vectors of the no-slip manifold, in chart coordinates
         law = "coulomb-rolling"
     else:
-        lam, V = np.linalg.eig(model.jacobian(x, mode))
+        Jr, L = model.jacobian(x, mode), None
         law = model.friction.name
+    if not (np.all(np.isfinite(Jr)) and np.isfinite(residual)):
+        raise ParameterError("x", "gives a non-finite field or Jacobian (a state beyond double precision, or where "
+                                  "the contact equations are singular)", x)
+    try:
+        lam, V = np.linalg.eig(Jr)
+    except np.linalg.LinAlgError as exc:
+        raise ConvergenceError(f"the eigenvalues of the Jacobian at the {kind} state did not converge ({exc})") from None
+    if L is not None:
+        V = L @ V  # tangent vectors of the no-slip manifold, in chart coordinates
     order = np.lexsort((-lam.imag, -lam.real))
     y = model.chart.to_paper(x)
     if model.chart is VECTOR and np.hypot(x[0], x[1]) == 0.0:
@@ -564,7 +656,13 @@ def continue_family(model: Model, kind: str, values, *, start=None) -> Branch:
     ``kind``: "horizontal" (values of Omega0), "vertical" (values of n0; vector chart) or
     "intermediate" (values of Omega0; ``start`` is a state on the family near values[0]).
     """
-    values = np.asarray(values, dtype=float)
+    model = _check_model(model)
+    check_choice("kind", kind, tuple(k for k in KINDS if k != "inverted"))
+    values = check_array("values", values, ndim=1)
+    chart = "vector" if kind == "vertical" else "euler"
+    if model.chart.name != chart:
+        raise ParameterError("model", f"must be in the {chart} chart for the {kind} family "
+                                      f"(model.with_chart('{chart}'))", model)
     pts = []
     if kind == "horizontal":
         guess = horizontal_state(values[0])
@@ -572,8 +670,9 @@ def continue_family(model: Model, kind: str, values, *, start=None) -> Branch:
         guess = vertical_state(values[0])
     else:
         if start is None:
-            raise ValueError("`start` is required to continue the intermediate family.")
-        guess = np.asarray(start, dtype=float)
+            raise ParameterError("start", f"is required to continue the {kind} family (a state on it near values[0], "
+                                          "e.g. intermediate_state(body, theta))", show_value=False)
+        guess = check_vector("start", start, model.n_states)
     prev = None
     for v in values:
         if prev is not None and kind == "intermediate" and len(pts) >= 2:

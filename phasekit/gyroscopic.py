@@ -24,14 +24,27 @@ from __future__ import annotations
 import numpy as np
 
 from .body import Body, Spheroid
-from .validate import check_positive, check_range
+from .errors import ConvergenceError, ParameterError
+from .validate import check_array, check_finite, check_instance, check_positive, check_range
 from .starts import gyroscopic_start
 
 __all__ = ["mean_slip", "jellett_constant", "gyroscopic_numeric", "gyroscopic_closed", "gyroscopic_solution", "rise_time"]
 
 
+#: tolerances scipy's DOP853 accepts (it raises tighter ones to 100 x machine epsilon)
+RTOL_RANGE = (1e-14, 1e-3)
+
+
+def _body(body) -> Body:
+    return check_instance("body", body, Body, "Spheroid(1.5)")
+
+
 def mean_slip(body: Body, theta, omega):
     """Leading-order mean slip velocity Vbar_P of the gyroscopic state (generalised (3.10))."""
+    return _mean_slip(_body(body), check_array("theta", theta), check_array("omega", omega))
+
+
+def _mean_slip(body: Body, theta, omega):
     h, ht, _ = body.h(theta)
     c, s = np.cos(theta), np.sin(theta)
     xP = h * s + ht * c
@@ -40,35 +53,40 @@ def mean_slip(body: Body, theta, omega):
 
 def jellett_constant(body: Body, theta, omega):
     """J = A Omega h (3.17)."""
+    body, theta, omega = _body(body), check_array("theta", theta), check_array("omega", omega)
     return body.A * omega * body.h(theta)[0]
 
 
 def _rhs(T, y, body):
     om, th = y
     h, ht, _ = body.h(th)
-    v = np.sign(mean_slip(body, th, om))
+    v = np.sign(_mean_slip(body, th, om))
     return [-ht * v / body.A, h * v / (body.A * om)]
 
 
 def gyroscopic_numeric(body: Body, theta0: float, omega0: float, T, *, rtol: float = 1e-13):
-    """Integrate (3.16) numerically (any body): returns (theta(T), Omega(T)).
+    """Integrate (3.16) numerically (any body): returns (theta(T), Omega(T)) at the slow
+    times T (>= 0, any order), with ``rtol`` in [1e-14, 1e-3].
 
     Stops where the mean slip vanishes (theta reaches 0 or pi/2, the end of the rise) and
     holds the state there.
     """
     from scipy.integrate import solve_ivp
 
+    body = _body(body)
     theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
-    T = np.atleast_1d(np.asarray(T, dtype=float))
-    if np.any(T < 0):
-        raise ValueError("`T` must be >= 0.")
+    omega0 = check_finite("omega0", omega0, nonzero=True)
+    T = np.atleast_1d(check_array("T", T, nonnegative=True))
+    rtol = check_range("rtol", rtol, *RTOL_RANGE, closed="lr")
 
     def end(T_, y, body_):
-        return mean_slip(body_, y[1], y[0])
+        return _mean_slip(body_, y[1], y[0])
 
     end.terminal = True
-    sol = solve_ivp(_rhs, (0.0, float(T.max()) if T.size else 0.0), [omega0, theta0], args=(body,), method="DOP853",
+    sol = solve_ivp(_rhs, (0.0, float(T.max())), [omega0, theta0], args=(body,), method="DOP853",
                     rtol=rtol, atol=1e-14, dense_output=True, events=end)
+    if sol.status < 0 or sol.sol is None:
+        raise ConvergenceError(f"the mean equations (3.16) could not be integrated: {sol.message}")
     th, om = np.empty_like(T), np.empty_like(T)
     for k, t in enumerate(T):
         tt = min(t, sol.t[-1])
@@ -84,11 +102,12 @@ def gyroscopic_closed(a: float, J: float, theta0: float, T, *, A: float | None =
     """
     a = check_positive("a", a)
     if a == 1.0:
-        raise ValueError("`a` must differ from 1: a sphere does not rise (h_theta = 0).")
+        raise ParameterError("a", "must differ from 1: a sphere does not rise (h_theta = 0; use gyroscopic_numeric)", a)
+    J = check_finite("J", J, nonzero=True)
     theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
+    T = check_array("T", T)
     flip = theta0 > np.pi / 2
     th0 = np.pi - theta0 if flip else theta0
-    T = np.asarray(T, dtype=float)
     q = a * (a - 1) / (J * abs(a - 1))
     T0 = np.arctan(np.tan(th0) / a) / q
     arg = q * (T - T0)
@@ -104,18 +123,20 @@ def gyroscopic_closed(a: float, J: float, theta0: float, T, *, A: float | None =
 
 
 def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()) -> dict:
-    """Mean theta and Omega at slow times T from a gyroscopic start (Omega0 given, or n0 with
-    Omega on the fast branch); the closed form for spheroids, (3.16) numerically otherwise.
+    """Mean theta and Omega at slow times T (>= 0, at least one) from a gyroscopic start
+    (Omega0 given, or n0 with Omega on the fast branch); the closed form for spheroids
+    (a != 1), (3.16) numerically otherwise.
 
-    Returns {"theta", "Omega", "J", "method"}.
+    Returns {"theta", "Omega", "J", "Omega0", "method"}.
     """
     y0 = gyroscopic_start(body, theta0, omega0=omega0, n0=n0)
+    T = check_array("T", T, nonnegative=True)
     om0 = float(y0[2])
     J = float(jellett_constant(body, theta0, om0))
-    if isinstance(body, Spheroid):
+    if isinstance(body, Spheroid) and body.a != 1.0:
         th, om = gyroscopic_closed(body.a, J, theta0, T, A=body.A)
         method = "closed form (3.18)"
-    else:  # pragma: no cover - only spheroids exist today
+    else:
         th, om = gyroscopic_numeric(body, theta0, om0, T)
         method = "numerical (3.16)"
     return {"theta": np.atleast_1d(th), "Omega": np.atleast_1d(om), "J": J, "Omega0": om0, "method": method}
@@ -123,6 +144,11 @@ def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()
 
 def rise_time(a: float, J: float, theta0: float) -> float:
     """Slow time T at which the closed-form rise ends (theta reaches 0 or pi/2)."""
+    a = check_positive("a", a)
+    if a == 1.0:
+        raise ParameterError("a", "must differ from 1: a sphere does not rise", a)
+    J = check_finite("J", J, nonzero=True)
+    theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
     q = a * (a - 1) / (J * abs(a - 1))
     th0 = min(theta0, np.pi - theta0)
     T0 = np.arctan(np.tan(th0) / a) / q

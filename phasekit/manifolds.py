@@ -18,6 +18,8 @@ import numpy as np
 
 from dataclasses import dataclass
 
+from .body import Spheroid
+from .errors import ParameterError
 from .validate import check_choice, check_finite, check_positive
 from .fixedpoints import (FixedPoint, find_fixed_point, horizontal_like_angle, horizontal_state, inverted_state, linearise,
                           precession_angles, precession_state, vertical_state)
@@ -72,11 +74,14 @@ def unstable_manifold_start(body, friction, *, state: str, delta: float, omega0=
     check_choice("unstable_manifold", state, STATES)
     check_choice("seed_law", seed_law, ("viscous", "same"))
     chart = "vector" if state in ("vertical", "inverted") else "euler"
-    need = "omega0" if chart == "euler" else "n0"
-    value = omega0 if need == "omega0" else n0
+    name, other = ("omega0", "n0") if chart == "euler" else ("n0", "omega0")
+    value, given_other = (omega0, n0) if chart == "euler" else (n0, omega0)
     if value is None:
-        raise ValueError(f"`{need}` is required with --unstable-manifold {state}.")
-    value = check_finite(need, value)
+        what = "precession rate Omega0" if chart == "euler" else "spin n0"
+        raise ParameterError(name, f"is required for the {state} state (its {what})", show_value=False)
+    if given_other is not None:
+        raise ParameterError(other, f"does not apply to the {state} state (give `{name}`)", given_other)
+    value = check_finite(name, value)
     law = Viscous(friction.mu) if seed_law == "viscous" else friction
     model = Model(body, law, chart)
     if state == "horizontal":
@@ -89,23 +94,42 @@ def unstable_manifold_start(body, friction, *, state: str, delta: float, omega0=
         fp = _horizontal_like(model, value)
     seeds = dict(unstable_seeds(fp, delta))
     if not seeds:
-        raise ValueError(
-            f"`unstable_manifold`: the {state} state is linearly stable here ({fp.classification}); "
-            f"it has no unstable manifold to seed."
-        )
-    if branch not in seeds:
-        raise ValueError(f"`branch` must be one of {', '.join(seeds)}; got {branch!r}.")
+        raise ParameterError(name, f"gives a {state} state without an unstable direction under {fp.law} friction "
+                                   f"({fp.classification}), so it has no unstable manifold to seed"
+                                   + _unstable_hint(body, state, seed_law, friction), value)
+    if not isinstance(branch, str) or branch not in seeds:
+        raise ParameterError("branch", f"must be one of {', '.join(seeds)} (sign and index of an unstable direction "
+                                       f"of this {state} state)", branch)
     return Model(body, friction, chart), seeds[branch], fp
+
+
+def _unstable_hint(body, state: str, seed_law: str, friction) -> str:
+    if seed_law == "same" and friction.has_rolling_mode:
+        return "; exact Coulomb friction makes it neutral: `seed_law`='viscous' takes the viscous direction"
+    if isinstance(body, Spheroid) and state in ("horizontal", "vertical"):
+        fn = horizontal_stability_threshold if state == "horizontal" else vertical_stability_threshold
+        crit = fn(body.A, body.C, body.a)
+        if crit is not None:
+            name = "omega0" if state == "horizontal" else "n0"
+            D = body.a**2 * body.C - body.A  # the sign of D fixes on which side the mode grows
+            side = ">" if (D > 0) == (state == "horizontal") else "<"
+            return f" (for this body and weak friction it is unstable for |{name}| {side} {crit:.6g})"
+    return ""
+
+
+def _moments(A, C, a) -> tuple[float, float, float]:
+    return check_positive("A", A), check_positive("C", C), check_positive("a", a)
 
 
 def _horizontal_like(model: Model, omega0: float) -> FixedPoint:
     """The precession with rate omega0 that continues the horizontal state (fixedpoints)."""
     body = model.body
     if body.flip_symmetric:
-        raise ValueError("`unstable_manifold`: horizontal-like is for bodies without flip symmetry; use horizontal.")
+        raise ParameterError("unstable_manifold", "horizontal-like is for bodies without flip symmetry (use horizontal)",
+                             "horizontal-like")
     theta = horizontal_like_angle(body, precession_angles(body, omega0=omega0))
     if theta is None:
-        raise ValueError(f"`omega0`: no horizontal-like precession with rate {omega0:g}")
+        raise ParameterError("omega0", "gives no horizontal-like precession of this body", omega0)
     guess = precession_state(body, theta, omega0=omega0)
     return find_fixed_point(model, guess, kind="horizontal-like", value=omega0, fixed="Omega")
 
@@ -120,6 +144,7 @@ def vertical_stability_threshold(A: float, C: float, a: float) -> float | None:
     frictionless mode crosses it: (a^2 C - A) n^2 = a^3 (a^2 - 1). For the uniform spheroid
     this is n0 = sqrt(5 a^3). Returns None when there is no crossing.
     """
+    A, C, a = _moments(A, C, a)
     D = a * a * C - A
     if D == 0 or (a * a - 1) / D <= 0:
         return None
@@ -128,6 +153,8 @@ def vertical_stability_threshold(A: float, C: float, a: float) -> float | None:
 
 def vertical_is_stable(A: float, C: float, a: float, n0: float) -> bool:
     """Linear stability of the vertical spin with friction: (a^2 C - A) n0^2 > a^3 (a^2 - 1)."""
+    A, C, a = _moments(A, C, a)
+    n0 = check_finite("n0", n0)
     return (a * a * C - A) * n0 * n0 > a**3 * (a * a - 1)
 
 
@@ -139,6 +166,7 @@ def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None
     a coefficient of about 0.8 (a = 1.5, measured); above, a second mode goes unstable first and
     the threshold falls (mu = 1: 1.9652, mu = 5: 1.4710). :func:`equator_stability_threshold` is
     the same criterion for any flip-symmetric body. None when there is no crossing."""
+    A, C, a = _moments(A, C, a)
     D = a * a * C - A
     if D == 0 or (a * a - 1) / D <= 0:
         return None
@@ -148,6 +176,8 @@ def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None
 def horizontal_is_unstable(A: float, C: float, a: float, omega0: float) -> bool:
     """The horizontal steady precession has a (real, rising) unstable mode iff
     (a^2 C - A) Omega0^2 > a^2 - 1 (weak friction; see horizontal_stability_threshold)."""
+    A, C, a = _moments(A, C, a)
+    omega0 = check_finite("omega0", omega0)
     return (a * a * C - A) * omega0 * omega0 > a * a - 1
 
 

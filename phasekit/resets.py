@@ -97,20 +97,28 @@ def sliding_direction(model, x) -> tuple[np.ndarray, float] | None:
     phis = 2 * np.pi * np.arange(N_DIRECTIONS) / N_DIRECTIONS
     acc, R = f.map(N_DIRECTIONS)(np.tile(x[:, None], (1, N_DIRECTIONS)), np.tile(p[:, None], (1, N_DIRECTIONS)), phis[None, :])
     acc, R = np.asarray(acc), np.asarray(R).ravel()
-    cross = np.cos(phis) * acc[1] - np.sin(phis) * acc[0]
+    # R(e) = -g0 / (G.d(e)) has poles (Painleve's directions, G.d(e) = 0) where the cross
+    # product changes sign through infinity; divided by R it is smooth, with the same roots.
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cross = (np.cos(phis) * acc[1] - np.sin(phis) * acc[0]) / R
 
     def cross_at(phi):
-        a = np.asarray(f(x, p, phi)[0]).ravel()
-        return np.cos(phi) * a[1] - np.sin(phi) * a[0]
+        a, Rphi = (np.asarray(v).ravel() for v in f(x, p, phi))
+        return (np.cos(phi) * a[1] - np.sin(phi) * a[0]) / Rphi[0]
 
     best = None
     for k in range(N_DIRECTIONS):
         lo, hi = phis[k], phis[k] + 2 * np.pi / N_DIRECTIONS
         c0, c1 = cross[k], cross[(k + 1) % N_DIRECTIONS]
+        if not (np.isfinite(c0) and np.isfinite(c1)):
+            continue
         if c0 == 0.0:
             phi = lo
         elif c0 * c1 < 0.0:
-            phi = brentq(cross_at, lo, hi, xtol=1e-14)
+            try:
+                phi = brentq(cross_at, lo, hi, xtol=1e-14)
+            except ValueError:  # a non-finite value inside the bracket (R exactly infinite)
+                continue
         else:
             continue
         a, Rphi = (np.asarray(v).ravel() for v in f(x, p, phi))
@@ -144,6 +152,9 @@ def contact_start(model, t: float, x, *, before: str = "start", stiff: bool = Fa
     if law.has_rolling_mode and speed <= STICK_SLIP:
         out = zero_slip_start(model, x)
         if out is None:
+            x0 = project_no_slip(model, x)
+            if float(model.evaluate("R", x0, Mode.ROLLING)) <= 0.0:
+                return Transition(Mode.ROLLING, t, x0)  # no contact mode has R > 0: the callers lift off
             return _no_direction(t, x)
         mode, x, detail = out
         return Transition(mode, t, x, (Record("stick" if mode is Mode.ROLLING else "slip", before, mode.value, x, detail),))

@@ -18,14 +18,17 @@ from .errors import ConvergenceError, ParameterError, Status
 from .hybrid import Event, Mode, Transition
 from .model import Model
 from .options import SolverOptions
+from .starts import RATE_MAX
 from .system import declare, watched
 from .trajectory import EventRecord, Segment, Trajectory
-from .validate import check_finite, check_times, check_vector
+from .validate import check_bool, check_finite, check_range, check_times, check_vector
 
 __all__ = ["simulate", "solver_options", "taylor_integrator"]
 
 #: theta within this of 0 or pi cannot be integrated in the Euler chart (2.7c divides by sin)
 POLE_GUARD = 1e-12
+#: the largest |t0| a run may start at (see simulate)
+T_MAX = 1e6
 
 
 def solver_options(options: SolverOptions | None = None, **overrides) -> SolverOptions:
@@ -93,10 +96,19 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     opts = solver_options(options, **option_fields)
     if not isinstance(model, Model):
         raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
-    start_mode = None if mode is None else Mode(mode)
+    if mode is not None and mode not in ("flight", Mode.FLIGHT):
+        raise ParameterError("mode", "must be None (start in contact) or 'flight'", mode)
+    start_mode = None if mode is None else Mode.FLIGHT
+    check_bool("throw", throw)
+    if isinstance(events, Event) or not isinstance(events, (list, tuple)):
+        raise ParameterError("events", "must be a list of phasekit Event objects, e.g. [pk.Event('theta', 0.4)]", events)
     n = FLIGHT.n_states if start_mode is Mode.FLIGHT and np.size(x0) == FLIGHT.n_states else model.n_states
     x0 = check_vector("x0", x0, n)
-    t0 = check_finite("t0", t0)
+    if np.max(np.abs(x0)) > RATE_MAX:
+        raise ParameterError("x0", f"must have entries of at most {RATE_MAX:g} in size (larger rates are beyond double "
+                                   "precision)", x0)
+    # beyond |t| = T_MAX the spacing of doubles (> 1e-10) is coarser than the located events
+    t0 = check_range("t0", t0, -T_MAX, T_MAX, closed="lr", label=f"[-{T_MAX:g}, {T_MAX:g}]")
     t_end = check_finite("t_end", t_end)
     if not t_end > t0:
         raise ParameterError("t_end", f"must be > t0 = {t0:g}", t_end)
@@ -109,6 +121,8 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     run.apply(system.initial(model, t0, x0, start_mode))
     while run.status is None:
         run.step()
+        if run.status is None and run.budget.wall_exceeded():  # many short segments (stick-slip chatter)
+            run.status, run.reason = Status.FAILED, f"wall-time limit ({opts.max_wall:g} s) reached at t = {run.t:.6g}"
     traj = run.result(x0, t0, stop_at, restitution, events, te)
     if throw and traj.status is Status.FAILED:
         raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
@@ -191,9 +205,14 @@ class _Run:
         events = watched(self.system, self.mode, engine.name)
         extend = self.resume  # a non-terminal event or a graze: the same segment goes on
         prop, ev = self.propagate(flow, engine, events)
+        if not (np.isfinite(prop.t) and np.all(np.isfinite(prop.x))):
+            # never a non-finite number in a result: the run ends at its last finite state
+            self.status = Status.FAILED
+            self.reason = f"the integration diverged after t = {self.t:.6g} (non-finite state)"
+            return
         self.add_segment(prop, engine.name, ev, extend)
         self.t, self.x = prop.t, prop.x
-        if prop.outcome == "failed" or not np.all(np.isfinite(prop.x)):
+        if prop.outcome == "failed":
             self.status = Status.FAILED
             self.reason = prop.reason or f"non-finite state at t = {prop.t:.6g}"
         elif prop.outcome == "time":

@@ -13,6 +13,8 @@ is regular at theta = 0, so the oblate start works down to the vertical.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from .body import Body
@@ -72,6 +74,10 @@ def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, 
                                            f"spin |n| = {abs(n):.3g} > {RATE_MAX:g})", omega0)
         return np.array([0.0, 0.0, omega0, 0.0, theta0, n])
     n0 = _rate("n0", n0)
+    if body.is_prolate:
+        warnings.warn("`n0` given for a prolate body: its gyroscopic start is normally given `omega0` (the precession "
+                      "rate; n then follows from the balance); with `n0`, Omega is put on the fast branch, "
+                      "|Omega| ~ C n0 / (A cos theta0)", stacklevel=2)
     if c <= 0.0:
         raise ParameterError("theta0", "must lie in (0, pi/2) for a start given n0 (the fast branch)", theta0)
     disc = (C * n0) ** 2 + 4.0 * A * c * q

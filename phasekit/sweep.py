@@ -181,6 +181,11 @@ class ResultStore:
         text = self.csv_path.read_text()
         lines = list(csv.reader(io.StringIO(text)))
         header, body = (lines[0], lines[1:]) if lines else ([], [])
+        if body and not text.endswith("\n"):
+            # rows are written whole with their newline: a last line without one was cut by a
+            # kill, even when its cells still parse (a cut inside the last, free-text field)
+            body.pop()
+            self.dropped += 1
         for cells in body:
             try:
                 row = row_from_cells(self.row_type, cells)

@@ -24,6 +24,8 @@ __all__ = [
     "check_vector",
     "check_times",
     "check_bool",
+    "check_array",
+    "check_instance",
 ]
 
 
@@ -133,3 +135,29 @@ def check_times(name: str, value, *, allow_empty: bool = False) -> np.ndarray:
     if arr.size == 0 and not allow_empty:
         raise ParameterError(name, "must hold at least one time", value)
     return np.sort(arr)
+
+
+def check_array(name: str, value, *, allow_empty: bool = False, nonnegative: bool = False, ndim: int | None = None) -> np.ndarray:
+    """Finite real numbers (a scalar or an array of any shape, order kept) as a float array;
+    ``nonnegative``: all >= 0; ``ndim``: of exactly that many dimensions."""
+    what = "finite numbers >= 0" if nonnegative else "finite real numbers"
+    if value is None or isinstance(value, (str, bytes, dict, set, bool, np.bool_)):
+        raise ParameterError(name, f"must be {what}", value)
+    try:
+        arr = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(name, f"must be {what}", value) from None
+    if ndim is not None and arr.ndim != ndim:
+        raise ParameterError(name, f"must be a {ndim}-d array of {what} (got shape {arr.shape})", show_value=False)
+    if arr.size == 0 and not allow_empty:
+        raise ParameterError(name, "must hold at least one value", value)
+    if not np.all(np.isfinite(arr)) or (nonnegative and np.any(arr < 0)):
+        raise ParameterError(name, f"must be {what}", arr)
+    return arr
+
+
+def check_instance(name: str, value, cls: type, example: str):
+    """An instance of ``cls`` (``example`` shows how to make one, e.g. "Spheroid(1.5)")."""
+    if not isinstance(value, cls):
+        raise ParameterError(name, f"must be a phasekit {cls.__name__} such as {example}", value)
+    return value

@@ -162,7 +162,7 @@ def test_seed_signs_and_vertical_seed():
     seeds = dict(unstable_seeds(fp, 0.01))
     assert set(seeds) == {"+0", "-0", "+1", "-1"}  # a complex pair spans two real directions
     assert seeds["+0"][0] > 0 and np.linalg.norm(seeds["+0"] - fp.x) == pytest.approx(0.01)
-    with pytest.raises(ValueError, match="`unstable_manifold`"):
+    with pytest.raises(ValueError, match="`n0` gives a vertical state without an unstable direction"):
         unstable_manifold_start(pk.Spheroid(1.5), pk.Viscous(0.1), state="vertical", delta=0.01, n0=10.0)
 
 
