@@ -382,8 +382,11 @@ class CustomBody(Body):
         self._fn, self.variable, self.name, self._key = height, variable, str(name), None
         try:
             self.structure_key
+            scalar = ca.SX(self.height(ca.SX.sym("c"), ca.SX.sym("shape", 0))).numel() == 1
         except Exception as exc:  # the function is not CasADi-expressible
             raise ParameterError("height", f"must return a CasADi expression ({type(exc).__name__}: {exc})", show_value=False) from None
+        if not scalar:
+            raise ParameterError("height", "must return one scalar CasADi expression (the height of G)", show_value=False)
         interior = (1e-6, np.pi - 1e-6) if variable == "theta" else (0.0, np.pi)
         self.check_convex("height", interior)
         if A is None or C is None:

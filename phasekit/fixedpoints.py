@@ -606,10 +606,14 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
     ``model`` in the vector chart) and the precessions with spin n0. Each pole carries its
     closed-form stability criterion under sliding friction in ``parameter``.
     """
+    if not isinstance(model, Model):
+        raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
+    if model_vector is not None and not isinstance(model_vector, Model):
+        raise ParameterError("model_vector", "must be a phasekit Model in the vector chart (or None)", model_vector)
+    if (omega0 is None) == (n0 is None):
+        raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
     model_euler = model if model.chart is EULER else model.with_chart("euler")
     model_vector = model_vector or model.with_chart("vector")
-    if (omega0 is None) == (n0 is None):
-        raise ValueError("give exactly one of `omega0` or `n0`.")
     body = model_euler.body
     out: list[FixedPoint] = []
     if omega0 is not None:

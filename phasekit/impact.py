@@ -77,9 +77,7 @@ def impact(body, k, w, v, *, e: float, mu: float) -> ImpactResult:
     """Apply the impact law at touchdown to the rigid-body velocities (k, w, v = velocity of O).
 
     Returns the post-impact (w, v) in ``ImpactResult.w``, ``ImpactResult.v``."""
-    e = check_nonnegative("restitution", e)
-    if e > 1:
-        raise ValueError(f"`restitution` must lie in [0, 1], got {e!r}.")
+    e = check_nonnegative("e", e, upper=1.0)
     mu = check_nonnegative("mu", mu)
     k, w, v = (np.asarray(a, dtype=float) for a in (k, w, v))
     r = contact_point(body, k)

@@ -24,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from .body import Body
+from .errors import ParameterError
 from .gyroscopic import mean_slip
 
 __all__ = [
@@ -243,6 +244,8 @@ def mean_over_periods(ts, values, marks):
     ts = np.asarray(ts, dtype=float)
     v = np.asarray(values, dtype=float)
     marks = np.asarray(marks, dtype=float)
+    if ts.size < 2 or v.shape != ts.shape:
+        raise ParameterError("values", "must be one value per time, at two or more times", show_value=False)
     marks = marks[(marks >= ts[0]) & (marks <= ts[-1])]
     if marks.size < 2:
         return np.empty(0), np.empty(0)
