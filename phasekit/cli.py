@@ -176,8 +176,9 @@ def _build_parser() -> _Parser:
     start.add_argument("--state", type=_real, nargs=6, metavar=("U", "V", "Omega", "Lambda", "theta", "n"),
                        help="the paper's state variables")
     start.add_argument("--gyroscopic", action="store_true", help="on the slow manifold at --theta0 with --omega0 or --n0")
-    start.add_argument("--unstable-manifold", metavar="horizontal|vertical",
-                       help="fixed point + --delta x unstable eigenvector, with --omega0 or --n0")
+    start.add_argument("--unstable-manifold", metavar="horizontal|vertical|inverted|horizontal-like",
+                       help="fixed point + --delta x unstable eigenvector, with --omega0 (horizontal, horizontal-like) "
+                            "or --n0 (vertical, inverted)")
     start.add_argument("--spin-about-vertical", type=_real, metavar="N0",
                        help="angular velocity N0 about the vertical at --theta0, centre of mass at rest (tippe top)")
     start.add_argument("--paper-start", metavar="5.1|5.2", help="the paper's printed start (5.1) with --n0, (5.2) with --omega0")
@@ -318,7 +319,11 @@ def _print_human(out: dict, events: bool) -> None:
         print(f"linearisation: {out['linearised_law']} ({out['stability']})")
         for fp in out["fixed_points"]:
             st = ", ".join(f"{k}={_fmt(v, '.8g')}" for k, v in fp["state"].items())
-            print(f"{fp['kind']:<13s} {fp['classification']}; residual {_fmt(fp['residual'], '.1e')}  [{st}]")
+            line = f"{fp['kind']:<15s} {fp['classification']}; residual {_fmt(fp['residual'], '.1e')}  [{st}]"
+            crit = (fp.get("parameter") or {}).get("stable_under_sliding_friction")
+            if crit is not None:
+                line += f"; closed-form criterion under sliding friction: {'stable' if crit else 'unstable'}"
+            print(line)
         print(f"({out['note']})")
         return
     if "J" in out:
