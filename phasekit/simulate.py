@@ -18,6 +18,7 @@ from .errors import ConvergenceError, ParameterError, Status
 from .hybrid import Event, Mode, Transition
 from .model import Model
 from .options import SolverOptions
+from .resets import contact_state
 from .starts import RATE_MAX
 from .system import declare, watched
 from .trajectory import EventRecord, Segment, Trajectory
@@ -167,8 +168,6 @@ class _Run:
         chart = self.model.chart
         x = None if x is None else np.asarray(x, dtype=float)
         if x is not None and x.size == FLIGHT.n_states:
-            from .resets import contact_state
-
             x = contact_state(self.model, x)
         y = None if x is None else chart.to_paper(x)
         self.records.append(EventRecord(name, float(t), before, after, x, detail, y))
