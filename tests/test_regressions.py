@@ -527,3 +527,14 @@ def test_wall_budget_holds_for_runs_of_many_short_segments():
     d = strict_json(out)
     assert code == 1 and d["status"] == "failed" and d["reason"].startswith("wall-time limit (0.5 s) reached at t = ")
     assert d["t_end"] < 200 and d["wall_s"] < 3.0
+
+
+def test_reader_closing_the_pipe_early_ends_quietly_without_a_traceback():
+    # `phasekit ... | head -c 20`: the reader leaves before the JSON is written
+    p = subprocess.Popen([sys.executable, "-m", "phasekit", "simulate", "--a", "1.5", "--mu", "0.1", "--state", "0", "0",
+                          "0", "0", "1.0", "0", "--t-end", "1", "--json"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    p.stdout.close()
+    err = p.stderr.read().decode()
+    assert p.wait(timeout=120) == 1
+    assert "Traceback" not in err and "BrokenPipe" not in err
