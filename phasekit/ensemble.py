@@ -298,9 +298,10 @@ def rerun(source, index: int | None = None, *, model: Model | None = None, **ove
 
     Parameters
     ----------
-    source : dict or DataFrame
-        A :meth:`Trajectory.to_dict` (or the CLI's ``simulate --json`` output, parsed), or a
-        DataFrame returned by :func:`ensemble` together with ``index``.
+    source : dict, DataFrame or Series
+        A :meth:`Trajectory.to_dict` (or the CLI's ``simulate --json`` output, parsed), a
+        DataFrame returned by :func:`ensemble` together with ``index``, or one row of it
+        (``df.iloc[k]``, ``df.loc[k]``, a row of a filtered table: it carries its ``i``).
     index : int, optional
         The row (``i``) of an ensemble table to repeat.
     model : Model, optional
@@ -315,7 +316,12 @@ def rerun(source, index: int | None = None, *, model: Model | None = None, **ove
         With the same start, end time, stop rule, events and solver options, hence the same
         numbers (t_jump to the last digit).
     """
-    if hasattr(source, "attrs") and hasattr(source, "columns"):
+    row = hasattr(source, "attrs") and hasattr(source, "index") and not hasattr(source, "columns")
+    if row and index is None:
+        if "i" not in source.index:  # a row of an ensemble table names its start
+            raise ParameterError("source", "is a Series without the column 'i' of an ensemble table", show_value=False)
+        index = int(source["i"])
+    if row or (hasattr(source, "attrs") and hasattr(source, "columns")):
         inputs = source.attrs.get("inputs")
         if inputs is None:
             raise ParameterError("source", "is a table without the inputs of an ensemble (df.attrs['inputs'])",

@@ -156,10 +156,16 @@ def row_from_cells(row_type, cells: list[str]):
     return row_type(**{f.name: _parse(c, hints[f.name]) for f, c in zip(flds, cells)})
 
 
+RUN_FIELDS = ("started", "git_commit", "git_dirty", "command", "phasekit", "heyoka", "casadi")
+MAX_RUNS = 50  # the manifest keeps the last runs of a study
+
+
 class ResultStore:
     """Append-only CSV of finished typed rows (keyed by their ``key`` field) with a JSON
     manifest beside it. Safe against a kill at any moment: rows are appended whole (one
-    write, flushed and fsynced) and every row is checked when the file is read back."""
+    write, flushed and fsynced) and every row is checked when the file is read back. The
+    manifest's ``runs`` lists every run that used the file (commit, command, rows added),
+    so resumed and re-plotted results still say what computed them."""
 
     def __init__(self, csv_path: Path, manifest_path: Path, row_type, meta: dict, fresh: bool = False):
         self.csv_path, self.manifest_path, self.row_type = Path(csv_path), Path(manifest_path), row_type
@@ -173,9 +179,22 @@ class ResultStore:
         self.dropped = 0
         if self.csv_path.exists():
             self._load()
+        # a resumed study keeps the history of its runs: which code and command computed how many rows
+        prev = self._read_manifest() if self._rows else {}
+        runs = list(prev.get("runs") or ([{k: prev.get(k) for k in RUN_FIELDS}] if prev else []))[-(MAX_RUNS - 1):]
+        now = _dt.datetime.now().isoformat(timespec="seconds")
+        self._run = {**{k: meta.get(k) for k in RUN_FIELDS}, "started": now, "rows_at_start": len(self._rows), "rows_added": 0}
         self.meta = dict(meta)
-        self.meta["started"] = self.meta.get("started") or _dt.datetime.now().isoformat(timespec="seconds")
+        self.meta["started"] = prev.get("started") or self.meta.get("started") or now
+        self.meta["runs"] = [*runs, self._run]
         self._write_manifest()
+
+    def _read_manifest(self) -> dict:
+        try:
+            prev = json.loads(self.manifest_path.read_text())
+        except (OSError, ValueError):
+            return {}
+        return prev if isinstance(prev, dict) else {}
 
     def _load(self) -> None:
         text = self.csv_path.read_text()
@@ -224,6 +243,7 @@ class ResultStore:
         if not isinstance(row, self.row_type):
             raise TypeError(f"expected a {self.row_type.__name__}, got {type(row).__name__}")
         self._rows[row.key] = row
+        self._run["rows_added"] += 1
         if not self.csv_path.exists():
             self._rewrite()
         else:

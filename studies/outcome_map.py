@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 import phasekit as pk
-from phasekit.viz import output_dir, pyplot, save_figure, study_parser
+from phasekit.viz import output_dir, plain_log_ticks, pyplot, save_figure, study_parser
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "outcome_map"
@@ -44,10 +44,11 @@ BASE = pk.Definition("sliding", "sliding")
 THRESHOLD_SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5, levels=3)
 STICK_SEARCH = dict(lo=1e-4, hi=0.2, tol=1e-2, n_coarse=8, levels=3)
 D_RANGE = (1e-3, 0.2)
+STEEP = 2.0  # d_min ratio between neighbouring value-lines above which a line is added between them
 VALUE_SPAN = (2.0, 12.0)  # the family parameter from 2x to 12x the lower bound (1.05 x the stability threshold)
-FULL = dict(maps=[1.5, 2 / 3], n_value=28, n_d=24, d_lines=10, stick_lines=8,
+FULL = dict(maps=[1.5, 2 / 3], n_value=28, n_d=24, d_lines=10, stick_lines=8, refine=3,
             scene_a=[0.5, 0.6, 2 / 3, 0.75, 0.8, 1.2, 1.35, 1.5, 1.75, 2.0, 2.5], scene_d=6, scene_v=5, chunk=48, per_task=8)
-QUICK = dict(maps=[1.5, 2 / 3], n_value=10, n_d=8, d_lines=5, stick_lines=4,
+QUICK = dict(maps=[1.5, 2 / 3], n_value=10, n_d=8, d_lines=5, stick_lines=4, refine=1,
              scene_a=[0.6, 2 / 3, 0.8, 1.3, 1.5, 2.0], scene_d=4, scene_v=3, chunk=40, per_task=6)
 COLOURS = {"stuck": "0.6", "rise": "#4c72b0", "jump": "#dd8452", "slow": "#8172b3", "failed": "k"}
 
@@ -75,6 +76,25 @@ def search_specs(g: dict, engine: str):
     for a in g["scene_a"]:
         points |= {("threshold", a, float(d)) for d in np.geomspace(4e-3, D_RANGE[1], g["scene_d"])}
         points |= {("stick", a, float(v)) for v in np.geomspace(*value_range(a), g["scene_v"])}
+    return _specs(points, g, engine)
+
+
+def refine_stick_lines(searches, g: dict) -> set:
+    """Where the traced sticking boundary of a 2-D map turns a corner (d_min changes by more
+    than a factor STEEP between neighbouring value-lines, or one of them sticks at every d),
+    a new value-line halfway (geometrically): the boundary is traced there too, not drawn
+    as a straight line across the corner."""
+    points = set()
+    for a in g["maps"]:
+        st = sorted((s.value, D_RANGE[1] if s.status == "no_jump_in_range" else s.threshold)
+                    for s in searches if s.kind == "stick" and abs(s.a - a) < 1e-12)
+        for (v1, d1), (v2, d2) in zip(st, st[1:]):
+            if d1 and d2 and max(d1 / d2, d2 / d1) > STEEP and v2 / v1 > 1.01:
+                points.add(("stick", a, float(math.sqrt(v1 * v2))))
+    return points
+
+
+def _specs(points, g: dict, engine: str):
     jobs, costs = [], []
     for kind, a, x in sorted(points):
         if kind == "threshold":
@@ -147,6 +167,8 @@ def run(specs, members, grid_keys, stores, args) -> str:
 
 def plot_maps(points, searches, g, png: Path, quick: bool) -> None:
     plt = pyplot()
+    from matplotlib import patheffects
+
     maps = g["maps"]
     fig, axes = plt.subplots(2, len(maps), figsize=(6.6 * len(maps), 10.5), squeeze=False)
     for col, a in enumerate(maps):
@@ -166,7 +188,8 @@ def plot_maps(points, searches, g, png: Path, quick: bool) -> None:
                              cmap="magma", vmin=0.0, vmax=1.0, edgecolors="none")
             fig.colorbar(sc, ax=ax2, label="share of the rise done at the jump")
             for p in jp[:: max(1, len(jp) // 14)]:
-                ax2.annotate(f"{p.t_jump:.0f}", (p.value, p.d), fontsize=6, color="c", xytext=(2, 2), textcoords="offset points")
+                ax2.annotate(f"{p.t_jump:.0f}", (p.value, p.d), fontsize=7, color="black", xytext=(2, 2), textcoords="offset points",
+                             path_effects=[patheffects.withStroke(linewidth=2.2, foreground="white")])
         _boundaries(ax2, [s for s in searches if abs(s.a - a) < 1e-12], a, legend=False)
         ax2.set_title("jumping starts: share of the rise done at the jump (numbers: t*)", fontsize=10)
         for axx in (ax, ax2):
@@ -175,6 +198,8 @@ def plot_maps(points, searches, g, png: Path, quick: bool) -> None:
             axx.set_xlabel(f"${name}$ (units $\\sqrt{{g/b}}$)")
             axx.set_ylabel(r"seed distance $d$ from the fixed point (rad)")
             axx.grid(alpha=0.3, which="both")
+            plain_log_ticks(axx, "x")
+            plain_log_ticks(axx, "y", subs=())
     handles, labels = axes[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=6, fontsize=8, frameon=False)
     for ax in axes[1]:
@@ -194,7 +219,7 @@ def _boundaries(ax, searches, a, legend=True) -> None:
     above = [s.value for s in searches if s.kind == "stick" and s.status == "no_jump_in_range"]
     if above:  # stuck at every d up to D_RANGE[1]: d_min lies above the map
         ax.plot(above, [D_RANGE[1]] * len(above), ls="none", marker=r"$\uparrow$", ms=12, color="crimson",
-                label="stuck for every d <= 0.2" if legend else None)
+                label=f"stuck for every d \u2264 {D_RANGE[1]:g}" if legend else None)
     st = sorted((s.value, s) for s in searches if s.kind == "stick" and s.threshold)
     if st:
         ax.errorbar([v for v, _ in st], [s.threshold for _, s in st],
@@ -243,14 +268,19 @@ def render_region(points, searches, g, png: Path, quick: bool) -> dict:
             cloud = pv.PolyData(np.array([to_box(p.a, p.value, p.d) for p in jp]))
             cloud["t* (jump time)"] = np.array([p.t_jump for p in jp])
             pl.add_mesh(cloud, scalars="t* (jump time)", cmap="viridis", point_size=5, render_points_as_spheres=True, clim=(0, 60),
-                        scalar_bar_args=dict(color="black", position_x=0.25, position_y=0.04, width=0.5, height=0.06,
-                                             title_font_size=14, label_font_size=12))
+                        scalar_bar_args=dict(color="black", vertical=True, position_x=0.91, position_y=0.25, width=0.035, height=0.42,
+                                             title="t*", n_labels=5, fmt="%.0f", title_font_size=16, label_font_size=13))
         pl.add_mesh(pv.Box(bounds=(0, 1.4, 0, 1, 0, 1)).extract_all_edges(), color="black", line_width=1)
-        pl.show_grid(bounds=[0, 1.4, 0, 1, 0, 1], axes_ranges=[*box["a"], *box["v"], *box["d"]], color="black",
-                     xtitle="aspect ratio a", ytitle=f"log10 {name}", ztitle="log10 d", font_size=12)
-        pl.add_legend(bcolor="white", face="rectangle", size=(0.22, 0.08), loc="upper left")
-        pl.add_text(f"{branch}: the start jumps above both surfaces" + (" (quick run)" if quick else ""), position="upper_right",
-                    font_size=11, color="black")
+        pl.show_grid(bounds=[0, 1.4, 0, 1, 0, 1], axes_ranges=[*box["a"], *box["v"], *box["d"]], color="black", fmt="%.2f",
+                     xtitle="aspect ratio a", ytitle=f"log10({name} / sqrt(g/b))", ztitle="log10(d / rad)", font_size=15,
+                     n_xlabels=4)
+        pl.add_legend(bcolor="white", face="rectangle", size=(0.26, 0.08), loc="lower left")
+        pl.add_text(f"{branch}, a = {min(sa):.3g} ... {max(sa):.3g}: a start jumps above both surfaces" + (" (quick run)" if quick else ""),
+                    position=(0.03, 0.95), viewport=True, font_size=13, color="black")
+        pl.add_text(f"surfaces: jump threshold {name}*(a, d) (bisected to 1e-3) and sticking\n"
+                    f"boundary d_min(a, {name}) (to 1e-2); sliding-branch starts at distance d,\n"
+                    f"exact Coulomb mu = {BASE.mu:g}, rtol {BASE.rtol:g}; dots: jumping starts, colour t* (sqrt(b/g))",
+                    position=(0.03, 0.845), viewport=True, font_size=10, color="black")
         pl.camera_position = [(4.2, -1.5, 1.7), (0.7, 0.5, 0.42), (0, 0, 1)]  # value to the right, d up
         counts[branch] = {"threshold_points": n_th, "stick_points": n_st, "jump_starts": len(jp)}
     pl.screenshot(str(png))
@@ -364,8 +394,20 @@ def main(argv=None) -> dict:
     how = run(gspecs + sspecs, members, grid_keys, (out_store, search_store), args)
     point_keys = {k for ks in grid_keys.values() for k in ks}
     points = [r for r in out_store.rows() if r.key in point_keys]
-    skeys = {k for ks in members.values() for k in ks}
-    searches = [r for r in search_store.rows() if r.key in skeys]
+
+    def traced():
+        skeys = {k for ks in members.values() for k in ks}
+        return [r for r in search_store.rows() if r.key in skeys]
+
+    searches = traced()
+    for level in range(g["refine"]):  # each level depends on the last: resumable, since its lines follow from stored rows
+        extra = refine_stick_lines(searches, g)
+        if not extra:
+            break
+        rspecs, rmembers = _specs(extra, g, "batch")
+        members.update(rmembers)
+        how += f"; corners of d_min, level {level + 1}: " + run(rspecs, members, {}, (out_store, search_store), args)
+        searches = traced()
     plot_maps(points, searches, g, out / f"{STEM}.png", args.quick)
     counts = {} if args.no_scene else render_region(points, searches, g, out / "jump_region.png", args.quick)
     summary = summarise(points, searches, g)

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 import phasekit as pk
-from phasekit.viz import output_dir, pyplot, save_figure, study_parser
+from phasekit.viz import output_dir, plain_log_ticks, pyplot, save_figure, study_parser
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "threshold_vs_mu"
@@ -162,11 +162,12 @@ def plot(rows, g, coll, png: Path, quick: bool) -> None:
             if pts:
                 ax.plot(*zip(*pts), "o-", color=colour[mu], ms=4, label=fr"$\mu$ = {mu:.3g}")
         ax.set_yscale("log")
+        plain_log_ticks(ax, "y", subs=(2, 3, 4, 5, 6, 7, 8))
         ax.set_xlabel(r"aspect ratio $a$")
         ax.grid(alpha=0.3, which="both")
     axes[0, 0].set_ylabel(r"threshold $\Omega_0^*$ (units $\sqrt{g/b}$)")
     axes[0, 1].set_ylabel(r"threshold $n_0^*$ (units $\sqrt{g/b}$)")
-    axes[0, 0].set_title("prolate, from the horizontal precession", fontsize=10)
+    axes[0, 0].set_title(r"prolate, from the horizontal precession ($\mu \leq 0.1$: curves nearly coincide)", fontsize=10)
     axes[0, 1].set_title("oblate, from the vertical spin", fontsize=10)
     axes[0, 0].legend(fontsize=8, ncol=2)
     ax = axes[1, 0]
@@ -178,8 +179,9 @@ def plot(rows, g, coll, png: Path, quick: bool) -> None:
             pts = sorted((r.a, r.threshold / f) for r in main if r.branch == branch and r.mu == mu and r.threshold)
             ax.plot(*zip(*pts), marker=marker, ls="-", color=colour[mu], ms=3, lw=0.8)
     ax.set_yscale("log")
+    plain_log_ticks(ax, "y", subs=(2, 3, 4, 5, 6, 7, 8))
     ax.set_xlabel(r"aspect ratio $a$")
-    ax.set_ylabel(r"threshold / $f(\mu)$")
+    ax.set_ylabel(r"threshold / $f(\mu)$ (units $\sqrt{g/b}$)")
     spread = coll.get("max_spread")
     ax.set_title(r"collapse test: threshold / $f(\mu)$, $f$ fitted per $\mu$ and branch" + "\n"
                  + (f"remaining spread max |ln| = {spread:.3f} (raw, f = 1: {coll['max_raw_spread']:.3f})" if spread else ""),
@@ -190,23 +192,22 @@ def plot(rows, g, coll, png: Path, quick: bool) -> None:
         for mu in g["d_mu"]:
             pts = sorted((r.d, r.threshold) for r in rows if abs(r.a - a) < 1e-12 and r.mu == mu and r.threshold)
             if len(pts) > 1:
-                ax.plot(*zip(*pts), marker="o", ls=ls, color=colour.get(mu, "k"), ms=4,
-                        label=f"a = {a:.3g} ({'solid' if ls == '-' else 'dashed'})" if mu == g["d_mu"][-1] else None)
+                ax.plot(*zip(*pts), marker="o", ls=ls, color=colour.get(mu, "k"), ms=4)
+        ax.plot([], [], ls=ls, color="0.3", label=f"a = {a:.3g}")  # line style only: colours are mu, as above
     ds = np.array([2.5e-3, 1e-2])
     ax.plot(ds, 30.0 * (ds / ds[0]) ** -0.5, "k:", lw=1, label=r"slope $-1/2$ ($d\,\Omega_0^2$ = const: the sticking boundary)")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    from matplotlib.ticker import NullFormatter
-
-    ax.xaxis.set_minor_formatter(NullFormatter())
+    plain_log_ticks(ax, "y", subs=(2, 3, 4, 5, 6, 7, 8))
+    plain_log_ticks(ax, "x", subs=())
     ax.set_xticks(g["d_lines"]["d"], [f"{d:g}" for d in g["d_lines"]["d"]])
     ax.set_xlabel(r"seed distance $d$ from the fixed point (rad)")
-    ax.set_ylabel(r"threshold $\Omega_0^*$ or $n_0^*$")
+    ax.set_ylabel(r"threshold $\Omega_0^*$ or $n_0^*$ (units $\sqrt{g/b}$)")
     ax.set_title(r"threshold against $d$ (one colour per $\mu$; solid a = 1.5, dashed a = 2/3)", fontsize=9)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
-    fig.suptitle(r"Jump thresholds over $(a, \mu)$: exact Coulomb friction, sliding-branch starts at $d$ = 0.01, "
-                 r"bisection to $10^{-3}$" + (" (quick run)" if quick else ""), fontsize=11)
+    fig.suptitle(r"Jump thresholds over $(a, \mu)$: exact Coulomb friction, sliding-branch starts at $d$ = 0.01 "
+                 r"(bottom right: $d$ varies), bisection to $10^{-3}$, rtol $10^{-9}$" + (" (quick run)" if quick else ""), fontsize=11)
     fig.tight_layout(rect=(0, 0, 1, 0.97))
     save_figure(fig, png)
 

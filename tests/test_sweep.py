@@ -3,6 +3,7 @@ propagation against the scalar path, sensitivity of a threshold to its definitio
 resumable stores of the new row types."""
 
 import csv
+import json
 import math
 from dataclasses import asdict, dataclass, replace
 
@@ -142,6 +143,11 @@ def test_search_rows_survive_a_kill_and_resume(tmp_path):
         rows = list(csv.DictReader(fh))
     assert [r["key"] for r in rows] == ["k4", "k3", "k2", "k1", "k0"] and rows[0]["sens_half"] == ""
     assert defn.key() != replace(defn, amplitude=0.1).key()
+    # the manifest keeps both runs: what each computed, and under which command
+    ResultStore(csv_path, man, SearchRow, {"study": "t", "command": "replot"})
+    runs = json.loads(man.read_text())["runs"]
+    assert [(r["rows_at_start"], r["rows_added"]) for r in runs] == [(0, 2), (2, 3), (5, 0)]
+    assert runs[-1]["command"] == "replot" and json.loads(man.read_text())["started"] == runs[0]["started"]
 
 
 def _row_task(prev, i):

@@ -208,6 +208,12 @@ def test_rerun_reproduces_a_result_from_its_json_and_an_ensemble_row(model, ten_
     assert pk.rerun(df, 2).t_jump == df["t_jump"].iloc[2]
     with pytest.raises(ParameterError, match="`index`"):
         pk.rerun(df)
+    # one row, taken out of a filtered table: its position there is not its start's
+    row = df.iloc[1:].iloc[1]
+    again = pk.rerun(row)
+    assert row["i"] == 2 and again.t_jump == df["t_jump"].iloc[2] and again.R_min == df["R_min"].iloc[2]
+    with pytest.raises(ParameterError, match="`source`"):
+        pk.rerun(df.iloc[2].drop("i"))
 
 
 # -- extension points ------------------------------------------------------------------------------

@@ -1,7 +1,7 @@
 """Drawing and study output. Nothing here imports a plotting library at import time:
 matplotlib is imported by the functions that draw, pyvista only when a 3-D scene is drawn."""
 
-from .mpl import LABELS, label, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
+from .mpl import LABELS, label, plain_log_ticks, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
 from .output import atomic_path, output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
 from .pv import RenderInfo, render_scene
 
@@ -13,6 +13,7 @@ __all__ = [
     "plot_section",
     "plot_phase",
     "plot_minima",
+    "plain_log_ticks",
     "label",
     "LABELS",
     "study_parser",

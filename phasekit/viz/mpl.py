@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["LABELS", "label", "plot_timeseries", "plot_events", "plot_section", "plot_phase", "plot_minima"]
+__all__ = ["LABELS", "label", "plot_timeseries", "plot_events", "plot_section", "plot_phase", "plot_minima", "plain_log_ticks"]
 
 #: axis labels: symbol and unit of every column of a sample or section table
 LABELS = {
@@ -141,3 +141,25 @@ def plot_minima(ax, traj, **style):
     m = traj.minima
     kw = {"s": 10, "color": "C3", "zorder": 3, **style}
     return ax.scatter(m[:, 0], m[:, 1], **kw)
+
+
+def plain_log_ticks(ax, axis: str = "both", subs=(2, 3, 5)):
+    """Label a log axis with plain numbers (6, 20, 0.002) instead of 6x10^0, at the
+    decades and at the minor ticks with mantissa in ``subs``, so that values on a
+    log scale that spans less than a decade can still be read off. Returns ``ax``."""
+    from matplotlib import ticker
+
+    def major(x, _=None):
+        return f"{x:.10g}" if x > 0 else ""
+
+    def minor(x, _=None):
+        if x <= 0:
+            return ""
+        m = round(x / 10 ** np.floor(np.log10(x) + 1e-9))
+        return major(x) if m in subs else ""
+
+    for name in ("x", "y") if axis == "both" else (axis,):
+        ax_ = getattr(ax, f"{name}axis")
+        ax_.set_major_formatter(ticker.FuncFormatter(major))
+        ax_.set_minor_formatter(ticker.FuncFormatter(minor))
+    return ax
