@@ -29,6 +29,14 @@ def _unary(hy):
         ca.OP_ACOS: hy.acos,
         ca.OP_ATAN: hy.atan,
         ca.OP_TANH: hy.tanh,
+        ca.OP_SINH: hy.sinh,
+        ca.OP_COSH: hy.cosh,
+        ca.OP_ASINH: hy.asinh,
+        ca.OP_ACOSH: hy.acosh,
+        ca.OP_ATANH: hy.atanh,
+        ca.OP_ERF: hy.erf,
+        ca.OP_LOG1P: lambda a: hy.log(1.0 + a),
+        ca.OP_EXPM1: lambda a: hy.exp(a) - 1.0,
         ca.OP_ASSIGN: lambda a: a,
     }
 
@@ -42,7 +50,26 @@ def _binary(hy):
         ca.OP_POW: lambda a, b: a**b,
         ca.OP_CONSTPOW: lambda a, b: a**b,
         ca.OP_ATAN2: hy.atan2,
+        ca.OP_HYPOT: lambda a, b: hy.sqrt(a * a + b * b),
     }
+
+
+#: operations with a kink or a jump: a body's profile (or a law) built from them is not smooth
+NON_SMOOTH = {getattr(ca, f"OP_{n}") for n in ("FABS", "FMAX", "FMIN", "IF_ELSE_ZERO", "SIGN", "FLOOR", "CEIL", "FMOD",
+                                                "COPYSIGN", "REMAINDER", "EQ", "NE", "LT", "LE", "AND", "OR", "NOT")}
+_STRUCTURAL = {ca.OP_CONST, ca.OP_INPUT, ca.OP_OUTPUT}
+_OP_NAMES = {getattr(ca, n): n[3:].lower() for n in dir(ca) if n.startswith("OP_")}
+
+
+def operations(f: ca.Function) -> dict[str, set[str]]:
+    """The operations of an SX function that the Taylor integrator cannot take:
+    ``{"non_smooth": names, "untranslated": names}`` (both empty when all is well)."""
+    import heyoka as hy
+
+    known = set(_unary(hy)) | set(_binary(hy)) | _STRUCTURAL
+    ops = {f.instruction_id(k) for k in range(f.n_instructions())}
+    return {"non_smooth": {_OP_NAMES.get(op, str(op)) for op in ops & NON_SMOOTH},
+            "untranslated": {_OP_NAMES.get(op, str(op)) for op in ops - known - NON_SMOOTH}}
 
 
 def to_heyoka(f: ca.Function, inputs: list[list]) -> list:

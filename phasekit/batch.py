@@ -48,7 +48,8 @@ from .errors import ParameterError, Status
 from .hybrid import Mode
 from .model import Model
 from .options import SolverOptions
-from .simulate import POLE_GUARD, simulate, solver_options
+from .charts import POLE_GUARD
+from .simulate import simulate, solver_options
 from .system import declare, watched
 from .trajectory import EventRecord, Segment, Trajectory
 from .validate import check_int

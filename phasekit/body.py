@@ -87,12 +87,23 @@ class Body:
     def structure_key(self) -> str:
         """Identifies the symbolic form of H (not the numbers): bodies with equal keys share
         compiled models."""
-        if self._key is None:
+        if getattr(self, "_key", None) is None:
             c, sh = ca.SX.sym("c"), ca.SX.sym("shape", self.n_shape)
             f = ca.Function("H", [c, sh], [self.height(c, sh)])
             digest = hashlib.sha256(f.serialize().encode()).hexdigest()[:16]
             self._key = f"{type(self).__qualname__}:{self.n_shape}:{digest}"
         return self._key
+
+    def check_inertia(self) -> None:
+        """Raise ParameterError naming `A` or `C` if a moment exceeds M r_max^2: all the mass
+        lies within r_max = max |GP| of G (called when a Model is built: the shape is set
+        after the moments in some bodies' constructors)."""
+        h, h1, _ = (np.asarray(v, dtype=float).ravel() for v in self.h(np.linspace(0.0, np.pi, 181)))
+        r2 = float(np.max(h * h + h1 * h1)) * (1 + 1e-9)
+        for name, value in (("A", self.A), ("C", self.C)):
+            if value > r2:
+                raise ParameterError(name, f"must be at most {r2:.6g} (M r_max^2: no point of the body is farther than "
+                                           f"r_max = {np.sqrt(r2):.6g} from G)", value)
 
     def h(self, theta):
         """(h, h_theta, h_thetatheta) at theta (float or array), exact derivatives via CasADi."""
@@ -387,6 +398,7 @@ class CustomBody(Body):
             raise ParameterError("height", f"must return a CasADi expression ({type(exc).__name__}: {exc})", show_value=False) from None
         if not scalar:
             raise ParameterError("height", "must return one scalar CasADi expression (the height of G)", show_value=False)
+        self._check_operations()
         interior = (1e-6, np.pi - 1e-6) if variable == "theta" else (0.0, np.pi)
         self.check_convex("height", interior)
         if A is None or C is None:
@@ -399,6 +411,22 @@ class CustomBody(Body):
             C = props.C if C is None else C
         super().__init__(A, C)
 
+    def _check_operations(self) -> None:
+        """A profile with a kink (fabs, fmax, if_else, ...) is not smooth, whatever its values
+        say at the sample points; one the Taylor integrator cannot compile is refused here,
+        not at the first simulation."""
+        from ._translate import operations
+
+        c = ca.SX.sym("c")
+        ops = operations(ca.Function("h", [c], [ca.SX(self.height(c, ca.SX.sym("shape", 0)))]))
+        if ops["non_smooth"]:
+            raise ParameterError("height", f"must be smooth: it uses {', '.join(sorted(ops['non_smooth']))} (kinks or jumps); "
+                                           "write the profile with smooth functions", show_value=False)
+        if ops["untranslated"]:
+            raise ParameterError("height", f"uses {', '.join(sorted(ops['untranslated']))}, which the Taylor integrator cannot "
+                                           "compile (use sqrt, exp, log, sin, cos, tan, their inverses, sinh, cosh, tanh, erf, "
+                                           "powers)", show_value=False)
+
     @property
     def shape_params(self) -> tuple[float, ...]:
         return ()
@@ -410,7 +438,7 @@ class CustomBody(Body):
 
     @property
     def structure_key(self) -> str:
-        if self._key is None:
+        if getattr(self, "_key", None) is None:
             c = ca.SX.sym("c")
             f = ca.Function("H", [c], [self.height(c, ca.SX.sym("shape", 0))])
             self._key = "CustomBody:" + hashlib.sha256(f.serialize().encode()).hexdigest()[:16]

@@ -28,6 +28,9 @@ import numpy as np
 
 from .errors import ParameterError
 
+#: theta within this of 0 or pi cannot be integrated in the Euler chart (2.7c divides by sin)
+POLE_GUARD = 1e-12
+
 __all__ = ["Chart", "EULER", "VECTOR", "FLIGHT", "CHARTS", "PAPER_NAMES", "get_chart", "euler_to_vector", "vector_to_euler"]
 
 #: the paper's state variables, in order

@@ -8,10 +8,12 @@ output is sent to stderr while it runs). Exit codes and what stderr holds:
 1    a run that failed (status "failed" and its reason), or a solver error in one line;
 2    bad input: one line naming the flag as typed, its valid range and the plain value;
 130  interrupted.
-With ``--json`` an error is also one JSON object on stdout: status "error" (or "failed"),
-the flag, the message. A non-finite number never reaches the output: the run is reported
-failed, saying where. An unexpected exception (a bug) prints one line too; set
-PHASEKIT_DEBUG=1 for its traceback (the tests do).
+With ``--json`` an error is also one JSON object on stdout: status "error" with the flag
+(``parameter``) and the ``message``, or "failed" / "interrupted" with its ``reason`` too.
+A flag is named as typed (``--spin-about-vertical``, not the ``--n0`` it stands for); a
+value-taking option given twice is refused. A non-finite number never reaches the output:
+the run is reported failed, saying where. An unexpected exception (a bug) prints one line
+too; set PHASEKIT_DEBUG=1 for its traceback (the tests do).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import difflib
+import functools
 import json
 import math
 import os
@@ -49,6 +52,30 @@ FLAGS = {
     "max_steps": "--max-steps", "max_wall": "--max-wall", "unstable_manifold": "--unstable-manifold",
     "t": "--t", "T": "--t", "label": "--paper-start", "level": "--stop-at", "max_switches": "--max-switches",
 }
+#: API parameters that more than one flag feeds: (flag typed, name to print), the first typed one wins
+#: (e.g. `n0` is --spin-about-vertical's value in that start, and theta its --theta0)
+SOURCES = {
+    "n0": (("--spin-about-vertical", "--spin-about-vertical"), ("--n0", "--n0")),
+    "theta": (("--state", "--state (theta)"), ("--theta0", "--theta0")),
+    "Omega": (("--state", "--state (Omega)"), ("--spin-about-vertical", "--spin-about-vertical")),
+    "n": (("--state", "--state (n)"), ("--spin-about-vertical", "--spin-about-vertical")),
+}
+
+
+def _typed(argv) -> list[str]:
+    """The options as typed (``--name`` of ``--name=value`` too), up to a bare ``--``."""
+    argv = list(argv)
+    argv = argv[:argv.index("--")] if "--" in argv else argv
+    return [a.split("=", 1)[0] for a in argv if isinstance(a, str) and a.startswith("--") and len(a) > 2]
+
+
+def _flag_names(argv) -> dict:
+    """FLAGS for this command line: a parameter fed by several flags is named by the one typed."""
+    typed = set(_typed(argv))
+    names = dict(FLAGS)
+    for param, sources in SOURCES.items():
+        names[param] = next((shown for flag, shown in sources if flag in typed), FLAGS.get(param, f"`{param}`"))
+    return names
 
 
 class _UsageError(Exception):
@@ -58,6 +85,13 @@ class _UsageError(Exception):
 
 
 class _Parser(argparse.ArgumentParser):
+    """One-line errors; a subcommand's parser reports its own unknown options (so that a
+    suggestion comes from its flags, and a flag of another subcommand is said to be one)."""
+
+    command: str | None = None  # the subcommand this parser reads (None: the top level)
+    commands: dict = {}  # every subcommand's parser, by name (set by _build_parser)
+    argv: tuple = ()
+
     def __init__(self, *args, **kwargs):
         kwargs.setdefault("allow_abbrev", False)
         kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
@@ -66,25 +100,44 @@ class _Parser(argparse.ArgumentParser):
         # -1e-4 as an option; accept any negative float literal as a value.
         self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|nan)$", re.I)
 
+    def parse_known_args(self, args=None, namespace=None):
+        namespace, extras = super().parse_known_args(args, namespace)
+        if extras and self.command is not None:  # argparse would report them from the top level
+            self.error("unrecognized arguments: " + " ".join(extras))
+        return namespace, extras
+
     def error(self, message):  # one line, no usage block
         flag = re.search(r"argument (--[\w-]+)|required: (--[\w-]+)$|unrecognized arguments: (\S+)", message)
         flag = next((g for g in flag.groups() if g), None) if flag else None
         if message.startswith("unrecognized arguments") and flag:
-            if flag.startswith("--"):
-                known = sorted(getattr(self, "known_flags", self._option_string_actions))
-                close = difflib.get_close_matches(flag, known, n=1)
-                message += f" (did you mean {close[0]}?)" if close else ""
+            if flag.startswith("-") and not self._negative_number_matcher.match(flag):
+                flag = flag.split("=", 1)[0]
+                message += f" ({self._unknown_option(flag)})"
             else:  # a stray value: more values than the option before it takes
                 flag = self._owner_of(flag)
-                counts = getattr(self, "value_counts", {})
+                counts = {f: 0 if a.nargs == 0 else 1 if a.nargs is None else a.nargs
+                          for f, a in self._option_string_actions.items()}
                 takes = {0: "no value", 1: "one value"}.get(counts.get(flag), f"exactly {counts.get(flag)} numbers")
                 message += f" (a value that follows no option: {flag} takes {takes})" if flag else \
                     " (a value that follows no option)"
         raise _UsageError(message, flag)
 
+    def _unknown_option(self, flag: str) -> str:
+        """Why ``flag`` is refused: it belongs to other commands, or the nearest own flag."""
+        owners = [name for name, p in self.commands.items() if name != self.command and flag in p._option_string_actions]
+        if owners and self.command is None:
+            return f"{flag} is an option of the commands ({', '.join(owners)}), not of phasekit itself: write it " \
+                   f"after the command, e.g. phasekit {owners[0]} ... {flag}"
+        if owners:
+            return f"{flag} is not an option of {self.command}: it is one of {', '.join(owners)}"
+        own = sorted(f for f in self._option_string_actions if f.startswith("--") and f != flag)
+        close = difflib.get_close_matches(flag, own, n=1)
+        where = f"of {self.command}" if self.command else "of phasekit: give a command first"
+        return f"did you mean {close[0]}?" if close else f"not an option {where} (see --help)"
+
     def _owner_of(self, token: str) -> str | None:
         """The option written last before a stray ``token`` on the command line."""
-        argv = list(getattr(self, "argv", ()))
+        argv = list(self.argv)
         if token not in argv:
             return None
         before = [a for a in argv[:argv.index(token)] if a.startswith("--")]
@@ -223,9 +276,12 @@ def _build_parser() -> _Parser:
     gy.add_argument("--theta0", type=_real, required=True, help="initial inclination, radians, in (0, pi)")
     gy.add_argument("--t", type=_real, nargs="+", required=True, help="times (units sqrt(b/g))")
     gy.add_argument("--json", action="store_true", help="print one JSON object")
-    parser.known_flags = {f for p in (sim, fx, gy) for f in p._option_string_actions if f.startswith("--")}
-    parser.value_counts = {f: (0 if a.nargs == 0 else 1 if a.nargs is None else a.nargs)
-                           for p in (sim, fx, gy) for f, a in p._option_string_actions.items()}
+    commands = {"simulate": sim, "fixed-points": fx, "gyroscopic": gy}
+    for name, p in commands.items():
+        p.command = name
+    for p in (parser, *commands.values()):
+        p.commands = commands
+    parser.known_flags = {f for p in commands.values() for f in p._option_string_actions if f.startswith("--")}
     return parser
 
 
@@ -250,7 +306,10 @@ def _law_args(args) -> tuple[str, float, float | None]:
 def _cmd_simulate(args) -> dict:
     from .api import simulate_start
 
-    start = _start_of(args)
+    if args.paper_start is not None:
+        _paper_body(args)
+    body = _body(args)
+    start = _start_of(args, body)
     if args.restitution is not None and args.stop_at in ("jump", "touchdown"):
         warnings.warn(f"--restitution has no effect with --stop-at {args.stop_at} (impacts happen with --stop-at none "
                       "or --stop-at NAME=VALUE)")
@@ -258,7 +317,7 @@ def _cmd_simulate(args) -> dict:
         warnings.warn("--atol has no effect with --backend taylor (the Taylor method has the one tolerance --rtol)")
     friction, mu, eps = _law_args(args)
     opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall)
-    return simulate_start(body=_body(args), friction=friction, mu=mu, slip_eps=eps, start=start,
+    return simulate_start(body=body, friction=friction, mu=mu, slip_eps=eps, start=start,
                           t_end=args.t_end, stop_at=args.stop_at,
                           restitution=0.0 if args.restitution is None else args.restitution,
                           formulation=args.formulation, options=opts)
@@ -270,13 +329,63 @@ def _refuse(args, names, why):
             raise _UsageError(f"{FLAGS[name]} {why}", FLAGS[name])
 
 
-def _start_of(args) -> dict:
+def _paper_body(args) -> None:
+    """The printed start fixes its body (a uniform spheroid of one aspect ratio): refuse, naming
+    it, a flag that says otherwise; --a defaults to the start's."""
+    from .errors import plain
+    from .paper import PAPER_CASES
+
+    label = args.paper_start[1:-1] if re.fullmatch(r"\(.*\)", args.paper_start) else args.paper_start
+    if label not in PAPER_CASES:
+        raise _UsageError(f"--paper-start must be one of {', '.join(PAPER_CASES)} (the paper's printed starts), "
+                          f"got {plain(args.paper_start)}.", "--paper-start")
+    case = PAPER_CASES[label]
+    args.paper_start = label
+    which = f"with --paper-start {label} (its body is the uniform spheroid a = {case.a:.6g})"
+    if args.body != "spheroid":
+        raise _UsageError(f"--body must be spheroid {which}, got {plain(args.body)}.", "--body")
+    for name in ("A", "C", "offset", "w"):
+        if getattr(args, name) is not None:
+            raise _UsageError(f"{FLAGS[name]} must be left out {which}, got {plain(getattr(args, name))}.", FLAGS[name])
+    if args.a is None:
+        args.a = case.a
+    elif not abs(args.a - case.a) <= 1e-4 * case.a:  # the API's tolerance; also refuses nan
+        raise _UsageError(f"--a must be {case.a:.6g} {which}, got {plain(args.a)}.", "--a")
+
+
+def _manifold_states(body) -> tuple[str, ...]:
+    """The steady states of ``body`` that --unstable-manifold can start from (phasekit.fixedpoints:
+    horizontal only where h_theta(pi/2) = 0, horizontal-like only for a body without flip symmetry
+    that can lie on its side)."""
+    from .fixedpoints import side_equilibrium
+
+    level = body.flip_symmetric or abs(body.h(math.pi / 2)[1]) < 1e-14
+    like = not body.flip_symmetric and math.isfinite(side_equilibrium(body)[0])
+    return ("horizontal",) * level + ("vertical", "inverted") + ("horizontal-like",) * like
+
+
+def _manifold_start(args, body) -> dict:
+    from .errors import plain
+
+    _refuse(args, ["theta0"], "does not go with --unstable-manifold (the fixed point fixes theta)")
+    states = ("vertical", "inverted") if args.unstable_manifold in ("vertical", "inverted") else _manifold_states(body)
+    if args.unstable_manifold not in states:
+        why = {"horizontal": " (it has no horizontal state: with its axis level its centre of mass is not above the "
+                             "contact point" + ("; horizontal-like is the precession that continues it)"
+                                                if "horizontal-like" in states else ")"),
+               "horizontal-like": " (horizontal-like is for a body without flip symmetry that can lie on its side)"
+               }.get(args.unstable_manifold, "")
+        raise _UsageError(f"--unstable-manifold must be one of {', '.join(states)} for the {args.body} body{why}, "
+                          f"got {plain(args.unstable_manifold)}.", "--unstable-manifold")
+    return dict(kind="unstable-manifold", state=args.unstable_manifold,
+                delta=0.01 if args.delta is None else args.delta, omega0=args.omega0, n0=args.n0,
+                branch="+0" if args.branch is None else args.branch,
+                seed_law="viscous" if args.seed_law is None else args.seed_law)
+
+
+def _start_of(args, body) -> dict:
     if args.unstable_manifold is not None:
-        _refuse(args, ["theta0"], "does not go with --unstable-manifold (the fixed point fixes theta)")
-        return dict(kind="unstable-manifold", state=args.unstable_manifold,
-                    delta=0.01 if args.delta is None else args.delta, omega0=args.omega0, n0=args.n0,
-                    branch="+0" if args.branch is None else args.branch,
-                    seed_law="viscous" if args.seed_law is None else args.seed_law)
+        return _manifold_start(args, body)
     _refuse(args, ["delta", "branch", "seed_law"], "goes with --unstable-manifold only")
     if args.gyroscopic:
         if args.theta0 is None:
@@ -305,9 +414,18 @@ def _cmd_fixed_points(args) -> dict:
 
 
 def _cmd_gyroscopic(args) -> dict:
+    """The report at the times in the order given (the API returns them sorted)."""
     from .api import gyroscopic_report
 
-    return gyroscopic_report(body=_body(args), mu=args.mu, theta0=args.theta0, t=args.t, omega0=args.omega0, n0=args.n0)
+    out = gyroscopic_report(body=_body(args), mu=args.mu, theta0=args.theta0, t=args.t, omega0=args.omega0, n0=args.n0)
+    order = sorted(range(len(args.t)), key=args.t.__getitem__)  # the API's order (its times are finite)
+    if len(out["t"]) == len(order) and order != sorted(order):
+        for key in ("t", "T", "theta", "Omega"):
+            values = [None] * len(order)
+            for rank, i in enumerate(order):
+                values[i] = out[key][rank]
+            out[key] = values
+    return out
 
 
 def _fmt(v, spec: str = ".10g") -> str:
@@ -418,24 +536,27 @@ def _stdout_to_stderr():
         os.close(saved)
 
 
-def _flags_in(text: str) -> str:
+def _flags_in(text: str, names: dict = FLAGS) -> str:
     """Python parameter names written `name` in a library message -> the CLI's flags."""
-    text = re.sub(r"`(\w+)`\s*=\s*'([^']*)'", lambda m: f"{FLAGS[m.group(1)]} {m.group(2)}" if m.group(1) in FLAGS
+    text = re.sub(r"`(\w+)`\s*=\s*'([^']*)'", lambda m: f"{names[m.group(1)]} {m.group(2)}" if m.group(1) in names
                   else m.group(0), text)
-    return re.sub(r"`(\w+)`", lambda m: FLAGS.get(m.group(1), m.group(0)), text)
+    return re.sub(r"`(\w+)`", lambda m: names.get(m.group(1), m.group(0)), text)
 
 
-def _error(message: str, flag: str | None, as_json: bool, code: int = 2) -> int:
-    message = " ".join(_flags_in(str(message)).split())
+def _error(message: str, flag: str | None, as_json: bool, code: int = 2, names: dict = FLAGS) -> int:
+    """One line on stderr; with --json one object on stdout: status "error" (bad input) with the
+    flag, or "failed" / "interrupted" with its reason."""
+    message = " ".join(_flags_in(str(message), names).split())
     print(f"phasekit: error: {message}", file=sys.stderr)
     if as_json:
         status = "error" if code == 2 else "interrupted" if code == 130 else "failed"
-        print(json.dumps({"status": status, "parameter": flag, "message": message}))
+        out = {"status": status, "parameter": flag, "message": message}
+        print(json.dumps(out if code == 2 else {**out, "reason": message}))
     return code
 
 
-def _show_warning(message, category, filename, lineno, file=None, line=None):
-    print(f"phasekit: warning: {' '.join(_flags_in(str(message)).split())}", file=sys.stderr)
+def _show_warning(message, category, filename, lineno, file=None, line=None, names: dict = FLAGS):
+    print(f"phasekit: warning: {' '.join(_flags_in(str(message), names).split())}", file=sys.stderr)
 
 
 COMMANDS = {"simulate": _cmd_simulate, "fixed-points": _cmd_fixed_points, "gyroscopic": _cmd_gyroscopic}
@@ -443,19 +564,38 @@ COMMANDS = {"simulate": _cmd_simulate, "fixed-points": _cmd_fixed_points, "gyros
 DEBUG_ENV = "PHASEKIT_DEBUG"
 
 
+def _refuse_repeats(parser: _Parser, argv) -> None:
+    """An option that takes a value, given twice: refused (argparse would keep the last silently)."""
+    typed = _typed(argv)
+    for flag in dict.fromkeys(typed):
+        action = parser._option_string_actions.get(flag)
+        if action is None or action.nargs == 0 or typed.count(flag) < 2:  # a switch: repeating it changes nothing
+            continue
+        if action.nargs is None:
+            values = [t.split("=", 1)[1] if "=" in t else nxt for t, nxt in zip(argv, [*argv[1:], ""])
+                      if t.split("=", 1)[0] == flag]
+            raise _UsageError(f"{flag} takes one value and is given {len(values)} times (got "
+                              f"{', then '.join(values)}): give it once", flag)
+        raise _UsageError(f"{flag} is given {typed.count(flag)} times: give it once, with all its values", flag)
+
+
 def _run(argv, as_json: bool):
     """Parse and compute: (output dict, args), or raise."""
     parser = _build_parser()
-    parser.argv = argv
+    for p in (parser, *parser.commands.values()):
+        p.argv = tuple(argv)
     args = parser.parse_args(argv)
     if args.command is None:
         raise _UsageError("a command is required: " + ", ".join(COMMANDS))
+    _refuse_repeats(parser.commands[args.command], argv)
     with _stdout_to_stderr():
         out = _plain_types(COMMANDS[args.command](args))
     where = _nonfinite(out)
     if where is not None and out.get("status") != "failed":
         # a non-finite number is never a result: the run failed there
         out["status"], out["reason"] = "failed", f"non-finite value in the result at {where}"
+    if out.get("status") == "failed" and not out.get("reason"):
+        out["reason"] = "the computation could not continue"  # every failed result says why
     return _finite_json(out), args
 
 
@@ -465,18 +605,23 @@ def main(argv=None) -> int:
 
     argv = list(sys.argv[1:] if argv is None else argv)
     as_json = "--json" in argv
+    names = _flag_names(argv)  # a parameter fed by several flags is named by the one typed
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("default")
-            warnings.showwarning = _show_warning
+            warnings.showwarning = functools.partial(_show_warning, names=names)
             out, args = _run(argv, as_json)
     except _UsageError as exc:
-        return _error(str(exc), exc.flag, as_json)
+        return _error(str(exc), exc.flag, as_json, names=names)
     except ParameterError as exc:
-        name = FLAGS.get(exc.param)  # None: a parameter the CLI does not set (named as in Python)
-        return _error(exc.render(name or f"`{exc.param}`"), name and name.split(" (")[0], as_json)
+        name = names.get(exc.param)  # None: a parameter the CLI does not set (named as in Python)
+        flag = name and name.split(" (")[0]
+        message = exc.render(name or f"`{exc.param}`")
+        if flag:  # "|n0| <= ..." in the range: the flag typed, not the Python name
+            message = message.replace(f"|{exc.param}|", f"|{flag}|")
+        return _error(message, flag, as_json, names=names)
     except PhasekitError as exc:
-        return _error(str(exc), None, as_json, code=1)
+        return _error(str(exc), None, as_json, code=1, names=names)
     except KeyboardInterrupt:
         return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
     except Exception as exc:  # a bug: one line, not a traceback (PHASEKIT_DEBUG=1 shows it)

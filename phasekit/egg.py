@@ -415,7 +415,7 @@ class Egg(Body):
     def structure_key(self) -> str:
         # the symbolic form depends on the degree only: hash it once per degree, not per egg
         # (serialising a degree-256 recurrence costs ~0.07 s)
-        if self._key is None:
+        if getattr(self, "_key", None) is None:
             if self.degree not in _STRUCTURE_KEYS:
                 _STRUCTURE_KEYS[self.degree] = Body.structure_key.fget(self)
             self._key = _STRUCTURE_KEYS[self.degree]

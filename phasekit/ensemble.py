@@ -94,6 +94,9 @@ def _starts(model: Model, starts) -> np.ndarray:
                                            f"{', '.join(missing)})", show_value=False)
         return np.array([model.chart.from_paper(check_vector("starts", r, 6))
                          for r in starts[list(PAPER_NAMES)].to_numpy(dtype=float)]).reshape(-1, model.n_states)
+    if np.ndim(starts) == 1 and all(np.ndim(x) == 0 for x in starts):
+        raise ParameterError("starts", f"must be a list of starts, each a state of {model.n_states} numbers (for one "
+                                       "start x0, pass [x0])", show_value=False)
     try:
         rows = [check_vector("starts", x, model.n_states) for x in starts]
     except TypeError:
@@ -103,12 +106,20 @@ def _starts(model: Model, starts) -> np.ndarray:
     return np.array(rows)
 
 
+CONNECT_TIMEOUT = 10  # seconds to reach a scheduler before the address is called bad
+
+
 def _client(scheduler):
     """(client, owned): a Dask client for an address, a Client or a cluster."""
     from dask.distributed import Client
 
     if isinstance(scheduler, str):
-        return Client(scheduler), True
+        try:
+            return Client(scheduler, timeout=CONNECT_TIMEOUT), True
+        except (OSError, ValueError, TypeError) as exc:  # a malformed or unreachable address
+            raise ParameterError("scheduler", f"must be the address of a running Dask scheduler, e.g. tcp://host:8786 "
+                                              f"({type(exc).__name__}: {' '.join(str(exc).split())[:160]})",
+                                 scheduler) from None
     if isinstance(scheduler, Client):
         return scheduler, False
     if hasattr(scheduler, "scheduler_address"):
@@ -181,7 +192,12 @@ def ensemble(model: Model, starts, t_end: float, *, events=(), scheduler=None, p
         processes = check_int("processes", processes, minimum=1)
     kwargs = _kwargs(simulate_kwargs)
     job = {"model": model, "t_end": t_end, "events": events, "kwargs": kwargs}
-    _run_one(0, X[0], job)  # validates the arguments here, and warms the on-disk integrator cache
+    try:  # the arguments are checked here, once (a worker would report them as a failed row each)
+        simulate(model, X[0], t_end, events=events, **kwargs)  # and the on-disk integrator cache is warm
+    except ParameterError as exc:
+        if exc.param == "x0":
+            raise ParameterError("starts", f"row 0 {exc.expected}", X[0]) from None
+        raise
     t0 = time.perf_counter()
     n_proc = min(processes or os.cpu_count() or 1, len(X))
     with _progress(len(X), progress) as bar:
@@ -316,6 +332,15 @@ def rerun(source, index: int | None = None, *, model: Model | None = None, **ove
         With the same start, end time, stop rule, events and solver options, hence the same
         numbers (t_jump to the last digit).
     """
+    try:
+        m, x0, t_end, events, kw = _rerun_inputs(source, index, model, overrides)
+    except (KeyError, TypeError, AttributeError, IndexError) as exc:  # a dict or table that is not a whole result
+        raise ParameterError("source", f"is not a complete result: {type(exc).__name__} {exc}", show_value=False) from None
+    return simulate(m, x0, t_end, events=events, **kw)
+
+
+def _rerun_inputs(source, index, model, overrides):
+    """(model, start, t_end, events, keywords) of :func:`rerun`."""
     row = hasattr(source, "attrs") and hasattr(source, "index") and not hasattr(source, "columns")
     if row and index is None:
         if "i" not in source.index:  # a row of an ensemble table names its start
@@ -334,7 +359,7 @@ def rerun(source, index: int | None = None, *, model: Model | None = None, **ove
         kw.update(inputs["options"])
         kw.update(overrides)
         x0 = np.array(inputs["starts_chart"][index])
-        return simulate(m, x0, inputs["t_end"], events=_events_from(inputs["events"]), **kw)
+        return m, x0, inputs["t_end"], _events_from(inputs["events"]), kw
     if not isinstance(source, dict) or "start_chart_state" not in source:
         raise ParameterError("source", "must be a Trajectory.to_dict() (or simulate --json output) or an ensemble "
                                        "table", show_value=False)
@@ -343,5 +368,5 @@ def rerun(source, index: int | None = None, *, model: Model | None = None, **ove
     if len(source["start_chart_state"]) == FLIGHT.n_states != m.n_states:
         kw["mode"] = "flight"
     kw.update(overrides)
-    return simulate(m, np.array(source["start_chart_state"]), source["t_end_requested"],
-                    events=_events_from(source.get("user_events", [])), **kw)
+    return m, np.array(source["start_chart_state"]), source["t_end_requested"], \
+        _events_from(source.get("user_events") or []), kw

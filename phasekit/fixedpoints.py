@@ -444,7 +444,7 @@ def _newton_system(model: Model, kind: str, fixed: str):
 def _backward_error(model: Model, x: np.ndarray) -> float:
     """max_i |f_i(x)| / sum_j |J_ij| max(|x_j|, 1) for the law's own field (see NEWTON_RTOL)."""
     mode = _mode_for(model)
-    f, J = model.rhs(x, mode), model.jacobian(x, mode)
+    f, J = model._rhs(x, mode), model._jacobian(x, mode)
     if not (np.all(np.isfinite(f)) and np.all(np.isfinite(J))):
         return float("inf")
     scale = np.abs(J) @ np.maximum(np.abs(x), 1.0)
@@ -513,7 +513,7 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
                                "the iterate left the domain of the equations (non-finite state)", None)
     err = _backward_error(model, x)
     if not err <= NEWTON_RTOL:
-        residual = float(np.max(np.abs(model.rhs(x, _mode_for(model)))))
+        residual = float(np.max(np.abs(model._rhs(x, _mode_for(model)))))
         try:
             last = linearise(model, x, kind=kind)
         except (ParameterError, ConvergenceError):
@@ -569,12 +569,12 @@ def linearise(model: Model, x, *, kind: str = "state") -> FixedPoint:
         raise ParameterError("kind", "must be a label such as 'horizontal' or 'state'", kind)
     x = check_vector("x", x, model.n_states)
     mode = _mode_for(model)
-    residual = float(np.max(np.abs(model.rhs(x, mode))))
+    residual = float(np.max(np.abs(model._rhs(x, mode))))
     if mode is Mode.ROLLING:
         Jr, L = _rolling_reduced_jacobian(model, x)
         law = "coulomb-rolling"
     else:
-        Jr, L = model.jacobian(x, mode), None
+        Jr, L = model._jacobian(x, mode), None
         law = model.friction.name
     if not (np.all(np.isfinite(Jr)) and np.isfinite(residual)):
         raise ParameterError("x", "gives a non-finite field or Jacobian (a state beyond double precision, or where "

@@ -18,6 +18,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .body import Body
+from .errors import ParameterError
+from .validate import check_finite, check_vector
 
 __all__ = [
     "FlightConstants",
@@ -51,7 +53,10 @@ class FlightConstants:
 
 def flight_constants(body: Body, euler_state, W: float) -> FlightConstants:
     """(4.5)-(4.14) from (U, V, Omega, Lambda, theta, n) at lift-off and the vertical velocity W*."""
-    _, _, Om, Lam, th, n = (float(v) for v in euler_state)
+    _, _, Om, Lam, th, n = (float(v) for v in check_vector("euler_state", euler_state, 6))
+    W = check_finite("W", W)
+    if abs(np.sin(th)) < 1e-12:
+        raise ParameterError("euler_state", "has theta at a pole, where (4.5)-(4.14) divide by sin(theta)", th)
     A, C = body.A, body.C
     s, c = np.sin(th), np.cos(th)
     Psi = (A * Om * c - C * n) * s / A  # (3.1)

@@ -120,6 +120,8 @@ class Event:
             except (ValueError, TypeError):
                 raise ParameterError("modes", f"must be modes among {', '.join(m.value for m in Mode)}", self.modes) from None
             object.__setattr__(self, "modes", modes)
+        if self.rate is not None and (not isinstance(self.rate, str) or not self.rate):
+            raise ParameterError("rate", "must be None or the name of a model function giving the guard's rate", self.rate)
         if not isinstance(self.stop, Status):
             raise ParameterError("stop", "must be a phasekit Status", self.stop)
 

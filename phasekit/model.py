@@ -27,8 +27,9 @@ import casadi as ca
 import numpy as np
 
 from .body import Body
-from .charts import FLIGHT, PAPER_NAMES, Chart, get_chart
+from .charts import FLIGHT, PAPER_NAMES, POLE_GUARD, Chart, get_chart
 from .errors import ParameterError
+from .validate import check_array
 from .friction import FrictionLaw
 from .hybrid import CompiledFlow, CompiledGuard, Mode
 
@@ -255,6 +256,7 @@ class Model:
             raise ParameterError("body", "must be a phasekit Body such as Spheroid(a)", body)
         if not isinstance(friction, FrictionLaw):
             raise ParameterError("friction", "must be a phasekit FrictionLaw such as Coulomb(mu)", friction)
+        body.check_inertia()
         self.body = body
         self.friction = friction
         self.chart = get_chart(chart)
@@ -303,7 +305,17 @@ class Model:
         Rdot, friction (of the mode), slip, slip_speed, energy, jellett, L_Z, spin, h, W,
         cos_theta, gap, gap_rate. ``mode`` is "sliding" (default), "rolling" or "flight"
         and matters for R, Rdot and friction (and sets the chart of ``x`` for flight).
+        States must be finite, of the chart's length, and off the poles in the Euler chart.
         """
+        if not isinstance(name, str):
+            raise ParameterError("name", f"must be one of {', '.join(OBSERVABLES)}", name)
+        mode = _mode_arg(mode)
+        if name not in OBSERVABLES and name not in self.compiled.functions_of(mode):
+            raise ParameterError("name", f"must be one of {', '.join(OBSERVABLES)}", name)
+        return self._evaluate(name, self._states_arg(x, mode), mode)
+
+    def _evaluate(self, name: str, x, mode: Mode = Mode.SLIDING):
+        """:meth:`evaluate` without the checks of its arguments (for phasekit's own calls)."""
         if name not in OBSERVABLES:
             fns = self.compiled.functions_of(Mode(mode))
             if name in fns:  # an internal function (guards, rates): allowed, not advertised
@@ -312,15 +324,40 @@ class Model:
         return evaluate_function(self.observable(name, mode), self.p, x)
 
     def rhs(self, x, mode: Mode = Mode.SLIDING) -> np.ndarray:
+        """The vector field of ``mode`` at one state (d,)."""
+        mode = _mode_arg(mode)
+        return self._rhs(self._states_arg(x, mode, many=False), mode)
+
+    def _rhs(self, x, mode: Mode = Mode.SLIDING) -> np.ndarray:
         mode = Mode(mode)
         return np.asarray(self.compiled.functions_of(mode)[f"rhs_{mode.value}"](x, self.p)).ravel()
 
     def jacobian(self, x, mode: Mode = Mode.SLIDING) -> np.ndarray:
+        """The exact Jacobian of :meth:`rhs` at one state (d,)."""
+        mode = _mode_arg(mode)
+        return self._jacobian(self._states_arg(x, mode, many=False), mode)
+
+    def _jacobian(self, x, mode: Mode = Mode.SLIDING) -> np.ndarray:
         mode = Mode(mode)
         return np.asarray(self.compiled.functions_of(mode)[f"rhs_jac_{mode.value}"](x, self.p))
 
     def normal_reaction(self, x, mode: Mode = Mode.SLIDING):
+        """R (units M g) at a state (d,) or states (m, d) of a contact mode."""
         return self.evaluate("R", x, mode)
+
+    def _states_arg(self, x, mode: Mode, many: bool = True) -> np.ndarray:
+        chart = FLIGHT if mode is Mode.FLIGHT else self.chart
+        n = chart.n_states
+        X = check_array("x", x, allow_empty=many)
+        if X.ndim not in ((1, 2) if many else (1,)) or X.shape[-1] != n:
+            shape = f"one state of {n} entries" + (f" or an (m, {n}) array of states" if many else "")
+            raise ParameterError("x", f"must be {shape} (the {chart.name} chart of the {mode.value} mode; got shape "
+                                      f"{X.shape})", show_value=False)
+        if mode is not Mode.FLIGHT and not chart.regular_at_poles and X.size:
+            if np.any(np.abs(np.sin(X[..., 4])) < POLE_GUARD):  # theta may wind past pi along a run
+                raise ParameterError("x", "has theta at 0 or pi, where the Euler chart is singular (2.7c): use "
+                                          "Model(body, law, chart='vector')", show_value=False)
+        return X
 
     def with_chart(self, chart) -> "Model":
         """The same body and law in another chart."""
@@ -378,7 +415,10 @@ class Model:
                 gf = self.guard_function(e.on, mode)
                 rate = None
                 if e.rate:
-                    rate = fns[f"{e.rate}_{mode.value}"] if e.rate in ("R", "Rdot") else fns[e.rate]
+                    rate = fns.get(f"{e.rate}_{mode.value}" if e.rate in ("R", "Rdot") else e.rate)
+                    if rate is None or rate.numel_out(0) != 1:
+                        scalar = sorted(k for k, f in fns.items() if f.n_in() == 2 and f.numel_out(0) == 1 and "jac" not in k)
+                        raise ParameterError("rate", f"must name a scalar model function ({', '.join(scalar)})", e.rate)
                 guards.append(CompiledGuard(e.name, gf, e.direction, rate, _digest(gf) + (_digest(rate) if rate else "")))
             monitor = None
             if flow.monitor is not None:
@@ -391,6 +431,13 @@ class Model:
             cache[key] = CompiledFlow(mode, field, chart.n_states, tuple(guards), monitor,
                                       hashlib.sha256("|".join(parts).encode()).hexdigest(), chart.rotation_rate)
         return cache[key]
+
+
+def _mode_arg(mode) -> Mode:
+    try:
+        return Mode(mode)
+    except (ValueError, TypeError):
+        raise ParameterError("mode", f"must be one of {', '.join(m.value for m in Mode)}", mode) from None
 
 
 def _digest(f: ca.Function) -> str:

@@ -25,6 +25,7 @@ import numpy as np
 
 from .body import Body
 from .errors import ParameterError
+from .validate import check_array
 from .gyroscopic import mean_slip
 
 __all__ = [
@@ -53,8 +54,25 @@ def _geom(body, theta):
     return h, ht, htt, np.sin(theta), np.cos(theta)
 
 
+def _angle(name: str, theta):
+    """Finite inclinations off the poles (where the theory's cot and 1/sin diverge)."""
+    th = check_array(name, theta)
+    if np.any(np.abs(np.sin(th)) < 1e-12):
+        raise ParameterError(name, "must be off the poles (0 < theta < pi): the theory divides by sin(theta)", theta)
+    return th
+
+
+def _rate(name: str, value):
+    """A finite, non-zero spin rate (the theory divides by it)."""
+    v = check_array(name, value)
+    if np.any(v == 0):
+        raise ParameterError(name, "must be non-zero (the theory divides by it)", value)
+    return v
+
+
 def omega2(body: Body, theta, Omega):
     """(3.30): A/(A + h_t^2) [Omega^2 + (h_tt + h_t cot)/A + (h_t/(A Omega sin))^2]."""
+    theta, Omega = _angle("theta", theta), _rate("Omega", Omega)
     h, ht, htt, s, c = _geom(body, theta)
     A = body.A
     return A / (A + ht**2) * (Omega**2 + (htt + ht * c / s) / A + (ht / (A * Omega * s)) ** 2)
@@ -119,7 +137,9 @@ def I_quadrature(body: Body, J: float, theta0: float, theta, *, form: str = "gyr
     """
     from scipy.integrate import quad
 
-    theta = np.atleast_1d(np.asarray(theta, dtype=float))
+    J = float(_rate("J", J))
+    theta0 = float(_angle("theta0", theta0))
+    theta = np.atleast_1d(_angle("theta", theta))
 
     def integrands(th):
         # -1/2 zeta / (dtheta/dT): the dtheta/dT factor of (3.48) cancels
@@ -217,6 +237,8 @@ def Sigma(body: Body, J: float, theta0: float, theta, c: float, *, form: str = "
 
 def c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, dtheta0: float, dthetadot0: float):
     """(3.46) inverted: amplitude c and phase xi of the initial nutation (theta', d theta'/dt)."""
+    theta_bar0, Omega_bar0 = float(_angle("theta_bar0", theta_bar0)), float(_rate("Omega_bar0", Omega_bar0))
+    mu, dtheta0, dthetadot0 = (float(check_array(n, v)) for n, v in (("mu", mu), ("dtheta0", dtheta0), ("dthetadot0", dthetadot0)))
     w = np.sqrt(omega2(body, theta_bar0, Omega_bar0))
     Idot = -0.5 * mu * zeta(body, theta_bar0, Omega_bar0)  # dI/dt = -mu zeta / 2
     # theta' = c cos(xi) w^-1/2;  theta'dot = c (-w^1/2 sin xi + Idot cos xi)

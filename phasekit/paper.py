@@ -46,6 +46,7 @@ class PaperCase:
 
     def state(self, value: float) -> np.ndarray:
         """(U, V, Omega, Lambda, theta, n) for the family parameter ``value``."""
+        value = check_finite("value", value, nonzero=True)
         body = Spheroid(self.a)
         if self.label == "5.1":
             return np.array([8e-7, 4e-6, body.C * value / body.A, 1e-5, 4e-6, value])
@@ -58,8 +59,12 @@ PAPER_CASES = {
 }
 
 
+#: the keywords of :func:`paper_start`
+KEYWORDS = ("n0", "omega0", "friction")
+
+
 def paper_start(label: str, *, n0: float | None = None, omega0: float | None = None,
-                friction: FrictionLaw | None = None) -> tuple[Model, np.ndarray]:
+                friction: FrictionLaw | None = None, **unknown) -> tuple[Model, np.ndarray]:
     """The printed start (5.1) or (5.2) with its model, digit for digit.
 
     Parameters
@@ -72,6 +77,8 @@ def paper_start(label: str, *, n0: float | None = None, omega0: float | None = N
         (5.2) only: the precession rate (default 10.5, printed as jumping).
     friction : FrictionLaw, optional
         Default: exact Coulomb friction with mu = 0.1 (the paper's law).
+    **unknown
+        None: any other keyword raises :class:`ParameterError` naming it.
 
     Returns
     -------
@@ -110,10 +117,15 @@ def paper_start(label: str, *, n0: float | None = None, omega0: float | None = N
     >>> model
     Model(Spheroid(a=1.5), coulomb(mu=0.1), chart='euler')
     """
+    if unknown:
+        name = sorted(unknown)[0]
+        raise ParameterError(name, f"is not a keyword of paper_start (valid keywords: {', '.join(KEYWORDS)})",
+                             unknown[name])
+    given = label
     if isinstance(label, str) and label.startswith("(") and label.endswith(")"):
         label = label[1:-1]
-    if label not in PAPER_CASES:
-        raise ParameterError("label", f"must be one of {', '.join(PAPER_CASES)}", label)
+    if not isinstance(label, str) or label not in PAPER_CASES:
+        raise ParameterError("label", f"must be one of {', '.join(PAPER_CASES)} (or in parentheses, \"(5.2)\")", given)
     case = PAPER_CASES[label]
     other = "omega0" if case.parameter == "n0" else "n0"
     if (omega0 if other == "omega0" else n0) is not None:

@@ -23,7 +23,7 @@ import numpy as np
 from .charts import FLIGHT, VECTOR, euler_to_vector
 from .errors import Status
 from .hybrid import Mode, Record, Transition
-from .impact import impact
+from .impact import _impact
 from .model import STICK_SLIP
 
 __all__ = [
@@ -153,7 +153,7 @@ def contact_start(model, t: float, x, *, before: str = "start", stiff: bool = Fa
         out = zero_slip_start(model, x)
         if out is None:
             x0 = project_no_slip(model, x)
-            if float(model.evaluate("R", x0, Mode.ROLLING)) <= 0.0:
+            if float(model._evaluate("R", x0, Mode.ROLLING)) <= 0.0:
                 return Transition(Mode.ROLLING, t, x0)  # no contact mode has R > 0: the callers lift off
             return _no_direction(t, x)
         mode, x, detail = out
@@ -180,7 +180,7 @@ class Stick:
         if rate >= 0:  # the guard was grazed, the slip is not vanishing
             return Transition(mode, t, x, resume=True)
         dt = 2.0 * s2 / (-rate)  # |u| linear in time as it vanishes: |u|^2 ~ (rate/2) * 2 * dt
-        x_s = x + dt * model.rhs(x, Mode.SLIDING)
+        x_s = x + dt * model._rhs(x, Mode.SLIDING)
         out = zero_slip_start(model, x_s)
         if out is None:
             return _no_direction(t + dt, x_s)
@@ -267,7 +267,7 @@ class Touchdown:
 
     def __call__(self, model, event, mode, t, x) -> Transition:
         k, w, v = rigid_velocities(model, x)
-        imp = impact(model.body, k, w, v, e=self.restitution, mu=model.friction.mu)
+        imp = _impact(model.body, k, w, v, e=self.restitution, mu=model.friction.mu)
         x_post = from_rigid(model, k, imp.w, imp.v)
         bounce = imp.v_normal_after > BOUNCE_STOP
         detail = (f"e={self.restitution:g}, dE={imp.energy_after - imp.energy_before:.3e}"
@@ -279,7 +279,7 @@ class Touchdown:
         start = contact_start(model, t, contact_state(model, x_post), before="contact")
         if start.stop is not None:
             return Transition(None, t, start.x, tuple(recs), stop=start.stop, reason=start.reason)
-        if float(model.evaluate("R", start.x, start.mode)) <= 0.0:
+        if float(model._evaluate("R", start.x, start.mode)) <= 0.0:
             # contact cannot hold (it would need R < 0): the body flies on from rest
             recs.append(Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 after impact"))
             return Transition(Mode.FLIGHT, t, flight_state(model, start.x), tuple(recs))

@@ -13,7 +13,7 @@ from dataclasses import replace
 import numpy as np
 
 from .backends import Budget, Propagation, engine_for
-from .charts import FLIGHT
+from .charts import FLIGHT, POLE_GUARD
 from .errors import ConvergenceError, ParameterError, Status
 from .hybrid import Event, Mode, Transition
 from .model import Model
@@ -26,8 +26,6 @@ from .validate import check_bool, check_finite, check_range, check_times, check_
 
 __all__ = ["simulate", "solver_options", "taylor_integrator"]
 
-#: theta within this of 0 or pi cannot be integrated in the Euler chart (2.7c divides by sin)
-POLE_GUARD = 1e-12
 #: the largest |t0| a run may start at (see simulate)
 T_MAX = 1e6
 
@@ -117,6 +115,9 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
         raise ParameterError("x0", "has theta at 0 or pi, where the Euler chart is singular (2.7c): use "
                                    "Model(body, law, chart='vector')", x0)
     te = None if t_eval is None else check_times("t_eval", t_eval)
+    if te is not None and te.size and (te[0] < t0 or te[-1] > t_end):
+        raise ParameterError("t_eval", f"must lie in the requested span [t0, t_end] = [{t0:.10g}, {t_end:.10g}]",
+                             float(te[0] if te[0] < t0 else te[-1]))
     system = _declared(model, stop_at, restitution, events)
     run = _Run(model, system, opts, t_end, dense=opts.dense or te is not None)
     run.apply(system.initial(model, t0, x0, start_mode))

@@ -27,15 +27,62 @@ from .body import Body, Spheroid
 from .errors import ParameterError
 from .friction import Coulomb, FrictionLaw
 from .model import Model
-from .validate import check_int, check_nonnegative, check_positive, check_range
+from .validate import check_array, check_finite, check_instance, check_int, check_nonnegative, check_positive, check_range
 
 __all__ = ["surface_n", "exact_boundary", "Scene", "SceneData", "Crossing", "compute_scene", "ELEMENTS", "AXES"]
 
 ELEMENTS = frozenset({"surface", "exact_boundary", "trajectories", "crossings", "fixed_points", "axes", "colorbar"})
 
 
+def _body(body) -> Body:
+    return check_instance("body", body, Body, "Spheroid(1.5)")
+
+
+def _check_grid(body: Body, Omega, theta) -> tuple[np.ndarray, np.ndarray]:
+    """Omega and theta as float arrays of shapes that broadcast together: finite, Omega != 0,
+    theta in (0, pi) and away from the angles where (6.3) is infinite (h_theta sin(theta) = 0)."""
+    Om = check_array("Omega", Omega)
+    Th = check_array("theta", theta)
+    if np.any(Om == 0.0):
+        raise ParameterError("Omega", "must be finite and nonzero ((6.3) divides by Omega)", Om)
+    if np.any((Th <= 0.0) | (Th >= np.pi)):
+        raise ParameterError("theta", "must lie in (0, pi)", Th)
+    try:
+        np.broadcast_shapes(Om.shape, Th.shape)
+    except ValueError:
+        raise ParameterError("theta", f"must have a shape that broadcasts with that of `Omega`, {Om.shape} (got shape "
+                                      f"{Th.shape})", show_value=False) from None
+    h, ht, _ = body.h(Th)
+    # (6.3) has 1 / (h_theta sin(theta)): infinite where it vanishes (at the roundoff level of h)
+    flat = np.atleast_1d(np.abs(ht * np.sin(Th)) <= 1e-15 * np.abs(h))
+    if np.any(flat):
+        raise ParameterError("theta", "must avoid the angles where h_theta(theta) sin(theta) = 0, at which (6.3) is "
+                                      "infinite (theta = pi/2 on a spheroid, every theta on a sphere)",
+                             float(np.atleast_1d(Th).ravel()[np.flatnonzero(flat)[0]]))
+    return Om, Th
+
+
 def surface_n(body, Omega, theta):
-    """(6.3): the spin n on the approximate jump surface at (Omega, theta)."""
+    """(6.3): the spin n on the approximate jump surface at (Omega, theta).
+
+    ``Omega`` (finite, nonzero) and ``theta`` (in (0, pi), where h_theta sin(theta) != 0) are
+    numbers or arrays of shapes that broadcast together.
+
+    >>> import phasekit as pk
+    >>> round(float(pk.surface_n(pk.Spheroid(1.5), 12.0, 1.0)), 6)
+    10.20507
+    """
+    body = _body(body)
+    Om, Th = _check_grid(body, Omega, theta)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        out = _surface_n(body, Om, Th)
+    if not np.all(np.isfinite(out)):
+        raise ParameterError("Omega", "gives a non-finite n on (6.3) (|Omega| too small or too large)", Om)
+    return out
+
+
+def _surface_n(body, Omega, theta):
+    """(6.3) without checks (the scene's grids, which may touch the singular angles)."""
     h, ht, _ = body.h(theta)
     return body.A / body.C * (Omega * np.cos(theta) + 1.0 / (Omega * ht * np.sin(theta)))
 
@@ -45,7 +92,19 @@ def exact_boundary(body, mu: float, Omega, theta, Lambda: float = 0.0, *, fricti
 
     Found by Brent's method on R(n) from the compiled model (Coulomb friction with ``mu``,
     or the law ``friction``; slip direction of that state), independently of the closed
-    form (6.3)."""
+    form (6.3). ``Omega`` and ``theta`` as for :func:`surface_n`; ``Lambda`` finite. Returns an
+    array of their broadcast shape (at least 1-d), NaN where no sign change of R(n) was found."""
+    body = _body(body)
+    if friction is not None:
+        check_instance("friction", friction, FrictionLaw, "Coulomb(0.1)")
+    if mu is not None or friction is None:
+        check_nonnegative("mu", mu)
+    Om, Th = _check_grid(body, Omega, theta)
+    Lambda = check_finite("Lambda", Lambda)
+    return _exact_boundary(body, mu, Om, Th, Lambda, friction=friction)
+
+
+def _exact_boundary(body, mu, Omega, theta, Lambda=0.0, *, friction=None):
     from scipy.optimize import brentq
 
     model = Model(body, Coulomb(mu) if friction is None else friction)
@@ -56,7 +115,7 @@ def exact_boundary(body, mu: float, Omega, theta, Lambda: float = 0.0, *, fricti
     out = np.full(Om.shape, np.nan)
     for idx in np.ndindex(Om.shape):
         om, th = Om[idx], Th[idx]
-        guess = surface_n(body, om, th)
+        guess = _surface_n(body, om, th)
         f = lambda n: float(Rf(np.array([0.0, 0.0, om, Lambda, th, n]), model.p))  # noqa: E731
         span = 1e-3 + 0.2 * abs(guess) + abs(Lambda) * 10
         lo, hi = guess - span, guess + span
@@ -150,6 +209,9 @@ class Scene:
     extra: list = field(default_factory=list, compare=False, hash=False, repr=False)
 
     def __post_init__(self):
+        if isinstance(self.show, (str, bytes)) or not isinstance(self.show, (set, frozenset, list, tuple)):
+            raise ParameterError("show", f"must be a set of element names, a subset of {', '.join(sorted(ELEMENTS))}",
+                                 self.show)
         unknown = set(self.show) - ELEMENTS
         if unknown:
             raise ParameterError("show", f"must be a subset of {', '.join(sorted(ELEMENTS))} (unknown: "
@@ -165,12 +227,17 @@ class Scene:
             what = "`a` must be > 1" if self.body is None else "the body must be prolate (h(0) > h(pi/2))"
             raise ParameterError("branch", f"{self.branch} does not match the body ({what} for the prolate branch, "
                                            "the reverse for the oblate one)", self.branch)
+        object.__setattr__(self, "show", frozenset(self.show))
         check_nonnegative("mu", self.mu)
+        if isinstance(self.values, (str, bytes, dict, set, frozenset)) or not np.iterable(self.values):
+            raise ParameterError("values", "must be a sequence of finite numbers > 0", self.values)
         vals = tuple(check_positive("values", v) for v in self.values)
         object.__setattr__(self, "values", vals)
         check_range("seed_distance", self.seed_distance, 0.0, np.pi / 2, label="(0, pi/2)")
         for name in ("omega_range", "theta_range", "n_clip"):
             object.__setattr__(self, name, _pair(name, getattr(self, name)))
+        if self.theta_range is not None and not (0.0 <= self.theta_range[0] and self.theta_range[1] <= np.pi):
+            raise ParameterError("theta_range", "must be a pair (lo, hi) with 0 <= lo < hi <= pi", self.theta_range)
         object.__setattr__(self, "resolution", check_int("resolution", self.resolution, minimum=2, maximum=4000))
         check_positive("dt", self.dt)
         if self.exact_lambda is not None:
@@ -192,6 +259,8 @@ class Scene:
         if not traj.segments or not all(s.dense for s in traj.segments):
             raise ParameterError("traj", "must keep its dense output (simulate with dense=True, the default)",
                                  show_value=False)
+        if label is not None and not isinstance(label, str):
+            raise ParameterError("label", "must be a string or None", label)
         self.extra.append((traj, label))
         return self
 
@@ -264,7 +333,7 @@ def _add_run(data: SceneData, body, r, value, label, show) -> None:
         data.labels.append(label)
     if r.x_jump is not None:
         U, V, Om, Lam, th, n = r.model.chart.to_paper(r.x_jump)
-        data.crossings.append(Crossing(value, r.t_jump, Om, th, n, Lam, float(surface_n(body, Om, th))))
+        data.crossings.append(Crossing(value, r.t_jump, Om, th, n, Lam, float(_surface_n(body, Om, th))))
 
 
 def _ranges(scene: Scene, data: SceneData, body) -> tuple:
@@ -294,6 +363,7 @@ def _ranges(scene: Scene, data: SceneData, body) -> tuple:
 def compute_scene(scene: Scene) -> SceneData:
     """Compute exactly the data the scene's elements need (no simulation for a scene
     without trajectories or crossings)."""
+    check_instance("scene", scene, Scene, 'Scene("prolate", 1.5)')
     show = scene.show
     data = SceneData(scene)
     body = scene.make_body()
@@ -322,7 +392,7 @@ def _grids(scene, data, body, om_rng, th_rng) -> None:
     OM, TH = np.meshgrid(om, th, indexing="ij")
     if "surface" in scene.show:
         with np.errstate(divide="ignore", invalid="ignore"):
-            data.surface = (OM, TH, surface_n(body, OM, TH))
+            data.surface = (OM, TH, _surface_n(body, OM, TH))
     if "exact_boundary" in scene.show:
         lam = scene.exact_lambda
         if lam is None:
@@ -330,7 +400,7 @@ def _grids(scene, data, body, om_rng, th_rng) -> None:
         data.exact_lambda = lam
         coarse = max(20, scene.resolution // 4)
         OMc, THc = np.meshgrid(np.linspace(*om_rng, coarse), np.linspace(*th_rng, coarse), indexing="ij")
-        data.exact = (OMc, THc, exact_boundary(body, scene.mu, OMc, THc, lam, friction=scene.friction))
+        data.exact = (OMc, THc, _exact_boundary(body, scene.mu, OMc, THc, lam, friction=scene.friction))
 
 
 def _bounds(scene, data, om_rng, th_rng) -> tuple:

@@ -84,8 +84,12 @@ class ModelPack:
         return len(self.blob) / 1e6
 
 
+CODE_PATHS = ("phasekit", "studies", "benchmarks", "pyproject.toml")
+
+
 def provenance(extra: dict | None = None) -> dict:
-    """Versions, git commit and command line: what a result was obtained with."""
+    """Versions, git commit and command line: what a result was obtained with. ``git_dirty``
+    says whether the code (CODE_PATHS) differs from that commit."""
     import casadi
     import numpy
     import scipy
@@ -101,8 +105,9 @@ def provenance(extra: dict | None = None) -> dict:
     root = Path(__file__).resolve().parents[1]
     try:
         commit = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True, timeout=10).stdout.strip()
-        dirty = bool(subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no"],
-                                    capture_output=True, text=True, timeout=10).stdout.strip())
+        # the code differs from the commit (a study's own result files, rewritten as it runs, do not count)
+        dirty = bool(subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no", "--",
+                                     *CODE_PATHS], capture_output=True, text=True, timeout=10).stdout.strip())
     except Exception:
         commit, dirty = None, None
     d = {"phasekit": __version__, "casadi": casadi.__version__, "heyoka": hy, "numpy": numpy.__version__,
@@ -292,15 +297,72 @@ def _call(func, pack, prev, *args):
     return func(prev, *args)
 
 
-def make_client(scheduler: str | None = None, workers: int | None = None):
+def make_client(scheduler: str | None = None, workers: int | None = None, *, timeout: float = 5.0):
     """A Dask client: to a running scheduler, or a LocalCluster with one single-threaded
-    worker process per core. Returns (client, cluster or None)."""
+    worker process per core. Returns (client, cluster or None).
+
+    A ``scheduler`` address that is malformed, or where no Dask scheduler answers within
+    ``timeout`` seconds, raises :class:`ParameterError` (parameter ``scheduler``) at once, as
+    does a ``workers`` count below 1."""
+    import asyncio
+    import concurrent.futures
+    import logging
+
     from dask.distributed import Client, LocalCluster
 
+    from .errors import ParameterError
+
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise ParameterError("workers", "must be an integer >= 1 (or None: one per core)", workers)
+    if scheduler is not None and not (isinstance(scheduler, str) and scheduler.strip()):
+        raise ParameterError("scheduler", "must be the address of a running Dask scheduler, like tcp://127.0.0.1:8786",
+                             scheduler)
     if scheduler:
-        return Client(scheduler), None
+        def refuse(why: str) -> ParameterError:
+            return ParameterError("scheduler", f"must be the address of a running Dask scheduler, like "
+                                  f"tcp://127.0.0.1:8786, but {why}", scheduler)
+
+        async def identity():  # ask before building a Client: a failed Client leaves noise at exit
+            from distributed.core import rpc
+
+            r = rpc(scheduler, timeout=timeout)
+            try:
+                return await asyncio.wait_for(r.identity(), timeout)
+            finally:
+                await r.close_rpc()
+
+        with concurrent.futures.ThreadPoolExecutor(1) as pool:  # its own event loop, even under a running one
+            try:
+                info = pool.submit(asyncio.run, identity()).result()
+            except ValueError as exc:  # the address itself ("missing port number", "unknown address scheme")
+                raise refuse(str(exc).rstrip(".")) from None
+            except OSError:  # refused, unreachable, timed out (TimeoutError is an OSError)
+                raise refuse(f"no scheduler answered there within {timeout:g} s") from None
+            except Exception as exc:
+                raise refuse(f"what answered there is not a Dask scheduler ({type(exc).__name__})") from None
+        if not isinstance(info, dict) or info.get("type") != "Scheduler":
+            raise refuse("what answered there is not a Dask scheduler")
+        try:
+            return Client(scheduler, timeout=timeout), None
+        except OSError:
+            raise refuse(f"no scheduler answered there within {timeout:g} s") from None
+    import signal
+    import threading
+
     n = workers or os.cpu_count() or 1
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
+    # The worker processes ignore SIGINT (an ignored signal stays ignored in a child): Ctrl-C
+    # in a terminal goes to every process of the group, and this process, not each worker
+    # with its own traceback, ends the run and closes the cluster.
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
+    try:
+        # no dashboard, the scheduler's small HTTP server on any free port (8787 may be taken);
+        # Dask's own warnings off (e.g. each task cancelled when a run is stopped): errors stay
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                               scheduler_kwargs={"dashboard_address": ":0"}, silence_logs=logging.ERROR)
+    finally:
+        if main_thread and previous is not None:
+            signal.signal(signal.SIGINT, previous)
     return Client(cluster), cluster
 
 

@@ -91,7 +91,7 @@ def _initial(stop_at: str, stiff: bool):
         if speed > STICK_SLIP + 10 * model.friction.eps and R > 0.0:  # the common case, in one call
             return Transition(Mode.SLIDING, t, x)
         start = contact_start(model, t, x, stiff=stiff)
-        if start.stop is not None or float(model.evaluate("R", start.x, start.mode)) > 0.0:
+        if start.stop is not None or float(model._evaluate("R", start.x, start.mode)) > 0.0:
             return start
         rec = start.records + (Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 at start"),)
         if stop_at == "jump":

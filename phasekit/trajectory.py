@@ -224,7 +224,7 @@ class Trajectory:
             return True
         law = self.model.friction
         if law.can_stick and not law.has_rolling_mode and self.segments and self.segments[0].mode is not Mode.FLIGHT:
-            return float(self.model.evaluate("slip_speed", self.segments[0].x0)) < STICK_SLIP + 10 * law.eps
+            return float(self.model._evaluate("slip_speed", self.segments[0].x0)) < STICK_SLIP + 10 * law.eps
         return False
 
     @property
@@ -246,7 +246,7 @@ class Trajectory:
         e = self._liftoff
         if e is None:
             return None
-        return float(self.model.evaluate("Rdot", e.x, Mode(e.mode_before) if e.mode_before in ("sliding", "rolling") else Mode.SLIDING))
+        return float(self.model._evaluate("Rdot", e.x, Mode(e.mode_before) if e.mode_before in ("sliding", "rolling") else Mode.SLIDING))
 
     @property
     def minima(self) -> np.ndarray:
@@ -264,9 +264,9 @@ class Trajectory:
         """The smallest normal reaction met: over the located minima, the segment ends, and 0
         at a lift-off."""
         # R is 0 at a located lift-off (to the event tolerance): count it as 0
-        vals = [float(self.model.evaluate("R", s.x1, s.mode)) for s in self.segments
+        vals = [float(self.model._evaluate("R", s.x1, s.mode)) for s in self.segments
                 if s.mode is not Mode.FLIGHT and s.end != "lift-off"]
-        vals += [float(self.model.evaluate("R", s.x0, s.mode)) for s in self.segments[:1] if s.mode is not Mode.FLIGHT]
+        vals += [float(self.model._evaluate("R", s.x0, s.mode)) for s in self.segments[:1] if s.mode is not Mode.FLIGHT]
         m = self.minima
         if m.size:
             vals.append(float(m[:, 1].min()))
@@ -284,7 +284,7 @@ class Trajectory:
         if s.monitored:
             tg, xg = max(s.monitored, key=lambda q: q[1][8])
             gmax = float(xg[8])
-        W = float(s.x0[9] + m.evaluate("Hdot", s.x0, Mode.FLIGHT))
+        W = float(s.x0[9] + m._evaluate("Hdot", s.x0, Mode.FLIGHT))
         status = Status.TOUCHDOWN if s.end == "touchdown" else Status.FAILED if s.end == "failed" else Status.COMPLETED
         return Flight(status, s.t0, s.t1 if s.end == "touchdown" else None, s.x0, s.x1, gmax, tg, W,
                       float(FLIGHT.to_paper(s.x0)[2]), s.n_steps)
@@ -308,6 +308,8 @@ class Trajectory:
     def _check_times(self, times) -> np.ndarray:
         ts = np.atleast_1d(np.asarray(check_times("times", times, allow_empty=True)))
         lo, hi = self.t0, self.t
+        ulps = 16 * np.finfo(float).eps * max(1.0, abs(lo), abs(hi))  # t_end computed as t * (1 + 1e-15) is inside
+        ts = np.where((ts < lo) & (ts >= lo - ulps), lo, np.where((ts > hi) & (ts <= hi + ulps), hi, ts))
         bad = ts[(ts < lo) | (ts > hi)]
         if bad.size:
             raise ParameterError("times", f"must lie in the simulated span [{lo:.10g}, {hi:.10g}] ({bad.size} outside)",

@@ -23,7 +23,10 @@ from __future__ import annotations
 import functools
 import math
 
+import numpy as np
+
 from .errors import ParameterError
+from .validate import check_finite
 
 __all__ = ["KINDS", "STANDARD_GRAVITY", "Scale", "as_quantity", "egg_of_size", "tippe_top_of_size", "units"]
 
@@ -43,6 +46,9 @@ KINDS = {
     "inertia": ("[length] ** 2 * [mass]", (2, 0, 1)),
     "angular_momentum": ("[length] ** 2 * [mass] / [time]", (1.5, 0.5, 1)),
 }
+#: an example of each kind, for the messages
+EXAMPLES = {"length": "21.5 mm", "time": "12 ms", "rate": "30 rev/s", "speed": "0.5 m/s", "acceleration": "9.81 m/s**2",
+            "mass": "57 g", "force": "0.5 N", "energy": "1 mJ", "inertia": "2 g*cm**2", "angular_momentum": "1e-4 kg*m**2/s"}
 
 
 @functools.lru_cache(maxsize=1)
@@ -55,28 +61,66 @@ def units():
     return ureg
 
 
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+
+
 def as_quantity(value, name: str, default_unit: str | None = None):
     """A pint Quantity from a Quantity, a string such as "21.5 mm", or a number in
-    ``default_unit``. ParameterError naming ``name`` if it does not parse."""
+    ``default_unit``. ParameterError naming ``name`` if it does not parse, is not one finite
+    real number, or is in hertz."""
     import pint
 
+    if not isinstance(name, str) or not name:
+        raise ParameterError("name", "must be the name of the quantity (a non-empty string)", name)
     ureg = units()
+    if default_unit is not None:
+        try:
+            if not isinstance(default_unit, str):
+                raise TypeError
+            ureg.Unit(default_unit)
+        except Exception:
+            raise ParameterError("default_unit", "must be a unit such as 'mm' or 'rev/s' (or None)", default_unit) from None
     if isinstance(value, pint.Quantity):
-        q = value if value._REGISTRY is ureg else ureg.Quantity(value.magnitude, str(value.units))
+        try:
+            q = value if value._REGISTRY is ureg else ureg.Quantity(value.magnitude, str(value.units))
+        except Exception:
+            raise ParameterError(name, "must be a quantity in units phasekit's pint registry knows", str(value)) from None
     elif isinstance(value, str):
         try:
             q = ureg.Quantity(value)
         except Exception:
             raise ParameterError(name, "must be a quantity such as '21.5 mm' or '30 rev/s'", value) from None
-    elif isinstance(value, (int, float)) and not isinstance(value, bool) and default_unit is not None:
+    elif _is_number(value) and default_unit is not None:
         q = ureg.Quantity(float(value), default_unit)
     else:
-        raise ParameterError(name, "must be a pint Quantity or a string with units such as '21.5 mm'", value)
+        expected = "must be a pint Quantity or a string with units such as '21.5 mm'"
+        raise ParameterError(name, expected + (f" (or a number in {default_unit})" if default_unit else ""), value)
+    if not _is_number(q.magnitude):
+        raise ParameterError(name, "must be one real number with units, such as '21.5 mm'", str(q))
     if not math.isfinite(float(q.magnitude)):
-        raise ParameterError(name, "must be finite", value)
+        raise ParameterError(name, "must be finite", value if isinstance(value, str) else str(q))
     if "hertz" in str(q.units) or "Hz" in str(q.units):
         raise ParameterError(name, "must not be in hertz (pint reads 1 Hz as 1 rad/s): use rev/s, rpm or rad/s", value)
     return q
+
+
+def _of_kind(value, name: str, kind: str, *, positive: bool = False):
+    """as_quantity, then a check of its dimension (that of ``kind``) and sign."""
+    q = as_quantity(value, name)
+    dim = KINDS[kind][0]
+    if q.dimensionality != units().get_dimensionality(dim):
+        raise ParameterError(name, f"must be a {kind.replace('_', ' ')} (dimension {dim}, e.g. "
+                                   f"'{EXAMPLES[kind]}'), not of dimension {q.dimensionality}", str(q))
+    if positive and not q.magnitude > 0:
+        raise ParameterError(name, "must be > 0", str(q))
+    return q
+
+
+def _check_kind(kind, name: str = "kind") -> str:
+    if not isinstance(kind, str) or kind not in KINDS:
+        raise ParameterError(name, f"must be one of {', '.join(KINDS)}", kind)
+    return kind
 
 
 class Scale:
@@ -99,22 +143,14 @@ class Scale:
     """
 
     def __init__(self, b, g=STANDARD_GRAVITY, mass=None):
-        self.b = as_quantity(b, "b")
-        self.g = as_quantity(g, "g")
-        self.mass = None if mass is None else as_quantity(mass, "mass")
-        checks = (("b", self.b, "[length]"), ("g", self.g, "[length] / [time] ** 2"))
-        checks += (("mass", self.mass, "[mass]"),) if self.mass is not None else ()
-        for name, q, dim in checks:
-            if q.dimensionality != units().get_dimensionality(dim):
-                raise ParameterError(name, f"must have dimension {dim}", str(q))
-            if not q.magnitude > 0:
-                raise ParameterError(name, "must be > 0", str(q))
+        self.b = _of_kind(b, "b", "length", positive=True)
+        self.g = _of_kind(g, "g", "acceleration", positive=True)
+        self.mass = None if mass is None else _of_kind(mass, "mass", "mass", positive=True)
         self.time_unit = (self.b / self.g) ** 0.5
 
     def unit(self, kind: str):
         """phasekit's unit of ``kind`` (a key of :data:`KINDS`) as a Quantity."""
-        if kind not in KINDS:
-            raise ParameterError("kind", f"must be one of {', '.join(KINDS)}", kind)
+        _check_kind(kind)
         pb, pg, pm = KINDS[kind][1]
         if pm and self.mass is None:
             raise ParameterError("mass", f"is needed to express a {kind} (give Scale(..., mass=...))", show_value=False)
@@ -123,20 +159,28 @@ class Scale:
 
     def quantity(self, value, kind: str):
         """A phasekit (dimensionless) value as a Quantity of ``kind``, in SI base units."""
-        return (float(value) * self.unit(kind)).to_base_units()
+        value = check_finite("value", value)
+        return (value * self.unit(kind)).to_base_units()
 
     def dimensionless(self, value, kind: str | None = None) -> float:
         """A quantity (Quantity or string such as "30 rev/s", "57 mm", "12 ms") in phasekit's
         units; its kind is read from its dimensionality (or checked against ``kind``)."""
-        q = as_quantity(value, kind or "value")
+        return self._dimensionless(value, None if kind is None else _check_kind(kind), "value")
+
+    def _dimensionless(self, value, kind: str | None, name: str) -> float:
+        q = as_quantity(value, name)
         dims = {k: units().get_dimensionality(d) for k, (d, _) in KINDS.items()}
         found = [k for k, d in dims.items() if d == q.dimensionality]
         if not found:
-            raise ParameterError(kind or "value", f"has dimension {q.dimensionality}, which is none of {', '.join(KINDS)}",
+            raise ParameterError(name, f"must have the dimension of one of {', '.join(KINDS)} (it has {q.dimensionality})",
                                  str(q))
         if kind is not None and kind not in found:
-            raise ParameterError(kind, f"must have the dimension of a {kind} ({KINDS[kind][0]})", str(q))
-        return float((q / self.unit(found[0])).to("dimensionless").magnitude)
+            raise ParameterError(name, f"must be a {kind.replace('_', ' ')} (dimension {KINDS[kind][0]}, e.g. "
+                                       f"'{EXAMPLES[kind]}')", str(q))
+        out = float((q / self.unit(found[0])).to("dimensionless").magnitude)
+        if not math.isfinite(out):
+            raise ParameterError(name, "is too large to express in phasekit's units", str(q))
+        return out
 
     def __repr__(self) -> str:
         m = f", mass={self.mass:~P}" if self.mass is not None else ""
@@ -148,9 +192,15 @@ def egg_of_size(length, breadth, *, w: float = 0.0, mass=None, g=STANDARD_GRAVIT
     and its :class:`Scale` (b = breadth / 2). ``w`` is the egg's asymmetry (w/L)."""
     from .egg import Egg
 
-    L, B = as_quantity(length, "length"), as_quantity(breadth, "breadth")
+    L, B = _of_kind(length, "length", "length", positive=True), _of_kind(breadth, "breadth", "length", positive=True)
     a = float((L / B).to("dimensionless").magnitude)
-    return Egg(a, w), Scale(B / 2, g=g, mass=mass)
+    try:
+        egg = Egg(a, w)
+    except ParameterError as err:
+        if err.param == "a":
+            raise ParameterError("length", f"divided by `breadth` (the aspect ratio a) {err.expected}", a) from None
+        raise
+    return egg, Scale(B / 2, g=g, mass=mass)
 
 
 def tippe_top_of_size(radius, offset, *, A=None, C=None, mass=None, g=STANDARD_GRAVITY):
@@ -159,8 +209,18 @@ def tippe_top_of_size(radius, offset, *, A=None, C=None, mass=None, g=STANDARD_G
     and ``C`` may be numbers (units M b^2) or quantities of a moment of inertia (need ``mass``)."""
     from .body import EccentricSphere
 
+    _of_kind(radius, "radius", "length", positive=True)
     sc = Scale(radius, g=g, mass=mass)
-    alpha = sc.dimensionless(offset, "length")
-    moments = [None if m is None else (float(m) if isinstance(m, (int, float)) else sc.dimensionless(m, "inertia"))
-               for m in (A, C)]
-    return EccentricSphere(alpha, A=moments[0], C=moments[1]), sc
+    alpha = sc._dimensionless(offset, "length", "offset")
+    moments = []
+    for name, m in (("A", A), ("C", C)):
+        if isinstance(m, (bool, np.bool_)):
+            raise ParameterError(name, "must be a number (units M b^2) or a moment of inertia such as '2 g*cm**2'", m)
+        moments.append(None if m is None else (float(m) if _is_number(m) else sc._dimensionless(m, "inertia", name)))
+    try:
+        body = EccentricSphere(alpha, A=moments[0], C=moments[1])
+    except ParameterError as err:
+        if err.param == "offset":
+            raise ParameterError("offset", f"divided by `radius` {err.expected}", alpha) from None
+        raise
+    return body, sc

@@ -52,7 +52,7 @@ from pathlib import Path
 import numpy as np
 
 import phasekit as pk
-from phasekit.viz import output_dir, progress, pyplot, save_figure, study_parser, write_csv
+from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 A_HEN = 57.0 / 43.0
@@ -287,4 +287,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main, resume="the finished rows are kept in egg_which_end.csv (in the output folder); rerunning the command resumes from them")

@@ -113,7 +113,7 @@ def draw_ensemble(ax, recs, omegas, seed) -> tuple[int, int, np.ndarray]:
 
 def main(argv=None) -> dict:
     ap = study_parser(__doc__, default_out=FIGURES, quick_help="Omega0 step 5 instead of 2.5, 5 members each instead of 10")
-    ap.add_argument("--seed", type=int, default=2006, help="seed of the ensemble's perturbations (default 2006)")
+    ap.add_argument("--seed", type=ap.integer(min=0), default=2006, help="seed of the ensemble's perturbations (default 2006)")
     args = ap.parse_args(argv)
     out_dir = output_dir(args)
     plt = pyplot()

@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 import phasekit as pk
-from phasekit.viz import output_dir, plain_log_ticks, pyplot, save_figure, study_parser
+from phasekit.viz import output_dir, plain_log_ticks, pyplot, run_study, save_figure, study_parser
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "outcome_map"
@@ -372,13 +372,11 @@ def _disagreements(pts, searches, margin: float = 0.03) -> dict:
 def main(argv=None) -> dict:
     ap = study_parser(__doc__, default_out=FIGURES)
     ap.add_argument("--serial", action="store_true", help="run in this process, without Dask")
-    ap.add_argument("--scheduler", default=None, help="address of a running Dask scheduler")
-    ap.add_argument("--workers", type=int, default=None, help="LocalCluster workers (default: one per core)")
+    ap.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a running Dask scheduler (host:port)")
+    ap.add_argument("--workers", type=ap.integer(min=1), default=None, metavar="N", help="LocalCluster workers (default: one per core)")
     ap.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
     ap.add_argument("--no-scene", action="store_true", help="skip the 3-D scene")
     args = ap.parse_args(argv)
-    if args.workers is not None and args.workers < 1:
-        ap.error(f"argument --workers: must be >= 1, got {args.workers}")
     out = output_dir(args)
     t0 = time.perf_counter()
     g = QUICK if args.quick else FULL
@@ -425,4 +423,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main, resume=f"the finished rows are kept in {STEM}.csv and {STEM}_boundaries.csv (in the output folder); rerunning the command resumes from them")

@@ -26,7 +26,7 @@ from pathlib import Path
 
 
 import phasekit as pk
-from phasekit.viz import output_dir, progress, pyplot, save_figure, study_parser
+from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "paper_pairs"
@@ -189,4 +189,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main, resume=f"the finished rows are kept in {STEM}.csv (in the output folder); rerunning the command resumes from them")

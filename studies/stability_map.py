@@ -37,8 +37,9 @@ def stability_grid(kind, a_values, s_values, mu, bar):
 
 def main(argv=None) -> dict:
     ap = study_parser(__doc__, default_out=FIGURES, quick_help="25x25 grids instead of 80x80")
-    ap.add_argument("--mu", type=float, default=0.1, help="viscous friction coefficient (default 0.1)")
+    ap.add_argument("--mu", type=ap.real(), default=0.1, help="viscous friction coefficient (default 0.1)")
     args = ap.parse_args(argv)
+    pk.Viscous(args.mu)  # checks mu before any work (run_study names it --mu)
     out = output_dir(args)
     plt = pyplot()
 

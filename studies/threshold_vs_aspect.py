@@ -23,18 +23,17 @@ figures/threshold_vs_aspect.csv (manifest: figures/threshold_vs_aspect.json) at 
 a rerun skips finished points, so a killed sweep resumes. Writes
 figures/threshold_vs_aspect.png.
 
-    python studies/threshold_vs_aspect.py [--quick] [--serial] [--scheduler ADDRESS] [--fresh] [--engine E] [--levels L]
+    python studies/threshold_vs_aspect.py [--quick] [--out DIR] [--serial] [--scheduler ADDRESS] [--fresh] [--engine E] [--levels L]
 """
 
 from __future__ import annotations
 
-import argparse
 import time
 from dataclasses import asdict, replace
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.viz import pyplot, save_figure
+from phasekit.viz import output_dir, pyplot, run_study, save_figure, study_parser
 from phasekit import DEFAULT_DEFINITIONS, Definition, ModelPack, ResultStore, TaskSpec, make_client, provenance, run_tasks
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
@@ -179,24 +178,18 @@ def report(rows: list, wall: float, n_new: int, mode: str) -> dict:
 
 
 def main(argv=None) -> dict:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true", help="3 aspect ratios per branch, reduced sensitivity")
+    ap = study_parser(__doc__, default_out=FIGURES, quick_help="3 aspect ratios per branch, reduced sensitivity")
     ap.add_argument("--serial", action="store_true", help="run in this process, without Dask")
-    ap.add_argument("--scheduler", default=None, help="address of a running Dask scheduler")
-    ap.add_argument("--workers", type=int, default=None, help="LocalCluster workers (default: one per core)")
+    ap.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a running Dask scheduler (host:port)")
+    ap.add_argument("--workers", type=ap.integer(min=1), default=None, metavar="N", help="LocalCluster workers (default: one per core)")
     ap.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
-    ap.add_argument("--no-sensitivity", action="store_true")
+    ap.add_argument("--no-sensitivity", action="store_true", help="skip the sensitivity runs at a = 1.5 and 2/3 (other d, delta, eps, rtol)")
     ap.add_argument("--engine", default="scalar", choices=("batch", "scalar"),
                     help="simulations one by one (default) or on heyoka's batch integrator; the same brackets")
-    ap.add_argument("--levels", type=int, default=1, help="bisection steps per round (k-section, 2^L - 1 values; default 1)")
-    ap.add_argument("--no-progress", action="store_true")
-    ap.add_argument("--out", default=None,
-                    help="directory for the csv, json manifest and png (default figures/, with --quick figures/quick/)")
+    ap.add_argument("--levels", type=ap.integer(min=1, max=8), default=1,
+                    help="bisection steps per round (k-section, 2^L - 1 values; 1 to 8, default 1)")
     args = ap.parse_args(argv)
-    if not 1 <= args.levels <= 8:
-        ap.error(f"argument --levels: must be in [1, 8], got {args.levels}")
-    out = Path(args.out) if args.out else (FIGURES / "quick" if args.quick else FIGURES)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir(args)
     csv_path, manifest_path, png = out / f"{STEM}.csv", out / f"{STEM}.json", out / f"{STEM}.png"
     t0 = time.perf_counter()
     specs = build_tasks(args.quick, not args.no_sensitivity, args.engine, args.levels)
@@ -231,4 +224,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main, resume=f"the finished rows are kept in {STEM}.csv (in the output folder); rerunning the command resumes from them")

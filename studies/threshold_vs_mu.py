@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 import phasekit as pk
-from phasekit.viz import output_dir, plain_log_ticks, pyplot, save_figure, study_parser
+from phasekit.viz import output_dir, plain_log_ticks, pyplot, run_study, save_figure, study_parser
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "threshold_vs_mu"
@@ -249,16 +249,12 @@ def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
 def main(argv=None) -> dict:
     ap = study_parser(__doc__, default_out=FIGURES)
     ap.add_argument("--serial", action="store_true", help="run in this process, without Dask")
-    ap.add_argument("--scheduler", default=None, help="address of a running Dask scheduler")
-    ap.add_argument("--workers", type=int, default=None, help="LocalCluster workers (default: one per core)")
+    ap.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a running Dask scheduler (host:port)")
+    ap.add_argument("--workers", type=ap.integer(min=1), default=None, metavar="N", help="LocalCluster workers (default: one per core)")
     ap.add_argument("--engine", default="batch", choices=("batch", "scalar"), help="simulations in batch (default) or one by one")
-    ap.add_argument("--per-task", type=int, default=None, help="searches per Dask task, traced in lock-step (default 1)")
+    ap.add_argument("--per-task", type=ap.integer(min=1), default=None, help="searches per Dask task, traced in lock-step (default 1)")
     ap.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
     args = ap.parse_args(argv)
-    if args.per_task is not None and args.per_task < 1:
-        ap.error(f"argument --per-task: must be >= 1, got {args.per_task}")
-    if args.workers is not None and args.workers < 1:
-        ap.error(f"argument --workers: must be >= 1, got {args.workers}")
     out = output_dir(args)
     t0 = time.perf_counter()
     g = grid(args.quick)
@@ -284,4 +280,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main, resume=f"the finished rows are kept in {STEM}.csv (in the output folder); rerunning the command resumes from them")

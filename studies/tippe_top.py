@@ -43,7 +43,7 @@ from pathlib import Path
 import numpy as np
 
 import phasekit as pk
-from phasekit.viz import output_dir, progress, pyplot, save_figure, study_parser, write_csv
+from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 C = 0.4
@@ -377,4 +377,4 @@ def write_json(path: Path, obj) -> None:
 
 
 if __name__ == "__main__":
-    main()
+    run_study(main, resume="the finished rows are kept in tippe_top_map.csv (in the output folder); rerunning the command resumes from them")

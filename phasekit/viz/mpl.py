@@ -19,6 +19,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ParameterError
+from ..validate import check_bool, check_choice, check_int
+
 __all__ = ["LABELS", "label", "plot_timeseries", "plot_events", "plot_section", "plot_phase", "plot_minima", "plain_log_ticks"]
 
 #: axis labels: symbol and unit of every column of a sample or section table
@@ -46,12 +49,75 @@ EVENT_COLORS = {"lift-off": "C3", "touchdown": "C2", "impact": "C2", "stick": "C
 
 def label(name: str) -> str:
     """The axis label of a column (the name itself when it has none)."""
+    if not isinstance(name, str):
+        raise ParameterError("name", "must be a column name (a string), e.g. one of " + ", ".join(LABELS), name)
     return LABELS.get(name, name)
+
+
+def _columns() -> tuple:
+    """The columns of :meth:`phasekit.Trajectory.sample`."""
+    from ..trajectory import SAMPLE_COLUMNS
+
+    return ("t", "mode", *SAMPLE_COLUMNS)
+
+
+def _check_ax(ax):
+    from matplotlib.axes import Axes
+
+    if not isinstance(ax, Axes):
+        raise ParameterError("ax", "must be matplotlib Axes (e.g. fig, ax = plt.subplots())", ax)
+    return ax
+
+
+def _check_traj(traj, *, dense: bool = True):
+    from ..trajectory import Trajectory
+
+    if not isinstance(traj, Trajectory):
+        raise ParameterError("traj", "must be a phasekit Trajectory (from pk.simulate)", traj)
+    if dense and (not traj.segments or not all(s.dense for s in traj.segments)):
+        raise ParameterError("traj", "must keep its dense output (simulate with dense=True, the default)",
+                             show_value=False)
+    return traj
+
+
+def _check_column(name: str, value, valid) -> str:
+    try:
+        ok = value in valid
+    except TypeError:  # unhashable
+        ok = False
+    if not ok or isinstance(value, bool):
+        raise ParameterError(name, f"must be a column name, one of {', '.join(map(str, valid))}", value)
+    return value
+
+
+def _check_names(names, valid) -> list:
+    if isinstance(names, str):
+        names = [names]
+    elif names is None or isinstance(names, (bytes, dict)) or not np.iterable(names):
+        raise ParameterError("names", f"must be a column name or a list of them, from {', '.join(valid)}", names)
+    names = list(names)
+    if not names:
+        raise ParameterError("names", f"must hold at least one column name, from {', '.join(valid)}", names)
+    for name in names:
+        _check_column("names", name, valid)
+    return names
+
+
+def _draw(what: str, draw, style: dict):
+    """Call ``draw(**style)``; a style matplotlib refuses is a ParameterError naming ``style``
+    (the other arguments were checked before)."""
+    try:
+        return draw(**style)
+    except (AttributeError, TypeError, ValueError, KeyError) as exc:
+        msg = " ".join(str(exc).split())
+        raise ParameterError("style", f"must be keyword arguments of {what} ({type(exc).__name__}: {msg})",
+                             style) from None
 
 
 def _grid(traj, times, n: int) -> np.ndarray:
     if times is not None:
-        return np.asarray(times, dtype=float)
+        return times  # checked by Trajectory.sample (named `times`)
+    n = check_int("n", n, minimum=2, maximum=10**7)
     return np.linspace(traj.t0, traj.t, int(n))
 
 
@@ -77,11 +143,14 @@ def plot_timeseries(ax, traj, names, *, times=None, n: int = 4000, set_labels: b
     list of matplotlib.lines.Line2D
         One line per name, labelled with the name.
     """
-    names = [names] if isinstance(names, str) else list(names)
+    _check_ax(ax)
+    _check_traj(traj)
+    names = _check_names(names, _columns())
+    set_labels = check_bool("set_labels", set_labels)
     df = traj.sample(_grid(traj, times, n))
     lines = []
     for name in names:
-        (line,) = ax.plot(df["t"], df[name], label=name, **style)
+        (line,) = _draw("Axes.plot", lambda **kw: ax.plot(df["t"], df[name], label=name, **kw), style)
         lines.append(line)
     if set_labels:
         ax.set_xlabel(label("t"))
@@ -95,13 +164,22 @@ def plot_events(ax, traj, names=None, *, text: bool = True, **style) -> list:
     Returns the artists: one line per event, and one text label per event name (at its
     first occurrence) when ``text`` is True.
     """
-    wanted = None if names is None else ({names} if isinstance(names, str) else set(names))
+    _check_ax(ax)
+    _check_traj(traj, dense=False)
+    text = check_bool("text", text)
+    if names is None or isinstance(names, str):
+        wanted = None if names is None else {names}
+    else:
+        if isinstance(names, (bytes, dict)) or not np.iterable(names) or not all(isinstance(x, str) for x in names):
+            raise ParameterError("names", "must be an event name (e.g. lift-off, touchdown, impact, stick, slip), a list "
+                                          "of them, or None for all", names)
+        wanted = set(names)
     artists, seen = [], set()
     for e in traj.events:
         if wanted is not None and e.name not in wanted:
             continue
         kw = {"color": EVENT_COLORS.get(e.name, "0.5"), "lw": 0.8, "ls": "--", **style}
-        artists.append(ax.axvline(e.t, **kw))
+        artists.append(_draw("Axes.axvline", lambda **k: ax.axvline(e.t, **k), kw))
         if text and e.name not in seen:
             seen.add(e.name)
             artists.append(ax.text(e.t, 0.98, f" {e.name}", transform=ax.get_xaxis_transform(), rotation=90, va="top",
@@ -116,10 +194,20 @@ def plot_section(ax, df, x: str, y: str, *, c: str | None = None, set_labels: bo
     Returns the PathCollection (and adds a colour bar label to nothing: pass the returned
     artist to ``fig.colorbar`` if you want one).
     """
+    import pandas as pd
+
+    _check_ax(ax)
+    if not isinstance(df, pd.DataFrame):
+        raise ParameterError("df", "must be a pandas DataFrame (a section, a sample or an ensemble table)", df)
+    cols = list(df.columns)
+    x, y = _check_column("x", x, cols), _check_column("y", y, cols)
+    if c is not None:
+        c = _check_column("c", c, cols)
+    set_labels = check_bool("set_labels", set_labels)
     kw = {"s": 12, **style}
     if c is not None:
         kw["c"] = df[c]
-    art = ax.scatter(df[x], df[y], **kw)
+    art = _draw("Axes.scatter", lambda **k: ax.scatter(df[x], df[y], **k), kw)
     if set_labels:
         ax.set_xlabel(label(x))
         ax.set_ylabel(label(y))
@@ -128,8 +216,12 @@ def plot_section(ax, df, x: str, y: str, *, c: str | None = None, set_labels: bo
 
 def plot_phase(ax, traj, x: str, y: str, *, times=None, n: int = 4000, set_labels: bool = True, **style) -> list:
     """The trajectory as a curve in the plane of two columns (e.g. theta and Lambda)."""
+    _check_ax(ax)
+    _check_traj(traj)
+    x, y = _check_column("x", x, _columns()), _check_column("y", y, _columns())
+    set_labels = check_bool("set_labels", set_labels)
     df = traj.sample(_grid(traj, times, n))
-    lines = ax.plot(df[x], df[y], **style)
+    lines = _draw("Axes.plot", lambda **k: ax.plot(df[x], df[y], **k), style)
     if set_labels:
         ax.set_xlabel(label(x))
         ax.set_ylabel(label(y))
@@ -138,9 +230,11 @@ def plot_phase(ax, traj, x: str, y: str, *, times=None, n: int = 4000, set_label
 
 def plot_minima(ax, traj, **style):
     """The located local minima of R, (t, R_min), as points; returns the PathCollection."""
+    _check_ax(ax)
+    _check_traj(traj, dense=False)
     m = traj.minima
     kw = {"s": 10, "color": "C3", "zorder": 3, **style}
-    return ax.scatter(m[:, 0], m[:, 1], **kw)
+    return _draw("Axes.scatter", lambda **k: ax.scatter(m[:, 0], m[:, 1], **k), kw)
 
 
 def plain_log_ticks(ax, axis: str = "both", subs=(2, 3, 5)):
@@ -148,6 +242,13 @@ def plain_log_ticks(ax, axis: str = "both", subs=(2, 3, 5)):
     decades and at the minor ticks with mantissa in ``subs``, so that values on a
     log scale that spans less than a decade can still be read off. Returns ``ax``."""
     from matplotlib import ticker
+
+    _check_ax(ax)
+    axis = check_choice("axis", axis, ("x", "y", "both"))
+    if isinstance(subs, (str, bytes, dict)) or not np.iterable(subs) or not all(
+            isinstance(m, (int, float, np.integer, np.floating)) and not isinstance(m, bool) and 1 <= m < 10
+            for m in subs):
+        raise ParameterError("subs", "must be a sequence of mantissas in [1, 10), e.g. (2, 3, 5)", subs)
 
     def major(x, _=None):
         return f"{x:.10g}" if x > 0 else ""

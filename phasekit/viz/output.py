@@ -6,11 +6,18 @@ A study is ``main(argv) -> result`` written with these helpers and ended by
 ``run_study(main)`` under ``if __name__ == "__main__":``::
 
     ap = study_parser(__doc__, default_out=FIGURES)
+    ap.add_argument("--seed", type=ap.integer(min=0), default=1)   # checked at parse time, named
     args = ap.parse_args(argv)
     out = output_dir(args)                       # figures/, figures/quick/ or --out
     for case in progress(cases, desc="cases", enabled=not args.no_progress): ...
     save_figure(fig, out / "name.png")
     write_csv(out / "name.csv", header, rows)
+
+Bad input ends a study with one line on stderr naming the flag as typed, its valid range and
+the value, and exit code 2: argparse errors (the parser prints no usage block), the number
+types ``ap.integer`` / ``ap.real``, an ``--out`` that cannot be used, and any
+:class:`phasekit.ParameterError` that escapes ``main`` (its parameter is named by the study's
+flag). Another :class:`phasekit.PhasekitError` is one line and exit code 1.
 """
 
 from __future__ import annotations
@@ -18,43 +25,160 @@ from __future__ import annotations
 import argparse
 import contextlib
 import csv
+import io
+import math
 import os
+import re
 import shlex
 import sys
+import time
 from collections.abc import Mapping
 from pathlib import Path
 
-__all__ = ["study_parser", "output_dir", "pyplot", "save_figure", "write_csv", "atomic_path", "progress", "run_study"]
+__all__ = ["study_parser", "StudyParser", "output_dir", "pyplot", "save_figure", "write_csv", "atomic_path", "progress",
+           "run_study"]
 
 #: exit code of a run ended by Ctrl-C (128 + SIGINT), as shells report it
 EXIT_INTERRUPTED = 130
+#: exit code of bad input (argparse's), and of another phasekit error
+EXIT_USAGE, EXIT_FAILED = 2, 1
+
+#: the parser of the study running in this process (run_study names API parameters by its flags)
+_PARSER: argparse.ArgumentParser | None = None
 
 
-def study_parser(doc: str, *, default_out: Path, quick: bool = True, quick_help: str | None = None) -> argparse.ArgumentParser:
-    """An argument parser with the options every study has: ``--quick`` (a reduced run, written
-    to ``figures/quick/`` unless ``--out`` is given, never over the committed results),
-    ``--out DIR`` and ``--no-progress``. Abbreviated options are refused (``--q`` is not
-    ``--quick``)."""
-    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter, allow_abbrev=False)
+def _typed(text: str) -> str:
+    """A value as the user typed it: numbers plain, anything else quoted."""
+    try:
+        float(text)
+    except ValueError:
+        return repr(text)
+    return text.strip()
+
+
+class StudyParser(argparse.ArgumentParser):
+    """argparse with one-line errors (``prog: error: argument --flag: ...``, exit code 2, no
+    usage block) and checked number types for a study's flags: ``type=ap.integer(min=1)``,
+    ``type=ap.real(min=0, min_open=True)``. Abbreviated options are refused."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
+        kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
+        super().__init__(*args, **kwargs)
+        # argparse's own pattern misses exponents, so "--mu -1e-4" would read -1e-4 as an option
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|nan)$", re.I)
+
+    def error(self, message):  # one line, no usage block
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {' '.join(str(message).split())}\n")
+
+    @staticmethod
+    def integer(min: int | None = None, max: int | None = None):
+        """An argparse ``type``: an integer in [min, max] (either bound may be None)."""
+        if min is not None and max is not None:
+            want = f"an integer in [{min}, {max}]"
+        else:
+            want = "an integer" + (f" >= {min}" if min is not None else f" <= {max}" if max is not None else "")
+
+        def integer(text: str) -> int:
+            try:
+                value = int(text)
+            except ValueError:
+                raise argparse.ArgumentTypeError(f"must be {want}, got {_typed(text)}") from None
+            if (min is not None and value < min) or (max is not None and value > max):
+                raise argparse.ArgumentTypeError(f"must be {want}, got {_typed(text)}")
+            return value
+
+        return integer
+
+    @staticmethod
+    def real(min: float | None = None, max: float | None = None, *, min_open: bool = False, max_open: bool = False):
+        """An argparse ``type``: a finite number in the range given (bounds inclusive unless
+        ``min_open`` / ``max_open``); nan and inf are refused."""
+        parts = []
+        if min is not None:
+            parts.append(f"{'>' if min_open else '>='} {float(min):g}")
+        if max is not None:
+            parts.append(f"{'<' if max_open else '<='} {float(max):g}")
+        want = "a finite number" + (" " + " and ".join(parts) if parts else "")
+
+        def real(text: str) -> float:
+            try:
+                value = float(text)
+            except ValueError:
+                raise argparse.ArgumentTypeError(f"must be {want}, got {_typed(text)}") from None
+            bad = not math.isfinite(value)
+            if min is not None:
+                bad = bad or value < min or (min_open and value == min)
+            if max is not None:
+                bad = bad or value > max or (max_open and value == max)
+            if bad:
+                raise argparse.ArgumentTypeError(f"must be {want}, got {_typed(text)}")
+            return value
+
+        return real
+
+
+def _directory_name(text: str) -> str:
+    """``--out``: a non-empty path (an empty one would silently mean the default folder)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError(f"must name a directory, got {text!r} (omit --out for the default folder)")
+    return text
+
+
+def study_parser(doc: str, *, default_out: Path, quick: bool = True, quick_help: str | None = None) -> StudyParser:
+    """An argument parser (a :class:`StudyParser`) with the options every study has:
+    ``--quick`` (a reduced run, written to ``figures/quick/`` unless ``--out`` is given, never
+    over the committed results), ``--out DIR`` and ``--no-progress``. Abbreviated options are
+    refused (``--q`` is not ``--quick``); an error is one line naming the flag, exit code 2."""
+    global _PARSER
+    ap = StudyParser(description=doc)
     if quick:
         ap.add_argument("--quick", action="store_true",
                         help=(quick_help or "a reduced run") + f"; writes to {Path(default_out) / 'quick'} unless --out is given")
-    ap.add_argument("--out", default=None, metavar="DIR", help=f"directory for the figures and tables (default: {default_out})")
+    ap.add_argument("--out", default=None, type=_directory_name, metavar="DIR",
+                    help=f"directory for the figures and tables (default: {default_out})")
     ap.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     ap.set_defaults(default_out=str(default_out))
+    _PARSER = ap
     return ap
 
 
 def output_dir(args) -> Path:
     """Where a study writes: --out, else figures/ for a full run and figures/quick/ for --quick
-    (so that a quick run never overwrites the committed results). Created if missing."""
-    if args.out:
-        out = Path(args.out)
+    (so that a quick run never overwrites the committed results). Created if missing.
+
+    Raises :class:`phasekit.ParameterError` (parameter ``out``) for an empty ``--out``, a path
+    that is not a directory, cannot be created or is not writable."""
+    from ..errors import ParameterError
+
+    given = getattr(args, "out", None)
+    if given is not None:
+        if not str(given).strip():
+            raise ParameterError("out", "must name a directory (omit it for the default folder)", str(given))
+        out = Path(given)
     elif getattr(args, "quick", False):
         out = Path(args.default_out) / "quick"
     else:
         out = Path(args.default_out)
-    out.mkdir(parents=True, exist_ok=True)
+    value = str(given) if given is not None else str(out)
+
+    def refuse(why: str):
+        return ParameterError("out", f"must be a writable directory, but {why}", value)
+
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise refuse("it is an existing file, not a directory") from None
+    except NotADirectoryError:
+        raise refuse("it cannot be created: a part of the path is a file, not a directory") from None
+    except PermissionError:
+        raise refuse("it cannot be created: permission denied") from None
+    except OSError as exc:
+        raise refuse(f"it cannot be created ({(exc.strerror or type(exc).__name__).lower()})") from None
+    if not out.is_dir():
+        raise refuse("it is not a directory")
+    if not os.access(out, os.W_OK | os.X_OK):
+        raise refuse("it is not writable")
     return out
 
 
@@ -135,23 +259,134 @@ def _command(argv) -> str:
     return shlex.join(["python", str(script), *argv])
 
 
-def run_study(main, argv=None, *, resume: str | None = None) -> None:
+def _flag(param: str, flags: Mapping[str, str] | None) -> str:
+    """The flag a user typed for an API parameter: ``flags[param]``, else ``--param`` (with _ as
+    -) if the study has that flag, else the parameter as the API names it."""
+    if flags and param in flags:
+        return flags[param]
+    guess = "--" + param.replace("_", "-")
+    known = getattr(_PARSER, "_option_string_actions", {})
+    return guess if guess in known else f"`{param}`"
+
+
+def _fail(message: str, code: int):
+    prog = getattr(_PARSER, "prog", None) or Path(sys.argv[0]).name or "study"
+    sys.stdout.flush()
+    sys.stderr.write(f"{prog}: error: {' '.join(str(message).split())}\n")
+    sys.stderr.flush()
+    raise SystemExit(code) from None
+
+
+def _chained_to_interrupt(exc) -> bool:
+    """Is ``exc`` a KeyboardInterrupt, or raised while one was being handled?"""
+    while exc is not None:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        exc = exc.__context__
+    return False
+
+
+class _Muted(io.TextIOBase):
+    """A stand-in for sys.stderr that drops what is written (see :func:`_ctrl_c_guard`)."""
+
+    def write(self, text) -> int:
+        return len(text)
+
+
+@contextlib.contextmanager
+def _ctrl_c_guard(late_s: float = 0.5):
+    """While ``main`` runs, Ctrl-C (SIGINT) raises KeyboardInterrupt as usual, and also:
+
+    * mutes what this process writes to sys.stderr while the run winds down (Dask's warnings
+      while it stops workers in mid-task, CasADi's "rhs failed: KeyboardInterrupt"), so that
+      the one line of :func:`run_study` is all that is printed;
+    * makes sure the interrupt is not lost. When it lands inside compiled code, CasADi's
+      integrators turn the KeyboardInterrupt into an error of their own (a failed run, and
+      the study would go on). So until ``main`` has ended, the KeyboardInterrupt is raised
+      again at the first line of Python that runs in a handler of another exception (where
+      such an error is caught), or, ``late_s`` after the signal, anywhere outside the
+      cleanup of the KeyboardInterrupt itself (``except`` / ``finally`` / ``__exit__`` blocks
+      on its way out run undisturbed). A second Ctrl-C raises at once.
+    """
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+        yield
+        return
+    state = {"at": None}
+    stderr, previous_trace = sys.stderr, sys.gettrace()
+
+    def again(frame, event, arg):  # a trace function: runs before each line of Python in this thread
+        if state["at"] is None:
+            return None
+        exc = sys.exc_info()[1]
+        if _chained_to_interrupt(exc):
+            return again
+        if exc is not None or time.monotonic() - state["at"] > late_s:
+            state["at"] = None  # once: this one is not caught by compiled code
+            sys.settrace(previous_trace)
+            raise KeyboardInterrupt
+        return again
+
+    def interrupted(signum, frame):
+        if state["at"] is None:
+            import logging
+
+            state["at"] = time.monotonic()
+            for name in ("distributed", "tornado", "asyncio"):
+                logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+            sys.stderr = _Muted()
+            f = frame
+            while f is not None:  # trace the frames running now, and every frame called from now on
+                f.f_trace = again
+                f = f.f_back
+            sys.settrace(again)
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGINT, interrupted)
+    try:
+        yield
+    finally:
+        if state["at"] is not None:
+            state["at"] = None
+            sys.settrace(previous_trace)
+        sys.stderr = stderr
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+def run_study(main, argv=None, *, resume: str | None = None, flags: Mapping[str, str] | None = None) -> None:
     """Run ``main(argv)`` as a command: Ctrl-C ends it with one line on stderr (no traceback)
     saying what was kept and how to resume, and exit code 130; a closed stdout pipe ends it
     quietly.
 
-    ``resume`` says how a rerun picks up (for a study that keeps finished work); the default
-    is for studies that write their files whole at the end: nothing was changed, rerun.
+    A :class:`phasekit.ParameterError` that escapes ``main`` ends it with one line naming the
+    flag the user typed (``flags`` maps API parameter names to flags where ``--name`` is not
+    it) and exit code 2; another :class:`phasekit.PhasekitError` with one line and exit code 1.
+
+    ``resume`` says how a rerun picks up (for a study that keeps finished work; the command
+    shown then leaves out ``--fresh``, which would discard it); the default is for studies
+    that write their files whole at the end: nothing was changed, rerun.
     """
+    from ..errors import ParameterError, PhasekitError
+
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        main(argv)
+        with _ctrl_c_guard():
+            main(argv)
     except KeyboardInterrupt:
         how = resume or "no result file was changed (each is written whole, at the end); to resume, run it again"
-        sys.stderr.write(f"\ninterrupted: {how}: {_command(argv)}\n")
+        again = [a for a in argv if a != "--fresh"] if resume else argv
+        with contextlib.suppress(Exception):
+            sys.stdout.flush()
+        sys.stderr.write(f"\ninterrupted: {how}: {_command(again)}\n")
         sys.stderr.flush()
         raise SystemExit(EXIT_INTERRUPTED) from None
     except BrokenPipeError:  # the reader went away (e.g. `| head`): stop quietly (Python docs' recipe)
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         raise SystemExit(1) from None
+    except ParameterError as exc:
+        _fail(exc.render(_flag(exc.param, flags)), EXIT_USAGE)
+    except PhasekitError as exc:
+        _fail(str(exc), EXIT_FAILED)

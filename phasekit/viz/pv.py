@@ -109,15 +109,114 @@ def _headless() -> None:
         os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
 
 
+#: the image size's range, pixels per side
+WINDOW_RANGE = (16, 8192)
+#: PyVista's named views (``camera="xy"`` looks down z, "iso" is isometric)
+CAMERA_NAMES = ("xy", "xz", "yz", "yx", "zx", "zy", "iso")
+#: the file types written, per argument
+SUFFIXES = {"path": (".png",), "gltf": (".gltf",), "html": (".html", ".htm")}
+
+
+class _UnwritableError(ParameterError, PhasekitError):
+    """A target file that cannot be written: a ParameterError naming the argument, and (as
+    before these checks) a PhasekitError."""
+
+
+def _what(name: str) -> str:
+    return "the PNG" if name == "path" else f"the {name} export"
+
+
+def _check_file(name: str, target, *, create: bool = False) -> Path:
+    """A file path of the argument's type (suffix) whose directory exists (``create``: or can
+    be created) and is writable; nothing is written yet."""
+    kinds = " or ".join(SUFFIXES[name])
+    if not isinstance(target, (str, os.PathLike)) or not isinstance(os.fspath(target), str) or not str(target).strip():
+        raise ParameterError(name, f"must be a file path ending in {kinds}", target)
+    p = Path(target)
+    if p.suffix not in SUFFIXES[name]:
+        raise ParameterError(name, f"must be a file path ending in {kinds}", str(target))
+    try:
+        resolved = p.resolve()
+        is_dir = resolved.is_dir()
+    except (OSError, ValueError, RuntimeError):
+        raise ParameterError(name, f"must be a usable file path ending in {kinds}", str(target)) from None
+    if is_dir:
+        raise ParameterError(name, "must be a file path, not a directory", str(target))
+    parent = resolved.parent
+    if create:  # the nearest existing ancestor must be a directory (the rest is made before drawing)
+        anc = parent
+        while not anc.exists() and anc != anc.parent:
+            anc = anc.parent
+        parent = anc
+    if not parent.is_dir() or not os.access(parent, os.W_OK):
+        raise _UnwritableError(name, f"must be a path in a writable directory (cannot write {_what(name)} there: "
+                                     f"{parent} is missing, not a directory or not writable)", str(target))
+    return p
+
+
+def _probe(name: str, target: Path) -> None:
+    """Make the directory of ``target`` if missing and write (and remove) a file in it: catches
+    what os.access does not (read-only and special file systems, running as root)."""
+    import tempfile
+
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=".phasekit-probe-")
+        os.close(fd)
+        os.unlink(tmp)
+    except OSError as exc:
+        raise _UnwritableError(name, f"must be a path in a writable directory (cannot write {_what(name)} there: "
+                                     f"{exc.strerror or exc})", str(target)) from None
+
+
+def _check_window_size(value) -> tuple[int, int]:
+    lo, hi = WINDOW_RANGE
+    what = f"must be two integers (width, height) in [{lo}, {hi}] pixels"
+    if isinstance(value, (str, bytes, dict, set)) or not np.iterable(value):
+        raise ParameterError("window_size", what, value)
+    size = list(value)
+    if len(size) != 2 or not all(isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_)) for v in size):
+        raise ParameterError("window_size", what, size)
+    if not all(lo <= int(v) <= hi for v in size):
+        raise ParameterError("window_size", what, size)
+    return int(size[0]), int(size[1])
+
+
+def _check_camera(camera):
+    """None, a PyVista view name, a view vector (3 numbers) or (position, focal point, view up)."""
+    what = (f"must be None, one of {', '.join(CAMERA_NAMES)}, a view direction (3 finite numbers, not all 0) or "
+            "[position, focal point, view up] (three triples of finite numbers, the position away from the focal "
+            "point, view up not along the line of sight)")
+    if camera is None:
+        return None
+    if isinstance(camera, str):
+        if camera.lower() not in CAMERA_NAMES:
+            raise ParameterError("camera", what, camera)
+        return camera
+    if hasattr(camera, "to_list"):  # a pyvista CameraPosition
+        camera = camera.to_list()
+    if isinstance(camera, (bytes, dict, set)) or not np.iterable(camera):
+        raise ParameterError("camera", what, camera)
+    try:
+        arr = np.array(camera, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError("camera", what, camera) from None
+    if not np.all(np.isfinite(arr)) or arr.shape not in ((3,), (3, 3)):
+        raise ParameterError("camera", what, arr if arr.ndim else camera)
+    if arr.shape == (3,):
+        if not np.any(arr != 0):
+            raise ParameterError("camera", what, arr)
+        return [float(v) for v in arr]
+    pos, focal, up = arr
+    sight = focal - pos
+    if not np.linalg.norm(sight) > 0 or not np.linalg.norm(np.cross(sight, up)) > 1e-12 * np.linalg.norm(sight) * (
+            np.linalg.norm(up) or 1.0):
+        raise ParameterError("camera", what, arr)
+    return [tuple(float(v) for v in row) for row in arr]
+
+
 def _check_exports(html, gltf) -> None:
     """Fail before drawing when an export cannot be written (one line, naming the fix)."""
-    for name, target in (("html", html), ("gltf", gltf)):
-        if target is None:
-            continue
-        parent = Path(target).resolve().parent
-        if not parent.is_dir() or not os.access(parent, os.W_OK):
-            raise PhasekitError(f"cannot write the {name} export {target}: directory {parent} is missing or not "
-                                "writable")
     if html is not None:
         missing = [m for m in HTML_EXTRA if importlib.util.find_spec(m) is None]
         if missing:
@@ -134,18 +233,19 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
     data : SceneData or Scene
         What :func:`phasekit.compute_scene` returned (a Scene is computed first).
     path : str or Path, optional
-        Where to write the PNG. Without it, nothing is written: the plotter is returned
+        Where to write the PNG (a missing directory is made). Without it, nothing is written: the plotter is returned
         (call ``.show()`` on it; it is off-screen only if ``off_screen=True``).
     window_size : (int, int)
-        Image width and height in pixels.
+        Image width and height in pixels, each in [16, 8192].
     html, gltf : str, optional
         Also export the scene as interactive HTML (needs ``phasekit[html]``) or glTF (with
         the axes, their tick values and units as geometry, and the axis ranges and units in
         the file's ``asset.extras``).
     title : str, optional
         Text at the top left.
-    camera : list, optional
-        PyVista camera position (default: one per branch).
+    camera : str or list, optional
+        A PyVista view name (xy, xz, yz, yx, zx, zy, iso), a view direction (3 numbers) or
+        [position, focal point, view up] in the drawn box's coordinates (default: one per branch).
     off_screen : bool, optional
         Default: True when writing a PNG, False when returning the plotter.
 
@@ -156,17 +256,38 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
 
     Raises
     ------
+    ParameterError
+        A bad argument, named (before anything is computed or drawn). A target file that cannot
+        be written (``path``, ``html``, ``gltf``: wrong suffix, missing or read-only directory)
+        is one too; that one is also a PhasekitError.
     PhasekitError
-        When an export cannot be written (missing directory, missing optional packages):
-        before anything is drawn.
+        When the HTML export's optional packages are missing: before anything is drawn.
     """
-    from ..surface import Scene, compute_scene
+    from ..surface import Scene, SceneData, compute_scene
 
+    if not isinstance(data, (Scene, SceneData)):
+        raise ParameterError("data", "must be a Scene or what compute_scene returned", data)
+    if path is not None:
+        path = _check_file("path", path, create=True)
+    window_size = _check_window_size(window_size)
+    for name, target in (("html", html), ("gltf", gltf)):
+        if target is not None:
+            if path is None:
+                raise ParameterError(name, "needs `path`: the exports are written with the PNG", str(target))
+            _check_file(name, target)
+    if title is not None and not isinstance(title, str):
+        raise ParameterError("title", "must be a string or None", title)
+    camera = _check_camera(camera)
+    if off_screen is not None and not isinstance(off_screen, (bool, np.bool_)):
+        raise ParameterError("off_screen", "must be True, False or None", off_screen)
+    _check_exports(html, gltf)
+    for name, target in (("path", path), ("html", html), ("gltf", gltf)):
+        if target is not None:
+            _probe(name, Path(target))
     if isinstance(data, Scene):
         data = compute_scene(data)
-    if not hasattr(data, "bounds") or data.bounds is None:
+    if data.bounds is None:
         raise ParameterError("data", "must be a Scene or what compute_scene returned", data)
-    _check_exports(html, gltf)
     _headless()
     import pyvista as pv
 
@@ -177,7 +298,6 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
         pl.camera_position = camera or CAMERAS[data.scene.branch]
         if path is None:
             return pl
-        Path(path).parent.mkdir(parents=True, exist_ok=True)
         img = pl.screenshot(str(path), return_img=True)
         exported = _export(pl, data, html, gltf)
         pl.close()
