@@ -61,12 +61,18 @@ _STRUCTURAL = {ca.OP_CONST, ca.OP_INPUT, ca.OP_OUTPUT}
 _OP_NAMES = {getattr(ca, n): n[3:].lower() for n in dir(ca) if n.startswith("OP_")}
 
 
+class _AnyFunction:
+    """Stands in for the heyoka module where only the keys of the translation tables are
+    wanted (checking a body's profile does not need heyoka loaded)."""
+
+    def __getattr__(self, name):
+        return None
+
+
 def operations(f: ca.Function) -> dict[str, set[str]]:
     """The operations of an SX function that the Taylor integrator cannot take:
     ``{"non_smooth": names, "untranslated": names}`` (both empty when all is well)."""
-    import heyoka as hy
-
-    known = set(_unary(hy)) | set(_binary(hy)) | _STRUCTURAL
+    known = set(_unary(_AnyFunction())) | set(_binary(_AnyFunction())) | _STRUCTURAL
     ops = {f.instruction_id(k) for k in range(f.n_instructions())}
     return {"non_smooth": {_OP_NAMES.get(op, str(op)) for op in ops & NON_SMOOTH},
             "untranslated": {_OP_NAMES.get(op, str(op)) for op in ops - known - NON_SMOOTH}}

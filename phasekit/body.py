@@ -97,13 +97,17 @@ class Body:
     def check_inertia(self) -> None:
         """Raise ParameterError naming `A` or `C` if a moment exceeds M r_max^2: all the mass
         lies within r_max = max |GP| of G (called when a Model is built: the shape is set
-        after the moments in some bodies' constructors)."""
+        after the moments in some bodies' constructors); once per body, as Models are built
+        on the sweeps' hot path."""
+        if getattr(self, "_inertia_checked", False):
+            return
         h, h1, _ = (np.asarray(v, dtype=float).ravel() for v in self.h(np.linspace(0.0, np.pi, 181)))
         r2 = float(np.max(h * h + h1 * h1)) * (1 + 1e-9)
         for name, value in (("A", self.A), ("C", self.C)):
             if value > r2:
                 raise ParameterError(name, f"must be at most {r2:.6g} (M r_max^2: no point of the body is farther than "
                                            f"r_max = {np.sqrt(r2):.6g} from G)", value)
+        self._inertia_checked = True
 
     def h(self, theta):
         """(h, h_theta, h_thetatheta) at theta (float or array), exact derivatives via CasADi."""

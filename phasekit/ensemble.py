@@ -36,6 +36,7 @@ from .errors import ParameterError, PhasekitError, Status
 from .hybrid import Event
 from .model import Model
 from .simulate import simulate, solver_options
+from .sweep import make_client
 from .validate import check_finite, check_int, check_vector
 
 __all__ = ["ensemble", "rerun", "summary_row", "ROW_COLUMNS"]
@@ -113,13 +114,8 @@ def _client(scheduler):
     """(client, owned): a Dask client for an address, a Client or a cluster."""
     from dask.distributed import Client
 
-    if isinstance(scheduler, str):
-        try:
-            return Client(scheduler, timeout=CONNECT_TIMEOUT), True
-        except (OSError, ValueError, TypeError) as exc:  # a malformed or unreachable address
-            raise ParameterError("scheduler", f"must be the address of a running Dask scheduler, e.g. tcp://host:8786 "
-                                              f"({type(exc).__name__}: {' '.join(str(exc).split())[:160]})",
-                                 scheduler) from None
+    if isinstance(scheduler, str):  # checked there: a bad or silent address is a ParameterError naming it
+        return make_client(scheduler, timeout=CONNECT_TIMEOUT)[0], True
     if isinstance(scheduler, Client):
         return scheduler, False
     if hasattr(scheduler, "scheduler_address"):

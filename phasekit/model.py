@@ -310,18 +310,20 @@ class Model:
         if not isinstance(name, str):
             raise ParameterError("name", f"must be one of {', '.join(OBSERVABLES)}", name)
         mode = _mode_arg(mode)
-        if name not in OBSERVABLES and name not in self.compiled.functions_of(mode):
-            raise ParameterError("name", f"must be one of {', '.join(OBSERVABLES)}", name)
-        return self._evaluate(name, self._states_arg(x, mode), mode)
+        fn = self._function_of(name, mode)
+        return evaluate_function(fn, self.p, self._states_arg(x, mode))
+
+    def _function_of(self, name: str, mode: Mode) -> ca.Function:
+        if name in OBSERVABLES:
+            return self.observable(name, mode)
+        fns = self.compiled.functions_of(mode)
+        if name in fns:  # an internal function (guards, rates): allowed, not advertised
+            return fns[name]
+        raise ParameterError("name", f"must be one of {', '.join(OBSERVABLES)}", name)
 
     def _evaluate(self, name: str, x, mode: Mode = Mode.SLIDING):
         """:meth:`evaluate` without the checks of its arguments (for phasekit's own calls)."""
-        if name not in OBSERVABLES:
-            fns = self.compiled.functions_of(Mode(mode))
-            if name in fns:  # an internal function (guards, rates): allowed, not advertised
-                return evaluate_function(fns[name], self.p, x)
-            raise ParameterError("name", f"must be one of {', '.join(OBSERVABLES)}", name)
-        return evaluate_function(self.observable(name, mode), self.p, x)
+        return evaluate_function(self._function_of(name, Mode(mode)), self.p, x)
 
     def rhs(self, x, mode: Mode = Mode.SLIDING) -> np.ndarray:
         """The vector field of ``mode`` at one state (d,)."""
