@@ -49,7 +49,7 @@ from .hybrid import Mode
 from .model import Model
 from .options import SolverOptions
 from .charts import POLE_GUARD
-from .simulate import simulate, solver_options
+from .simulate import apply_transition, simulate, solver_options
 from .system import declare, watched
 from .trajectory import EventRecord, Segment, Trajectory
 from .validate import check_int
@@ -173,21 +173,7 @@ class _Job:
                                         None if x is None else self.model.chart.to_paper(x)))
 
     def apply(self, tr, max_switches: int) -> None:
-        """As simulate's _Run.apply: log a transition's records, then go on or stop."""
-        for r in tr.records:
-            self.record(r.name, tr.t, r.mode_before, r.mode_after, r.x, r.detail)
-        if tr.resume:
-            self.resume = True
-            return
-        if tr.stop is not None:
-            self.status, self.reason = tr.stop, tr.reason
-            if not self.segments:
-                self.t, self.x, self.mode = tr.t, np.asarray(tr.x, dtype=float), tr.mode or self.mode
-            return
-        self.mode, self.t, self.x = tr.mode, tr.t, np.asarray(tr.x, dtype=float)
-        if len(self.records) >= max_switches:
-            self.status = Status.FAILED
-            self.reason = f"more than {max_switches} mode switches by t = {self.t:.6g} (chattering)"
+        apply_transition(self, tr, max_switches)
 
     def add_segment(self, t1, x1, end, order, extend) -> None:
         steps, self.seg_steps = self.seg_steps, 0

@@ -153,6 +153,25 @@ def _tracked(flow, track_minima: bool):
     return flow if track_minima or flow.mode is Mode.FLIGHT else replace(flow, monitor=None)
 
 
+def apply_transition(run, tr: Transition, max_switches: int) -> None:
+    """Log a transition's records on ``run`` (simulate's loop or a lane of simulate_batch),
+    then continue in its mode or stop."""
+    for r in tr.records:
+        run.record(r.name, tr.t, r.mode_before, r.mode_after, r.x, r.detail)
+    if tr.resume:
+        run.resume = True
+        return
+    if tr.stop is not None:
+        run.status, run.reason = tr.stop, tr.reason
+        if not run.segments:  # stopped before any integration: keep the start
+            run.t, run.x, run.mode = tr.t, np.asarray(tr.x, dtype=float), tr.mode or run.mode
+        return
+    run.mode, run.t, run.x = tr.mode, tr.t, np.asarray(tr.x, dtype=float)
+    if len(run.records) >= max_switches:
+        run.status = Status.FAILED
+        run.reason = f"more than {max_switches} mode switches by t = {run.t:.6g} (chattering)"
+
+
 class _Run:
     """The state of one run of the loop."""
 
@@ -174,21 +193,7 @@ class _Run:
         self.records.append(EventRecord(name, float(t), before, after, x, detail, y))
 
     def apply(self, tr: Transition) -> None:
-        """Log a transition's records, then continue in its mode or stop."""
-        for r in tr.records:
-            self.record(r.name, tr.t, r.mode_before, r.mode_after, r.x, r.detail)
-        if tr.resume:
-            self.resume = True
-            return
-        if tr.stop is not None:
-            self.status, self.reason = tr.stop, tr.reason
-            if not self.segments:  # stopped before any integration: keep the start
-                self.t, self.x, self.mode = tr.t, np.asarray(tr.x, dtype=float), tr.mode or self.mode
-            return
-        self.mode, self.t, self.x = tr.mode, tr.t, np.asarray(tr.x, dtype=float)
-        if len(self.records) >= self.opts.max_switches:
-            self.status = Status.FAILED
-            self.reason = f"more than {self.opts.max_switches} mode switches by t = {self.t:.6g} (chattering)"
+        apply_transition(self, tr, self.opts.max_switches)
 
     def engine(self, flow):
         name = flow.engine or self.opts.backend

@@ -35,7 +35,7 @@ from pathlib import Path
 
 from .errors import Status
 
-__all__ = ["ModelPack", "ResultStore", "TaskSpec", "run_tasks", "make_client", "provenance", "ThresholdRow",
+__all__ = ["ModelPack", "ResultStore", "TaskSpec", "run_tasks", "run_pending", "PendingRun", "make_client", "provenance", "ThresholdRow",
            "threshold_task", "threshold_key", "critical_path", "SearchRow", "search_task", "search_job", "search_group_task", "group_search_tasks", "store_groups", "job_key", "search_key", "OutcomeRow",
            "outcome_task", "outcome_key", "client_evaluator"]
 
@@ -415,6 +415,45 @@ def run_tasks(specs: list[TaskSpec], *, store_get: Callable[[str], object | None
     finally:
         bar.close()
     return results
+
+
+@dataclass(frozen=True)
+class PendingRun:
+    """How :func:`run_pending` ran: ``computed`` of ``total`` tasks, ``mode`` in words."""
+
+    computed: int
+    total: int
+    mode: str
+
+    def __str__(self) -> str:
+        return f"{self.computed} of {self.total} tasks computed now ({self.mode})"
+
+
+def run_pending(specs: list[TaskSpec], *, store_get: Callable[[str], object | None],
+                on_result: Callable[[TaskSpec, object], None], warm_up: Callable[[], None], serial: bool = False,
+                scheduler: str | None = None, workers: int | None = None, progress: bool = True,
+                desc: str = "tasks") -> PendingRun:
+    """:func:`run_tasks` as a study runs it: nothing is compiled and no cluster is started
+    when every task is stored; otherwise ``warm_up`` compiles the models once into a
+    :class:`ModelPack`, and the tasks run on Dask (:func:`make_client`: ``scheduler`` or a
+    LocalCluster of ``workers``), or in this process with ``serial=True``."""
+    pending = [s for s in specs if store_get(s.key) is None]
+    if not pending:
+        return PendingRun(0, len(specs), "all stored")
+    pack = ModelPack.build(warm_up)
+    client = cluster = None
+    mode = "serial"
+    if not serial:
+        client, cluster = make_client(scheduler, workers)
+        mode = f"dask: {len(client.scheduler_info()['workers'])} workers, model pack {pack.size_mb:.1f} MB shipped once"
+    try:
+        run_tasks(specs, store_get=store_get, on_result=on_result, client=client, pack=pack, progress=progress, desc=desc)
+    finally:
+        if client is not None:
+            client.close()
+        if cluster is not None:
+            cluster.close()
+    return PendingRun(len(pending), len(specs), mode)
 
 
 def _evaluate_part(pack, jobs, engine):

@@ -143,23 +143,9 @@ def run(specs, members, grid_keys, stores, args) -> str:
         else:
             add_searches(spec, result)
 
-    pending = [s for s in specs if stored(s.key) is None]
-    client = cluster = pack = None
-    mode = "serial"
-    if pending:
-        pack = pk.ModelPack.build(warm_up)
-        if not args.serial:
-            client, cluster = pk.make_client(args.scheduler, args.workers)
-            mode = f"dask: {len(client.scheduler_info()['workers'])} workers"
-    try:
-        pk.run_tasks(specs, store_get=stored, on_result=on_result, client=client, pack=pack,
-                     progress=not args.no_progress, desc="outcome map")
-    finally:
-        if client is not None:
-            client.close()
-        if cluster is not None:
-            cluster.close()
-    return f"{len(pending)} of {len(specs)} tasks computed now ({mode})"
+    return str(pk.run_pending(specs, store_get=stored, on_result=on_result, warm_up=warm_up, serial=args.serial,
+                              scheduler=args.scheduler, workers=args.workers, progress=not args.no_progress,
+                              desc="outcome map"))
 
 
 # -- the 2-D maps ---------------------------------------------------------------------------------

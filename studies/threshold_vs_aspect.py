@@ -34,7 +34,7 @@ from pathlib import Path
 
 import phasekit as pk
 from phasekit.viz import output_dir, pyplot, run_study, save_figure, study_parser
-from phasekit import DEFAULT_DEFINITIONS, Definition, ModelPack, ResultStore, TaskSpec, make_client, provenance, run_tasks
+from phasekit import DEFAULT_DEFINITIONS, Definition, ResultStore, TaskSpec, provenance, run_pending
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "threshold_vs_aspect"
@@ -198,29 +198,14 @@ def main(argv=None) -> dict:
                        "default_definition": DEFAULT_NAME, "jump": "R reaches 0 with dR/dt < 0 before the rise completes",
                        "rise_complete": "theta within rise_margin of the final state (0 prolate, pi/2 oblate), or t_max reached"})
     store = ResultStore(csv_path, manifest_path, pk.ThresholdRow, meta, fresh=args.fresh)
-    pending = [s for s in specs if s.key not in store]
-    client = cluster = None
-    pack = None
-    mode = "serial"
-    if pending:
-        pack = ModelPack.build(warm_up)
-        if not args.serial:
-            client, cluster = make_client(args.scheduler, args.workers)
-            mode = f"dask: {len(client.scheduler_info()['workers'])} workers, model pack {pack.size_mb:.1f} MB shipped once"
-    try:
-        run_tasks(specs, store_get=store.get, on_result=lambda s, r: store.add(r), client=client, pack=pack,
-                  progress=not args.no_progress, desc="thresholds")
-    finally:
-        if client is not None:
-            client.close()
-        if cluster is not None:
-            cluster.close()
+    ran = run_pending(specs, store_get=store.get, on_result=lambda s, r: store.add(r), warm_up=warm_up, serial=args.serial,
+                      scheduler=args.scheduler, workers=args.workers, progress=not args.no_progress, desc="thresholds")
     keys = {s.key for s in specs}
     rows = [r for r in store.rows() if r.key in keys]
     plot(rows, args.quick, png)
     wall = time.perf_counter() - t0
-    stats = report(rows, wall, len(pending), mode)
-    return {"rows": rows, "wall_s": wall, "n_computed": len(pending), **stats}
+    stats = report(rows, wall, ran.computed, ran.mode)
+    return {"rows": rows, "wall_s": wall, "n_computed": ran.computed, **stats}
 
 
 if __name__ == "__main__":

@@ -89,23 +89,8 @@ def warm_up() -> None:
 def run(specs, members, store, args, desc: str) -> str:
     """Run the pending tasks on Dask (or serially) into ``store``; returns how it ran."""
     get, on_result = pk.store_groups(store, members)
-    pending = [s for s in specs if get(s.key) is None]
-    client = cluster = pack = None
-    mode = "serial"
-    if pending:
-        pack = pk.ModelPack.build(warm_up)
-        if not args.serial:
-            client, cluster = pk.make_client(args.scheduler, args.workers)
-            mode = f"dask: {len(client.scheduler_info()['workers'])} workers, model pack {pack.size_mb:.1f} MB shipped once"
-    try:
-        pk.run_tasks(specs, store_get=get, on_result=on_result, client=client, pack=pack, progress=not args.no_progress,
-                     desc=desc)
-    finally:
-        if client is not None:
-            client.close()
-        if cluster is not None:
-            cluster.close()
-    return f"{len(pending)} of {len(specs)} tasks computed now ({mode})"
+    return str(pk.run_pending(specs, store_get=get, on_result=on_result, warm_up=warm_up, serial=args.serial,
+                              scheduler=args.scheduler, workers=args.workers, progress=not args.no_progress, desc=desc))
 
 
 def collapse(rows, mus) -> dict:

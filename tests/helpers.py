@@ -1,6 +1,14 @@
-"""Small numerical helpers for tests."""
+"""Small helpers shared by the tests: numerics, the CLI run in-process, a user-written body."""
 
+import contextlib
+import io
+import json
+
+import casadi as ca
 import numpy as np
+
+import phasekit as pk
+from phasekit import cli
 
 
 def central_jacobian(f, x, h=1e-6):
@@ -12,3 +20,34 @@ def central_jacobian(f, x, h=1e-6):
         e[i] = h * max(1.0, abs(x[i]))
         cols.append((np.asarray(f(x + e)) - np.asarray(f(x - e))) / (2 * e[i]))
     return np.column_stack(cols)
+
+
+def strict_json(text: str):
+    """Parse one JSON document, refusing NaN and Infinity."""
+    def refuse(name):
+        raise ValueError(f"non-finite number {name} in JSON")
+
+    return json.loads(text, parse_constant=refuse)
+
+
+def run_cli(*args):
+    """(exit code, stdout, stderr) of the CLI run in-process."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = cli.main([str(a) for a in args])
+    return code, out.getvalue(), err.getvalue()
+
+
+class UserSpheroid(pk.Body):
+    """A spheroid as a user writes it: only ``height`` and ``shape_params``."""
+
+    def __init__(self, a):
+        self.a_user = a
+        super().__init__((1 + a * a) / 5, 0.4)
+
+    @property
+    def shape_params(self):
+        return (self.a_user,)
+
+    def height(self, c, shape):
+        return ca.sqrt(1 + (shape[0] ** 2 - 1) * c * c)

@@ -1,9 +1,6 @@
 """CLI: errors name the flag the user typed (exit 2, one line, strict JSON with --json)."""
 
 import argparse
-import contextlib
-import io
-import json
 import math
 import subprocess
 import sys
@@ -11,6 +8,8 @@ import sys
 import pytest
 
 from phasekit import cli
+
+from .helpers import run_cli, strict_json
 
 SIM = ["simulate", "--a", "1.5", "--mu", "0.1"]
 TOP = ["simulate", "--body", "tippe-top", "--offset", "0.3", "--mu", "0.3"]
@@ -24,20 +23,6 @@ MINIMAL = {"simulate": SIM + ["--gyroscopic", "--theta0", "1.5", "--omega0", "10
 def _bugs_raise(monkeypatch):
     """An unexpected exception inside the CLI is a test failure, not a one-line message."""
     monkeypatch.setenv(cli.DEBUG_ENV, "1")
-
-
-def run_cli(*args):
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = cli.main([str(a) for a in args])
-    return code, out.getvalue(), err.getvalue()
-
-
-def strict_json(text):
-    def refuse(name):
-        raise ValueError(f"non-finite number {name} in JSON")
-
-    return json.loads(text, parse_constant=refuse)
 
 
 def usage_error(args, flag):

@@ -37,6 +37,8 @@ from hypothesis import strategies as st
 import phasekit as pk
 from phasekit import cli
 
+from .helpers import strict_json
+
 #: examples per test (scale with PHASEKIT_FUZZ_SCALE, e.g. 0.2 for a smoke run, 5 for a long one)
 SCALE = float(os.environ.get("PHASEKIT_FUZZ_SCALE", "1"))
 #: wall-clock bound of one case (the generated budgets keep real cases far below it)
@@ -116,13 +118,6 @@ def finite_everywhere(obj) -> bool:
     if isinstance(obj, (list, tuple)):
         return all(finite_everywhere(v) for v in obj)
     return True
-
-
-def strict_json(text: str):
-    def refuse(name):
-        raise AssertionError(f"{name} on stdout")
-
-    return json.loads(text, parse_constant=refuse)
 
 
 # -- the CLI, in-process ---------------------------------------------------------------------------

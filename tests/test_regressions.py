@@ -1,10 +1,7 @@
 """Regression tests for the cases of issue 17, each named after the bug it pins."""
 
 import ast
-import contextlib
 import dataclasses
-import io
-import json
 import pathlib
 import re
 import subprocess
@@ -19,6 +16,8 @@ from phasekit.hybrid import Mode
 from phasekit.resets import project_no_slip, sliding_direction
 from phasekit.sweep import ResultStore
 
+from .helpers import run_cli, strict_json
+
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
@@ -28,26 +27,10 @@ def _bugs_raise(monkeypatch):
     monkeypatch.setenv(cli.DEBUG_ENV, "1")
 
 
-def run_cli(*args):
-    """(exit code, stdout, stderr) of the CLI run in-process."""
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = cli.main([str(a) for a in args])
-    return code, out.getvalue(), err.getvalue()
-
-
 def run_subprocess(*args):
     p = subprocess.run([sys.executable, "-m", "phasekit", *map(str, args)], capture_output=True, text=True,
                        timeout=300, cwd=ROOT)
     return p.returncode, p.stdout, p.stderr
-
-
-def strict_json(text):
-    """Parse one JSON document, refusing NaN and Infinity."""
-    def refuse(name):
-        raise ValueError(f"non-finite number {name} in JSON")
-
-    return json.loads(text, parse_constant=refuse)
 
 
 # -- 1. zero slip -------------------------------------------------------------------------------

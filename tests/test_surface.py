@@ -11,6 +11,8 @@ import pytest
 import phasekit as pk
 from phasekit.surface import Scene, compute_scene, exact_boundary, surface_n
 
+from .helpers import UserSpheroid
+
 
 @pytest.mark.parametrize("a", [1.5, 2 / 3])
 def test_exact_boundary_at_lambda_zero_is_6_3(a):
@@ -99,29 +101,14 @@ def test_drawn_box_holds_every_point_and_given_ranges_clip():
     assert np.all((run[:, 0] >= 10.0 - 1e-12) & (run[:, 0] <= 20.0 + 1e-12))
 
 
-class _UserSpheroid(pk.Body):
-    def __init__(self, a):
-        self.a_user = a
-        super().__init__((1 + a * a) / 5, 0.4)
-
-    @property
-    def shape_params(self):
-        return (self.a_user,)
-
-    def height(self, c, shape):
-        import casadi as ca
-
-        return ca.sqrt(1 + (shape[0] ** 2 - 1) * c * c)
-
-
 def test_scene_of_a_user_body_equals_the_built_in_one():
     show = frozenset({"surface", "crossings", "fixed_points"})
-    mine = compute_scene(Scene("prolate", values=(12.0,), resolution=15, show=show, body=_UserSpheroid(1.5)))
+    mine = compute_scene(Scene("prolate", values=(12.0,), resolution=15, show=show, body=UserSpheroid(1.5)))
     ref = compute_scene(Scene("prolate", 1.5, values=(12.0,), resolution=15, show=show))
     np.testing.assert_allclose(mine.surface[2], ref.surface[2], rtol=1e-12)
     assert mine.crossings[0].t == pytest.approx(ref.crossings[0].t, rel=1e-10)
     with pytest.raises(pk.ParameterError, match="`branch`"):
-        Scene("oblate", body=_UserSpheroid(1.5))
+        Scene("oblate", body=UserSpheroid(1.5))
 
 
 @pytest.mark.render
@@ -133,8 +120,8 @@ def test_render_own_trajectory_quietly_with_title_margin_and_gltf_axes(tmp_path)
     code = f"""
 import numpy as np, phasekit as pk, casadi as ca
 from phasekit.viz import render_scene
-from tests.test_surface import _UserSpheroid
-body = _UserSpheroid(1.5)
+from tests.helpers import UserSpheroid
+body = UserSpheroid(1.5)
 law = pk.RegularisedCoulomb(0.1, 1e-3)
 traj = pk.simulate(pk.Model(body, law), pk.gyroscopic_start(body, 1.5, omega0=12.0), 200.0)
 sc = pk.Scene("prolate", values=(), body=body, friction=law, resolution=20,

@@ -9,6 +9,8 @@ import pytest
 import phasekit as pk
 from phasekit.errors import ParameterError
 
+from .helpers import UserSpheroid
+
 DT = 1e-4  # central-difference step for R = 1 + d^2 z/dt^2 (error ~ DT^2 z'''' ~ 1e-6, rounding ~ 1e-8)
 
 
@@ -217,21 +219,6 @@ def test_rerun_reproduces_a_result_from_its_json_and_an_ensemble_row(model, ten_
 
 
 # -- extension points ------------------------------------------------------------------------------
-
-
-class UserSpheroid(pk.Body):
-    """A spheroid as a user writes it: only ``height`` and ``shape_params``."""
-
-    def __init__(self, a):
-        self.a_user = a
-        super().__init__((1 + a * a) / 5, 0.4)
-
-    @property
-    def shape_params(self):
-        return (self.a_user,)
-
-    def height(self, c, shape):
-        return ca.sqrt(1 + (shape[0] ** 2 - 1) * c * c)
 
 
 class LoadViscous(pk.FrictionLaw):
