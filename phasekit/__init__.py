@@ -94,6 +94,7 @@ from .flight import (
     gap_max_series,
     gap_series,
 )
+from .structure import SteadyBranch, SteadyStructure, steady_structure
 from .impact import impact
 from .surface import Scene, compute_scene, exact_boundary, surface_n
 from .paper import PAPER_CASES, paper_start
@@ -191,6 +192,9 @@ __all__ = [
     "fixed_points",
     "linearise",
     "continue_family",
+    "steady_structure",
+    "SteadyStructure",
+    "SteadyBranch",
     "horizontal_state",
     "vertical_state",
     "unstable_seeds",

@@ -19,6 +19,7 @@ from .starts import RATE_MAX, gyroscopic_start, raw_start, to_chart, vertical_sp
 from .validate import check_choice, check_finite
 
 __all__ = ["choose_formulation", "make_body", "parse_stop", "simulate_start", "fixed_points_report", "gyroscopic_report",
+           "steady_structure_report",
            "POLE_MARGIN", "BODIES"]
 
 #: within this angle of theta = 0 or pi the vector chart is the default. Measured (oblate
@@ -39,17 +40,17 @@ def choose_formulation(theta0: float, requested: str = "auto") -> str:
 
 
 def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, A=None, C=None) -> Body:
-    """A built-in body by name: ``spheroid`` (a), ``tippe-top`` (offset), ``egg`` (a, w)."""
+    """A built-in body by name: ``spheroid`` (a, offset), ``tippe-top`` (offset), ``egg`` (a, w)."""
     check_choice("body", kind, BODIES)
     given = {"a": a, "offset": offset, "w": w}
-    allowed = {"spheroid": ("a",), "tippe-top": ("offset",), "egg": ("a", "w")}[kind]
+    allowed = {"spheroid": ("a", "offset"), "tippe-top": ("offset",), "egg": ("a", "w")}[kind]
     for name, value in given.items():
         if value is not None and name not in allowed:
             raise ParameterError(name, f"does not apply to the {kind} body (its parameters: {', '.join(allowed)})", value)
     if kind == "spheroid":
         if a is None:
             raise ParameterError("a", "is required for the spheroid body (aspect ratio, > 0)", show_value=False)
-        return Spheroid(a, A=A, C=C)
+        return Spheroid(a, A=A, C=C, offset=0.0 if offset is None else offset)
     if kind == "tippe-top":
         if offset is None:
             raise ParameterError("offset", "is required for the tippe-top body (centre of mass below the centre, in [0, 1))",
@@ -158,6 +159,26 @@ def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, om
     linearised = "coulomb-rolling" if law.has_rolling_mode else law.name
     return {"fixed_points": [p.to_dict() for p in pts], "model": Model(body, law).to_dict(), "note": note,
             "linearised_law": linearised, "stability": STABILITY_MEANING.get(linearised, "the law's own field")}
+
+
+def steady_structure_report(*, body: Body, mu, friction="coulomb", slip_eps=None, omega0=None, n0=None) -> dict:
+    """The steady-state structure of ``body`` (phasekit.structure) as a JSON dict; with
+    ``omega0`` or ``n0`` also the states on it at that rate or spin."""
+    from .fixedpoints import FAMILY_MAX
+    from .structure import steady_structure
+    from .validate import check_range
+
+    law = friction_law(friction, mu, slip_eps)
+    structure = steady_structure(body, law)
+    out = structure.to_dict()
+    linearised = "coulomb-rolling" if law.has_rolling_mode else law.name
+    out.update(linearised_law=linearised, stability=STABILITY_MEANING.get(linearised, "the law's own field"))
+    if omega0 is not None or n0 is not None:
+        name, value = ("omega0", omega0) if omega0 is not None else ("n0", n0)
+        check_range(name, value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")
+        out["states_at"] = f"{'Omega0' if omega0 is not None else 'n0'} = {value:g}"
+        out["states"] = [p.to_dict() for p in structure.at(omega0=omega0, n0=n0)]
+    return out
 
 
 #: what "stable" means for each linearisation (see phasekit.fixedpoints)

@@ -249,55 +249,86 @@ def uniform_mass_properties(body: Body, n: int = 400) -> MassProperties:
 
 
 class Spheroid(Body):
-    """Spheroid with semi-axes (1, 1, a), G at its centre: prolate for a > 1, oblate for a < 1.
+    """Spheroid with semi-axes (1, 1, a): prolate for a > 1, oblate for a < 1; its centre of
+    mass G at the centre O, or displaced along the axis (part III of the series).
 
     Parameters
     ----------
     a : float
         Aspect ratio (polar over equatorial semi-axis), in [1e-4, 1e4].
     A, C : float, optional
-        Moments about G. Defaults are the uniform solid's, A = (1 + a^2)/5, C = 2/5;
-        override them for a non-uniform density whose centre of mass stays at the centre.
+        Moments about G (units M b^2). Defaults: with G at O those of the uniform solid,
+        A = (1 + a^2)/5, C = 2/5; with an offset, the same inertia about O moved to G by
+        the parallel-axis theorem, A = (1 + a^2)/5 - offset^2, C = 2/5 (see Notes).
+    offset : float in [0, a), keyword-only
+        Distance OG (units b) from the centre of volume O to G, toward the end at -k (the end
+        the body rests on at theta = 0): the tippe top's convention
+        (:class:`EccentricSphere`). Support function h = sqrt(a^2 cos^2 + sin^2) - offset cos.
+
+    Notes
+    -----
+    Part III of the series (Branicki, Moffatt & Shimomura, *Geometry of steady state
+    structures for convex bodies*, Proc. R. Soc. A, 2006) treats A and C as free parameters. The default keeps the
+    uniform spheroid's inertia about O, i.e. a density redistributed along the axis; it
+    exists for offset^2 <= a^2/5 (Cauchy-Schwarz: (int z dm)^2 <= M int z^2 dm = M a^2/5, the
+    same bound as C <= 2A); larger offsets need explicit A and C.
 
     Examples
     --------
     >>> Spheroid(1.5).A
     0.65
+    >>> Spheroid(1.5, offset=0.2).flip_symmetric
+    False
     """
 
-    def __init__(self, a: float, A: float | None = None, C: float | None = None):
+    def __init__(self, a: float, A: float | None = None, C: float | None = None, *, offset: float = 0.0):
         self.a = check_range("a", a, *ASPECT_RANGE, closed="lr", label=f"[{ASPECT_RANGE[0]:g}, {ASPECT_RANGE[1]:g}]")
-        super().__init__((1.0 + self.a * self.a) / 5.0 if A is None else A, 0.4 if C is None else C)
+        self.offset = check_nonnegative("offset", offset)
+        if self.offset >= self.a:
+            raise ParameterError("offset", f"must lie in [0, a) = [0, {self.a:g}) (G inside the spheroid)", offset)
+        if (A is None or C is None) and self.offset > self.a / math.sqrt(5.0):
+            raise ParameterError("offset", f"must be <= a/sqrt(5) = {self.a / math.sqrt(5.0):.6g} for the default moments "
+                                           "(no density with the uniform spheroid's inertia about its centre has a larger "
+                                           "offset); give A and C", offset)
+        A0 = (1.0 + self.a * self.a) / 5.0 - self.offset**2
+        super().__init__(A0 if A is None else A, 0.4 if C is None else C)
         self.check_convex("a")
 
     @property
     def shape_params(self) -> tuple[float, ...]:
-        return (self.a,)
+        # the centred spheroid keeps its one-parameter form, so its compiled models (and every
+        # number computed with them) are those it always had
+        return (self.a, self.offset) if self.offset else (self.a,)
 
     def height(self, c, shape):
-        # (2.10): h = (a^2 cos^2 + sin^2)^(1/2) = (1 + (a^2 - 1) c^2)^(1/2)
+        # (2.10): h = (a^2 cos^2 + sin^2)^(1/2) = (1 + (a^2 - 1) c^2)^(1/2), minus offset cos for G below O
         a = shape[0]
-        return ca.sqrt(1 + (a * a - 1) * c * c)
+        h = ca.sqrt(1 + (a * a - 1) * c * c)
+        return h - shape[1] * c if self.offset else h
 
     @property
     def uniform(self) -> bool:
-        return abs(self.A - (1 + self.a**2) / 5) < 1e-15 and abs(self.C - 0.4) < 1e-15
+        return not self.offset and abs(self.A - (1 + self.a**2) / 5) < 1e-15 and abs(self.C - 0.4) < 1e-15
 
     @property
     def is_prolate(self) -> bool:
-        return self.a > 1.0
+        return self.a > 1.0 if not self.offset else super().is_prolate
 
     @property
     def flip_symmetric(self) -> bool:
-        return True
+        return not self.offset
 
     def to_dict(self) -> dict:
-        return {"body": "spheroid", "a": self.a, "A": self.A, "C": self.C, "description": self.describe()}
+        d = {"body": "spheroid", "a": self.a, "A": self.A, "C": self.C, "description": self.describe()}
+        if self.offset:
+            d["offset"] = self.offset
+        return d
 
     def __repr__(self) -> str:
         if self.uniform:
             return f"Spheroid(a={self.a:g})"
-        return f"Spheroid(a={self.a:g}, A={self.A:g}, C={self.C:g})"
+        off = f", offset={self.offset:g}" if self.offset else ""
+        return f"Spheroid(a={self.a:g}{off}, A={self.A:g}, C={self.C:g})"
 
 
 #: the largest offset for the default tippe-top moments: an isotropic inertia 2/5 about the

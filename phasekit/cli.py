@@ -38,6 +38,8 @@ EXAMPLES = """examples:
   phasekit simulate --body tippe-top --offset 0.3 --A 0.38 --C 0.4 --mu 0.3 --slip-eps 1e-8 \\
       --theta0 0.1 --spin-about-vertical 15 --stop-at theta=0.4 --t-end 30 --rtol 1e-10 --json
   phasekit fixed-points --a 1.5 --mu 0.1 --omega0 10 --json
+  phasekit steady-states --body spheroid --a 1.5 --offset 0.2 --mu 0.1 --friction viscous
+  phasekit steady-states --body tippe-top --offset 0.3 --A 0.38 --C 0.4 --mu 0.3 --json
   phasekit gyroscopic --a 1.5 --mu 0.1 --omega0 10.5 --theta0 1.5607963 --t 0 10 40
 """
 
@@ -166,7 +168,8 @@ def _add_body(p):
     g = p.add_argument_group("body (units: mass M, length b = equatorial radius or ball radius, time sqrt(b/g))")
     g.add_argument("--body", default="spheroid", help="spheroid | tippe-top | egg (default: %(default)s)")
     g.add_argument("--a", type=_real, default=None, help="aspect ratio: spheroid semi-axes (1, 1, a), egg length/breadth")
-    g.add_argument("--offset", type=_real, default=None, help="tippe-top: centre of mass below the ball's centre, in [0, 1)")
+    g.add_argument("--offset", type=_real, default=None, help="tippe-top: centre of mass below the ball's centre, in [0, 1); spheroid: centre of mass "
+                        "displaced from the centre toward the end at -k, in [0, a) (default 0)")
     g.add_argument("--w", type=_real, default=None, help="egg: asymmetry (shift of the widest section over the length)")
     g.add_argument("--A", dest="A", type=_real, default=None,
                    help="transverse moment of inertia about G, units M b^2 (default: the body's, e.g. (1+a^2)/5)")
@@ -216,7 +219,8 @@ def _build_parser() -> _Parser:
     parser = _Parser(prog="phasekit", description="Phase space of an axisymmetric body spinning on a table.",
                      epilog=EXAMPLES)
     parser.add_argument("--version", action="version", version=f"phasekit {__version__}")
-    sub = parser.add_subparsers(dest="command", parser_class=_Parser, metavar="{simulate,fixed-points,gyroscopic}")
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser,
+                                metavar="{simulate,fixed-points,steady-states,gyroscopic}")
 
     sim = sub.add_parser("simulate", help="integrate the exact equations from a start",
                          description="Integrate the contact dynamics (2.7) from a start, through stick, slip, "
@@ -267,6 +271,18 @@ def _build_parser() -> _Parser:
     grp.add_argument("--n0", type=_real, help="spin of the family")
     fx.add_argument("--json", action="store_true", help="print one JSON object")
 
+    ss = sub.add_parser("steady-states", help="the steady-state structure: branches, their ends, stability along them",
+                        description="Every branch of steady precessions over 0 <= theta <= pi with its two ends (pole, "
+                                    "static, infinite-spin), the stability along it and where it changes, the static "
+                                    "equilibria, the spins about the vertical, and the structure's signature.",
+                        epilog=STABILITY + "\n" + EXAMPLES)
+    _add_body(ss)
+    _add_friction(ss)
+    g3 = ss.add_mutually_exclusive_group()
+    g3.add_argument("--omega0", type=_real, help="also list the states on the structure with this precession rate")
+    g3.add_argument("--n0", type=_real, help="also list the states on the structure with this spin")
+    ss.add_argument("--json", action="store_true", help="print one JSON object")
+
     gy = sub.add_parser("gyroscopic", help="gyroscopic mean solution theta-bar(t), Omega-bar(t) and J", epilog=EXAMPLES)
     _add_body(gy)
     gy.add_argument("--mu", type=_real, required=True, help="friction coefficient mu > 0 (sets the slow time mu t)")
@@ -276,7 +292,7 @@ def _build_parser() -> _Parser:
     gy.add_argument("--theta0", type=_real, required=True, help="initial inclination, radians, in (0, pi)")
     gy.add_argument("--t", type=_real, nargs="+", required=True, help="times (units sqrt(b/g))")
     gy.add_argument("--json", action="store_true", help="print one JSON object")
-    commands = {"simulate": sim, "fixed-points": fx, "gyroscopic": gy}
+    commands = {"simulate": sim, "fixed-points": fx, "steady-states": ss, "gyroscopic": gy}
     for name, p in commands.items():
         p.command = name
     for p in (parser, *commands.values()):
@@ -413,6 +429,14 @@ def _cmd_fixed_points(args) -> dict:
     return fixed_points_report(body=_body(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0, n0=args.n0)
 
 
+def _cmd_steady_states(args) -> dict:
+    from .api import steady_structure_report
+
+    friction, mu, eps = _law_args(args)
+    return steady_structure_report(body=_body(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0,
+                                   n0=args.n0)
+
+
 def _cmd_gyroscopic(args) -> dict:
     """The report at the times in the order given (the API returns them sorted)."""
     from .api import gyroscopic_report
@@ -432,7 +456,35 @@ def _fmt(v, spec: str = ".10g") -> str:
     return format(v, spec) if isinstance(v, float) else "undefined" if v is None else str(v)
 
 
+def _print_structure(out: dict) -> None:
+    print(f"signature: {out['signature']}   (linearisation: {out['linearised_law']})")
+    for i, b in enumerate(out["branches"]):
+        ends = " -> ".join(f"{e['kind']} at theta = {_fmt(e['theta'], '.10f')}"
+                           + (f" (spin n = {_fmt(e['n'], '.8g')})" if e["kind"] == "pole" else "") for e in b["ends"])
+        n_stable = sum(s["stable"] for s in b["samples"])
+        print(f"branch {i + 1}: {ends}; {len(b['samples'])} samples, {n_stable} stable")
+        for c in b["stability_changes"]:
+            print(f"  stability changes at theta = {_fmt(c['theta'], '.9f')} ({c['kind']}; n_unstable "
+                  f"{c['n_unstable_below']} -> {c['n_unstable_above']}; Omega = {_fmt(c['Omega'], '.6g')}, "
+                  f"n = {_fmt(c['n'], '.6g')})")
+    for st in out["static_equilibria"]:
+        print(f"static equilibrium at theta = {_fmt(st['theta'], '.10f')} ({st['kind']}): {st['static_stability']}")
+    for f in out["families"]:
+        crit = "no change of stability" if f["critical"] is None else (
+            f"critical {f['parameter']} = {_fmt(f['critical'], '.10g')}, "
+            f"{'stable' if f['stable_above_critical'] else 'unstable'} above")
+        print(f"{f['kind']} family at theta = {_fmt(f['theta'], '.6f')} (any {f['parameter']}): {crit}"
+              + ("; a branch meets it there" if f["branch_meets"] else ""))
+    if out.get("states"):
+        for fp in out["states"]:
+            print(f"state at {out['states_at']}: {fp['kind']} theta = {_fmt(fp['state']['theta'], '.10f')}: "
+                  f"{fp['classification']}")
+
+
 def _print_human(out: dict, events: bool) -> None:
+    if "signature" in out:
+        _print_structure(out)
+        return
     if "fixed_points" in out:
         print(f"linearisation: {out['linearised_law']} ({out['stability']})")
         for fp in out["fixed_points"]:
@@ -559,7 +611,8 @@ def _show_warning(message, category, filename, lineno, file=None, line=None, nam
     print(f"phasekit: warning: {' '.join(_flags_in(str(message), names).split())}", file=sys.stderr)
 
 
-COMMANDS = {"simulate": _cmd_simulate, "fixed-points": _cmd_fixed_points, "gyroscopic": _cmd_gyroscopic}
+COMMANDS = {"simulate": _cmd_simulate, "fixed-points": _cmd_fixed_points, "steady-states": _cmd_steady_states,
+            "gyroscopic": _cmd_gyroscopic}
 #: set (to anything) to let unexpected exceptions propagate with their traceback (debugging, tests)
 DEBUG_ENV = "PHASEKIT_DEBUG"
 

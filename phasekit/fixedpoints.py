@@ -92,8 +92,10 @@ __all__ = [
     "linearise",
 ]
 
-#: a real part within NEUTRAL_TOL * max(1, max |lambda|) of zero counts as neutral
-NEUTRAL_TOL = 1e-8
+#: the rounding of one evaluation of a compiled Jacobian, in units of eps * ||J||_F: CasADi's
+#: entries are sums of many products (measured below 10 on the spheroid, egg and tippe top;
+#: 64 leaves room), and LAPACK's eigensolver adds a backward error of a few eps * ||J||
+JACOBIAN_ROUNDING = 64.0
 
 
 @dataclass(frozen=True)
@@ -112,6 +114,18 @@ class FixedPoint:
     law : the linearised law ("viscous", "coulomb-regularised", "coulomb-rolling")
     parameter : the family parameter (Omega0 or n0), and for the poles the closed-form
         stability criterion under sliding friction (phasekit.manifolds.pole_stability)
+    error_bounds : a bound on the error of each eigenvalue (same order): its condition number
+        (1 / |y^H x| for unit left and right eigenvectors) times the size of the error in the
+        Jacobian (the rounding of its evaluation and of the eigensolver, JACOBIAN_ROUNDING
+        eps ||J||, plus the change of J over the state's own error, estimated from the
+        residual). First order in the error; infinite for a defective eigenvalue.
+
+    Each eigenvalue is classified against its bound: Re > bound ``unstable``, Re < -bound
+    ``stable``; |lambda| <= bound is a zero eigenvalue (families and invariants make them:
+    ``neutral``); otherwise (|Re| within the bound, Im not) ``undecided`` for a dissipative
+    law and ``neutral`` for the rolling field, which conserves energy and is reversible, so
+    that its spectrum is symmetric about the imaginary axis and a real part within the bound
+    is zero.
     """
 
     kind: str
@@ -123,13 +137,35 @@ class FixedPoint:
     residual: float
     law: str
     parameter: dict = field(default_factory=dict)
+    error_bounds: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def scale(self) -> float:
         return max(1.0, float(np.max(np.abs(self.eigenvalues)))) if self.eigenvalues.size else 1.0
 
+    @property
+    def bounds(self) -> np.ndarray:
+        if self.error_bounds is None:  # built by hand without bounds: rounding of the eigensolver only
+            return JACOBIAN_ROUNDING * np.finfo(float).eps * self.scale * np.ones(self.eigenvalues.size)
+        return self.error_bounds
+
+    @property
+    def eigenvalue_classes(self) -> tuple[str, ...]:
+        """Per eigenvalue: "unstable", "stable", "neutral" or "undecided" (see the class notes)."""
+        out = []
+        for lam, b in zip(self.eigenvalues, self.bounds):
+            if lam.real > b:
+                out.append("unstable")
+            elif lam.real < -b:
+                out.append("stable")
+            elif abs(lam) <= b or self.law == "coulomb-rolling":
+                out.append("neutral")
+            else:
+                out.append("undecided")
+        return tuple(out)
+
     def _unstable_mask(self) -> np.ndarray:
-        return self.eigenvalues.real > NEUTRAL_TOL * self.scale
+        return np.array([c == "unstable" for c in self.eigenvalue_classes], dtype=bool)
 
     @property
     def n_unstable(self) -> int:
@@ -138,19 +174,30 @@ class FixedPoint:
 
     @property
     def n_neutral(self) -> int:
-        return int(np.sum(np.abs(self.eigenvalues.real) <= NEUTRAL_TOL * self.scale))
+        return sum(c == "neutral" for c in self.eigenvalue_classes)
+
+    @property
+    def n_undecided(self) -> int:
+        """Eigenvalues whose real part lies within its error bound although they are not zero:
+        double precision cannot tell their sign."""
+        return sum(c == "undecided" for c in self.eigenvalue_classes)
 
     @property
     def stable(self) -> bool:
-        """Linearly (spectrally) stable: no eigenvalue with positive real part."""
-        return self.n_unstable == 0
+        """Linearly (spectrally) stable: no eigenvalue whose real part is positive beyond its
+        error bound, and none undecided."""
+        return self.n_unstable == 0 and self.n_undecided == 0
 
     @property
     def classification(self) -> str:
         lam = self.eigenvalues[self._unstable_mask()]
-        n_real = int(np.sum(np.abs(lam.imag) <= NEUTRAL_TOL * self.scale))
+        bounds = self.bounds[self._unstable_mask()]
+        n_real = int(np.sum(np.abs(lam.imag) <= bounds))
         n_osc = (lam.size - n_real) // 2
         if lam.size == 0:
+            if self.n_undecided:
+                k = self.n_undecided
+                return f"undecided: {k} eigenvalue{'s' if k > 1 else ''} with real part within {'their' if k > 1 else 'its'} error bound"
             return "stable" if self.n_neutral <= 2 else "neutral (spectrally stable)"
         parts = []
         if n_real:
@@ -165,7 +212,7 @@ class FixedPoint:
         out = []
         for k in np.flatnonzero(self._unstable_mask()):
             lam, v = self.eigenvalues[k], self.eigenvectors[:, k]
-            if abs(lam.imag) <= NEUTRAL_TOL * self.scale:
+            if abs(lam.imag) <= self.bounds[k]:
                 vecs = [v.real]
             elif lam.imag > 0:
                 vecs = [v.real, v.imag]
@@ -184,8 +231,11 @@ class FixedPoint:
             "state": state,
             "residual": float(self.residual),
             "eigenvalues": [[float(l.real), float(l.imag)] for l in self.eigenvalues],
+            "error_bounds": [float(b) if np.isfinite(b) else None for b in self.bounds],
+            "eigenvalue_classes": list(self.eigenvalue_classes),
             "n_unstable": self.n_unstable,
             "n_neutral": self.n_neutral,
+            "n_undecided": self.n_undecided,
             "stable": self.stable,
             "classification": self.classification,
             "linearised_law": self.law,
@@ -559,7 +609,8 @@ def _rolling_reduced_jacobian(model: Model, x: np.ndarray):
 
 
 def linearise(model: Model, x, *, kind: str = "state") -> FixedPoint:
-    """Eigen-decomposition of the exact Jacobian at ``x`` (see the module notes for Coulomb).
+    """Eigen-decomposition of the exact Jacobian at ``x`` (see the module notes for Coulomb),
+    with an error bound on every eigenvalue (:class:`FixedPoint`).
 
     Raises ParameterError for a model that is not a Model, a state of the wrong length or
     with non-finite entries, or a state where the Jacobian overflows; ConvergenceError if
@@ -569,27 +620,61 @@ def linearise(model: Model, x, *, kind: str = "state") -> FixedPoint:
         raise ParameterError("kind", "must be a label such as 'horizontal' or 'state'", kind)
     x = check_vector("x", x, model.n_states)
     mode = _mode_for(model)
-    residual = float(np.max(np.abs(model._rhs(x, mode))))
-    if mode is Mode.ROLLING:
-        Jr, L = _rolling_reduced_jacobian(model, x)
-        law = "coulomb-rolling"
-    else:
-        Jr, L = model._jacobian(x, mode), None
-        law = model.friction.name
+    f = model._rhs(x, mode)
+    residual = float(np.max(np.abs(f)))
+    jac = _law_jacobian(model, mode)
+    Jr, L = jac(x)
+    law = "coulomb-rolling" if mode is Mode.ROLLING else model.friction.name
     if not (np.all(np.isfinite(Jr)) and np.isfinite(residual)):
         raise ParameterError("x", "gives a non-finite field or Jacobian (a state beyond double precision, or where "
                                   "the contact equations are singular)", x)
     try:
-        lam, V = np.linalg.eig(Jr)
-    except np.linalg.LinAlgError as exc:
+        lam, V, bounds = _eigen_with_bounds(Jr, _jacobian_error(model, mode, jac, x, f, Jr))
+    except (np.linalg.LinAlgError, ValueError) as exc:
         raise ConvergenceError(f"the eigenvalues of the Jacobian at the {kind} state did not converge ({exc})") from None
     if L is not None:
         V = L @ V  # tangent vectors of the no-slip manifold, in chart coordinates
-    order = np.lexsort((-lam.imag, -lam.real))
     y = model.chart.to_paper(x)
     if model.chart is VECTOR and np.hypot(x[0], x[1]) == 0.0:
         y[2] = np.nan  # Omega is undefined at theta = 0
-    return FixedPoint(kind, model.chart.name, x, y, lam[order], V[:, order], residual, law)
+    return FixedPoint(kind, model.chart.name, x, y, lam, V, residual, law, error_bounds=bounds)
+
+
+def _law_jacobian(model: Model, mode: Mode):
+    """x -> (J, L): the Jacobian the law is linearised with, and for the rolling field the
+    map lifting its reduced coordinates to the chart state (None otherwise)."""
+    if mode is Mode.ROLLING:
+        return lambda x: _rolling_reduced_jacobian(model, x)
+    return lambda x: (model._jacobian(x, mode), None)
+
+
+def _jacobian_error(model: Model, mode: Mode, jac, x: np.ndarray, f: np.ndarray, J: np.ndarray) -> float:
+    """A size (Frobenius norm) for the error of the computed Jacobian J at the computed state x:
+    rounding (JACOBIAN_ROUNDING eps ||J||) plus the change of J across the state's own error
+    dx, the least-squares Newton correction -J_full^+ f(x) of the residual f."""
+    rounding = JACOBIAN_ROUNDING * np.finfo(float).eps * float(np.linalg.norm(J))
+    if not np.any(f):
+        return rounding
+    J_full = model._jacobian(x, mode)
+    dx = np.linalg.lstsq(J_full, -f, rcond=None)[0]
+    if not np.all(np.isfinite(dx)):
+        return float("inf")
+    J2 = jac(x + dx)[0]
+    return rounding + float(np.linalg.norm(J2 - J)) if np.all(np.isfinite(J2)) else float("inf")
+
+
+def _eigen_with_bounds(J: np.ndarray, error: float):
+    """Eigenvalues (sorted by descending real part, then imaginary part), right eigenvectors
+    and first-order error bounds kappa_i * error, kappa_i = 1/|y_i^H x_i| (unit vectors)."""
+    import scipy.linalg
+
+    lam, VL, VR = scipy.linalg.eig(J, left=True, right=True)
+    nl, nr = np.linalg.norm(VL, axis=0), np.linalg.norm(VR, axis=0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        kappa = (nl * nr) / np.abs(np.sum(VL.conj() * VR, axis=0))
+    bounds = np.where(np.isfinite(kappa), kappa * error, np.inf)
+    order = np.lexsort((-lam.imag, -lam.real))
+    return lam[order], VR[:, order], bounds[order]
 
 
 # -- all fixed points for a family parameter ---------------------------------------------

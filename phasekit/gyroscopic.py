@@ -133,7 +133,7 @@ def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()
     T = check_array("T", T, nonnegative=True)
     om0 = float(y0[2])
     J = float(jellett_constant(body, theta0, om0))
-    if isinstance(body, Spheroid) and body.a != 1.0:
+    if isinstance(body, Spheroid) and body.a != 1.0 and body.flip_symmetric:
         th, om = gyroscopic_closed(body.a, J, theta0, T, A=body.A)
         method = "closed form (3.18)"
     else:

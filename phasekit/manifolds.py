@@ -106,7 +106,7 @@ def unstable_manifold_start(body, friction, *, state: str, delta: float, omega0=
 def _unstable_hint(body, state: str, seed_law: str, friction) -> str:
     if seed_law == "same" and friction.has_rolling_mode:
         return "; exact Coulomb friction makes it neutral: `seed_law`='viscous' takes the viscous direction"
-    if isinstance(body, Spheroid) and state in ("horizontal", "vertical"):
+    if isinstance(body, Spheroid) and body.flip_symmetric and state in ("horizontal", "vertical"):
         fn = horizontal_stability_threshold if state == "horizontal" else vertical_stability_threshold
         crit = fn(body.A, body.C, body.a)
         if crit is not None:

@@ -113,7 +113,7 @@ class Definition:
         """Where the seed exists: the fixed point must be unstable (eigenvector seeds) and the
         gyroscopic balance solvable; thresholds are searched above this."""
         body = as_body(body)
-        if isinstance(body, Spheroid):
+        if isinstance(body, Spheroid) and body.flip_symmetric:
             fn = horizontal_stability_threshold if body.is_prolate else vertical_stability_threshold
             crit = fn(body.A, body.C, body.a) or 1.0
         else:  # no closed form: start the search at 1 (units sqrt(g/b))
@@ -497,7 +497,7 @@ def threshold_searches(defn: Definition, body, *, lo: float | None = None, hi: f
     if not isinstance(defn, Definition):
         raise ParameterError("defn", "must be a phasekit threshold Definition", defn)
     body = as_body(body)
-    if isinstance(body, Spheroid) and body.a == 1.0:
+    if isinstance(body, Spheroid) and body.a == 1.0 and body.flip_symmetric:
         raise ParameterError("a", "must differ from 1 (a sphere has no jump threshold: h_theta = 0)", body.a)
     tol = check_range("tol", tol, 1e-12, 0.5, closed="lr")
     n_coarse = check_int("n_coarse", n_coarse, minimum=2, maximum=1000)

@@ -1,0 +1,777 @@
+"""The steady-state structure of a body (parts III and IV of the series): every branch of
+steady precessions over 0 <= theta <= pi, how its ends meet the spins about the vertical, the
+static equilibria and infinite-spin asymptotes, and the stability along it.
+
+A steady precession has zero slip, G at rest and the axis at a fixed theta precessing at the
+rate Omega with spin n. With c = cos(theta), H(c) = h(theta) the height of G and the regular
+quantities
+
+    q = h_theta / sin = -H'(c),   rho_2 = x_P / sin = H - c H'(c),
+    z = h cos - h_theta sin,       D = (A - C) c rho_2 + C q,
+
+(2.7) with U = V = Lambda = 0 gives (phasekit.fixedpoints, module notes)
+
+    Omega^2 = q rho_2 / D,   n = Omega z / rho_2.
+
+Every steady precession lies on this one curve, so the branches are the maximal intervals of
+theta on which q rho_2 / D > 0 (rho_2 > 0 on a convex body). An interval ends where
+
+* q = 0 (G above the contact point: a **static** equilibrium; Omega and n tend to 0),
+* D = 0 (Omega diverges: an **infinite-spin** asymptote theta_inf), or
+* theta = 0 or pi (a **pole**: the branch meets the spin about the vertical there at the
+  finite spin n = Omega h0 / rho with rho = h0 + h_tt the radius of curvature at the pole;
+  squared, n^2 rho (A rho - C h0) = h_tt h0^2, the closed-form pole criterion of
+  :func:`phasekit.manifolds.pole_stability_threshold`: the branch is born where the pole
+  changes stability).
+
+Where q and D vanish together (a static equilibrium with its axis horizontal, theta = pi/2 for
+a flip-symmetric body; or any static equilibrium when A = C), every Omega is steady there: a
+non-isolated **family** like the spins about the vertical at the poles, which the branch
+crosses (the pitchfork of part I's horizontal state: the crossing is at the family's critical
+rate). Part III's abstract calls the branches non-isolated fixed-point branches; the
+four kinds it names are not spelled out in the abstract, and phasekit classifies each branch
+by its two ends instead (:attr:`SteadyStructure.signature`).
+
+Omega > 0 represents each branch; (-Omega, -n) is the same branch seen in a mirror.
+Stability along a branch is that of the law given: the Euler chart's exact Jacobian away from
+the poles, and near them (within POLE_ZONE) the vector chart in axes turning with the
+precession, J - Omega G (G the generator of rotations about the vertical), which is regular at
+the poles and has the same real parts (plus two zero eigenvalues: |k| and the azimuth).
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass, field, replace
+
+import casadi as ca
+import numpy as np
+
+from .charts import EULER, VECTOR, euler_to_vector
+from .errors import ParameterError, Status
+from .fixedpoints import FixedPoint, _eigen_with_bounds, _jacobian_error, _law_jacobian, _mode_for, find_fixed_point, linearise
+from .friction import FrictionLaw, Viscous
+from .manifolds import PoleCriterion, pole_stability_threshold
+from .model import Model
+from .validate import check_finite
+
+__all__ = ["BranchEnd", "StabilityChange", "SteadyBranch", "StaticEquilibrium", "SpinFamily", "SteadyStructure",
+           "steady_structure", "precession_on_branch", "linearise_precession", "END_KINDS"]
+
+#: how a branch ends (see the module notes)
+END_KINDS = ("pole", "static", "infinite-spin")
+#: grid on which the roots of q and D are bracketed before Brent's method refines them
+ROOT_GRID = 8193
+#: roots of q and D closer than this (in theta) are one point where both vanish (a family)
+COINCIDENT = 1e-10
+#: the samples of a branch stop this far (in theta) from a static or infinite-spin end: the
+#: closed forms lose digits as q or D -> 0 (relative error ~1e-16 / distance)
+END_GAP = 1e-6
+#: ... and this far from a pole, where the branch meets the spin about the vertical exactly
+POLE_GAP = 1e-6
+#: samples keep this far from a family crossing, except the crossing itself (exact limit there)
+CROSSING_GAP = 1e-4
+#: within this of a pole, stability is computed in the vector chart turning with the precession
+POLE_ZONE = 0.05
+#: stability changes are located to this in theta
+CHANGE_XTOL = 1e-9
+#: adaptive sampling: largest chord and turning angle in the compact coordinates
+#: (theta / pi, (2/pi) atan Omega, (2/pi) atan n)
+MAX_CHORD, MAX_TURN = 0.02, 0.15
+#: most samples on one branch
+MAX_SAMPLES = 1200
+
+
+# -- result objects ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class BranchEnd:
+    """One end of a branch: ``kind`` in END_KINDS, its ``theta`` (located to ~1e-15 by Brent's
+    method on q or D, exactly 0 or pi at a pole) and, at a pole, the signed spin ``n`` (on the
+    Omega > 0 branch) with which the branch meets the spin about the vertical, and that pole's
+    ``Omega`` limit."""
+
+    kind: str
+    theta: float
+    pole: str | None = None  # "0" or "pi"
+    n: float | None = None
+    Omega: float | None = None
+
+    @property
+    def label(self) -> str:
+        if self.kind == "pole":
+            return "pole0" if self.pole == "0" else "polePi"
+        return "inf" if self.kind == "infinite-spin" else self.kind
+
+    def to_dict(self) -> dict:
+        d = {"kind": self.kind, "theta": self.theta}
+        if self.kind == "pole":
+            d.update(pole=self.pole, n=self.n, spin=abs(self.n), Omega=self.Omega)
+        return d
+
+
+@dataclass(frozen=True)
+class StabilityChange:
+    """A point of a branch where its stability changes: a real eigenvalue (``kind`` "real") or
+    a complex pair ("complex") crosses the imaginary axis. ``bracket`` holds states of opposite
+    stability (n_unstable ``below`` at the lower theta, ``above`` at the upper), ``theta`` its
+    midpoint; ``status`` "converged" when the bracket is narrower than CHANGE_XTOL."""
+
+    theta: float
+    bracket: tuple[float, float]
+    kind: str
+    Omega: float
+    n: float
+    below: int
+    above: int
+    status: str = "converged"
+
+    def to_dict(self) -> dict:
+        return {"theta": self.theta, "bracket": list(self.bracket), "kind": self.kind, "Omega": self.Omega, "n": self.n,
+                "n_unstable_below": self.below, "n_unstable_above": self.above, "status": self.status}
+
+
+@dataclass(frozen=True)
+class SteadyBranch:
+    """A branch of steady precessions: its two ends (ordered by theta), samples (theta, Omega, n)
+    adaptive in arc length, and at each sample the linearisation of the law (``points``: a
+    :class:`FixedPoint` each), the stability changes and the families it crosses."""
+
+    ends: tuple[BranchEnd, BranchEnd]
+    theta: np.ndarray = field(repr=False)
+    Omega: np.ndarray = field(repr=False)
+    n: np.ndarray = field(repr=False)
+    points: tuple[FixedPoint, ...] = field(default=(), repr=False)
+    changes: tuple[StabilityChange, ...] = ()
+    crossings: tuple[float, ...] = ()
+    sliding_stable: np.ndarray | None = field(default=None, repr=False)
+
+    @property
+    def label(self) -> str:
+        inner = ["cross"] * len(self.crossings)
+        return "-".join([self.ends[0].label, *inner, self.ends[1].label])
+
+    @property
+    def n_unstable(self) -> np.ndarray:
+        return np.array([p.n_unstable for p in self.points], dtype=int)
+
+    @property
+    def stable(self) -> np.ndarray:
+        return np.array([p.stable for p in self.points], dtype=bool)
+
+    def n_unstable_at(self, theta: float) -> int:
+        """The dimension of the unstable subspace at ``theta`` inside the sampled range: that of
+        the last sample below it, updated by the located changes between."""
+        theta = float(theta)
+        if not self.points or not self.theta[0] <= theta <= self.theta[-1]:
+            raise ParameterError("theta", f"must lie in the sampled range [{self.theta[0]:.10g}, {self.theta[-1]:.10g}] "
+                                          "of a branch with stability", theta)
+        k = max(int(np.searchsorted(self.theta, theta, side="right")) - 1, 0)
+        count = self.points[k].n_unstable
+        for c in self.changes:
+            if self.theta[k] < c.theta <= theta:
+                count = c.above
+        return count
+
+    def to_dict(self, eigenvalues: bool = True) -> dict:
+        samples = []
+        for k, p in enumerate(self.points):
+            s = {"theta": float(self.theta[k]), "Omega": float(self.Omega[k]), "n": float(self.n[k]), "stable": p.stable,
+                 "n_unstable": p.n_unstable, "classification": p.classification, "chart": p.chart}
+            if self.sliding_stable is not None:
+                s["stable_under_sliding_friction"] = bool(self.sliding_stable[k])
+            if eigenvalues:
+                s["eigenvalues"] = [[float(v.real), float(v.imag)] for v in p.eigenvalues]
+                s["error_bounds"] = [float(b) if np.isfinite(b) else None for b in p.bounds]
+            samples.append(s)
+        return {"ends": [e.to_dict() for e in self.ends], "label": self.label, "crossings": list(self.crossings),
+                "stability_changes": [c.to_dict() for c in self.changes], "samples": samples}
+
+
+@dataclass(frozen=True)
+class StaticEquilibrium:
+    """G straight above the contact point (h_theta = 0), at rest: ``stable`` where the height of
+    G is a minimum (h_tt > 0), ``kind`` "pole" at theta = 0 or pi, else "tilted"."""
+
+    theta: float
+    height: float
+    h_tt: float
+    kind: str
+
+    @property
+    def stable(self) -> bool:
+        return self.h_tt > 0
+
+    def to_dict(self) -> dict:
+        return {"theta": self.theta, "kind": self.kind, "height": self.height, "h_tt": self.h_tt,
+                "static_stability": "minimum (stable)" if self.h_tt > 0 else "maximum (unstable)" if self.h_tt < 0
+                else "degenerate"}
+
+
+@dataclass(frozen=True)
+class SpinFamily:
+    """A non-isolated family of steady states at one theta: the spin about the vertical at a pole
+    (``parameter`` "n", any spin) or, where q = D = 0, a precession at any rate (``parameter``
+    "Omega", e.g. the horizontal state of a flip-symmetric body). ``critical`` is where its
+    stability changes (the closed-form pole criterion; for a precession family the rate at which
+    a branch crosses it), ``stable_above`` whether spins beyond it are the stable side, and
+    ``branch_meets`` whether a branch ends on (or crosses) it there."""
+
+    kind: str  # "pole" or "precession"
+    theta: float
+    parameter: str
+    critical: float | None
+    stable_above: bool | None
+    branch_meets: bool
+    criterion: PoleCriterion | None = field(default=None, repr=False)
+
+    def to_dict(self) -> dict:
+        return {"kind": self.kind, "theta": self.theta, "parameter": self.parameter, "critical": self.critical,
+                "stable_above_critical": self.stable_above, "branch_meets": self.branch_meets}
+
+
+@dataclass(frozen=True)
+class SteadyStructure:
+    """The steady-state structure of a body under a friction law: :func:`steady_structure`."""
+
+    model: Model = field(repr=False)
+    branches: tuple[SteadyBranch, ...]
+    static_equilibria: tuple[StaticEquilibrium, ...]
+    families: tuple[SpinFamily, ...]
+    status: Status = Status.COMPLETED
+    reason: str | None = None
+
+    @property
+    def body(self):
+        return self.model.body
+
+    @property
+    def signature(self) -> str:
+        """The branches' ends in theta order, e.g. ``pole0-inf | static-polePi``; "cross" marks
+        a family crossed on the way (part I's horizontal state); "none" when there is no branch."""
+        return " | ".join(b.label for b in self.branches) or "none"
+
+    def at(self, *, omega0: float | None = None, n0: float | None = None) -> list[FixedPoint]:
+        """Every steady state with precession rate ``omega0`` (or spin ``n0``): the families' (the
+        horizontal state; the spins about the vertical) and the branches', found on the sampled
+        curves and polished by Newton on the full equations as :func:`phasekit.fixed_points`
+        does (the same states and eigenvalues)."""
+        return _states_at(self, omega0, n0)
+
+    def to_dict(self, eigenvalues: bool = True) -> dict:
+        return {"status": self.status.value, **({"reason": self.reason} if self.reason else {}),
+                "signature": self.signature, "branches": [b.to_dict(eigenvalues) for b in self.branches],
+                "static_equilibria": [s.to_dict() for s in self.static_equilibria],
+                "families": [f.to_dict() for f in self.families], "model": self.model.to_dict()}
+
+    def __repr__(self) -> str:
+        return (f"SteadyStructure({self.body!r}, {self.model.friction.name}, {self.signature!r}, "
+                f"{len(self.static_equilibria)} static equilibria)")
+
+
+# -- the geometry of the steady precessions -----------------------------------------------------
+
+_LOCK = threading.Lock()
+_GEOMETRY: dict[str, ca.Function] = {}
+
+
+def _geometry_function(body) -> ca.Function:
+    """(theta, shape, A, C) -> (q, rho_2, z, D, h, h_tt, dq/dtheta, dD/dtheta), compiled once
+    per body structure."""
+    key = body.structure_key
+    with _LOCK:
+        if key not in _GEOMETRY:
+            th, sh = ca.SX.sym("theta"), ca.SX.sym("shape", body.n_shape)
+            A, C, cs = ca.SX.sym("A"), ca.SX.sym("C"), ca.SX.sym("c")
+            Hc = body.height(cs, sh)
+            dHc = ca.jacobian(Hc, cs)
+            c, s = ca.cos(th), ca.sin(th)
+            H, dH = ca.substitute(Hc, cs, c), ca.substitute(dHc, cs, c)
+            q = -dH
+            rho2 = H - c * dH
+            z = H * c + dH * s * s
+            D = (A - C) * c * rho2 + C * q
+            ht = -dH * s
+            htt = ca.jacobian(ht, th)
+            _GEOMETRY[key] = ca.Function("precession_geometry", [th, sh, A, C],
+                                         [q, rho2, z, D, H, htt, ca.jacobian(q, th), ca.jacobian(D, th)],
+                                         ["theta", "shape", "A", "C"], ["q", "rho2", "z", "D", "h", "h_tt", "dq", "dD"])
+        return _GEOMETRY[key]
+
+
+def _geometry(body, theta) -> tuple[np.ndarray, ...]:
+    """(q, rho_2, z, D, h, h_tt, dq, dD) at an array of theta."""
+    th = np.atleast_1d(np.asarray(theta, dtype=float)).ravel()
+    f = _geometry_function(body).map(th.size)
+    shape = np.tile(np.asarray(body.shape_params, dtype=float)[:, None], (1, th.size))
+    out = f(th[None, :], shape, body.A, body.C)
+    return tuple(np.asarray(o).ravel() for o in out)
+
+
+def precession_on_branch(body, theta) -> tuple[np.ndarray, np.ndarray]:
+    """(Omega, n) of the steady precession at ``theta`` (array), Omega >= 0; NaN where there is
+    none (q rho_2 / D < 0 or D = 0). Exactly at a point where q = D = 0 the ratio is 0/0: the
+    family crossing is given by :func:`steady_structure`, not here."""
+    q, rho2, z, D = _geometry(body, theta)[:4]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        om2 = q * rho2 / D
+        om = np.where(np.isfinite(om2) & (om2 >= 0), np.sqrt(np.abs(om2)), np.nan)
+        n = om * z / rho2
+    return om, n
+
+
+# -- roots of q and D ---------------------------------------------------------------------------
+
+
+def _roots(fun, grid: np.ndarray, values: np.ndarray) -> list[float]:
+    """Every root of ``fun`` in the open interval of ``grid``: sign changes refined by Brent's
+    method, exact zeros on the grid, and pairs of roots hidden between grid points (a local
+    extremum of |f| that is near zero: the extremum is located and tested for a sign change)."""
+    from scipy.optimize import brentq, minimize_scalar
+
+    roots = []
+    sgn = np.sign(values)
+    for k in range(len(grid) - 1):
+        if sgn[k] == 0.0 and 0 < k:
+            roots.append(float(grid[k]))
+        elif sgn[k] * sgn[k + 1] < 0:
+            roots.append(float(brentq(fun, grid[k], grid[k + 1], xtol=1e-16, rtol=4 * np.finfo(float).eps, maxiter=200)))
+    a = np.abs(values)
+    for k in range(1, len(grid) - 1):
+        if a[k] < a[k - 1] and a[k] < a[k + 1] and sgn[k - 1] == sgn[k] == sgn[k + 1] != 0:
+            # a dip toward zero: does f cross between grid[k-1] and grid[k+1]?
+            s = sgn[k]
+            res = minimize_scalar(lambda t: s * fun(t), bounds=(grid[k - 1], grid[k + 1]), method="bounded",
+                                  options={"xatol": 1e-14})
+            if res.fun < 0:
+                t0 = float(res.x)
+                roots.append(float(brentq(fun, grid[k - 1], t0, xtol=1e-16)))
+                roots.append(float(brentq(fun, t0, grid[k + 1], xtol=1e-16)))
+    return sorted(r for r in roots if 0.0 < r < np.pi)
+
+
+def _special_points(body) -> list[dict]:
+    """The interior points where q, D or both vanish, in theta order."""
+    grid = np.linspace(0.0, np.pi, ROOT_GRID)
+    q, _, _, D = _geometry(body, grid)[:4]
+    fq = lambda t: float(_geometry(body, t)[0][0])  # noqa: E731
+    fD = lambda t: float(_geometry(body, t)[3][0])  # noqa: E731
+    pts = [{"theta": t, "q": True, "D": False} for t in _roots(fq, grid, q)]
+    for t in _roots(fD, grid, D):
+        near = [p for p in pts if p["q"] and abs(p["theta"] - t) <= COINCIDENT]
+        if near:
+            near[0]["D"] = True
+        else:
+            pts.append({"theta": t, "q": False, "D": True})
+    if body.flip_symmetric:  # both vanish exactly at pi/2 by symmetry: say so exactly
+        for p in pts:
+            if p["q"] and p["D"] and abs(p["theta"] - np.pi / 2) <= COINCIDENT:
+                p["theta"] = np.pi / 2
+    return sorted(pts, key=lambda p: p["theta"])
+
+
+def _omega2(body, theta: float) -> float:
+    q, rho2, _, D = _geometry(body, theta)[:4]
+    return float(q[0] * rho2[0] / D[0])
+
+
+def _family_rate2(body, theta: float) -> float:
+    """Omega^2 of a branch through a point where q = D = 0: the limit (dq/dtheta) rho_2 / (dD/dtheta)."""
+    g = _geometry(body, theta)
+    return float(g[6][0] * g[1][0] / g[7][0])
+
+
+# -- branches -----------------------------------------------------------------------------------
+
+
+def _pieces(body, pts: list[dict]) -> list[dict]:
+    """The maximal intervals with Omega^2 > 0, joined across family points."""
+    edges = [{"theta": 0.0, "pole": "0"}] + pts + [{"theta": np.pi, "pole": "pi"}]
+    pieces = []
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        mid = 0.5 * (lo["theta"] + hi["theta"])
+        if _omega2(body, mid) > 0:
+            if pieces and pieces[-1]["hi"] is lo and lo.get("q") and lo.get("D"):
+                pieces[-1]["hi"] = hi  # the branch crosses a family here
+                pieces[-1]["crossings"].append(lo["theta"])
+            else:
+                pieces.append({"lo": lo, "hi": hi, "crossings": []})
+    return pieces
+
+
+def _end(body, edge: dict, side: int) -> BranchEnd:
+    """Classify a piece's end at ``edge`` (side -1: the piece lies above it in theta)."""
+    t = float(edge["theta"])
+    if "pole" in edge:
+        q, rho2, z, D = (float(v[0]) for v in _geometry(body, t)[:4])
+        if D == 0.0:
+            return BranchEnd("infinite-spin", t)
+        if q == 0.0:
+            return BranchEnd("static", t)
+        om = float(np.sqrt(q * rho2 / D))
+        return BranchEnd("pole", t, pole=edge["pole"], n=om * z / rho2, Omega=om)
+    if edge["q"] and not edge["D"]:
+        return BranchEnd("static", t)
+    if edge["D"] and not edge["q"]:
+        return BranchEnd("infinite-spin", t)
+    # a family point that ends the branch (degenerate): by the limit from the branch's side
+    near = _omega2(body, t - side * 1e-4)
+    far = _omega2(body, t - side * 1e-2)
+    return BranchEnd("static" if near < far else "infinite-spin", t)
+
+
+# -- sampling -----------------------------------------------------------------------------------
+
+
+def _compact(theta, om, n) -> np.ndarray:
+    return np.column_stack([theta / np.pi, 2 / np.pi * np.arctan(om), 2 / np.pi * np.arctan(n)])
+
+
+def _curve(body, theta, crossings) -> tuple[np.ndarray, np.ndarray]:
+    om, n = precession_on_branch(body, theta)
+    for t in crossings:  # the 0/0 limit at a family point (samples keep CROSSING_GAP away otherwise)
+        sel = np.abs(theta - t) < 1e-12
+        if np.any(sel):
+            _, rho2, z = _geometry(body, t)[:3]
+            om[sel] = np.sqrt(_family_rate2(body, t))
+            n[sel] = om[sel] * z[0] / rho2[0]
+    return om, n
+
+
+def _off_crossings(theta: np.ndarray, crossings) -> np.ndarray:
+    """Drop points within CROSSING_GAP of a family crossing (but not the crossing itself): there
+    q / D is 0/0 and the closed form loses digits (~1e-16 / distance)."""
+    for t in crossings:
+        d = np.abs(theta - t)
+        theta = theta[(d == 0) | (d >= CROSSING_GAP)]
+    return theta
+
+
+def _sample(body, lo: BranchEnd, hi: BranchEnd, crossings) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """theta, Omega, n adaptive in arc length of the compact coordinates, with geometric
+    approaches to the ends."""
+    gap = lambda e: POLE_GAP if e.kind == "pole" else END_GAP  # noqa: E731
+    a, b = lo.theta + gap(lo), hi.theta - gap(hi)
+    if not a < b:
+        return np.array([]), np.array([]), np.array([])
+    k = np.arange(33)
+    theta = a + (b - a) * 0.5 * (1 - np.cos(np.pi * k / 32))
+    for j in range(2, 7):  # geometric approach to each end
+        theta = np.append(theta, [lo.theta + 10.0 ** -j, hi.theta - 10.0 ** -j])
+    theta = _off_crossings(np.append(theta, crossings), crossings)
+    theta = np.unique(theta[(theta >= a) & (theta <= b)])
+    for _ in range(12):
+        om, n = _curve(body, theta, crossings)
+        P = _compact(theta, om, n)
+        d = np.diff(P, axis=0)
+        L = np.linalg.norm(d, axis=1)
+        split = L > MAX_CHORD
+        cosang = np.sum(d[:-1] * d[1:], axis=1) / np.maximum(L[:-1] * L[1:], 1e-300)
+        bend = np.arccos(np.clip(cosang, -1.0, 1.0)) > MAX_TURN
+        split[:-1] |= bend
+        split[1:] |= bend
+        split &= np.diff(theta) > 1e-9
+        if not split.any() or theta.size >= MAX_SAMPLES:
+            break
+        theta = np.unique(_off_crossings(np.concatenate([theta, 0.5 * (theta[:-1] + theta[1:])[split]]), crossings))
+    om, n = _curve(body, theta, crossings)
+    ok = np.isfinite(om) & np.isfinite(n)
+    return theta[ok], om[ok], n[ok]
+
+
+# -- stability along a branch -------------------------------------------------------------------
+
+#: generator of rotations about the vertical acting on (k, w, v) of the vector chart
+_G = np.zeros((8, 8))
+for _i in (0, 3):
+    _G[_i, _i + 1], _G[_i + 1, _i] = -1.0, 1.0
+_G[6, 7], _G[7, 6] = -1.0, 1.0
+
+
+def linearise_precession(model: Model, theta: float, Omega: float, n: float, *, chart: str = "auto") -> FixedPoint:
+    """The linearisation of the law about the steady precession (theta, Omega, n).
+
+    ``chart="euler"``: :func:`phasekit.linearise` in the paper's variables. ``"rotating"``: the
+    vector chart (k, w, v) in axes turning at Omega about the vertical, J - Omega G, regular at
+    the poles (two more zero eigenvalues; tilt modes' imaginary parts shifted by Omega, real
+    parts the same). ``"auto"``: rotating within POLE_ZONE of a pole, Euler elsewhere."""
+    if chart == "auto":
+        chart = "rotating" if min(theta, np.pi - theta) < POLE_ZONE else "euler"
+    y = np.array([0.0, 0.0, Omega, 0.0, theta, n])
+    if chart == "euler":
+        return linearise(model if model.chart is EULER else model.with_chart("euler"), y, kind="intermediate")
+    mv = model if model.chart is VECTOR else model.with_chart("vector")
+    x = euler_to_vector(y)
+    mode = _mode_for(mv)
+    jac = _law_jacobian(mv, mode)
+    keep = np.arange(8) if mode.value != "rolling" else np.array([0, 1, 2, 3, 4, 5])
+    G = _G[np.ix_(keep, keep)]
+
+    def rotating(xx):
+        J, L = jac(xx)
+        return J - Omega * G, L
+
+    f = mv._rhs(x, mode) - Omega * (_G @ x)  # zero at a steady precession
+    J, L = rotating(x)
+    lam, V, bounds = _eigen_with_bounds(J, _jacobian_error(mv, mode, rotating, x, f, J))
+    if L is not None:
+        V = L @ V
+    law = "coulomb-rolling" if mode.value == "rolling" else mv.friction.name
+    return FixedPoint("intermediate", "vector-rotating", x, y, lam, V, float(np.max(np.abs(f))), law, error_bounds=bounds)
+
+
+def _n_positive(fp: FixedPoint) -> int:
+    """The sign count that bisection follows across a change of stability: eigenvalues whose
+    real part is positive beyond its error bound (within ~bound/slope of the crossing the
+    crossing eigenvalue is not counted, so the bracket closes on the last decided states)."""
+    return fp.n_unstable
+
+
+def _locate_change(at, lo: float, hi: float, f_lo: FixedPoint, f_hi: FixedPoint):
+    """Bisect one change of stability between two states with different counts to CHANGE_XTOL;
+    returns the change and the state at the upper end of its bracket."""
+    c_lo, c_hi = _n_positive(f_lo), _n_positive(f_hi)
+    while hi - lo > CHANGE_XTOL:
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        fm = at(mid)
+        if _n_positive(fm) == c_lo:
+            lo, f_lo = mid, fm
+        else:
+            hi, f_hi = mid, fm
+    # the kind: the eigenvalue nearest the imaginary axis on the unstable side
+    side = f_hi if _n_positive(f_hi) > c_lo else f_lo
+    mask = side._unstable_mask()
+    lam, b = side.eigenvalues[mask], side.bounds[mask]
+    k = np.argsort(lam.real)[:1]
+    kind = "complex" if k.size and abs(lam[k[0]].imag) > b[k[0]] else "real"
+    t = 0.5 * (lo + hi)
+    status = "converged" if hi - lo <= CHANGE_XTOL else "bracket_only"
+    om, n = at.curve(t)
+    return StabilityChange(t, (lo, hi), kind, om, n, f_lo.n_unstable, f_hi.n_unstable, status), hi, f_hi
+
+
+def _tracks(points: list[FixedPoint]) -> list[np.ndarray | None]:
+    """Real parts of the eigenvalues followed from sample to sample (the nearest match), one
+    array per sample in a common order; None where the chart (and so the spectrum) changes."""
+    from scipy.optimize import linear_sum_assignment
+
+    out, prev = [], None
+    for p in points:
+        lam = p.eigenvalues.copy()
+        if prev is not None and prev.size == lam.size:
+            cost = np.abs(prev[:, None] - lam[None, :])
+            _, col = linear_sum_assignment(cost)
+            lam = lam[col]
+        elif prev is not None:
+            out.append(None)
+            prev = lam
+            continue
+        out.append(lam)
+        prev = lam
+    return out
+
+
+def _hidden(theta: np.ndarray, points: list[FixedPoint]) -> list[float]:
+    """Points to add where a followed eigenvalue's real part may cross zero and come back
+    between two samples of equal stability: its cubic Hermite interpolant (slopes from the
+    neighbours) changes sign inside the interval."""
+    tr = _tracks(points)
+    new = []
+    for k in range(1, len(points) - 2):
+        ends = tr[k - 1:k + 3]
+        if any(e is None for e in ends) or _n_positive(points[k]) != _n_positive(points[k + 1]):
+            continue
+        r = np.array([e.real for e in ends])  # 4 x m
+        # only real parts decided at both ends (not zeros, not rounding about the axis)
+        b = 10 * max(points[k].bounds.max(), points[k + 1].bounds.max())
+        undecided = (np.abs(r[1]) <= b) | (np.abs(r[2]) <= b)
+        t = theta[k - 1:k + 3]
+        h = t[2] - t[1]
+        d1 = (r[2] - r[0]) / (t[2] - t[0])
+        d2 = (r[3] - r[1]) / (t[3] - t[1])
+        s = np.linspace(0.0, 1.0, 17)[1:-1, None]
+        cubic = ((2 * s**3 - 3 * s**2 + 1) * r[1] + (s**3 - 2 * s**2 + s) * h * d1 + (-2 * s**3 + 3 * s**2) * r[2]
+                 + (s**3 - s**2) * h * d2)
+        flips = (np.sign(cubic) != np.sign(r[1])) & (np.sign(r[1]) == np.sign(r[2])) & ~undecided
+        if flips.any():
+            new += list(t[1] + h * np.array([0.25, 0.5, 0.75]))
+    return new
+
+
+def _stability(model, body, theta, om, n, crossings):
+    """The law's linearisation at every sample (more samples where an eigenvalue may cross the
+    axis and come back between two of them), and every change of stability located."""
+    def at(t):
+        o, m = _curve(body, np.array([t]), crossings)
+        return linearise_precession(model, t, float(o[0]), float(m[0]))
+
+    at.curve = lambda t: tuple(float(v[0]) for v in _curve(body, np.array([t]), crossings))
+    points = [linearise_precession(model, float(t), float(o), float(m)) for t, o, m in zip(theta, om, n)]
+    for _ in range(4):
+        extra = np.setdiff1d(_off_crossings(np.array(_hidden(theta, points)), crossings), theta)
+        if not extra.size:
+            break
+        merged = np.concatenate([theta, extra])
+        order = np.argsort(merged)
+        pool = points + [at(float(t)) for t in extra]
+        points = [pool[i] for i in order]
+        theta = merged[order]
+    om, n = _curve(body, theta, crossings)
+    changes = []
+    for k in range(len(points) - 1):
+        lo, f_lo = float(theta[k]), points[k]
+        while _n_positive(f_lo) != _n_positive(points[k + 1]):  # every change between the two samples
+            change, lo, f_lo = _locate_change(at, lo, float(theta[k + 1]), f_lo, points[k + 1])
+            changes.append(change)
+    return theta, om, n, tuple(points), tuple(changes)
+
+
+# -- statics and families -----------------------------------------------------------------------
+
+
+def _statics(body, pts) -> tuple[StaticEquilibrium, ...]:
+    thetas = [0.0] + [p["theta"] for p in pts if p["q"]] + [np.pi]
+    h, htt = _geometry(body, thetas)[4:6]
+    return tuple(StaticEquilibrium(float(t), float(h[i]), float(htt[i]), "pole" if t in (0.0, np.pi) else "tilted")
+                 for i, t in enumerate(thetas))
+
+
+def _families(model, body, pts, pieces) -> tuple[SpinFamily, ...]:
+    ends = {(e.pole) for p in pieces for e in (p["lo_end"], p["hi_end"]) if e.kind == "pole"}
+    out = []
+    for pole, t in (("upright", 0.0), ("inverted", np.pi)):
+        crit = pole_stability_threshold(body, pole)
+        out.append(SpinFamily("pole", t, "n", crit.threshold, crit.stable_above if crit.threshold else None,
+                              ("0" if t == 0.0 else "pi") in ends, crit))
+    crossed = {c for p in pieces for c in p["crossings"]}
+    for p in pts:
+        if p["q"] and p["D"]:
+            om2 = _family_rate2(body, p["theta"])
+            crit = float(np.sqrt(om2)) if om2 > 0 else None
+            out.append(SpinFamily("precession", p["theta"], "Omega", crit, _precession_family_side(model, p["theta"], crit),
+                                  p["theta"] in crossed))
+    return tuple(out)
+
+
+def _precession_family_side(model, theta: float, crit: float | None) -> bool | None:
+    """Whether the precession family at ``theta`` (n = 0 there) is stable above its critical rate."""
+    if crit is None:
+        return None
+    below = linearise_precession(model, theta, 0.8 * crit, 0.0, chart="euler")
+    above = linearise_precession(model, theta, 1.25 * crit, 0.0, chart="euler")
+    if below.stable == above.stable:
+        return None
+    return bool(above.stable)
+
+
+# -- the structure ------------------------------------------------------------------------------
+
+
+def steady_structure(body, friction: FrictionLaw, *, stability: bool = True) -> SteadyStructure:
+    """The steady-state structure of ``body`` under ``friction`` (module notes).
+
+    Parameters
+    ----------
+    body : Body
+        Any built-in or user body.
+    friction : FrictionLaw
+        The law whose linearisation decides stability: viscous and regularised Coulomb as
+        given; exact Coulomb by its rolling (no-slip) spectrum, with the sliding-friction
+        criterion (the viscous law with the same mu, part I's weak friction) beside it in
+        ``SteadyBranch.sliding_stable`` (the poles' closed forms in ``families``).
+    stability : bool
+        False: the geometry only (branches, ends, statics, families, signature), ~10x faster
+        (what an atlas of classes needs).
+
+    Returns
+    -------
+    SteadyStructure
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.steady_structure(pk.EccentricSphere(0.3, A=0.38, C=0.4), pk.Viscous(0.3)).signature
+    'pole0-polePi'
+    """
+    from .body import Body
+
+    if not isinstance(body, Body):
+        raise ParameterError("body", "must be a phasekit Body such as Spheroid(1.5, offset=0.1) or EccentricSphere(0.3)",
+                             body)
+    if not isinstance(friction, FrictionLaw):
+        raise ParameterError("friction", "must be a phasekit friction law such as Viscous(0.1) or Coulomb(0.1)", friction)
+    model = Model(body, friction)
+    pts = _special_points(body)
+    pieces = _pieces(body, pts)
+    for p in pieces:
+        p["lo_end"], p["hi_end"] = _end(body, p["lo"], -1), _end(body, p["hi"], +1)
+    branches = []
+    sliding = Model(body, Viscous(friction.mu)) if stability and friction.has_rolling_mode else None
+    for p in pieces:
+        theta, om, n = _sample(body, p["lo_end"], p["hi_end"], p["crossings"])
+        points, changes, slide = (), (), None
+        if stability and theta.size:
+            theta, om, n, points, changes = _stability(model, body, theta, om, n, p["crossings"])
+            if sliding is not None:
+                slide = np.array([linearise_precession(sliding, float(t), float(o), float(m)).stable
+                                  for t, o, m in zip(theta, om, n)])
+        branches.append(SteadyBranch((p["lo_end"], p["hi_end"]), theta, om, n, points, changes,
+                                     tuple(p["crossings"]), slide))
+    return SteadyStructure(model, tuple(branches), _statics(body, pts), _families(model, body, pts, pieces))
+
+
+def _states_at(structure: SteadyStructure, omega0, n0) -> list[FixedPoint]:
+    """The families' states and the branches' states at one rate or spin, as
+    :func:`phasekit.fixed_points` finds them (for a flip-symmetric body the states at
+    theta > pi/2, mirror images of those below, are left out as it does)."""
+    from .fixedpoints import _pole, horizontal_state
+
+    if (omega0 is None) == (n0 is None):
+        raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
+    model, body = structure.model, structure.body
+    me = model if model.chart is EULER else model.with_chart("euler")
+    out = []
+    if omega0 is not None:
+        omega0 = check_finite("omega0", omega0)
+        for fam in structure.families:
+            if fam.kind == "precession" and fam.theta == np.pi / 2:
+                out.append(find_fixed_point(me, horizontal_state(omega0), kind="horizontal", value=omega0))
+    else:
+        n0 = check_finite("n0", n0)
+        mv = model.with_chart("vector")
+        out.append(_pole(mv, n0, "upright"))
+        if not body.flip_symmetric:
+            out.append(_pole(mv, n0, "inverted"))
+    for b in structure.branches:
+        out += _branch_states(me, b, omega0, n0)
+    if body.flip_symmetric:
+        out = [fp for fp in out if fp.kind != "intermediate" or fp.x[4] < np.pi / 2]
+    return out
+
+
+def _branch_states(model, branch: SteadyBranch, omega0, n0) -> list[FixedPoint]:
+    """The states of ``branch`` with rate omega0 (or spin n0), via Newton on the full equations
+    (Euler chart) from the root of the precession residual between two samples."""
+    from scipy.optimize import brentq
+
+    from .fixedpoints import precession_residual, precession_state
+
+    body = model.body
+    fixed, value = ("Omega", omega0) if omega0 is not None else ("n", n0)
+    th = branch.theta
+    if th.size < 2:
+        return []
+    g = precession_residual(body, th, omega0=omega0, n0=n0)
+    out = []
+    f = lambda t: precession_residual(body, t, omega0=omega0, n0=n0)  # noqa: E731
+    for k in np.flatnonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0):
+        t = float(brentq(f, th[k], th[k + 1], xtol=1e-15, rtol=4 * np.finfo(float).eps))
+        if any(abs(t - c) < 1e-7 for c in branch.crossings):  # the family's state, not the branch's
+            continue
+        guess = precession_state(body, t, omega0=omega0, n0=n0)
+        fp = find_fixed_point(model, guess, kind="intermediate", value=value, fixed=fixed)
+        out.append(replace(fp, parameter={fixed: value, "theta": float(fp.x[4])}))
+    return out
