@@ -94,7 +94,7 @@ from .flight import (
     gap_max_series,
     gap_series,
 )
-from .structure import SteadyBranch, SteadyStructure, steady_structure
+from .structure import RollingMotion, SteadyBranch, SteadyStructure, bifurcation_between, rolling_motion, steady_structure
 from .impact import impact
 from .surface import Scene, compute_scene, exact_boundary, surface_n
 from .paper import PAPER_CASES, paper_start
@@ -195,6 +195,9 @@ __all__ = [
     "steady_structure",
     "SteadyStructure",
     "SteadyBranch",
+    "bifurcation_between",
+    "rolling_motion",
+    "RollingMotion",
     "horizontal_state",
     "vertical_state",
     "unstable_seeds",

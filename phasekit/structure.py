@@ -41,6 +41,7 @@ the poles and has the same real parts (plus two zero eigenvalues: |k| and the az
 
 from __future__ import annotations
 
+import functools
 import threading
 from dataclasses import dataclass, field, replace
 
@@ -48,20 +49,23 @@ import casadi as ca
 import numpy as np
 
 from .charts import EULER, VECTOR, euler_to_vector
-from .errors import ParameterError, Status
+from .body import Body
+from .errors import ConvergenceError, ParameterError, Status
 from .fixedpoints import FixedPoint, _eigen_with_bounds, _jacobian_error, _law_jacobian, _mode_for, find_fixed_point, linearise
 from .friction import FrictionLaw, Viscous
 from .manifolds import PoleCriterion, pole_stability_threshold
 from .model import Model
-from .validate import check_finite
+from .validate import check_bool, check_finite
 
 __all__ = ["BranchEnd", "StabilityChange", "SteadyBranch", "StaticEquilibrium", "SpinFamily", "SteadyStructure",
-           "steady_structure", "precession_on_branch", "linearise_precession", "END_KINDS"]
+           "steady_structure", "precession_on_branch", "linearise_precession", "bifurcation_between", "RollingMotion",
+           "rolling_motion", "END_KINDS"]
 
 #: how a branch ends (see the module notes)
 END_KINDS = ("pole", "static", "infinite-spin")
-#: grid on which the roots of q and D are bracketed before Brent's method refines them
-ROOT_GRID = 8193
+#: grid on which the roots of q and D are bracketed before Brent's method refines them (two
+#: roots closer than its spacing show as a dip of |q| or |D| toward zero and are found too)
+ROOT_GRID = 2049
 #: roots of q and D closer than this (in theta) are one point where both vanish (a family)
 COINCIDENT = 1e-10
 #: the samples of a branch stop this far (in theta) from a static or infinite-spin end: the
@@ -259,6 +263,11 @@ class SteadyStructure:
         does (the same states and eigenvalues)."""
         return _states_at(self, omega0, n0)
 
+    def precession(self, theta):
+        """(Omega, n) of the steady precession at ``theta`` (array; Omega >= 0), NaN where
+        there is none: the closed forms of the module notes."""
+        return precession_on_branch(self.body, theta)
+
     def to_dict(self, eigenvalues: bool = True) -> dict:
         return {"status": self.status.value, **({"reason": self.reason} if self.reason else {}),
                 "signature": self.signature, "branches": [b.to_dict(eigenvalues) for b in self.branches],
@@ -297,16 +306,25 @@ def _geometry_function(body) -> ca.Function:
             _GEOMETRY[key] = ca.Function("precession_geometry", [th, sh, A, C],
                                          [q, rho2, z, D, H, htt, ca.jacobian(q, th), ca.jacobian(D, th)],
                                          ["theta", "shape", "A", "C"], ["q", "rho2", "z", "D", "h", "h_tt", "dq", "dD"])
+            _GEOMETRY[key + ":qD"] = ca.Function("q_and_D", [th, sh, A, C], [q, D])
         return _GEOMETRY[key]
 
 
 def _geometry(body, theta) -> tuple[np.ndarray, ...]:
     """(q, rho_2, z, D, h, h_tt, dq, dD) at an array of theta."""
     th = np.atleast_1d(np.asarray(theta, dtype=float)).ravel()
-    f = _geometry_function(body).map(th.size)
+    f = _geometry_function(body)
+    if th.size > 1:
+        f = _mapped(f, th.size)
     shape = np.tile(np.asarray(body.shape_params, dtype=float)[:, None], (1, th.size))
     out = f(th[None, :], shape, body.A, body.C)
     return tuple(np.asarray(o).ravel() for o in out)
+
+
+@functools.lru_cache(maxsize=64)
+def _mapped(f: ca.Function, n: int) -> ca.Function:
+    """``f`` mapped over n points (building a map costs more than evaluating it: keep them)."""
+    return f.map(n)
 
 
 def precession_on_branch(body, theta) -> tuple[np.ndarray, np.ndarray]:
@@ -330,31 +348,31 @@ def _roots(fun, grid: np.ndarray, values: np.ndarray) -> list[float]:
     extremum of |f| that is near zero: the extremum is located and tested for a sign change)."""
     from scipy.optimize import brentq, minimize_scalar
 
-    roots = []
     sgn = np.sign(values)
-    for k in range(len(grid) - 1):
-        if sgn[k] == 0.0 and 0 < k:
-            roots.append(float(grid[k]))
-        elif sgn[k] * sgn[k + 1] < 0:
-            roots.append(float(brentq(fun, grid[k], grid[k + 1], xtol=1e-16, rtol=4 * np.finfo(float).eps, maxiter=200)))
+    roots = [float(t) for t in grid[1:-1][sgn[1:-1] == 0.0]]
+    for k in np.flatnonzero(sgn[:-1] * sgn[1:] < 0):
+        roots.append(float(brentq(fun, grid[k], grid[k + 1], xtol=1e-16, rtol=4 * np.finfo(float).eps, maxiter=200)))
     a = np.abs(values)
-    for k in range(1, len(grid) - 1):
-        if a[k] < a[k - 1] and a[k] < a[k + 1] and sgn[k - 1] == sgn[k] == sgn[k + 1] != 0:
-            # a dip toward zero: does f cross between grid[k-1] and grid[k+1]?
-            s = sgn[k]
-            res = minimize_scalar(lambda t: s * fun(t), bounds=(grid[k - 1], grid[k + 1]), method="bounded",
-                                  options={"xatol": 1e-14})
-            if res.fun < 0:
-                t0 = float(res.x)
-                roots.append(float(brentq(fun, grid[k - 1], t0, xtol=1e-16)))
-                roots.append(float(brentq(fun, t0, grid[k + 1], xtol=1e-16)))
+    dips = np.flatnonzero((a[1:-1] < a[:-2]) & (a[1:-1] < a[2:]) & (sgn[:-2] == sgn[1:-1]) & (sgn[1:-1] == sgn[2:])
+                          & (sgn[1:-1] != 0)) + 1
+    for k in dips:  # a dip toward zero: does f cross between grid[k-1] and grid[k+1]?
+        s = sgn[k]
+        res = minimize_scalar(lambda t: s * fun(t), bounds=(grid[k - 1], grid[k + 1]), method="bounded",
+                              options={"xatol": 1e-14})
+        if res.fun < 0:
+            t0 = float(res.x)
+            roots.append(float(brentq(fun, grid[k - 1], t0, xtol=1e-16)))
+            roots.append(float(brentq(fun, t0, grid[k + 1], xtol=1e-16)))
     return sorted(r for r in roots if 0.0 < r < np.pi)
 
 
 def _special_points(body) -> list[dict]:
     """The interior points where q, D or both vanish, in theta order."""
     grid = np.linspace(0.0, np.pi, ROOT_GRID)
-    q, _, _, D = _geometry(body, grid)[:4]
+    _geometry_function(body)
+    f = _mapped(_GEOMETRY[body.structure_key + ":qD"], ROOT_GRID)
+    shape = np.tile(np.asarray(body.shape_params, dtype=float)[:, None], (1, ROOT_GRID))
+    q, D = (np.asarray(v).ravel() for v in f(grid[None, :], shape, body.A, body.C))
     fq = lambda t: float(_geometry(body, t)[0][0])  # noqa: E731
     fD = lambda t: float(_geometry(body, t)[3][0])  # noqa: E731
     pts = [{"theta": t, "q": True, "D": False} for t in _roots(fq, grid, q)]
@@ -670,7 +688,7 @@ def _precession_family_side(model, theta: float, crit: float | None) -> bool | N
 # -- the structure ------------------------------------------------------------------------------
 
 
-def steady_structure(body, friction: FrictionLaw, *, stability: bool = True) -> SteadyStructure:
+def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, samples: bool = True) -> SteadyStructure:
     """The steady-state structure of ``body`` under ``friction`` (module notes).
 
     Parameters
@@ -683,35 +701,49 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True) -> 
         criterion (the viscous law with the same mu, part I's weak friction) beside it in
         ``SteadyBranch.sliding_stable`` (the poles' closed forms in ``families``).
     stability : bool
-        False: the geometry only (branches, ends, statics, families, signature), ~10x faster
-        (what an atlas of classes needs).
+        False: the geometry only (branches, ends, statics, families, signature), ~10x faster.
+    samples : bool
+        False: no samples along the branches either (their ends, the statics, the families and
+        the signature only: what an atlas of classes needs, ~5 ms a body).
 
     Returns
     -------
     SteadyStructure
+        With status "failed" and the reason if a root or a limit could not be computed.
 
     Examples
     --------
     >>> import phasekit as pk
     >>> pk.steady_structure(pk.EccentricSphere(0.3, A=0.38, C=0.4), pk.Viscous(0.3)).signature
     'pole0-polePi'
+    >>> pk.steady_structure(pk.Spheroid(1.5, offset=0.2), pk.Coulomb(0.1), samples=False).signature
+    'pole0-inf | static-polePi'
     """
-    from .body import Body
-
     if not isinstance(body, Body):
         raise ParameterError("body", "must be a phasekit Body such as Spheroid(1.5, offset=0.1) or EccentricSphere(0.3)",
                              body)
     if not isinstance(friction, FrictionLaw):
         raise ParameterError("friction", "must be a phasekit friction law such as Viscous(0.1) or Coulomb(0.1)", friction)
+    check_bool("stability", stability)
+    check_bool("samples", samples)
     model = Model(body, friction)
+    try:
+        return _structure(model, stability and samples, samples)
+    except (ArithmeticError, ValueError, RuntimeError, ConvergenceError) as exc:
+        return SteadyStructure(model, (), (), (), Status.FAILED, f"{type(exc).__name__}: {exc}")
+
+
+def _structure(model: Model, stability: bool, samples: bool) -> SteadyStructure:
+    body, friction = model.body, model.friction
     pts = _special_points(body)
     pieces = _pieces(body, pts)
     for p in pieces:
         p["lo_end"], p["hi_end"] = _end(body, p["lo"], -1), _end(body, p["hi"], +1)
     branches = []
     sliding = Model(body, Viscous(friction.mu)) if stability and friction.has_rolling_mode else None
+    empty = np.array([])
     for p in pieces:
-        theta, om, n = _sample(body, p["lo_end"], p["hi_end"], p["crossings"])
+        theta, om, n = _sample(body, p["lo_end"], p["hi_end"], p["crossings"]) if samples else (empty, empty, empty)
         points, changes, slide = (), (), None
         if stability and theta.size:
             theta, om, n, points, changes = _stability(model, body, theta, om, n, p["crossings"])
@@ -775,3 +807,82 @@ def _branch_states(model, branch: SteadyBranch, omega0, n0) -> list[FixedPoint]:
         fp = find_fixed_point(model, guess, kind="intermediate", value=value, fixed=fixed)
         out.append(replace(fp, parameter={fixed: value, "theta": float(fp.x[4])}))
     return out
+
+
+# -- between classes ------------------------------------------------------------------------------
+
+
+def _tokens(structure: SteadyStructure) -> dict:
+    ends = [e for b in structure.branches for e in b.ends]
+    return {"static": sum(e.kind == "static" for e in ends), "inf": sum(e.kind == "infinite-spin" for e in ends),
+            "poles": frozenset(e.pole for e in ends if e.kind == "pole"),
+            "cross": sum(len(b.crossings) for b in structure.branches),
+            "order": tuple(e.label for e in sorted(ends, key=lambda e: e.theta) if e.kind != "pole")}
+
+
+def bifurcation_between(lo: SteadyStructure, hi: SteadyStructure) -> str:
+    """Name the codimension-one event that turns structure ``lo`` into ``hi`` (two bodies close
+    together in parameter space, on either side of a class boundary), from how their branch
+    ends differ: the degeneracies of Omega^2 = q rho_2 / D that change a signature."""
+    a, b = _tokens(lo), _tokens(hi)
+    if lo.signature == hi.signature:
+        return "none"
+    d_static, d_inf = abs(a["static"] - b["static"]), abs(a["inf"] - b["inf"])
+    pole = a["poles"] ^ b["poles"]
+    where = " and ".join("theta = 0" if p == "0" else "theta = pi" for p in sorted(pole))
+    if a["cross"] != b["cross"] or (d_static == d_inf == 0 and not pole and a["order"] != b["order"]):
+        return "a static equilibrium crosses an infinite-spin asymptote (q = D = 0 there: A = C, or a side static)"
+    if pole and d_inf and not d_static:
+        return f"an infinite-spin asymptote reaches the pole at {where} (its critical spin diverges: A rho = C h0)"
+    if pole and d_static and not d_inf:
+        return f"a static equilibrium reaches the pole at {where} (h_tt = 0 there: its critical spin falls to 0)"
+    if not pole and d_static == 2 and not d_inf:
+        return "two static equilibria are born together (a fold of the height of G)"
+    if not pole and d_inf == 2 and not d_static:
+        return "two infinite-spin asymptotes are born together (a double zero of D)"
+    return f"a combined change ({lo.signature} -> {hi.signature})"
+
+
+@dataclass(frozen=True)
+class RollingMotion:
+    """A steady rolling motion under exact Coulomb friction: the axis at a fixed theta
+    precessing at Omega, no slip, G moving on a circle (radius ``radius``) with speed V in the
+    precessing frame, friction supplying the centripetal force (|F| = Omega |V| <= mu R is
+    needed for static friction to hold it: ``needs_mu``). The branches (:func:`steady_structure`)
+    are its members with V = 0. ``x`` is the state (U, V, Omega, Lambda, theta, n)."""
+
+    theta: float
+    Omega: float
+    n: float
+    V: float
+    radius: float
+    needs_mu: float
+    x: np.ndarray = field(repr=False)
+
+
+def rolling_motion(body, theta: float, Omega: float) -> RollingMotion:
+    """The steady rolling motion with axis angle ``theta`` and precession rate ``Omega``.
+
+    Derived from (2.7) with Lambda = 0 and zero slip (U = 0, V = -Omega h_theta - (n - Omega cos)
+    x_P): (2.7c) and (2.7b) give F_y = 0, (2.7a) F_X = -Omega V, and (2.7d) with R = 1
+
+        n = [A Omega^2 s c - h_theta (1 + h Omega^2) + h Omega^2 c x_P] / (Omega (C s + h x_P)).
+
+    A two-parameter family (theta, Omega); with V = 0 it reduces to the branches. An egg that
+    settles tilted under Coulomb friction ends on it (studies/steady_structure.py)."""
+    if not isinstance(body, Body):
+        raise ParameterError("body", "must be a phasekit Body", body)
+    theta = check_finite("theta", theta)
+    if not 0.0 < theta < np.pi:
+        raise ParameterError("theta", "must lie in (0, pi) (at the poles the axis does not precess)", theta)
+    Omega = check_finite("Omega", Omega)
+    if Omega == 0.0:
+        raise ParameterError("Omega", "must be nonzero (a body at rest is a static equilibrium)", Omega)
+    h, ht, _ = body.h(theta)
+    s, c = np.sin(theta), np.cos(theta)
+    xP = h * s + ht * c
+    n = (body.A * Omega**2 * s * c - ht * (1 + h * Omega**2) + h * Omega**2 * c * xP) / (Omega * (body.C * s + h * xP))
+    V = -Omega * ht - (n - Omega * c) * xP
+    return RollingMotion(float(theta), float(Omega), float(n), float(V), float(abs(V / Omega)), float(abs(Omega * V)),
+                         np.array([0.0, V, Omega, 0.0, theta, n]))
+

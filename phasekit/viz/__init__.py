@@ -4,9 +4,11 @@ matplotlib is imported by the functions that draw, pyvista only when a 3-D scene
 from .mpl import LABELS, label, plain_log_ticks, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
 from .output import atomic_path, output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
 from .pv import RenderInfo, render_scene
+from .branches import render_structure
 
 __all__ = [
     "render_scene",
+    "render_structure",
     "RenderInfo",
     "plot_timeseries",
     "plot_events",
