@@ -470,10 +470,12 @@ def _print_structure(out: dict) -> None:
     for st in out["static_equilibria"]:
         print(f"static equilibrium at theta = {_fmt(st['theta'], '.10f')} ({st['kind']}): {st['static_stability']}")
     for f in out["families"]:
-        crit = "no change of stability" if f["critical"] is None else (
-            f"critical {f['parameter']} = {_fmt(f['critical'], '.10g')}, "
-            f"{'stable' if f['stable_above_critical'] else 'unstable'} above")
-        print(f"{f['kind']} family at theta = {_fmt(f['theta'], '.6f')} (any {f['parameter']}): {crit}"
+        side = lambda v: "not computed" if v is None else "stable" if v else "unstable"  # noqa: E731
+        crit = ("no change of stability: " + side(f["stable_on_intervals"][0])) if not f["criticals"] else (
+            f"stability changes at |{f['parameter']}| = {', '.join(_fmt(c, '.10g') for c in f['criticals'])}; "
+            f"{side(f['stable_above_critical'])} above")
+        what = {"pole": "spin about the vertical", "precession": "precession", "rolling": "straight rolling"}[f["kind"]]
+        print(f"{what} family at theta = {_fmt(f['theta'], '.6f')} (any {f['parameter']}): {crit}"
               + ("; a branch meets it there" if f["branch_meets"] else ""))
     if out.get("states"):
         for fp in out["states"]:

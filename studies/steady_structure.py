@@ -467,7 +467,10 @@ def main(argv=None) -> dict:
     names = {}
     for b in bounds:
         names.setdefault(b.bifurcation, set()).add(tuple(sorted((b.below, b.above))))
-    summary = {"classes": counts, "part_iii": {"spheroid": 9, "tippe_top": 3},
+    tops = [b for b in bounds if b.panel == "tippe-top"]
+    closed = {"max_distance": max((min(abs(b.y - (1 - b.x)), abs(b.y - (1 + b.x))) for b in tops), default=None),
+              "max_half_width": max((b.width / 2 for b in tops), default=None), "points": len(tops)}
+    summary = {"classes": counts, "part_iii": {"spheroid": 9, "tippe_top": 3}, "tippe_top_boundary_vs_1_pm_alpha": closed,
                "bifurcations": {k: sorted(" <-> ".join(p) for p in v) for k, v in sorted(names.items())},
                "boundary_width_max": max((b.width for b in bounds), default=None), "representatives": rep_info, **extra}
     atlas.annotate(summary=summary)
@@ -475,6 +478,8 @@ def main(argv=None) -> dict:
     print(f"\n{STEM}: {len(rows)} bodies, {len(bounds)} traced boundary points; {how}; {wall:.1f} s wall")
     print(f"  tippe top: {len(counts['tippe_top'])} classes (part III: 3): {', '.join(counts['tippe_top'])}")
     print(f"  displaced spheroid: {len(counts['spheroid'])} classes (part III: 9): {', '.join(counts['spheroid'])}")
+    print(f"  tippe-top boundary points against A/C = 1 +- alpha: largest distance {closed['max_distance']}, largest "
+          f"half-width of a bracket {closed['max_half_width']} ({closed['points']} points)")
     print(f"  3-D grid counts: {counts['cube_counts']}; failed: {counts['failed']}")
     for name, pairs in summary["bifurcations"].items():
         print(f"  boundary: {name}: {len(pairs)} class pairs")

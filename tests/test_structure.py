@@ -214,7 +214,28 @@ def test_displaced_spheroid_breaks_part_ones_degenerate_structure():
         "pole0-inf | static-polePi"
     at_boundary = steady_structure(pk.Spheroid(1.5, offset=0.5), pk.Viscous(0.1), stability=False)  # A = C = 0.4
     assert at_boundary.signature == "pole0-cross-polePi"
-    assert [f.kind for f in at_boundary.families] == ["pole", "pole", "precession"]
+    assert [f.kind for f in at_boundary.families] == ["pole", "pole", "precession", "rolling"]
+
+
+@pytest.mark.parametrize("a", [1.5, 2 / 3])
+def test_part_one_four_classes_with_their_stability(a):
+    """Part I's four classes of the flip-symmetric spheroid: the spin about the vertical, the
+    horizontal precession, the intermediate precessions (the branch) and rolling on the equator
+    along a straight line. Each family state is an exact steady state, and the located change
+    of stability of the rolling family is bracketed by states of opposite stability."""
+    body, law = pk.Spheroid(a), pk.Viscous(0.1)
+    s = steady_structure(body, law)
+    assert sorted(f.kind for f in s.families) == ["pole", "pole", "precession", "rolling"] and len(s.branches) == 1
+    model = pk.Model(body, law)
+    [roll] = [f for f in s.families if f.kind == "rolling"]
+    assert roll.theta == np.pi / 2 and roll.criticals
+    for n in (0.3, 3.0, 30.0):
+        x = pk.structure.rolling_state(body, roll.theta, n)
+        assert np.max(np.abs(model.rhs(x, Mode.SLIDING))) < 1e-14 * n * n + 1e-15
+    for c in roll.criticals:
+        lo = pk.linearise(model, pk.structure.rolling_state(body, roll.theta, c * (1 - 1e-8)))
+        hi = pk.linearise(model, pk.structure.rolling_state(body, roll.theta, c * (1 + 1e-8)))
+        assert lo.n_unstable != hi.n_unstable
 
 
 def test_cli_steady_states_json_and_bad_input():

@@ -140,21 +140,20 @@ def _add_special_points(pl, pv, f, structure, bounds) -> int:
             pl.add_points(f(P), color=color, point_size=size, render_points_as_spheres=True)
             count += len(P)
     for fam in structure.families:
-        if fam.kind == "pole":
-            # the spins about the vertical: Omega is undefined there; drawn in the plane of the
-            # branch that meets the pole (its limit of Omega), or Omega = 0
+        if fam.parameter == "n":
+            # spins about the vertical (Omega undefined: drawn in the plane where a branch meets
+            # the pole, else Omega = 0) and straight rolling (Omega = 0)
             meet = [e.Omega for b in structure.branches for e in b.ends if e.kind == "pole" and e.theta == fam.theta]
-            om = meet[0] if meet else 0.0
-            ns = np.linspace(lo[2], hi[2], 60)
-            stable = None if fam.critical is None else (np.abs(ns) > fam.critical) == fam.stable_above
-            P = np.column_stack([np.full_like(ns, min(om, hi[0])), np.full_like(ns, fam.theta), ns])
+            om = meet[0] if meet and fam.kind == "pole" else 0.0
+            vals = np.linspace(lo[2], hi[2], 81)
+            P = np.column_stack([np.full_like(vals, min(om, hi[0])), np.full_like(vals, fam.theta), vals])
         else:
-            oms = np.linspace(lo[0], hi[0], 60)
-            stable = None if fam.critical is None or fam.stable_above is None else (oms > fam.critical) == fam.stable_above
-            P = np.column_stack([oms, np.full_like(oms, fam.theta), np.zeros_like(oms)])
-        flags = np.zeros(len(P), dtype=bool) if stable is None else stable
-        for run, st in _segments_by_stability(P, flags):
-            color = "0.5" if stable is None else STABLE if st else UNSTABLE
+            vals = np.linspace(lo[0], hi[0], 81)
+            P = np.column_stack([vals, np.full_like(vals, fam.theta), np.zeros_like(vals)])
+        side = [fam.stable_on[int(np.searchsorted(fam.criticals, abs(v)))] for v in vals]
+        known = all(v is not None for v in side)
+        for run, st in _segments_by_stability(P, np.array([bool(v) for v in side])):
+            color = STABLE if known and st else UNSTABLE if known else "0.5"
             pl.add_mesh(pv.lines_from_points(f(run)), color=color, line_width=2, opacity=0.7)
     return count
 
