@@ -20,6 +20,7 @@ from .model import OBSERVABLES, Model
 from .options import BACKENDS, SolverOptions
 from .simulate import simulate, taylor_integrator
 from .trajectory import SAMPLE_COLUMNS, EventRecord, Flight, Segment, Trajectory
+from .pose import POSE_COLUMNS, Pose, rotation_matrix
 from .sections import poincare
 from .ensemble import ensemble, rerun
 from .starts import gyroscopic_start, raw_start, to_chart, vertical_spin_start
@@ -172,6 +173,9 @@ __all__ = [
     "EventRecord",
     "Flight",
     "SAMPLE_COLUMNS",
+    "POSE_COLUMNS",
+    "Pose",
+    "rotation_matrix",
     "poincare",
     "ensemble",
     "rerun",
