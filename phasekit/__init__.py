@@ -129,6 +129,16 @@ from .sweep import (
 
 __version__ = "0.2.0"
 
+
+def __getattr__(name):
+    """``pk.viz`` on first use (drawing stays out of ``import phasekit``; VTK loads only when a
+    3-D view is drawn)."""
+    if name == "viz":
+        import importlib
+
+        return importlib.import_module(".viz", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 __all__ = [
     "Body",
     "Spheroid",

@@ -54,7 +54,7 @@ FLAGS = {
     "b": "--size", "g": "--g", "pose0.psi": "--psi0", "pose0.phi": "--phi0", "pose0.X": "--X0", "pose0.Y": "--Y0",
     "psi0": "--psi0", "phi0": "--phi0", "X0": "--X0", "Y0": "--Y0", "spin_about_vertical": "--spin-about-vertical",
     "frames": "--frames", "fps": "--fps", "out": "OUT", "gap_scale": "--gap-scale", "camera": "--camera",
-    "panel": "--panel", "timing": "--timing", "size": "--size", "strip": "--strip", "window_size": "--window-size",
+    "panel": "--panel", "timing": "--timing", "window_size": "--window-size", "path": "OUT",
 }
 #: API parameters that more than one flag feeds: (flag typed, name to print), the first typed one wins
 #: (e.g. `n0` is --spin-about-vertical's value in that start, and theta its --theta0)
@@ -440,6 +440,33 @@ def _cmd_simulate(args) -> dict:
     return out
 
 
+def _cmd_animate(args) -> dict:
+    """Simulate as `simulate` does, then write the movie (or film strip) of the run."""
+    from .api import run_start
+    from .viz.animate import animate, check_movie_options, film_strip
+
+    scale = _apply_units(args)
+    if args.timing == "real" and scale is None:
+        raise _UsageError("--timing real needs --size (the body's unit of length, e.g. --size '21.5 mm').", "--timing")
+    size = (480, 360) if args.window_size is None else tuple(args.window_size)
+    check_movie_options(args.out, frames=args.frames, fps=args.fps, timing=args.timing, gap_scale=args.gap_scale,
+                        camera=args.camera, panel=args.panel, window_size=size, scale=scale)
+    traj, seed = _simulate_args(args, run_start)
+    out = traj.to_dict()
+    if traj.status.value == "failed":
+        return out
+    if str(args.out).lower().endswith(".png"):
+        info = film_strip(traj, args.out, frames=min(args.frames, 100), scale=scale, gap_scale=args.gap_scale,
+                          camera=args.camera, window_size=size)
+    else:
+        info = animate(traj, args.out, frames=args.frames, fps=args.fps, timing=args.timing, scale=scale,
+                       gap_scale=args.gap_scale, camera=args.camera, panel=args.panel, window_size=size,
+                       progress=not args.no_progress)
+    out["animation"] = {"path": info.path, "frames": info.n_frames, "frame_size": list(info.frame_size),
+                        "fps": info.fps, "playback_speed": info.speed, "bytes": info.bytes}
+    return out
+
+
 def _simulate_args(args, runner):
     """Build the body, start and options from ``args`` and call ``runner`` (simulate_start or
     animate_start) with them."""
@@ -586,6 +613,11 @@ def _print_human(out: dict, events: bool) -> None:
             print(f"t = {_fmt(t, '12.6g')}   theta = {_fmt(th, '.12f')}   Omega = {_fmt(om, '.12f')}")
         return
     print(f"status: {out['status']}" + (f" ({out['reason']})" if out.get("reason") else ""))
+    if out.get("animation"):
+        an = out["animation"]
+        speed = f", {an['playback_speed']:.3g}x real time" if an.get("playback_speed") else ""
+        print(f"wrote {an['path']}: {an['frames']} frames of {an['frame_size'][0]}x{an['frame_size'][1]} pixels"
+              f"{speed}, {an['bytes'] / 1e6:.2f} MB")
     for key in ("t_jump", "t_stop", "t_end", "theta_end", "R_min", "stuck", "mode_end"):
         if out.get(key) is not None:
             print(f"{key}: {_fmt(out[key])}")
@@ -711,7 +743,8 @@ def _show_warning(message, category, filename, lineno, file=None, line=None, nam
     print(f"phasekit: warning: {' '.join(_flags_in(str(message), names).split())}", file=sys.stderr)
 
 
-COMMANDS = {"simulate": _cmd_simulate, "fixed-points": _cmd_fixed_points, "gyroscopic": _cmd_gyroscopic}
+COMMANDS = {"simulate": _cmd_simulate, "animate": _cmd_animate, "fixed-points": _cmd_fixed_points,
+            "gyroscopic": _cmd_gyroscopic}
 #: set (to anything) to let unexpected exceptions propagate with their traceback (debugging, tests)
 DEBUG_ENV = "PHASEKIT_DEBUG"
 
