@@ -21,6 +21,7 @@ from .options import BACKENDS, SolverOptions
 from .simulate import simulate, taylor_integrator
 from .trajectory import SAMPLE_COLUMNS, EventRecord, Flight, Segment, Trajectory
 from .pose import POSE_COLUMNS, Pose, rotation_matrix
+from .tables import read_table, write_table
 from .sections import poincare
 from .ensemble import ensemble, rerun
 from .starts import gyroscopic_start, raw_start, to_chart, vertical_spin_start
@@ -186,6 +187,8 @@ __all__ = [
     "POSE_COLUMNS",
     "Pose",
     "rotation_matrix",
+    "read_table",
+    "write_table",
     "poincare",
     "ensemble",
     "rerun",

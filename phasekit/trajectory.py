@@ -430,6 +430,28 @@ class Trajectory:
         return np.array([self.model.chart.to_paper(z) for z in self.ys])
 
     # -- export ----------------------------------------------------------------------------
+    def to_xarray(self, times=None, *, n: int = 2001):
+        """The run sampled at ``times`` (default ``n`` instants uniform over it) as an xarray
+        Dataset: coordinate ``t``, one variable per column of :meth:`sample`, and the model,
+        start, options, pose0 and status as JSON-string attributes (needs ``phasekit[data]``)."""
+        from .tables import _need, to_xarray
+
+        _need(".nc")
+        return to_xarray(self, times, n=n)
+
+    def to_netcdf(self, path, times=None, *, n: int = 2001):
+        """Write :meth:`to_xarray` to a NetCDF file (``phasekit[data]``); returns the path."""
+        from .tables import _check_path, write_trajectory
+
+        return write_trajectory(self, _check_path(path, (".nc",)), times, n=n)
+
+    def to_parquet(self, path, times=None, *, n: int = 2001):
+        """Write the sampled table to a Parquet file, the run's inputs in its metadata
+        (``phasekit[data]``); returns the path."""
+        from .tables import _check_path, write_trajectory
+
+        return write_trajectory(self, _check_path(path, (".parquet",)), times, n=n)
+
     def to_dict(self, *, events: bool = True) -> dict:
         """JSON form in the paper's variables, with the inputs (model, start, options)."""
         chart = self.model.chart
