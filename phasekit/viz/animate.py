@@ -195,12 +195,17 @@ class _Stage:
         self.pl.add_mesh(self.body, scalars="sector", cmap=list(BODY_COLORS), show_scalar_bar=False, smooth_shading=True)
         for d in self.deco:
             self.pl.add_mesh(d, color="#7f2704", smooth_shading=True)
-        self.path_actor = self.g_actor = None
-        self.text = self.pl.add_text("", position=(10, 8), font_size=10, color="k")
+        self._make_paths()
+        font = max(6, round(style.window_size[0] / 45))  # captions that fit the frame's width
+        self.text = self.pl.add_text("", position=(8, 6), font_size=font, color="k")
         if style.title:
-            top = self.pl.add_text(style.title, position=(10, style.window_size[1] - 8), font_size=10, color="k")
+            top = self.pl.add_text(style.title, position=(8, style.window_size[1] - 6), font_size=font, color="k")
             top.GetTextProperty().SetVerticalJustificationToTop()
-        self.focal0 = np.array([*centre, 0.6])
+        # camera distance and aim: the body's size (and, for a fixed camera, the extent of the path)
+        size = float(np.ptp(self.body0.points, axis=0).max())
+        self.lift = 0.4 * size
+        self.focal0 = np.array([*centre, self.lift])
+        self.reach = 2.9 * size + (0.0 if style.camera == "follow" else 1.5 * (extent - 4.0))
 
     def _place(self, row) -> np.ndarray:
         from ..pose import rotation_matrix
@@ -212,17 +217,21 @@ class _Stage:
             d.points = d0.points @ R.T + G
         return G
 
+    def _make_paths(self) -> None:
+        """The traced paths of P and G as polylines over every trace point; each frame shows
+        the first k of them (by their connectivity, without re-adding actors)."""
+        self.paths = []
+        for cols, color, z, width in ((("X_P", "Y_P"), PATH_COLOR, 2e-3, 2.5), (("X", "Y"), G_PATH_COLOR, 3e-3, 1.5)):
+            pts = np.column_stack([self.trace[cols[0]].to_numpy(), self.trace[cols[1]].to_numpy(),
+                                   np.full(len(self.trace), z)])
+            mesh = self.pv.PolyData(pts, lines=np.array([2, 0, 1]))  # lines only: no vertex cells
+            self.pl.add_mesh(mesh, color=color, line_width=width, render=False)
+            self.paths.append(mesh)
+
     def _paths(self, t: float) -> None:
-        pv = self.pv
         k = max(2, int(np.searchsorted(self.trace_t, t, side="right")))
-        for attr, cols, color, z, width in (("path_actor", ("X_P", "Y_P"), PATH_COLOR, 2e-3, 2.5),
-                                            ("g_actor", ("X", "Y"), G_PATH_COLOR, 3e-3, 1.5)):
-            old = getattr(self, attr)
-            if old is not None:
-                self.pl.remove_actor(old)
-            pts = np.column_stack([self.trace[cols[0]].to_numpy()[:k], self.trace[cols[1]].to_numpy()[:k],
-                                   np.full(k, z)])
-            setattr(self, attr, self.pl.add_mesh(pv.lines_from_points(pts), color=color, line_width=width))
+        for mesh in self.paths:
+            mesh.lines = np.concatenate([[k], np.arange(k)])
 
     def caption(self, row) -> str:
         sc = self.style.scale
@@ -241,8 +250,8 @@ class _Stage:
         G = self._place(row)
         self._paths(float(row["t"]))
         self.text.SetInput(self.caption(row))
-        focal = np.array([G[0], G[1], 0.6]) if self.style.camera == "follow" else self.focal0
-        self.pl.camera_position = [tuple(focal + np.array([4.2, -5.4, 3.3])), tuple(focal), (0.0, 0.0, 1.0)]
+        focal = np.array([G[0], G[1], self.lift]) if self.style.camera == "follow" else self.focal0
+        self.pl.camera_position = [tuple(focal + self.reach * np.array([0.59, -0.76, 0.27])), tuple(focal), (0.0, 0.0, 1.0)]
         self.pl.render()
         return np.asarray(self.pl.screenshot(return_img=True))[..., :3]
 
