@@ -115,3 +115,20 @@ def test_viz_is_an_attribute_that_loads_no_vtk():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "[]"
+
+
+def test_scene_draws_the_body_on_its_trajectory(jump_run, tmp_path):
+    """pk.Scene draws the body itself at chosen times of a trajectory, turned by its pose."""
+    from phasekit.viz import render_scene
+
+    scene = pk.Scene("prolate", 1.5, values=(), show=frozenset({"trajectories", "axes"}))
+    scene.add_trajectory(jump_run, bodies=[5.0, 25.0, 40.0])
+    plain = pk.Scene("prolate", 1.5, values=(), show=frozenset({"trajectories", "axes"})).add_trajectory(jump_run)
+    info = render_scene(scene, tmp_path / "b.png", window_size=(500, 400))
+    render_scene(plain, tmp_path / "p.png", window_size=(500, 400))
+    assert info.n_points["bodies"] == 3
+    with_bodies = np.asarray(Image.open(tmp_path / "b.png").convert("RGB"))
+    without = np.asarray(Image.open(tmp_path / "p.png").convert("RGB"))
+    assert _body_pixels(with_bodies, 500) > _body_pixels(without, 500) + 300
+    with pytest.raises(pk.ParameterError, match="`bodies`"):
+        scene.add_trajectory(jump_run, bodies=[jump_run.t + 1.0])

@@ -23,13 +23,13 @@ import numpy as np
 
 from ..errors import ParameterError, PhasekitError
 from ..validate import check_int, check_positive
+from .mesh import BODY_COLORS, body_mesh, decorations
 
 __all__ = ["AnimationInfo", "animate", "film_strip", "render_body", "body_mesh", "MOVIE_EXTRA"]
 
 #: what MP4 output needs: ``pip install "phasekit[movie]"``
 MOVIE_EXTRA = ("imageio_ffmpeg",)
 SUFFIXES = (".gif", ".mp4", ".png")
-BODY_COLORS = ("#e6550d", "#fdd0a2")  # alternate sectors: the spin about the axis shows
 PATH_COLOR, G_PATH_COLOR, TABLE_COLOR = "#08519c", "#969696", "#f0f0f0"
 CAMERAS = ("follow", "fixed")
 PANELS = ("none", "phase", "R")
@@ -48,38 +48,6 @@ class AnimationInfo:
     fps: float
     speed: float | None = None
     bytes: int = 0
-
-
-def body_mesh(body, *, n_theta: int = 64, n_azimuth: int = 48):
-    """The body's surface in body axes (G at the origin, axis k = e_z) as a PyVista PolyData
-    with a ``sector`` scalar (0/1 in four azimuthal sectors)."""
-    import pyvista as pv
-
-    th = np.linspace(0.0, np.pi, n_theta)
-    h, ht, _ = body.h(th)
-    z = ht * np.sin(th) - h * np.cos(th)
-    r = np.clip(h * np.sin(th) + ht * np.cos(th), 0.0, None)
-    az = np.linspace(0.0, 2 * np.pi, n_azimuth + 1)
-    R, AZ = np.meshgrid(r, az, indexing="ij")
-    pts = np.column_stack([(R * np.cos(AZ)).ravel(), (R * np.sin(AZ)).ravel(), np.repeat(z, az.size)])
-    i, j = np.meshgrid(np.arange(th.size - 1), np.arange(az.size - 1), indexing="ij")
-    a = (i * az.size + j).ravel()
-    quads = np.column_stack([np.full(a.size, 4), a, a + az.size, a + az.size + 1, a + 1])
-    mesh = pv.PolyData(pts, quads.ravel())
-    mesh["sector"] = (np.floor(AZ / (np.pi / 2)) % 2).ravel()
-    return mesh.triangulate()
-
-
-def _decorations(body):
-    """Body-frame meshes drawn with the body: the tippe top's stem on +k (decoration only)."""
-    import pyvista as pv
-
-    from ..body import EccentricSphere
-
-    if isinstance(body, EccentricSphere):
-        centre = body.offset  # the ball's centre is offset above G along k
-        return [pv.Cylinder(center=(0.0, 0.0, centre + 1.05), direction=(0, 0, 1), radius=0.12, height=0.4)]
-    return []
 
 
 def _check_traj(traj):
@@ -177,7 +145,7 @@ class _Stage:
 
         self.pv, self.traj, self.style = pv, traj, style
         self.body0 = body_mesh(traj.model.body)
-        self.deco0 = [d.triangulate() for d in _decorations(traj.model.body)]
+        self.deco0 = [d.triangulate() for d in decorations(traj.model.body)]
         self.pl = pv.Plotter(off_screen=True, window_size=list(style.window_size))
         self.pl.set_background("white")
         # the traced paths: dense enough to follow the precession (30 points per turn at least)

@@ -354,6 +354,8 @@ def _draw(pl, data, title, window_size) -> dict:
                 line = pv.lines_from_points(f(run))
                 counts["trajectories"] += line.n_points
                 pl.add_mesh(line, color=COLORS[k % len(COLORS)], line_width=2.5)
+    if data.bodies:
+        counts["bodies"] = _draw_bodies(pl, data, f)
     for name, pts, color, size in (("crossings", [[c.Omega, c.theta, c.n] for c in data.crossings], "black", 16),
                                    ("fixed_points", data.fixed_points, "red", 12)):
         if name in show and pts is not None and len(pts):
@@ -376,6 +378,29 @@ def _draw(pl, data, title, window_size) -> dict:
         actor = pl.add_text(title, position=(16, window_size[1] - 14), font_size=11, color="k")
         actor.GetTextProperty().SetVerticalJustificationToTop()
     return counts
+
+
+#: size of a body drawn in a scene, in drawn-box units (the box is 1.4 x 1 x 1)
+BODY_GLYPH = 0.16
+
+
+def _draw_bodies(pl, data, f) -> int:
+    """The bodies of Scene.add_trajectory(..., bodies=times): each body's own surface, turned as
+    it was then, at its trajectory's point (those outside the box are left out)."""
+    from .mesh import BODY_COLORS, body_mesh
+
+    lo, hi = np.array(data.bounds[0::2]), np.array(data.bounds[1::2])
+    n = 0
+    for body, point, R in data.bodies:
+        P = np.asarray(point, dtype=float)
+        if not np.all((P >= lo) & (P <= hi)):
+            continue
+        mesh = body_mesh(body, n_theta=32, n_azimuth=24)
+        scale = BODY_GLYPH / float(np.ptp(mesh.points, axis=0).max())
+        mesh.points = (mesh.points @ np.asarray(R).T) * scale + f(P)[0]
+        pl.add_mesh(mesh, scalars="sector", cmap=list(BODY_COLORS), show_scalar_bar=False, smooth_shading=True)
+        n += 1
+    return n
 
 
 def _export(pl, data, html, gltf, title=None) -> list[str]:
