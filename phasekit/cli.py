@@ -247,8 +247,8 @@ def _add_run_options(sim) -> None:
     start.add_argument("--paper-start", metavar="5.1|5.2", help="the paper's printed start (5.1) with --n0, (5.2) with --omega0")
     g.add_argument("--theta0", type=_real_or_units, default=None, help="initial inclination of the axis, radians "
                                                                         "(or e.g. '89.4 deg')")
-    g.add_argument("--omega0", type=_real_or_units, default=None, help="precession rate Omega0 (prolate starts; or e.g. "
-                                                                        "'41 rev/s', '2500 rpm' with --size)")
+    g.add_argument("--omega0", type=_real_or_units, default=None,
+                   help="precession rate Omega0 (prolate starts; or e.g. '41 rev/s', '2500 rpm' with --size)")
     g.add_argument("--n0", type=_real_or_units, default=None, help="spin n0 (oblate starts; units as --omega0)")
     g.add_argument("--delta", type=_real, default=None,
                    help="seed amplitude on the unstable manifold (with --unstable-manifold; default: 0.01)")
@@ -257,8 +257,8 @@ def _add_run_options(sim) -> None:
     g.add_argument("--seed-law", default=None,
                    help="linearisation giving the direction: viscous | same (with --unstable-manifold; default: viscous, "
                         "the only one with an unstable direction under exact Coulomb friction)")
-    p = sim.add_argument_group("where the body starts on the table (default 0: the axis leans along +X, G at the origin)")
-    p.add_argument("--psi0", type=_real_or_units, default=None, help="azimuth of the axis from X, radians (or '30 deg')")
+    p = sim.add_argument_group("where the body starts on the table (default 0: the axis along +X, G at the origin)")
+    p.add_argument("--psi0", type=_real_or_units, default=None, help="azimuth of the axis from X, rad (or '30 deg')")
     p.add_argument("--phi0", type=_real_or_units, default=None, help="spin angle about the axis, radians (or '30 deg')")
     p.add_argument("--X0", type=_real_or_units, default=None, help="centre of mass X, units b (or '5 mm' with --size)")
     p.add_argument("--Y0", type=_real_or_units, default=None, help="centre of mass Y, units b (or '5 mm' with --size)")
@@ -281,8 +281,9 @@ def _add_movie_options(p) -> None:
     m = p.add_argument_group("movie")
     m.add_argument("--frames", type=_count, default=96, help="number of frames, in [1, 10000] (default: %(default)s)")
     m.add_argument("--fps", type=_real, default=24.0, help="frames per second of the movie (default: %(default)s)")
-    m.add_argument("--timing", default="body", help="frame times uniform in the body's time (body) or in seconds (real, "
-                                                    "needs --size) (default: %(default)s)")
+    m.add_argument("--timing", default="body",
+                   help="the clock in the body's time (body) or also in seconds with the playback speed (real, needs "
+                        "--size) (default: %(default)s)")
     m.add_argument("--gap-scale", type=_real, default=1.0, help="draw the gap in flight this many times larger, >= 1 "
                                                                "(printed on every frame when not 1) (default: 1)")
     m.add_argument("--camera", default="follow", help="follow (keeps G in view) | fixed (default: %(default)s)")
@@ -314,7 +315,8 @@ def _build_parser() -> _Parser:
     parser = _Parser(prog="phasekit", description="Phase space of an axisymmetric body spinning on a table.",
                      epilog=EXAMPLES)
     parser.add_argument("--version", action="version", version=f"phasekit {__version__}")
-    sub = parser.add_subparsers(dest="command", parser_class=_Parser, metavar="{simulate,animate,fixed-points,gyroscopic}")
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser,
+                                metavar="{simulate,animate,fixed-points,gyroscopic}")
 
     sim = sub.add_parser("simulate", help="integrate the exact equations from a start",
                          description="Integrate the contact dynamics (2.7) from a start, through stick, slip, "
@@ -481,9 +483,9 @@ def _simulate_args(args, runner):
         warnings.warn("--atol has no effect with --backend taylor (the Taylor method has the one tolerance --rtol)")
     friction, mu, eps = _law_args(args)
     opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall)
-    return runner(body=body, friction=friction, mu=mu, slip_eps=eps, start=start, t_end=args.t_end, stop_at=args.stop_at,
-                  restitution=0.0 if args.restitution is None else args.restitution, formulation=args.formulation,
-                  options=opts, pose0=_pose_of(args))
+    return runner(body=body, friction=friction, mu=mu, slip_eps=eps, start=start, t_end=args.t_end,
+                  stop_at=args.stop_at, restitution=0.0 if args.restitution is None else args.restitution,
+                  formulation=args.formulation, options=opts, pose0=_pose_of(args))
 
 
 def _refuse(args, names, why):
@@ -635,7 +637,8 @@ def _print_human(out: dict, events: bool) -> None:
         fl = si.get("flight")
         if fl:
             print(f"  first flight: from {_fmt(fl['t_liftoff'], '.6g')} {u['time']}, lasting "
-                  f"{_fmt(fl.get('duration'), '.4g')} {u['time']}, largest gap {_fmt(fl['gap_max'], '.4g')} {u['length']}")
+                  f"{_fmt(fl.get('duration'), '.4g')} {u['time']}, largest gap "
+                  f"{_fmt(fl['gap_max'], '.4g')} {u['length']}")
         if si.get("state_end"):
             st = si["state_end"]
             print(f"  at the end: Omega={_fmt(st['Omega'], '.5g')} {u['rate']}, n={_fmt(st['n'], '.5g')} {u['rate']}")

@@ -206,9 +206,9 @@ class PoseTrack:
 
     def __init__(self, traj, pose0: Pose):
         if not traj.segments or not all(s.dense for s in traj.segments):
-            raise ParameterError("dense", "must be True (the default of SolverOptions) for the orientation and position "
-                                          "(psi, phi, X, Y, X_P, Y_P): they are quadratures of the dense output",
-                                 False)
+            raise ParameterError("dense", "must be True (the default of SolverOptions) for the orientation and "
+                                          "position (psi, phi, X, Y, X_P, Y_P): they are quadratures of the dense "
+                                          "output", False)
         self.body = traj.model.body
         self.tracks: list[_SegmentTrack] = []
         psi, phi, xy, t_prev = pose0.psi, pose0.phi, complex(pose0.X, pose0.Y), None
@@ -235,7 +235,8 @@ class PoseTrack:
         anti = _antiderivative(coefs[:, 2, :] if euler else coefs)
         alpha = 0.0 if euler else psi - float(_azimuth(coefs[0, :, 0]))
         n = len(starts)
-        tr = _SegmentTrack(euler, starts, ends, coefs, anti, np.zeros(n), np.zeros(n), np.zeros(n, dtype=complex), alpha)
+        tr = _SegmentTrack(euler, starts, ends, coefs, anti, np.zeros(n), np.zeros(n), np.zeros(n, dtype=complex),
+                           alpha)
         h = ends - starts
         if euler:  # psi first: each step's turn e^{i psi_k} enters its increment of X + iY
             tr.psi = psi + _exclusive_cumsum(_horner(anti[:, None, :], h[:, None])[:, 0, 0])

@@ -89,11 +89,8 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
         True: raise ConvergenceError (with the trajectory attached) if the run fails.
         False (default): return it with status "failed" and the reason.
     pose0 : Pose, dict or 4 numbers, optional
-        Where the run starts on the table and how the body is turned: psi0 (azimuth of the
-        axis from the X axis), phi0 (spin angle about the axis), X0, Y0 (centre of mass);
-        default all 0. Used only by :meth:`Trajectory.sample` / :meth:`Trajectory.pose`,
-        which integrate them after the run from the dense output (no number of the run
-        depends on them).
+        Start values of psi, phi, X, Y (default 0), for :meth:`Trajectory.pose`: quadratures
+        after the run, on which no number of the run depends.
 
     Returns
     -------

@@ -58,8 +58,9 @@ DISPLAY_UNITS = {"length": "mm", "time": "ms", "rate": "rev/s", "speed": "m/s", 
                  "force": "N", "energy": "mJ", "inertia": "g*cm**2", "angular_momentum": "g*cm**2/s"}
 #: the kind of each column of a sampled table (Trajectory.sample); angles stay in radians and
 #: columns not listed (mode) are left as they are
-COLUMN_KINDS = {"t": "time", "U": "speed", "V": "speed", "slip": "speed", "Omega": "rate", "Lambda": "rate", "n": "rate",
-                "X": "length", "Y": "length", "X_P": "length", "Y_P": "length", "h": "length", "gap": "length",
+COLUMN_KINDS = {"t": "time", "U": "speed", "V": "speed", "slip": "speed", "Omega": "rate", "Lambda": "rate",
+                "n": "rate", "X": "length", "Y": "length", "X_P": "length", "Y_P": "length", "h": "length",
+                "gap": "length",
                 "R": "force", "energy": "energy", "jellett": "angular_momentum", "L_Z": "angular_momentum"}
 #: an example of each kind, for the messages
 EXAMPLES = {"length": "21.5 mm", "time": "12 ms", "rate": "30 rev/s", "speed": "0.5 m/s", "acceleration": "9.81 m/s**2",
@@ -221,7 +222,8 @@ class Scale:
         if unit is None:
             return DISPLAY_UNITS[kind]
         try:
-            ok = isinstance(unit, str) and units().Unit(unit).dimensionality == units().get_dimensionality(KINDS[kind][0])
+            want = units().get_dimensionality(KINDS[kind][0])
+            ok = isinstance(unit, str) and units().Unit(unit).dimensionality == want
         except Exception:
             ok = False
         if not ok:

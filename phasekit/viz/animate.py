@@ -160,7 +160,8 @@ class _Stage:
                          color=TABLE_COLOR, show_edges=True, edge_color="#d9d9d9", lighting=False)
         self.body = self.body0.copy()
         self.deco = [d.copy() for d in self.deco0]
-        self.pl.add_mesh(self.body, scalars="sector", cmap=list(BODY_COLORS), show_scalar_bar=False, smooth_shading=True)
+        self.pl.add_mesh(self.body, scalars="sector", cmap=list(BODY_COLORS), show_scalar_bar=False,
+                         smooth_shading=True)
         for d in self.deco:
             self.pl.add_mesh(d, color="#7f2704", smooth_shading=True)
         self._make_paths()
@@ -208,7 +209,8 @@ class _Stage:
             clock += f" = {sc.to_real(row['t'], 'time').magnitude:.1f} ms"
         lines = [clock, f"{row['mode']}, theta = {row['theta']:.3f} rad"]
         if row["mode"] == "flight":
-            gap = f"gap {row['gap']:.3g} b" if sc is None else f"gap {sc.to_real(row['gap'], 'length').to('um').magnitude:.3g} um"
+            gap = (f"gap {row['gap']:.3g} b" if sc is None
+                   else f"gap {sc.to_real(row['gap'], 'length').to('um').magnitude:.3g} um")
             lines.append(gap)
         if self.style.gap_scale != 1.0:
             lines.append(f"gap drawn x{self.style.gap_scale:g}")
@@ -219,7 +221,8 @@ class _Stage:
         self._paths(float(row["t"]))
         self.text.SetInput(self.caption(row))
         focal = np.array([G[0], G[1], self.lift]) if self.style.camera == "follow" else self.focal0
-        self.pl.camera_position = [tuple(focal + self.reach * np.array([0.59, -0.76, 0.27])), tuple(focal), (0.0, 0.0, 1.0)]
+        eye = focal + self.reach * np.array([0.59, -0.76, 0.27])  # from the front right, a little above
+        self.pl.camera_position = [tuple(eye), tuple(focal), (0.0, 0.0, 1.0)]
         self.pl.render()
         return np.asarray(self.pl.screenshot(return_img=True))[..., :3]
 

@@ -239,12 +239,9 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
     window_size : (int, int)
         Image width and height in pixels, each in [16, 8192].
     html, gltf : str, optional
-        Also export the scene as interactive HTML (vtk.js; needs ``phasekit[html]``) or glTF.
-        Both get the axes, their tick values in the data's units and the title as geometry
-        (the drawn box is rescaled; VTK's cube axes would show its 0..1.4 coordinates); the
-        HTML also shows a caption with the title, each axis's unit and true range and the
-        colour's range as page text; the glTF records them in its ``asset.extras`` (glTF has
-        no 2-D text or colour bar).
+        Also export as interactive HTML (vtk.js, ``phasekit[html]``) or glTF, with the axes'
+        true tick values and the title as geometry; the HTML adds a caption (title, each
+        axis's range), the glTF puts them in ``asset.extras`` (it has no 2-D text).
     title : str, optional
         Text at the top left.
     camera : str or list, optional
@@ -545,6 +542,6 @@ def _annotate_gltf(path: Path, bounds, title=None) -> None:
         {"name": name, "unit": unit, "range": [float(bounds[2 * j]), float(bounds[2 * j + 1])],
          "drawn_span": [0.0, ASPECT[j]]} for j, (name, unit) in enumerate(AXES)]
     extras["phasekit_title"] = title
-    extras["phasekit_note"] = ("glTF holds meshes only: the axes, their tick values (true values) and the title are 3-D "
-                               "text; the colour bar and 2-D annotations of the PNG are not in the file")
+    extras["phasekit_note"] = ("glTF holds meshes only: the axes, their tick values (true values) and the title are "
+                               "3-D text; the colour bar and 2-D annotations of the PNG are not in the file")
     Path(path).write_text(json.dumps(doc))
