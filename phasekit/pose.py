@@ -170,7 +170,6 @@ class _SegmentTrack:
     phi: np.ndarray
     xy: np.ndarray  # complex X + iY
     alpha: float = 0.0  # angle of the vector chart's axes from the fixed ones
-    beta: np.ndarray | None = None  # unwrapped azimuth of k in the chart's axes
 
     def increments(self, idx, tau):
         """(dpsi, dphi, dxy in fixed axes, theta at the end) from each step idx's start to tau."""
@@ -255,6 +254,8 @@ class PoseTrack:
     def __call__(self, seg_index: np.ndarray, ts: np.ndarray) -> dict:
         """The pose columns at times ``ts``, each in segment ``seg_index`` (Trajectory._locate)."""
         out = {name: np.empty(ts.size) for name in POSE_COLUMNS}
+        if ts.size == 0:
+            return out
         theta = np.empty(ts.size)
         for j in np.unique(seg_index):
             sel = seg_index == j
