@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import ParameterError, PhasekitError
-from ..validate import check_int, check_positive
+from ..validate import check_array, check_finite, check_int, check_positive
 from .mesh import BODY_COLORS, body_mesh, decorations
 
 __all__ = ["AnimationInfo", "animate", "film_strip", "render_body", "body_mesh", "MOVIE_EXTRA"]
@@ -435,8 +435,9 @@ def film_strip(traj, path, frames: int = 6, *, t_span=None, times=None, columns:
     if times is None:
         times = np.linspace(span[0], span[1], check_int("frames", frames, minimum=1, maximum=100))
     else:
-        times = np.sort(np.atleast_1d(np.asarray(times, dtype=float)))
-        if times.size == 0 or times.size > 100 or times[0] < traj.t0 or times[-1] > traj.t:
+        times = check_array("times", times).ravel()
+        times.sort()
+        if times.size > 100 or times[0] < traj.t0 or times[-1] > traj.t:
             raise ParameterError("times", f"must be 1 to 100 times inside the run [{traj.t0:.10g}, {traj.t:.10g}]",
                                  times.tolist())
     style = _Style.make(gap_scale=gap_scale, camera=camera, panel=None, window_size=window_size, scale=scale,
@@ -471,7 +472,7 @@ def render_body(traj, t: float, path, *, scale=None, gap_scale: float = 1.0, win
     """A PNG of the body at time ``t`` of ``traj`` (placed by its pose), with the path traced
     up to then. Returns an :class:`AnimationInfo` with one frame."""
     _check_traj(traj)
-    t = float(_check_span(traj, (traj.t0, traj.t))[0] if t is None else t)
+    t = check_finite("t", t)
     if not traj.t0 <= t <= traj.t:
         raise ParameterError("t", f"must lie in the run [{traj.t0:.10g}, {traj.t:.10g}]", t)
     path = _check_path(path, (".png",))
