@@ -2,6 +2,7 @@
 # The command line piped to jq: simulate the Fig. 4 case, keep the JSON, and pull out the
 # fields one needs (jq: https://jqlang.org; the same pipeline works with any JSON tool).
 #
+#   bash examples/cli_jq.sh                  # writes examples/out/cli_jq/
 #   bash examples/cli_jq.sh --out /tmp/cli
 #
 # PYTHON selects the interpreter (default: python3); run from the repository root or with
@@ -14,7 +15,8 @@ while [ $# -gt 0 ]; do
     *) echo "cli_jq.sh: error: unknown argument $1 (usage: cli_jq.sh --out DIR)" >&2; exit 2 ;;
   esac
 done
-[ -n "$out" ] || { echo "cli_jq.sh: error: --out DIR is required" >&2; exit 2; }
+# without --out: examples/out/cli_jq beside this script (git-ignored)
+[ -n "$out" ] || out="$(cd "$(dirname "$0")" && pwd)/out/cli_jq"
 command -v jq >/dev/null || { echo "cli_jq.sh: error: jq is not installed (apt-get install jq)" >&2; exit 2; }
 mkdir -p "$out"
 py="${PYTHON:-python3}"

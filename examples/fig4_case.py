@@ -5,6 +5,7 @@ Started on the sliding branch next to the horizontal precession (theta0 = pi/2 -
 the gyroscopic balance), exact Coulomb friction. (The printed start (5.2) sticks under exact
 Coulomb friction: see examples/paper_start_rounding.py.)
 
+    python examples/fig4_case.py            # writes examples/out/fig4_case/ (git-ignored)
     python examples/fig4_case.py --out /tmp/fig4
 """
 
@@ -17,9 +18,14 @@ import phasekit as pk
 from phasekit.viz import plot_events, plot_minima, plot_timeseries, pyplot, save_figure
 
 
+#: where the outputs go without --out (git-ignored)
+DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "fig4_case"
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", required=True, help="directory for fig4_case.png and fig4_case.csv")
+    ap.add_argument("--out", default=str(DEFAULT_OUT),
+                    help="directory for fig4_case.png and fig4_case.csv (default: examples/out/fig4_case)")
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

@@ -3,6 +3,7 @@
 unstable manifold of the horizontal precession, whose distance from the fixed point grows at
 the rate of the unstable eigenvalue.
 
+    python examples/fixed_points.py            # writes examples/out/fixed_points/ (git-ignored)
     python examples/fixed_points.py --out /tmp/fixed
 """
 
@@ -15,9 +16,14 @@ import phasekit as pk
 from phasekit.viz import pyplot, save_figure
 
 
+#: where the outputs go without --out (git-ignored)
+DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "fixed_points"
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", required=True, help="directory for fixed_points.png")
+    ap.add_argument("--out", default=str(DEFAULT_OUT),
+                    help="directory for fixed_points.png (default: examples/out/fixed_points)")
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

@@ -8,6 +8,7 @@ rounding interval (the others as printed), and maps the (theta, n) rounding box.
 Friction: Coulomb mu = 0.1 regularised with eps (default 1e-3), and exact Coulomb for the
 stick times.
 
+    python examples/paper_start_rounding.py            # writes examples/out/paper_start_rounding/ (git-ignored)
     python examples/paper_start_rounding.py --out /tmp/rounding [--quick] [--eps 1e-3]
 
 Writes rounding.csv (one row per run) and rounding.png (t_jump across each interval).
@@ -66,9 +67,14 @@ def outcome(model, x, t_end) -> dict:
     }
 
 
+#: where the outputs go without --out (git-ignored)
+DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "paper_start_rounding"
+
+
 def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", required=True, help="directory for rounding.csv and rounding.png")
+    ap.add_argument("--out", default=str(DEFAULT_OUT),
+                    help="directory for rounding.csv and rounding.png (default: examples/out/paper_start_rounding)")
     ap.add_argument("--quick", action="store_true", help="3 values per interval, 6 random samples (seconds)")
     ap.add_argument("--eps", type=float, default=1e-3, help="regularisation of Coulomb friction (default 1e-3)")
     ap.add_argument("--t-end", type=float, default=300.0)

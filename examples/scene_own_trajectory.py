@@ -2,6 +2,7 @@
 (Omega, theta, n), with a trajectory simulated here added to the scene, rendered off-screen
 to a PNG (and optionally exported as glTF with its axes, or interactive HTML).
 
+    python examples/scene_own_trajectory.py            # writes examples/out/scene_own_trajectory/ (git-ignored)
     python examples/scene_own_trajectory.py --out /tmp/scene [--gltf] [--html]
 
 Without --out's PNG, render_scene(scene) returns the PyVista plotter: plotter.show() opens it.
@@ -15,9 +16,15 @@ import phasekit as pk
 from phasekit.viz import render_scene
 
 
+#: where the outputs go without --out (git-ignored)
+DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "scene_own_trajectory"
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", required=True, help="directory for scene.png (and scene.gltf / scene.html)")
+    ap.add_argument("--out", default=str(DEFAULT_OUT),
+                    help="directory for scene.png (and scene.gltf / scene.html) "
+                         "(default: examples/out/scene_own_trajectory)")
     ap.add_argument("--gltf", action="store_true", help="also export scene.gltf (axes and units included)")
     ap.add_argument("--html", action="store_true", help="also export scene.html (needs pip install 'phasekit[html]')")
     args = ap.parse_args(argv)

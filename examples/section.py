@@ -2,6 +2,7 @@
 each nutation) along the rise of a prolate spheroid (a = 1.5, Coulomb mu = 0.1, Omega0 = 10.5,
 sliding-branch start), as a table with the state and R at each crossing.
 
+    python examples/section.py            # writes examples/out/section/ (git-ignored)
     python examples/section.py --out /tmp/section
 """
 
@@ -14,9 +15,14 @@ import phasekit as pk
 from phasekit.viz import plot_section, pyplot, save_figure
 
 
+#: where the outputs go without --out (git-ignored)
+DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "section"
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", required=True, help="directory for section.csv and section.png")
+    ap.add_argument("--out", default=str(DEFAULT_OUT),
+                    help="directory for section.csv and section.png (default: examples/out/section)")
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

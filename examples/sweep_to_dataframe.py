@@ -2,6 +2,7 @@
 on the sliding branch, Omega0 from 8 to 16, run in parallel by pk.ensemble (local processes;
 pass --scheduler ADDRESS for a Dask cluster), one row per start, written as CSV, t_jump plotted.
 
+    python examples/sweep_to_dataframe.py            # writes examples/out/sweep_to_dataframe/ (git-ignored)
     python examples/sweep_to_dataframe.py --out /tmp/sweep
 """
 
@@ -14,9 +15,14 @@ import phasekit as pk
 from phasekit.viz import plot_section, pyplot, save_figure
 
 
+#: where the outputs go without --out (git-ignored)
+DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "sweep_to_dataframe"
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", required=True, help="directory for sweep.csv and sweep.png")
+    ap.add_argument("--out", default=str(DEFAULT_OUT),
+                    help="directory for sweep.csv and sweep.png (default: examples/out/sweep_to_dataframe)")
     ap.add_argument("--processes", type=int, default=2, help="local worker processes (default 2)")
     ap.add_argument("--scheduler", default=None, help="address of a Dask scheduler (default: local processes)")
     args = ap.parse_args(argv)

@@ -3,6 +3,7 @@ started on the sliding branch next to the horizontal precession jumps before it 
 
 The default definition ("sliding", d = 0.01) bisected to 1e-3 relative, searched near a guess.
 
+    python examples/threshold.py            # writes examples/out/threshold/ (git-ignored)
     python examples/threshold.py --out /tmp/threshold
 """
 
@@ -13,9 +14,14 @@ from pathlib import Path
 import phasekit as pk
 
 
+#: where the outputs go without --out (git-ignored)
+DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "threshold"
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", required=True, help="directory for threshold.json")
+    ap.add_argument("--out", default=str(DEFAULT_OUT),
+                    help="directory for threshold.json (default: examples/out/threshold)")
     ap.add_argument("--a", type=float, default=1.5, help="aspect ratio (default 1.5)")
     args = ap.parse_args(argv)
     out = Path(args.out)

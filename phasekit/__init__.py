@@ -20,6 +20,8 @@ from .model import OBSERVABLES, Model
 from .options import BACKENDS, SolverOptions
 from .simulate import simulate, taylor_integrator
 from .trajectory import SAMPLE_COLUMNS, EventRecord, Flight, Segment, Trajectory
+from .pose import POSE_COLUMNS, Pose, rotation_matrix
+from .tables import read_table, write_table
 from .sections import poincare
 from .ensemble import ensemble, rerun
 from .starts import gyroscopic_start, raw_start, to_chart, vertical_spin_start
@@ -129,6 +131,16 @@ from .sweep import (
 
 __version__ = "0.2.0"
 
+
+def __getattr__(name):
+    """``pk.viz`` on first use (drawing stays out of ``import phasekit``; VTK loads only when a
+    3-D view is drawn)."""
+    if name == "viz":
+        import importlib
+
+        return importlib.import_module(".viz", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 __all__ = [
     "Body",
     "Spheroid",
@@ -173,6 +185,11 @@ __all__ = [
     "EventRecord",
     "Flight",
     "SAMPLE_COLUMNS",
+    "POSE_COLUMNS",
+    "Pose",
+    "rotation_matrix",
+    "read_table",
+    "write_table",
     "poincare",
     "ensemble",
     "rerun",

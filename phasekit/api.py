@@ -18,9 +18,8 @@ from .simulate import simulate
 from .starts import RATE_MAX, gyroscopic_start, raw_start, to_chart, vertical_spin_start
 from .validate import check_choice, check_finite
 
-__all__ = ["choose_formulation", "make_body", "parse_stop", "simulate_start", "fixed_points_report", "gyroscopic_report",
-           "steady_structure_report",
-           "POLE_MARGIN", "BODIES"]
+__all__ = ["choose_formulation", "make_body", "parse_stop", "run_start", "simulate_start", "real_units_report",
+           "fixed_points_report", "gyroscopic_report", "steady_structure_report", "POLE_MARGIN", "BODIES"]
 
 #: within this angle of theta = 0 or pi the vector chart is the default. Measured (oblate
 #: a = 0.6, n0 = 12, viscous mu = 0.1, rtol 1e-9, to t = 40): away from the pole the Euler
@@ -125,20 +124,56 @@ def _start(body, law, start: dict, formulation: str):
     return Model(body, law, chart), to_chart(chart, y0), None
 
 
-def simulate_start(*, body: Body, friction="coulomb", mu, slip_eps=None, start: dict, t_end=200.0, stop_at="jump",
-                   restitution=0.0, formulation="auto", options: dict | None = None) -> dict:
-    """Run one simulation described by plain parameters; returns the JSON dict (which
-    carries the model, the start and the solver options, so it can be rerun)."""
+def run_start(*, body: Body, friction="coulomb", mu, slip_eps=None, start: dict, t_end=200.0, stop_at="jump",
+              restitution=0.0, formulation="auto", options: dict | None = None, pose0=None):
+    """Run one simulation described by plain parameters: (Trajectory, seed info or None).
+    The dense output is kept: the pose (psi, phi, X, Y, X_P, Y_P) at the events and the end
+    comes from it, and keeping it changes no number of the run."""
     law = friction_law(friction, mu, slip_eps)
     check_choice("formulation", formulation, ("auto", "euler", "vector"))
     stop, events = parse_stop(stop_at)
     model, x0, seed = _start(body, law, start, formulation)
-    res = simulate(model, x0, t_end, stop_at=stop, restitution=restitution, events=events, dense=False,
+    res = simulate(model, x0, t_end, stop_at=stop, restitution=restitution, events=events, dense=True, pose0=pose0,
                    **(options or {}))
+    return res, seed
+
+
+def simulate_start(**kwargs) -> dict:
+    """:func:`run_start` as the JSON dict (which carries the model, the start and the solver
+    options, so it can be rerun)."""
+    res, seed = run_start(**kwargs)
     out = res.to_dict()
     if seed is not None:
         out["seed"] = seed
     return out
+
+
+def real_units_report(out: dict, scale) -> dict:
+    """The times, gaps, positions, speeds and spins of a simulate result in real units (ms, mm,
+    m/s, rev/s; angles in radians), given the body's :class:`phasekit.Scale`."""
+    from .units import DISPLAY_UNITS
+
+    kinds = {"t": "time", "t_jump": "time", "t_stop": "time", "t_end": "time", "t_liftoff": "time",
+             "t_touchdown": "time", "t_gap_max": "time", "gap_max": "length", "W_star": "speed", "Omega_star": "rate",
+             "U": "speed", "V": "speed", "Omega": "rate", "Lambda": "rate", "n": "rate", "X": "length", "Y": "length",
+             "X_P": "length", "Y_P": "length"}
+
+    def conv(d):
+        return {k: (None if v is None else float(scale.quantity(v, kinds[k]).to(DISPLAY_UNITS[kinds[k]]).magnitude))
+                if k in kinds else v for k, v in d.items() if k in kinds or k in ("theta", "psi", "phi", "kind")}
+
+    rep = {"units": {k: f"{DISPLAY_UNITS[k]}" for k in ("time", "length", "speed", "rate")} | {"angle": "rad"},
+           "b": f"{scale.b:~P}", "g": f"{scale.g:~P}", "time_unit": f"{scale.time_unit:.6g~P}"}
+    rep.update(conv({k: out.get(k) for k in ("t_jump", "t_stop", "t_end") if k in out}))
+    for key in ("state_at_jump", "state_end", "pose_end", "flight"):
+        if out.get(key):
+            rep[key] = conv(out[key])
+    if rep.get("flight") and out["flight"].get("t_touchdown") is not None:
+        dur = out["flight"]["t_touchdown"] - out["flight"]["t_liftoff"]
+        rep["flight"]["duration"] = float(scale.quantity(dur, "time").to(DISPLAY_UNITS["time"]).magnitude)
+    rep["events"] = [{**conv({"kind": e["kind"], "t": e["t"]}), **({"state": conv(e["state"])} if "state" in e else {}),
+                      **({"pose": conv(e["pose"])} if "pose" in e else {})} for e in out.get("events", [])]
+    return rep
 
 
 def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, omega0=None, n0=None) -> dict:

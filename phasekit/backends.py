@@ -155,6 +155,11 @@ class _TaylorDense:
             out = out * h + c[:, :, j]
         return out
 
+    def pieces(self):
+        """(starts, ends, coefficients (steps, states, order + 1)): the steps' polynomials in
+        powers of t - start, for quadratures along the run (:mod:`phasekit.pose`)."""
+        return self.starts, self.ends, self.coefs
+
 
 class _Span:
     """A dense-output callable restricted to [t0, t1]."""
@@ -165,6 +170,10 @@ class _Span:
     def __call__(self, ts) -> np.ndarray:
         ts = np.asarray(ts, dtype=float)
         return np.asarray(self.f(ts)).reshape(ts.size, -1)
+
+    def pieces(self):
+        """The piecewise polynomials behind this span (see :meth:`_TaylorDense.pieces`)."""
+        return self.f.pieces()
 
 
 def _heyoka():
@@ -324,6 +333,18 @@ class HermiteDense:
             out[i] = ((2 * s**3 - 3 * s**2 + 1) * self.xs[j - 1] + (s**3 - 2 * s**2 + s) * h * f0
                       + (-2 * s**3 + 3 * s**2) * self.xs[j] + (s**3 - s**2) * h * f1)
         return out
+
+    def pieces(self):
+        """The same cubics in powers of t - t_j, one per grid interval: (starts, ends,
+        coefficients (intervals, states, 4))."""
+        F = np.array([np.asarray(self.field(x, self.p)).ravel() for x in self.xs])
+        keep = np.diff(self.ts) > 0  # an event appended on a grid point makes an empty interval
+        h = np.diff(self.ts)[keep][:, None]
+        x0, x1, f0, f1 = self.xs[:-1][keep], self.xs[1:][keep], F[:-1][keep], F[1:][keep]
+        slope = (x1 - x0) / h
+        c2 = (3 * slope - 2 * f0 - f1) / h
+        c3 = (f0 + f1 - 2 * slope) / h**2
+        return self.ts[:-1][keep], self.ts[1:][keep], np.stack([x0, f0, c2, c3], axis=2)
 
 
 class CvodesEngine:

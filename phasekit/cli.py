@@ -53,6 +53,10 @@ FLAGS = {
     "delta": "--delta", "branch": "--branch", "seed_law": "--seed-law", "formulation": "--formulation",
     "max_steps": "--max-steps", "max_wall": "--max-wall", "unstable_manifold": "--unstable-manifold",
     "t": "--t", "T": "--t", "label": "--paper-start", "level": "--stop-at", "max_switches": "--max-switches",
+    "b": "--size", "g": "--g", "pose0.psi": "--psi0", "pose0.phi": "--phi0", "pose0.X": "--X0", "pose0.Y": "--Y0",
+    "psi0": "--psi0", "phi0": "--phi0", "X0": "--X0", "Y0": "--Y0", "spin_about_vertical": "--spin-about-vertical",
+    "frames": "--frames", "fps": "--fps", "out": "OUT", "gap_scale": "--gap-scale", "camera": "--camera",
+    "panel": "--panel", "timing": "--timing", "window_size": "--window-size", "path": "OUT",
 }
 #: API parameters that more than one flag feeds: (flag typed, name to print), the first typed one wins
 #: (e.g. `n0` is --spin-about-vertical's value in that start, and theta its --theta0)
@@ -154,6 +158,22 @@ def _real(text: str) -> float:
         raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
 
 
+class _WithUnits(str):
+    """An option value typed with units ("41 rev/s", "2500 rpm", "89.4 deg"), converted to
+    phasekit's units once --size and --g are known (:func:`_apply_units`)."""
+
+
+def _real_or_units(text: str):
+    """A plain number (phasekit's units), or a value with units such as '41 rev/s'."""
+    try:
+        return float(text)
+    except ValueError:
+        if re.search(r"[A-Za-z]", text):
+            return _WithUnits(text.strip())
+        raise argparse.ArgumentTypeError(f"must be a number or a value with units such as '41 rev/s', got {text!r}") \
+            from None
+
+
 def _count(text: str) -> int:
     try:
         value = float(text)
@@ -213,19 +233,8 @@ def _add_solver(p):
     g.add_argument("--max-wall", type=_real, default=600.0, help="wall-time budget in seconds (default: %(default)s)")
 
 
-def _build_parser() -> _Parser:
-    from . import __version__
-
-    parser = _Parser(prog="phasekit", description="Phase space of an axisymmetric body spinning on a table.",
-                     epilog=EXAMPLES)
-    parser.add_argument("--version", action="version", version=f"phasekit {__version__}")
-    sub = parser.add_subparsers(dest="command", parser_class=_Parser,
-                                metavar="{simulate,fixed-points,steady-states,gyroscopic}")
-
-    sim = sub.add_parser("simulate", help="integrate the exact equations from a start",
-                         description="Integrate the contact dynamics (2.7) from a start, through stick, slip, "
-                                     "lift-off and impacts, to a jump, a stop or --t-end.",
-                         epilog=STABILITY + "\n" + EXAMPLES)
+def _add_run_options(sim) -> None:
+    """The options of a run (simulate and animate): body, friction, start, run, solver, units."""
     _add_body(sim)
     _add_friction(sim)
     g = sim.add_argument_group("start (exactly one)")
@@ -236,12 +245,14 @@ def _build_parser() -> _Parser:
     start.add_argument("--unstable-manifold", metavar="horizontal|vertical|inverted|horizontal-like",
                        help="fixed point + --delta x unstable eigenvector, with --omega0 (horizontal, horizontal-like) "
                             "or --n0 (vertical, inverted)")
-    start.add_argument("--spin-about-vertical", type=_real, metavar="N0",
+    start.add_argument("--spin-about-vertical", type=_real_or_units, metavar="N0",
                        help="angular velocity N0 about the vertical at --theta0, centre of mass at rest (tippe top)")
     start.add_argument("--paper-start", metavar="5.1|5.2", help="the paper's printed start (5.1) with --n0, (5.2) with --omega0")
-    g.add_argument("--theta0", type=_real, default=None, help="initial inclination of the axis, radians")
-    g.add_argument("--omega0", type=_real, default=None, help="precession rate Omega0 (prolate starts)")
-    g.add_argument("--n0", type=_real, default=None, help="spin n0 (oblate starts)")
+    g.add_argument("--theta0", type=_real_or_units, default=None, help="initial inclination of the axis, radians "
+                                                                        "(or e.g. '89.4 deg')")
+    g.add_argument("--omega0", type=_real_or_units, default=None,
+                   help="precession rate Omega0 (prolate starts; or e.g. '41 rev/s', '2500 rpm' with --size)")
+    g.add_argument("--n0", type=_real_or_units, default=None, help="spin n0 (oblate starts; units as --omega0)")
     g.add_argument("--delta", type=_real, default=None,
                    help="seed amplitude on the unstable manifold (with --unstable-manifold; default: 0.01)")
     g.add_argument("--branch", default=None,
@@ -249,17 +260,85 @@ def _build_parser() -> _Parser:
     g.add_argument("--seed-law", default=None,
                    help="linearisation giving the direction: viscous | same (with --unstable-manifold; default: viscous, "
                         "the only one with an unstable direction under exact Coulomb friction)")
+    p = sim.add_argument_group("where the body starts on the table (default 0: the axis along +X, G at the origin)")
+    p.add_argument("--psi0", type=_real_or_units, default=None, help="azimuth of the axis from X, rad (or '30 deg')")
+    p.add_argument("--phi0", type=_real_or_units, default=None, help="spin angle about the axis, radians (or '30 deg')")
+    p.add_argument("--X0", type=_real_or_units, default=None, help="centre of mass X, units b (or '5 mm' with --size)")
+    p.add_argument("--Y0", type=_real_or_units, default=None, help="centre of mass Y, units b (or '5 mm' with --size)")
     r = sim.add_argument_group("run")
-    r.add_argument("--t-end", type=_real, default=200.0, help="end time, units sqrt(b/g) (default: %(default)s)")
+    r.add_argument("--t-end", type=_real_or_units, default=200.0,
+                   help="end time, units sqrt(b/g) (or e.g. '2 s' with --size) (default: %(default)s)")
     r.add_argument("--stop-at", default="jump",
                    help="jump | touchdown | none | NAME=VALUE: stop when an observable first reaches a value, "
                         "e.g. theta=0.4 (runs through flights) (default: %(default)s)")
     r.add_argument("--restitution", type=_real, default=None, help="Newton's e in [0, 1] at impacts (with --stop-at none; "
                                                                      "default 0)")
+    u = sim.add_argument_group("real units (see 'units' below)")
+    u.add_argument("--size", default=None, help="the body's unit of length b with its unit: the equatorial radius "
+                                                "(spheroid, egg) or the ball's radius (tippe top), e.g. '21.5 mm'")
+    u.add_argument("--g", default=None, help="gravity with its unit (default: 9.81 m/s^2; with --size)")
     _add_solver(sim)
+
+
+def _add_movie_options(p) -> None:
+    m = p.add_argument_group("movie")
+    m.add_argument("--frames", type=_count, default=96, help="number of frames, in [1, 10000] (default: %(default)s)")
+    m.add_argument("--fps", type=_real, default=24.0, help="frames per second of the movie (default: %(default)s)")
+    m.add_argument("--timing", default="body",
+                   help="the clock in the body's time (body) or also in seconds with the playback speed (real, needs "
+                        "--size) (default: %(default)s)")
+    m.add_argument("--gap-scale", type=_real, default=1.0, help="draw the gap in flight this many times larger, >= 1 "
+                                                               "(printed on every frame when not 1) (default: 1)")
+    m.add_argument("--camera", default="follow", help="follow (keeps G in view) | fixed (default: %(default)s)")
+    m.add_argument("--panel", default="none", help="side panel: none | phase (Omega, theta, n) | R (R(t)) "
+                                                   "(default: %(default)s)")
+    m.add_argument("--window-size", type=_count, nargs=2, default=None, metavar=("W", "H"),
+                   help="pixels of the 3-D view (default: 480 360)")
+    m.add_argument("--json", action="store_true", help="print one JSON object (the run and the file written)")
+    m.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+
+
+#: the units section of the help of simulate and animate
+UNITS_HELP = """units:
+  Numbers are in phasekit's units: length b (--size), time sqrt(b/g), rates sqrt(g/b), radians.
+  With --size (and optionally --g) the rates, times and positions may be typed with units:
+  --omega0 "41 rev/s" or "2500 rpm", --t-end "2 s", --X0 "3 mm"; angles take "deg" without it.
+"""
+ANIMATE_EXAMPLES = """examples:
+  phasekit animate spin.gif --a 1.5 --mu 0.1 --gyroscopic --theta0 1.5607963 --omega0 11 --stop-at touchdown \\
+      --frames 48 --gap-scale 200 --panel R
+  phasekit animate egg.mp4 --body egg --a 1.3256 --w 0.05 --mu 0.1 --gyroscopic --theta0 1.56 \\
+      --omega0 "45 rev/s" --size "21.5 mm" --timing real --stop-at none --t-end 60
+"""
+
+
+def _build_parser() -> _Parser:
+    from . import __version__
+
+    parser = _Parser(prog="phasekit", description="Phase space of an axisymmetric body spinning on a table.",
+                     epilog=EXAMPLES)
+    parser.add_argument("--version", action="version", version=f"phasekit {__version__}")
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser,
+                                metavar="{simulate,animate,fixed-points,steady-states,gyroscopic}")
+
+    sim = sub.add_parser("simulate", help="integrate the exact equations from a start",
+                         description="Integrate the contact dynamics (2.7) from a start, through stick, slip, "
+                                     "lift-off and impacts, to a jump, a stop or --t-end.",
+                         epilog=STABILITY + "\n" + UNITS_HELP + "\n" + EXAMPLES)
+    _add_run_options(sim)
     o = sim.add_argument_group("output")
     o.add_argument("--json", action="store_true", help="print one JSON object")
     o.add_argument("--events", action="store_true", help="list every event (human output)")
+    o.add_argument("--si", action="store_true", help="also report times, gaps, positions and spins in ms, mm, m/s and "
+                                                     "rev/s (needs --size)")
+    anim = sub.add_parser("animate", help="simulate, then write a movie (GIF, MP4) or film strip (PNG) of the body",
+                          description="Run a simulation as `simulate` does and draw the body turning, precessing, "
+                                      "travelling and lifting off, on a table with the contact path traced.",
+                          epilog=UNITS_HELP + "\n" + ANIMATE_EXAMPLES)
+    anim.add_argument("out", metavar="OUT", help="the file to write: .gif, .mp4 (needs phasekit[movie]) or .png "
+                                                 "(a film strip)")
+    _add_run_options(anim)
+    _add_movie_options(anim)
 
     fx = sub.add_parser("fixed-points", help="steady states and their linear stability",
                         description="Steady states (vertical, horizontal, intermediate) at one Omega0 or n0, "
@@ -292,7 +371,7 @@ def _build_parser() -> _Parser:
     gy.add_argument("--theta0", type=_real, required=True, help="initial inclination, radians, in (0, pi)")
     gy.add_argument("--t", type=_real, nargs="+", required=True, help="times (units sqrt(b/g))")
     gy.add_argument("--json", action="store_true", help="print one JSON object")
-    commands = {"simulate": sim, "fixed-points": fx, "steady-states": ss, "gyroscopic": gy}
+    commands = {"simulate": sim, "animate": anim, "fixed-points": fx, "steady-states": ss, "gyroscopic": gy}
     for name, p in commands.items():
         p.command = name
     for p in (parser, *commands.values()):
@@ -319,9 +398,95 @@ def _law_args(args) -> tuple[str, float, float | None]:
     return args.friction, args.mu, eps
 
 
+#: options that take a value with units: dest -> kind (angles need no --size)
+UNIT_OPTIONS = {"theta0": "angle", "omega0": "rate", "n0": "rate", "spin_about_vertical": "rate", "t_end": "time",
+                "psi0": "angle", "phi0": "angle", "X0": "length", "Y0": "length"}
+
+
+def _scale_of(args):
+    """The Scale of --size and --g, or None without --size."""
+    from .units import STANDARD_GRAVITY, Scale
+
+    if args.size is None:
+        if args.g is not None:
+            raise _UsageError(f"--g needs --size (the body's unit of length, e.g. --size '21.5 mm'), got {args.g!r}.",
+                              "--g")
+        return None
+    return Scale(args.size, g=STANDARD_GRAVITY if args.g is None else args.g)
+
+
+def _apply_units(args):
+    """Replace every value typed with units by its number in phasekit's units; returns the Scale."""
+    from .units import as_quantity
+
+    scale = _scale_of(args)
+    for dest, kind in UNIT_OPTIONS.items():
+        value = getattr(args, dest, None)
+        if not isinstance(value, _WithUnits):
+            continue
+        flag = FLAGS[dest]
+        if kind == "angle":
+            q = as_quantity(str(value), dest)
+            if not q.dimensionless:
+                raise _UsageError(f"{flag} must be an angle in radians or with units such as '89.4 deg', got "
+                                  f"{str(value)!r}.", flag)
+            setattr(args, dest, float(q.to("rad").magnitude))
+        elif scale is None:
+            raise _UsageError(f"{flag} {str(value)!r} has units: give the body's size with --size (e.g. --size "
+                              f"'21.5 mm') to express it in units of b and sqrt(b/g), or type a plain number.", flag)
+        else:
+            setattr(args, dest, scale._dimensionless(str(value), kind, dest))
+    if getattr(args, "si", False) and scale is None:
+        raise _UsageError("--si needs --size (the body's unit of length, e.g. --size '21.5 mm').", "--si")
+    return scale
+
+
+def _pose_of(args) -> dict:
+    return {k: v for k, v in (("psi", args.psi0), ("phi", args.phi0), ("X", args.X0), ("Y", args.Y0)) if v is not None}
+
+
 def _cmd_simulate(args) -> dict:
     from .api import simulate_start
 
+    scale = _apply_units(args)
+    out = _simulate_args(args, simulate_start)
+    if args.si:
+        from .api import real_units_report
+
+        out["si"] = real_units_report(out, scale)
+    return out
+
+
+def _cmd_animate(args) -> dict:
+    """Simulate as `simulate` does, then write the movie (or film strip) of the run."""
+    from .api import run_start
+    from .viz.animate import animate, check_movie_options, film_strip
+
+    scale = _apply_units(args)
+    if args.timing == "real" and scale is None:
+        raise _UsageError("--timing real needs --size (the body's unit of length, e.g. --size '21.5 mm').", "--timing")
+    size = (480, 360) if args.window_size is None else tuple(args.window_size)
+    check_movie_options(args.out, frames=args.frames, fps=args.fps, timing=args.timing, gap_scale=args.gap_scale,
+                        camera=args.camera, panel=args.panel, window_size=size, scale=scale)
+    traj, seed = _simulate_args(args, run_start)
+    out = traj.to_dict()
+    if traj.status.value == "failed":
+        return out
+    if str(args.out).lower().endswith(".png"):
+        info = film_strip(traj, args.out, frames=min(args.frames, 100), scale=scale, gap_scale=args.gap_scale,
+                          camera=args.camera, window_size=size)
+    else:
+        info = animate(traj, args.out, frames=args.frames, fps=args.fps, timing=args.timing, scale=scale,
+                       gap_scale=args.gap_scale, camera=args.camera, panel=args.panel, window_size=size,
+                       progress=not args.no_progress)
+    out["animation"] = {"path": info.path, "frames": info.n_frames, "frame_size": list(info.frame_size),
+                        "fps": info.fps, "playback_speed": info.speed, "bytes": info.bytes}
+    return out
+
+
+def _simulate_args(args, runner):
+    """Build the body, start and options from ``args`` and call ``runner`` (simulate_start or
+    animate_start) with them."""
     if args.paper_start is not None:
         _paper_body(args)
     body = _body(args)
@@ -333,10 +498,9 @@ def _cmd_simulate(args) -> dict:
         warnings.warn("--atol has no effect with --backend taylor (the Taylor method has the one tolerance --rtol)")
     friction, mu, eps = _law_args(args)
     opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall)
-    return simulate_start(body=body, friction=friction, mu=mu, slip_eps=eps, start=start,
-                          t_end=args.t_end, stop_at=args.stop_at,
-                          restitution=0.0 if args.restitution is None else args.restitution,
-                          formulation=args.formulation, options=opts)
+    return runner(body=body, friction=friction, mu=mu, slip_eps=eps, start=start, t_end=args.t_end,
+                  stop_at=args.stop_at, restitution=0.0 if args.restitution is None else args.restitution,
+                  formulation=args.formulation, options=opts, pose0=_pose_of(args))
 
 
 def _refuse(args, names, why):
@@ -504,11 +668,33 @@ def _print_human(out: dict, events: bool) -> None:
             print(f"t = {_fmt(t, '12.6g')}   theta = {_fmt(th, '.12f')}   Omega = {_fmt(om, '.12f')}")
         return
     print(f"status: {out['status']}" + (f" ({out['reason']})" if out.get("reason") else ""))
+    if out.get("animation"):
+        an = out["animation"]
+        speed = f", {an['playback_speed']:.3g}x real time" if an.get("playback_speed") else ""
+        print(f"wrote {an['path']}: {an['frames']} frames of {an['frame_size'][0]}x{an['frame_size'][1]} pixels"
+              f"{speed}, {an['bytes'] / 1e6:.2f} MB")
     for key in ("t_jump", "t_stop", "t_end", "theta_end", "R_min", "stuck", "mode_end"):
         if out.get(key) is not None:
             print(f"{key}: {_fmt(out[key])}")
     if out.get("flight"):
         print("flight: " + ", ".join(f"{k}={_fmt(v)}" for k, v in out["flight"].items()))
+    if out.get("pose_end"):
+        print("pose at the end: " + ", ".join(f"{k}={_fmt(v, '.8g')}" for k, v in out["pose_end"].items()))
+    si = out.get("si")
+    if si:
+        u = si["units"]
+        print(f"in real units (b = {si['b']}, g = {si['g']}, time unit {si['time_unit']}):")
+        for key in ("t_jump", "t_stop", "t_end"):
+            if si.get(key) is not None:
+                print(f"  {key}: {_fmt(si[key], '.6g')} {u['time']}")
+        fl = si.get("flight")
+        if fl:
+            print(f"  first flight: from {_fmt(fl['t_liftoff'], '.6g')} {u['time']}, lasting "
+                  f"{_fmt(fl.get('duration'), '.4g')} {u['time']}, largest gap "
+                  f"{_fmt(fl['gap_max'], '.4g')} {u['length']}")
+        if si.get("state_end"):
+            st = si["state_end"]
+            print(f"  at the end: Omega={_fmt(st['Omega'], '.5g')} {u['rate']}, n={_fmt(st['n'], '.5g')} {u['rate']}")
     print(f"{out['n_events']} events, {out['n_steps']} steps, {out['wall_s'] * 1e3:.1f} ms, "
           f"{out['formulation']} chart, {out['backend']}" + ("" if events else " (list the events with --events)"))
     if events:
@@ -613,7 +799,8 @@ def _show_warning(message, category, filename, lineno, file=None, line=None, nam
     print(f"phasekit: warning: {' '.join(_flags_in(str(message), names).split())}", file=sys.stderr)
 
 
-COMMANDS = {"simulate": _cmd_simulate, "fixed-points": _cmd_fixed_points, "steady-states": _cmd_steady_states,
+COMMANDS = {"simulate": _cmd_simulate, "animate": _cmd_animate, "fixed-points": _cmd_fixed_points,
+            "steady-states": _cmd_steady_states,
             "gyroscopic": _cmd_gyroscopic}
 #: set (to anything) to let unexpected exceptions propagate with their traceback (debugging, tests)
 DEBUG_ENV = "PHASEKIT_DEBUG"

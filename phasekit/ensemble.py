@@ -361,6 +361,8 @@ def _rerun_inputs(source, index, model, overrides):
                                        "table", show_value=False)
     m = _model_from(source["model"], model)
     kw = dict(t0=source["t0"], stop_at=source["stop_at"], restitution=source["restitution"], **source["options"])
+    if source.get("pose0") is not None:
+        kw["pose0"] = source["pose0"]
     if len(source["start_chart_state"]) == FLIGHT.n_states != m.n_states:
         kw["mode"] = "flight"
     kw.update(overrides)

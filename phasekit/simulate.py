@@ -18,6 +18,7 @@ from .errors import ConvergenceError, ParameterError, Status
 from .hybrid import Event, Mode, Transition
 from .model import Model
 from .options import SolverOptions
+from .pose import Pose
 from .resets import contact_state
 from .starts import RATE_MAX
 from .system import declare, watched
@@ -58,7 +59,7 @@ def _solver_options(options: SolverOptions | None = None, **overrides) -> Solver
 
 def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = "jump", restitution: float = 0.0,
              events=(), t_eval=None, mode=None, options: SolverOptions | None = None, throw: bool = False,
-             **option_fields) -> Trajectory:
+             pose0=None, **option_fields) -> Trajectory:
     """Integrate the dynamics of ``model`` from ``x0`` until ``t_end``, a stop, or failure.
 
     Parameters
@@ -87,12 +88,16 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     throw : bool
         True: raise ConvergenceError (with the trajectory attached) if the run fails.
         False (default): return it with status "failed" and the reason.
+    pose0 : Pose, dict or 4 numbers, optional
+        Start values of psi, phi, X, Y (default 0), for :meth:`Trajectory.pose`: quadratures
+        after the run, on which no number of the run depends.
 
     Returns
     -------
     Trajectory
     """
     opts = solver_options(options, **option_fields)
+    pose0 = Pose.of(pose0)
     if not isinstance(model, Model):
         raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
     if mode is not None and mode not in ("flight", Mode.FLIGHT):
@@ -126,6 +131,7 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
         if run.status is None and run.budget.wall_exceeded():  # many short segments (stick-slip chatter)
             run.status, run.reason = Status.FAILED, f"wall-time limit ({opts.max_wall:g} s) reached at t = {run.t:.6g}"
     traj = run.result(x0, t0, stop_at, restitution, events, te)
+    traj.pose0 = pose0
     if throw and traj.status is Status.FAILED:
         raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
     return traj

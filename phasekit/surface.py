@@ -249,9 +249,11 @@ class Scene:
     def make_friction(self) -> FrictionLaw:
         return self.friction if self.friction is not None else Coulomb(self.mu)
 
-    def add_trajectory(self, traj, label: str | None = None) -> "Scene":
+    def add_trajectory(self, traj, label: str | None = None, *, bodies=()) -> "Scene":
         """Draw ``traj`` (any :class:`phasekit.Trajectory` with dense output) too, and its
-        lift-off point as a crossing. Returns the scene, so calls chain."""
+        lift-off point as a crossing; ``bodies``: times of the run at which the body itself is
+        drawn on the trajectory, turned as it is then (its pose: psi, theta, phi). Returns the
+        scene, so calls chain."""
         from .trajectory import Trajectory
 
         if not isinstance(traj, Trajectory):
@@ -261,7 +263,10 @@ class Scene:
                                  show_value=False)
         if label is not None and not isinstance(label, str):
             raise ParameterError("label", "must be a string or None", label)
-        self.extra.append((traj, label))
+        times = check_array("bodies", bodies, allow_empty=True).ravel()
+        if np.any((times < traj.t0) | (times > traj.t)):
+            raise ParameterError("bodies", f"must be times inside the run [{traj.t0:.10g}, {traj.t:.10g}]", times)
+        self.extra.append((traj, label, tuple(float(t) for t in times)))
         return self
 
     @property
@@ -304,6 +309,7 @@ class SceneData:
     n_simulations: int = 0
     bounds: tuple | None = None
     labels: list = field(default_factory=list)  # one per trajectory (None: a simulated one)
+    bodies: list = field(default_factory=list)  # (body, (Omega, theta, n), rotation matrix) to draw
 
 
 def _simulate(scene: Scene, value: float, dense: bool):
@@ -372,8 +378,15 @@ def compute_scene(scene: Scene) -> SceneData:
             _, r = _simulate(scene, v, dense="trajectories" in show)
             data.n_simulations += 1
             _add_run(data, body, r, v, None, show)
-        for traj, label in scene.extra:
+        for traj, label, times in scene.extra:
             _add_run(data, body, traj, None, label or f"trajectory {len(data.labels) + 1}", show)
+            if times and "trajectories" in show:
+                from .pose import rotation_matrix
+
+                df = traj.sample(list(times))
+                for _, row in df.iterrows():
+                    data.bodies.append((traj.model.body, (row["Omega"], row["theta"], row["n"]),
+                                        rotation_matrix(row["psi"], row["theta"], row["phi"])))
     om_rng, th_rng = _ranges(scene, data, body)
     if "surface" in show or "exact_boundary" in show:
         _grids(scene, data, body, om_rng, th_rng)

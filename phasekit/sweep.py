@@ -507,7 +507,7 @@ class ThresholdRow:
     name: str
     seed: str
     amplitude: float
-    eps: str  # a number, "exact", or "" (viscous)
+    eps: float | None  # the regularised law's eps; empty for exact Coulomb and viscous friction (see definition)
     mu: float
     rtol: float
     transitions: str  # JSON list of [lo, hi] brackets
@@ -538,7 +538,7 @@ def threshold_task(prev: ThresholdRow | None, defn_fields: dict, a: float, group
     base = dict(key=threshold_key(defn, a, search), branch="prolate" if a > 1 else "oblate", a=a,
                 definition=defn.label, default=is_default, group=group, name=defn.name, seed=defn.seed,
                 amplitude=defn.amplitude, mu=defn.mu, rtol=defn.rtol,
-                eps=repr(defn.eps) if defn.eps else ("exact" if defn.seed != "viscous" else ""))
+                eps=defn.eps or None)
     guess = prev.threshold if prev is not None else None
     try:
         th = find_threshold(defn, a, guess=guess, engine=engine, levels=levels, **search)
@@ -606,7 +606,7 @@ class SearchRow:
     n_rounds: int
     levels: int
     engine: str
-    eps: str
+    eps: float | None  # the regularised law's eps; empty for exact Coulomb (no regularisation)
     rtol: float
     t_max: float
     transitions: str
@@ -729,7 +729,7 @@ def _search_row(job, defn, th, study, engine, wall, reason) -> SearchRow:
     base = dict(key=search_key(defn, a, job["search"], kind, job["value"], job["sensitivity"]), study=study, kind=kind,
                 branch="prolate" if a > 1 else "oblate", a=a, mu=defn.mu, d=defn.amplitude if kind == "threshold" else None,
                 value=job["value"], levels=int(job["search"].get("levels", 1)), engine=engine, rtol=defn.rtol, t_max=defn.t_max,
-                eps=repr(defn.eps) if defn.eps else ("exact" if defn.seed != "viscous" else ""), wall_s=wall, reason=reason)
+                eps=defn.eps or None, wall_s=wall, reason=reason)
     if th is None:
         return SearchRow(**base, threshold=None, bracket_lo=None, bracket_hi=None, status=Status.FAILED.value, n_sims=0,
                          n_rounds=0, transitions="[]", stuck_near=False, sens_half=None, sens_double=None, sens_slope=None,

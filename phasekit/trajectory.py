@@ -16,12 +16,16 @@ from .charts import FLIGHT, PAPER_NAMES
 from .errors import ParameterError, Status
 from .hybrid import Mode
 from .model import STICK_SLIP, evaluate_function
+from .pose import POSE_COLUMNS, Pose
 from .validate import check_times
 
 __all__ = ["EventRecord", "Segment", "Flight", "Trajectory", "SAMPLE_COLUMNS", "observable_table"]
 
-#: columns of :meth:`Trajectory.sample` after t and mode
-SAMPLE_COLUMNS = (*PAPER_NAMES, "R", "energy", "jellett", "slip", "L_Z", "h", "gap")
+#: the observables of a state (columns of :func:`observable_table`)
+STATE_COLUMNS = (*PAPER_NAMES, "R", "energy", "jellett", "slip", "L_Z", "h", "gap")
+#: columns of :meth:`Trajectory.sample` after t and mode: the state's observables, then where
+#: the body is and how it is turned (:mod:`phasekit.pose`)
+SAMPLE_COLUMNS = (*STATE_COLUMNS, *POSE_COLUMNS)
 
 
 @dataclass(frozen=True)
@@ -115,7 +119,7 @@ def observable_table(model, parts):
     import pandas as pd
 
     n = sum(len(ts) for _, ts, _ in parts)
-    cols = {name: np.empty(n) for name in SAMPLE_COLUMNS}
+    cols = {name: np.empty(n) for name in STATE_COLUMNS}
     t_all, modes = np.empty(n), np.empty(n, dtype=object)
     i = 0
     for mode, ts, X in parts:
@@ -151,8 +155,10 @@ class Trajectory:
     """
 
     def __init__(self, *, model, x0, t0, t_end, options, status, reason, segments, events, wall_s, stop_at="jump",
-                 restitution=0.0, user_events=(), t_eval=None, x_end=None, mode_end=None):
+                 restitution=0.0, user_events=(), t_eval=None, x_end=None, mode_end=None, pose0=None):
         self.model, self.x0, self.t0, self.t_end, self.options = model, np.asarray(x0, float), float(t0), float(t_end), options
+        self.pose0 = Pose.of(pose0)
+        self._pose_track = None
         self.status, self.reason = status, reason
         self.segments, self.events = tuple(segments), tuple(events)
         self.wall_s, self.stop_at, self.restitution, self.user_events = wall_s, stop_at, restitution, tuple(user_events)
@@ -350,7 +356,9 @@ class Trajectory:
             :data:`SAMPLE_COLUMNS`: the paper's state U, V, Omega, Lambda, theta, n; ``R``,
             the normal reaction of the mode in force (0 in flight); ``energy``; ``jellett``
             (Jellett's integral -L.GP); ``slip`` (slip speed of the contact point, of the lowest point in
-            flight); ``L_Z``; ``h`` (height of G, the gap excluded); ``gap`` (0 in contact).
+            flight); ``L_Z``; ``h`` (height of G, the gap excluded); ``gap`` (0 in contact);
+            ``psi``, ``phi`` (azimuth of the axis and spin angle about it), ``X``, ``Y`` (centre
+            of mass on the table) and ``X_P``, ``Y_P`` (the contact point), see :meth:`pose`.
 
         Raises
         ------
@@ -370,7 +378,29 @@ class Trajectory:
             sel = idx == k
             seg = self.segments[k]
             parts.append((seg.mode, ts[sel], seg.states(ts[sel])))
-        return observable_table(self.model, parts)
+        df = observable_table(self.model, parts)
+        for name, values in self._pose(idx, ts).items():
+            df[name] = values
+        return df
+
+    def _pose(self, idx, ts) -> dict:
+        if self._pose_track is None:
+            from .pose import PoseTrack
+
+            self._pose_track = PoseTrack(self, self.pose0)
+        return self._pose_track(idx, ts)
+
+    def pose(self, times):
+        """Where the body is and how it is turned at ``times``: a DataFrame with ``t`` and
+        the columns psi, phi, X, Y, X_P, Y_P (conventions in :mod:`phasekit.pose`).
+
+        Computed after the integration by quadrature of the dense output (the run's numbers
+        are those of a run without them); raises ParameterError when no dense output was kept.
+        """
+        import pandas as pd
+
+        ts = self._check_times(times)
+        return pd.DataFrame({"t": ts, **self._pose(self._locate(ts), ts)})
 
     def at(self, t: float):
         """The row of :meth:`sample` at one instant ``t``, as a pandas Series
@@ -400,6 +430,28 @@ class Trajectory:
         return np.array([self.model.chart.to_paper(z) for z in self.ys])
 
     # -- export ----------------------------------------------------------------------------
+    def to_xarray(self, times=None, *, n: int = 2001):
+        """The run sampled at ``times`` (default ``n`` instants uniform over it) as an xarray
+        Dataset: coordinate ``t``, one variable per column of :meth:`sample`, and the model,
+        start, options, pose0 and status as JSON-string attributes (needs ``phasekit[data]``)."""
+        from .tables import _need, to_xarray
+
+        _need(".nc")
+        return to_xarray(self, times, n=n)
+
+    def to_netcdf(self, path, times=None, *, n: int = 2001):
+        """Write :meth:`to_xarray` to a NetCDF file (``phasekit[data]``); returns the path."""
+        from .tables import _check_path, write_trajectory
+
+        return write_trajectory(self, _check_path(path, (".nc",)), times, n=n)
+
+    def to_parquet(self, path, times=None, *, n: int = 2001):
+        """Write the sampled table to a Parquet file, the run's inputs in its metadata
+        (``phasekit[data]``); returns the path."""
+        from .tables import _check_path, write_trajectory
+
+        return write_trajectory(self, _check_path(path, (".parquet",)), times, n=n)
+
     def to_dict(self, *, events: bool = True) -> dict:
         """JSON form in the paper's variables, with the inputs (model, start, options)."""
         chart = self.model.chart
@@ -429,8 +481,14 @@ class Trajectory:
         if self.status is Status.STOPPED and stops:
             d["t_stop"] = stops[-1].t
             d["stopped_by"] = stops[-1].name
+        poses = self._event_poses() if events else None
         if events:
             d["events"] = [e.to_dict() for e in self.events]
+            if poses is not None:
+                for e, pose in zip(d["events"], poses[:-1]):
+                    e["pose"] = pose
+        if poses is not None:
+            d["pose_end"] = poses[-1]
         fl = self.flights
         if fl:
             d["flight"] = fl[0].to_dict()
@@ -445,7 +503,21 @@ class Trajectory:
         d["restitution"] = self.restitution
         d["user_events"] = [e.to_dict() for e in self.user_events]
         d["options"] = self.options.to_dict()
+        d["pose0"] = self.pose0.to_dict()
         return d
+
+    def _event_poses(self) -> list[dict] | None:
+        """The pose at each event and at the end (None without dense output)."""
+        if not self.segments or not all(s.dense for s in self.segments):
+            return None
+        ts = np.array([e.t for e in self.events] + [self.t])
+        ts = np.clip(ts, self.t0, self.t)
+        order = np.argsort(ts, kind="stable")
+        cols = self._pose(self._locate(ts[order]), ts[order])
+        out = [None] * len(ts)
+        for rank, i in enumerate(order):
+            out[i] = {name: float(cols[name][rank]) for name in POSE_COLUMNS}
+        return out
 
     def __repr__(self) -> str:
         tj = f", t_jump={self.t_jump:.9g}" if self.t_jump is not None else ""

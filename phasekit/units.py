@@ -7,9 +7,14 @@ A :class:`Scale` holds b, g (and M when forces or moments are wanted) as pint qu
 converts both ways by dimensional analysis, so that a user never converts by hand::
 
     sc = pk.Scale("21.5 mm")                  # g = 9.81 m/s^2
-    sc.dimensionless("30 rev/s")              # -> 4.40..., a spin in units sqrt(g/b)
-    sc.quantity(9.7, "rate").to("rev/s")      # -> 66.2... rev/s
+    sc.dimensionless("30 rev/s")              # -> 8.82..., a spin in units sqrt(g/b)
+    sc.quantity(9.7, "rate").to("rev/s")      # -> 33.0... rev/s
+    sc.to_real(traj.sample(ts)["t"], "time")  # a column (or any array) in ms
+    sc.table(traj.sample(ts))                 # a whole sampled table in ms, mm, rev/s, m/s
     egg, sc = pk.egg_of_size("57 mm", "43 mm", w=0.05, mass="57 g")
+
+Every quantity is shown in one simple unit per kind (:data:`DISPLAY_UNITS`: ms, mm, rev/s, ...),
+never as pint's unsimplified product of the inputs' units.
 
 Angles: pint takes the radian as dimensionless, so 1 rev/s = 2 pi rad/s = 2 pi (1/s). A rate
 in hertz is refused: pint converts 1 Hz to 1 rad/s, which is a factor 2 pi away from one
@@ -26,9 +31,10 @@ import math
 import numpy as np
 
 from .errors import ParameterError
-from .validate import check_finite
+from .validate import check_array, check_finite
 
-__all__ = ["KINDS", "STANDARD_GRAVITY", "Scale", "as_quantity", "egg_of_size", "tippe_top_of_size", "units"]
+__all__ = ["KINDS", "DISPLAY_UNITS", "COLUMN_KINDS", "STANDARD_GRAVITY", "Scale", "as_quantity", "egg_of_size",
+           "tippe_top_of_size", "units"]
 
 #: g used unless another is given (the value the issue and most experiments quote)
 STANDARD_GRAVITY = "9.81 m/s**2"
@@ -46,6 +52,16 @@ KINDS = {
     "inertia": ("[length] ** 2 * [mass]", (2, 0, 1)),
     "angular_momentum": ("[length] ** 2 * [mass] / [time]", (1.5, 0.5, 1)),
 }
+#: the unit each kind is shown in (times of a spinning body are milliseconds, its size millimetres,
+#: its spin revolutions per second: the units experiments quote)
+DISPLAY_UNITS = {"length": "mm", "time": "ms", "rate": "rev/s", "speed": "m/s", "acceleration": "m/s**2", "mass": "g",
+                 "force": "N", "energy": "mJ", "inertia": "g*cm**2", "angular_momentum": "g*cm**2/s"}
+#: the kind of each column of a sampled table (Trajectory.sample); angles stay in radians and
+#: columns not listed (mode) are left as they are
+COLUMN_KINDS = {"t": "time", "U": "speed", "V": "speed", "slip": "speed", "Omega": "rate", "Lambda": "rate",
+                "n": "rate", "X": "length", "Y": "length", "X_P": "length", "Y_P": "length", "h": "length",
+                "gap": "length",
+                "R": "force", "energy": "energy", "jellett": "angular_momentum", "L_Z": "angular_momentum"}
 #: an example of each kind, for the messages
 EXAMPLES = {"length": "21.5 mm", "time": "12 ms", "rate": "30 rev/s", "speed": "0.5 m/s", "acceleration": "9.81 m/s**2",
             "mass": "57 g", "force": "0.5 N", "energy": "1 mJ", "inertia": "2 g*cm**2", "angular_momentum": "1e-4 kg*m**2/s"}
@@ -109,11 +125,12 @@ def _of_kind(value, name: str, kind: str, *, positive: bool = False):
     """as_quantity, then a check of its dimension (that of ``kind``) and sign."""
     q = as_quantity(value, name)
     dim = KINDS[kind][0]
+    typed = value if isinstance(value, str) else str(q)  # the value as the user wrote it
     if q.dimensionality != units().get_dimensionality(dim):
         raise ParameterError(name, f"must be a {kind.replace('_', ' ')} (dimension {dim}, e.g. "
-                                   f"'{EXAMPLES[kind]}'), not of dimension {q.dimensionality}", str(q))
+                                   f"'{EXAMPLES[kind]}'), not of dimension {q.dimensionality}", typed)
     if positive and not q.magnitude > 0:
-        raise ParameterError(name, "must be > 0", str(q))
+        raise ParameterError(name, "must be > 0", typed)
     return q
 
 
@@ -146,7 +163,7 @@ class Scale:
         self.b = _of_kind(b, "b", "length", positive=True)
         self.g = _of_kind(g, "g", "acceleration", positive=True)
         self.mass = None if mass is None else _of_kind(mass, "mass", "mass", positive=True)
-        self.time_unit = (self.b / self.g) ** 0.5
+        self.time_unit = ((self.b / self.g) ** 0.5).to(DISPLAY_UNITS["time"])
 
     def unit(self, kind: str):
         """phasekit's unit of ``kind`` (a key of :data:`KINDS`) as a Quantity."""
@@ -158,9 +175,61 @@ class Scale:
         return q * self.mass**pm if pm else q
 
     def quantity(self, value, kind: str):
-        """A phasekit (dimensionless) value as a Quantity of ``kind``, in SI base units."""
-        value = check_finite("value", value)
+        """A phasekit (dimensionless) value, or an array of them, as a Quantity of ``kind``, in
+        SI base units."""
+        value = check_finite("value", value) if np.ndim(value) == 0 else check_array("value", value, allow_empty=True)
         return (value * self.unit(kind)).to_base_units()
+
+    def to_real(self, value, kind: str, unit: str | None = None):
+        """phasekit values in real units: a number or array gives a Quantity in ``unit``
+        (default the kind's :data:`DISPLAY_UNITS` entry, e.g. ms); a pandas Series gives a
+        Series of the magnitudes (same name and index) with ``attrs["unit"]`` set.
+
+        >>> import phasekit as pk
+        >>> print(f"{pk.Scale('21.5 mm').to_real(2.0, 'time'):.5~P}")
+        93.63 ms
+        """
+        unit = self._display(_check_kind(kind), unit)
+        if hasattr(value, "to_numpy") and hasattr(value, "index") and not hasattr(value, "columns"):
+            out = value.copy()
+            out[:] = self.quantity(value.to_numpy(dtype=float), kind).to(unit).magnitude
+            out.attrs["unit"] = _unit_text(unit)
+            return out
+        return self.quantity(value, kind).to(unit)
+
+    def table(self, df):
+        """A sampled table (:meth:`phasekit.Trajectory.sample`, a section, any DataFrame with
+        those column names) in real units: each column of :data:`COLUMN_KINDS` converted to its
+        display unit, angles in radians, other columns as they are; ``attrs["units"]`` maps
+        each column to its unit (forces, energies and angular momenta need the Scale's mass:
+        without it they stay in units of M g, M g b and M sqrt(g b^3))."""
+        if not (hasattr(df, "columns") and hasattr(df, "copy")):
+            raise ParameterError("df", "must be a pandas DataFrame such as traj.sample(times)", type(df).__name__)
+        out, units_of = df.copy(), {}
+        for col in df.columns:
+            kind = COLUMN_KINDS.get(col)
+            if kind is None or KINDS[kind][1][2] and self.mass is None:
+                units_of[col] = {"theta": "rad", "psi": "rad", "phi": "rad", "R": "M g", "energy": "M g b",
+                                 "jellett": "M sqrt(g b^3)", "L_Z": "M sqrt(g b^3)"}.get(col, "")
+                continue
+            out[col] = self.quantity(df[col].to_numpy(dtype=float), kind).to(DISPLAY_UNITS[kind]).magnitude
+            units_of[col] = _unit_text(DISPLAY_UNITS[kind])
+        out.attrs["units"] = units_of
+        return out
+
+    @staticmethod
+    def _display(kind: str, unit) -> str:
+        if unit is None:
+            return DISPLAY_UNITS[kind]
+        try:
+            want = units().get_dimensionality(KINDS[kind][0])
+            ok = isinstance(unit, str) and units().Unit(unit).dimensionality == want
+        except Exception:
+            ok = False
+        if not ok:
+            raise ParameterError("unit", f"must be a unit of {kind.replace('_', ' ')} such as "
+                                         f"'{DISPLAY_UNITS[kind]}'", unit)
+        return unit
 
     def dimensionless(self, value, kind: str | None = None) -> float:
         """A quantity (Quantity or string such as "30 rev/s", "57 mm", "12 ms") in phasekit's
@@ -171,12 +240,13 @@ class Scale:
         q = as_quantity(value, name)
         dims = {k: units().get_dimensionality(d) for k, (d, _) in KINDS.items()}
         found = [k for k, d in dims.items() if d == q.dimensionality]
+        typed = value if isinstance(value, str) else str(q)  # the value as the user wrote it
         if not found:
             raise ParameterError(name, f"must have the dimension of one of {', '.join(KINDS)} (it has {q.dimensionality})",
-                                 str(q))
+                                 typed)
         if kind is not None and kind not in found:
             raise ParameterError(name, f"must be a {kind.replace('_', ' ')} (dimension {KINDS[kind][0]}, e.g. "
-                                       f"'{EXAMPLES[kind]}')", str(q))
+                                       f"'{EXAMPLES[kind]}')", typed)
         out = float((q / self.unit(found[0])).to("dimensionless").magnitude)
         if not math.isfinite(out):
             raise ParameterError(name, "is too large to express in phasekit's units", str(q))
@@ -184,7 +254,12 @@ class Scale:
 
     def __repr__(self) -> str:
         m = f", mass={self.mass:~P}" if self.mass is not None else ""
-        return f"Scale(b={self.b:~P}, g={self.g:~P}{m}; time unit {self.time_unit.to('ms'):.4g~P})"
+        return f"Scale(b={self.b:~P}, g={self.g:~P}{m}; time unit {self.time_unit:.4g~P})"
+
+
+def _unit_text(unit: str) -> str:
+    """A unit as people write it: 'ms', 'mm', 'rev/s', 'cm²·g'."""
+    return f"{units().Unit(unit):~P}"
 
 
 def egg_of_size(length, breadth, *, w: float = 0.0, mass=None, g=STANDARD_GRAVITY):

@@ -40,14 +40,14 @@ MAX_WALL = 300.0
 
 @dataclass(frozen=True)
 class PairRow:
-    """One run: the printed start ``label`` with ``value`` under eps ("exact": Coulomb) in ``chart``."""
+    """One run: the printed start ``label`` with ``value`` under eps (empty: exact Coulomb) in ``chart``."""
 
     key: str
     figure: str
     label: str
     role: str  # "no_jump" or "jump": what the paper prints for this value
     value: float
-    eps: str
+    eps: float | None  # None (an empty cell): exact Coulomb
     chart: str
     outcome: str  # jump, rise, stuck, slow, failed
     t_end: float
@@ -77,7 +77,7 @@ def run_one(label: str, role: str, value: float, eps, chart: str) -> PairRow:
         r = pk.simulate(m, x, T_END, events=[ev], track_minima=False, dense=False, max_wall=MAX_WALL)
     except pk.PhasekitError as exc:  # e.g. a start the Euler chart cannot take
         return PairRow(row_key(label, value, eps, chart), case.figure, label, role, value,
-                       "exact" if eps is None else repr(eps), chart, "failed", 0.0, None, False, 0, None, "failed",
+                       eps, chart, "failed", 0.0, None, False, 0, None, "failed",
                        time.perf_counter() - t0, str(exc))
     y = r.euler_end if r.status is not pk.Status.FAILED else None
     if r.status is pk.Status.JUMPED:
@@ -88,7 +88,7 @@ def run_one(label: str, role: str, value: float, eps, chart: str) -> PairRow:
         outcome = "failed"
     else:
         outcome = "stuck" if r.stuck else "slow"
-    return PairRow(row_key(label, value, eps, chart), case.figure, label, role, value, "exact" if eps is None else repr(eps),
+    return PairRow(row_key(label, value, eps, chart), case.figure, label, role, value, eps,
                    chart, outcome, float(r.t), r.t_jump, r.stuck, len(r.events_named("stick")),
                    None if y is None else float(y[4]), r.status.value, time.perf_counter() - t0, r.reason or "")
 
@@ -105,8 +105,8 @@ def table(rows, eps_list) -> list[dict]:
     for label, case in pk.PAPER_CASES.items():
         for chart in CHARTS:
             for eps in list(eps_list) + [None]:
-                e = "exact" if eps is None else repr(eps)
-                nj, j = by.get((label, "no_jump", e, chart)), by.get((label, "jump", e, chart))
+                e = "exact" if eps is None else repr(eps)  # as the summary and report spell it
+                nj, j = by.get((label, "no_jump", eps, chart)), by.get((label, "jump", eps, chart))
                 out.append({"figure": case.figure, "label": label, "chart": chart, "eps": e,
                             "no_jump": None if nj is None else (nj.outcome, nj.t_end),
                             "jump": None if j is None else (j.outcome, j.t_jump if j.t_jump else j.t_end),
@@ -122,8 +122,8 @@ def plot(rows, tab, png: Path, quick: bool) -> None:
         for chart, ls, dy in zip(CHARTS, ("-", "--"), (1.0, 1.03)):
             for role, colour in (("no_jump", "C0"), ("jump", "C3")):
                 value = case.no_jump if role == "no_jump" else case.jump
-                pts = sorted((float(r.eps), r) for r in rows if r.label == label and r.role == role and r.chart == chart
-                             and r.eps != "exact")
+                pts = sorted(((r.eps, r) for r in rows if r.label == label and r.role == role and r.chart == chart
+                              and r.eps is not None), key=lambda q: q[0])
                 jumped = [(e, r.t_jump) for e, r in pts if r.outcome == "jump"]
                 if jumped:
                     ax.plot(*zip(*jumped), marker="o", ls=ls, color=colour, ms=4,

@@ -15,6 +15,7 @@ SIM = ["simulate", "--a", "1.5", "--mu", "0.1"]
 TOP = ["simulate", "--body", "tippe-top", "--offset", "0.3", "--mu", "0.3"]
 GYRO = ["gyroscopic", "--a", "1.5", "--mu", "0.1", "--omega0", "10.5", "--theta0", "1.5607963"]
 MINIMAL = {"simulate": SIM + ["--gyroscopic", "--theta0", "1.5", "--omega0", "10"],
+           "animate": ["animate", "x.gif", *SIM[1:], "--gyroscopic", "--theta0", "1.5", "--omega0", "10"],
            "fixed-points": ["fixed-points", "--a", "1.5", "--mu", "0.1", "--omega0", "10"],
            "steady-states": ["steady-states", "--a", "1.5", "--mu", "0.1"],
            "gyroscopic": GYRO + ["--t", "0"]}

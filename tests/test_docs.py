@@ -22,12 +22,12 @@ def test_api_reference_builds_without_warnings(tmp_path):
                  "phasekit.rerun", "phasekit.paper_start", "phasekit.Scene.add_trajectory", "phasekit.Body"):
         assert f'id="{name}"' in api, name
     viz = (tmp_path / "html" / "viz.html").read_text()
-    for name in ("plot_timeseries", "plot_events", "plot_section", "render_scene"):
+    for name in ("plot_timeseries", "plot_events", "plot_section", "render_scene", "animate", "film_strip"):
         assert name in viz
 
 
 @pytest.mark.parametrize("module", ["phasekit.sections", "phasekit.ensemble", "phasekit.viz.mpl", "phasekit.paper",
-                                    "phasekit.surface"])
+                                    "phasekit.surface", "phasekit.units"])
 def test_docstring_examples_run(module):
     mod = importlib.import_module(module)
     res = doctest.testmod(mod, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)

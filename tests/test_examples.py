@@ -31,8 +31,31 @@ def run_example(name, tmp_path, *extra):
 
 def test_every_example_is_tested():
     tested = {"fig4_case.py", "fixed_points.py", "threshold.py", "sweep_to_dataframe.py", "scene_own_trajectory.py",
-              "cli_jq.sh", "section.py", "paper_start_rounding.py"}
+              "cli_jq.sh", "section.py", "paper_start_rounding.py", "animate_body.py"}
     assert {p.name for p in EXAMPLES.iterdir() if p.suffix in (".py", ".sh")} == tested
+
+
+def test_examples_run_without_arguments_into_examples_out(tmp_path):
+    """Like gallery examples, a script run as is (from any directory) writes into the documented
+    default folder examples/out/<name>/ (git-ignored)."""
+    import time
+
+    start = time.time()
+    out = subprocess.run([sys.executable, str(EXAMPLES / "section.py")], cwd=tmp_path, env=ENV, capture_output=True,
+                         text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    written = EXAMPLES / "out" / "section" / "section.csv"
+    assert written.stat().st_mtime >= start - 1 and len(pd.read_csv(written)) == 14
+    assert "examples/out/" in (ROOT / ".gitignore").read_text().split()
+
+
+def test_animate_body(tmp_path):
+    from PIL import Image
+
+    out = run_example("animate_body.py", tmp_path)
+    assert "wrote" in out.stdout
+    assert Image.open(tmp_path / "rise.gif").n_frames == 32 and Image.open(tmp_path / "landing.gif").n_frames == 16
+    assert (tmp_path / "strip.png").stat().st_size > 20_000
 
 
 def test_fig4_case(tmp_path):

@@ -153,7 +153,7 @@ def test_search_rows_survive_a_kill_and_resume(tmp_path):
 def _row_task(prev, i):
     return SearchRow(key=f"k{i}", study="t", kind="threshold", branch="prolate", a=1.5, mu=0.1, d=0.01, value=None,
                      threshold=9.0 + i / 3, bracket_lo=9.0, bracket_hi=9.0 + i, status="converged", n_sims=15 + i, n_rounds=4,
-                     levels=3, engine="batch", eps="exact", rtol=1e-9, t_max=3000.0, transitions="[[9.0, 10.0]]",
+                     levels=3, engine="batch", eps=None, rtol=1e-9, t_max=3000.0, transitions="[[9.0, 10.0]]",
                      stuck_near=False, sens_half=None, sens_double=None, sens_slope=-0.09, sens_shift=None,
                      sens_dominant="", wall_s=0.25, reason="")
 

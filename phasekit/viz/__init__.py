@@ -5,8 +5,14 @@ from .mpl import LABELS, label, plain_log_ticks, plot_events, plot_minima, plot_
 from .output import atomic_path, output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
 from .pv import RenderInfo, render_scene
 from .branches import render_structure
+from .animate import AnimationInfo, animate, body_mesh, film_strip, render_body
 
 __all__ = [
+    "animate",
+    "film_strip",
+    "render_body",
+    "body_mesh",
+    "AnimationInfo",
     "render_scene",
     "render_structure",
     "RenderInfo",

@@ -228,12 +228,16 @@ def save_figure(fig, path, *, dpi: int = 130, **savefig_kwargs) -> Path:
 
 def write_csv(path, header, rows) -> Path:
     """Write a whole table at once, atomically. ``rows`` are sequences in the order of
-    ``header``, or mappings (their keys outside ``header`` are left out, missing ones empty)."""
+    ``header``, or mappings (their keys outside ``header`` are left out, missing ones empty).
+    A missing value (None or NaN) is an empty cell."""
+
+    def blank(v):  # one spelling of missing: an empty cell (None and NaN alike)
+        return "" if v is None or (isinstance(v, float) and math.isnan(v)) else v
 
     def cells(row):
         if isinstance(row, Mapping):
-            return ["" if row.get(k) is None else row[k] for k in header]
-        return list(row)
+            return [blank(row.get(k)) for k in header]
+        return [blank(v) for v in row]
 
     with atomic_path(path) as tmp:
         with open(tmp, "w", newline="") as fh:

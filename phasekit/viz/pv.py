@@ -20,10 +20,11 @@ import numpy as np
 
 from ..errors import ParameterError, PhasekitError
 
-__all__ = ["render_scene", "RenderInfo", "HTML_EXTRA"]
+__all__ = ["render_scene", "RenderInfo", "HTML_EXTRA", "axes_caption"]
 
-#: the optional packages the HTML export needs: ``pip install "phasekit[html]"``
-HTML_EXTRA = ("trame_pyvista",)
+#: the optional packages the HTML export needs: ``pip install "phasekit[html]"`` (pyvista's
+#: export starts trame's server in-process, which needs nest_asyncio2 outside Jupyter)
+HTML_EXTRA = ("trame_pyvista", "nest_asyncio2")
 #: drawn box in VTK coordinates: Omega, theta, n spans
 ASPECT = (1.4, 1.0, 1.0)
 #: where the glTF axes' tick values and titles sit, per axis, relative to the axis (box units)
@@ -238,9 +239,9 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
     window_size : (int, int)
         Image width and height in pixels, each in [16, 8192].
     html, gltf : str, optional
-        Also export the scene as interactive HTML (needs ``phasekit[html]``) or glTF (with
-        the axes, their tick values and units as geometry, and the axis ranges and units in
-        the file's ``asset.extras``).
+        Also export as interactive HTML (vtk.js, ``phasekit[html]``) or glTF, with the axes'
+        true tick values and the title as geometry; the HTML adds a caption (title, each
+        axis's range), the glTF puts them in ``asset.extras`` (it has no 2-D text).
     title : str, optional
         Text at the top left.
     camera : str or list, optional
@@ -299,7 +300,7 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
         if path is None:
             return pl
         img = pl.screenshot(str(path), return_img=True)
-        exported = _export(pl, data, html, gltf)
+        exported = _export(pl, data, html, gltf, title)
         pl.close()
     return RenderInfo(str(path), counts, tuple(float(b) for b in data.bounds), tuple(img.shape), float(img.std()),
                       tuple(exported))
@@ -350,6 +351,8 @@ def _draw(pl, data, title, window_size) -> dict:
                 line = pv.lines_from_points(f(run))
                 counts["trajectories"] += line.n_points
                 pl.add_mesh(line, color=COLORS[k % len(COLORS)], line_width=2.5)
+    if data.bodies:
+        counts["bodies"] = _draw_bodies(pl, data, f)
     for name, pts, color, size in (("crossings", [[c.Omega, c.theta, c.n] for c in data.crossings], "black", 16),
                                    ("fixed_points", data.fixed_points, "red", 12)):
         if name in show and pts is not None and len(pts):
@@ -374,10 +377,41 @@ def _draw(pl, data, title, window_size) -> dict:
     return counts
 
 
-def _export(pl, data, html, gltf) -> list[str]:
+#: size of a body drawn in a scene, in drawn-box units (the box is 1.4 x 1 x 1)
+BODY_GLYPH = 0.16
+
+
+def _draw_bodies(pl, data, f) -> int:
+    """The bodies of Scene.add_trajectory(..., bodies=times): each body's own surface, turned as
+    it was then, at its trajectory's point (those outside the box are left out)."""
+    from .mesh import BODY_COLORS, body_mesh
+
+    lo, hi = np.array(data.bounds[0::2]), np.array(data.bounds[1::2])
+    n = 0
+    for body, point, R in data.bodies:
+        P = np.asarray(point, dtype=float)
+        if not np.all((P >= lo) & (P <= hi)):
+            continue
+        mesh = body_mesh(body, n_theta=32, n_azimuth=24)
+        scale = BODY_GLYPH / float(np.ptp(mesh.points, axis=0).max())
+        mesh.points = (mesh.points @ np.asarray(R).T) * scale + f(P)[0]
+        pl.add_mesh(mesh, scalars="sector", cmap=list(BODY_COLORS), show_scalar_bar=False, smooth_shading=True)
+        n += 1
+    return n
+
+
+def _export(pl, data, html, gltf, title=None) -> list[str]:
+    """Write the glTF and HTML exports. Neither format keeps VTK's annotation actors (the cube
+    axes would show the drawn box's 0..1.4 coordinates, the 2-D text and colour bar vanish), so
+    the axes, their tick values in the data's units and the title are added as meshes, and the
+    cube axes removed; the HTML also gets a caption (title, axes, true ranges) as page text."""
     out = []
-    if gltf:
+    if gltf or html:
+        pl.remove_bounds_axes()
         _add_axes_geometry(pl, data.bounds)
+        if title:
+            _add_title_geometry(pl, title)
+    if gltf:
         tmp = Path(gltf).with_name(f".{Path(gltf).name}.{os.getpid()}.tmp.gltf")
         try:
             import warnings
@@ -385,23 +419,88 @@ def _export(pl, data, html, gltf) -> list[str]:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # pyvista notes that it converts the grids to surfaces
                 pl.export_gltf(str(tmp), inline_data=True)
-            _annotate_gltf(tmp, data.bounds)
+            _annotate_gltf(tmp, data.bounds, title)
             os.replace(tmp, gltf)
         finally:
             tmp.unlink(missing_ok=True)
         out.append(str(gltf))
     if html:
+        tmp = Path(html).with_name(f".{Path(html).stem}.{os.getpid()}.tmp{Path(html).suffix}")
         try:
             import warnings
 
-            with warnings.catch_warnings():
+            with warnings.catch_warnings(), _without_vtk_wasm():
                 warnings.simplefilter("ignore")  # pyvista's deprecation notice of export_html
-                pl.export_html(html)
+                pl.export_html(str(tmp))
+            _caption_html(tmp, data, title)
+            os.replace(tmp, html)
         except Exception as exc:
             raise PhasekitError(f"cannot write the HTML export {html}: {type(exc).__name__}: "
                                 f"{' '.join(str(exc).split())}") from None
+        finally:
+            tmp.unlink(missing_ok=True)
         out.append(str(html))
     return out
+
+
+@contextlib.contextmanager
+def _without_vtk_wasm():
+    """pyvista's HTML export starts trame's server, which initialises trame-vtklocal when it is
+    installed; that module then downloads VTK's WebAssembly bundle from the internet (not needed:
+    the page is vtk.js) and, offline, prints a traceback later. Hide it while the server starts."""
+    import sys
+
+    key, missing = "trame.widgets.vtklocal", object()
+    saved = sys.modules.get(key, missing)
+    sys.modules[key] = None  # an import of it raises ImportError, which trame-pyvista skips
+    try:
+        yield
+    finally:
+        if saved is missing:
+            sys.modules.pop(key, None)
+        else:
+            sys.modules[key] = saved
+
+
+def axes_caption(data, title=None) -> list[str]:
+    """The lines of text that say what an exported scene shows: its title and each axis with
+    its unit and true range (the drawn box is rescaled)."""
+    from ..surface import AXES
+
+    lines = [title] if title else []
+    for j, (name, unit) in enumerate(AXES):
+        lines.append(f"{name} [{unit}]: {data.bounds[2 * j]:.4g} to {data.bounds[2 * j + 1]:.4g}")
+    if data.surface is not None and "surface" in data.scene.show:
+        lines.append(f"colour: n on (6.3) [sqrt(g/b)], {data.bounds[4]:.4g} to {data.bounds[5]:.4g}")
+    return lines
+
+
+def _caption_html(path: Path, data, title) -> None:
+    """Put the caption into the exported page: a box over the 3-D view and the page's title."""
+    import html as _html
+
+    text = Path(path).read_text(encoding="utf-8")
+    lines = axes_caption(data, title)
+    items = "".join(f"<div>{_html.escape(line)}</div>" for line in lines)
+    box = ('<div id="phasekit-caption" style="position:fixed;top:8px;left:8px;z-index:10;font:14px sans-serif;'
+           f'background:rgba(255,255,255,0.85);color:#000;padding:6px 10px;border-radius:4px">{items}</div>')
+    head_title = _html.escape(title or "phasekit scene")
+    text = text.replace("<title>VTK.js | Example - OfflineLocalView</title>", f"<title>{head_title}</title>", 1)
+    if "<body>" not in text:
+        raise PhasekitError("the HTML export has no <body> to caption (an unexpected page layout)")
+    # vtk.js replaces what is in its container (.content, else <body>): give it its own
+    view = '<div class="content" style="position:absolute;top:0;left:0;width:100%;height:100%"></div>'
+    Path(path).write_text(text.replace("<body>", "<body>\n" + view + box, 1), encoding="utf-8")
+
+
+def _add_title_geometry(pl, title: str) -> None:
+    """The title as 3-D text above the box (exports keep meshes, not 2-D text)."""
+    import pyvista as pv
+
+    txt = pv.Text3D(title, depth=0.002).scale(0.05, inplace=False)
+    width = txt.bounds[1] - txt.bounds[0]
+    pl.add_mesh(txt.rotate_x(90, inplace=False).translate((0.5 * ASPECT[0] - 0.5 * width, 0.0, ASPECT[2] + 0.15),
+                                                          inplace=False), color="black")
 
 
 def _add_axes_geometry(pl, bounds) -> None:
@@ -432,12 +531,17 @@ def _add_axes_geometry(pl, bounds) -> None:
                     color="black")
 
 
-def _annotate_gltf(path: Path, bounds) -> None:
-    """Record the axes (name, unit, range, drawn span) in the glTF ``asset.extras``."""
+def _annotate_gltf(path: Path, bounds, title=None) -> None:
+    """Record the axes (name, unit, range, drawn span), the title and what glTF cannot hold in
+    the file's ``asset.extras``."""
     from ..surface import AXES
 
     doc = json.loads(Path(path).read_text())
-    doc.setdefault("asset", {}).setdefault("extras", {})["phasekit_axes"] = [
+    extras = doc.setdefault("asset", {}).setdefault("extras", {})
+    extras["phasekit_axes"] = [
         {"name": name, "unit": unit, "range": [float(bounds[2 * j]), float(bounds[2 * j + 1])],
          "drawn_span": [0.0, ASPECT[j]]} for j, (name, unit) in enumerate(AXES)]
+    extras["phasekit_title"] = title
+    extras["phasekit_note"] = ("glTF holds meshes only: the axes, their tick values (true values) and the title are "
+                               "3-D text; the colour bar and 2-D annotations of the PNG are not in the file")
     Path(path).write_text(json.dumps(doc))
