@@ -23,7 +23,7 @@ from phasekit.viz import run_study, study_parser
 ROOT = Path(__file__).resolve().parents[1]
 STUDIES = sorted(p.name for p in (ROOT / "studies").glob("*.py"))
 ENV = {**os.environ, "PYTHONPATH": str(ROOT), "MPLBACKEND": "Agg"}
-RESUMABLE = {"egg.py", "outcome_map.py", "paper_pairs.py", "threshold_vs_aspect.py", "threshold_vs_mu.py", "tippe_top.py"}
+RESUMABLE = {"egg.py", "steady_structure.py", "outcome_map.py", "paper_pairs.py", "threshold_vs_aspect.py", "threshold_vs_mu.py", "tippe_top.py"}
 
 # (study, arguments, the flag the message must name, text the message must contain)
 BAD_NUMBERS = [
