@@ -13,11 +13,12 @@ from .egg import Egg
 from .units import Scale, as_quantity, egg_of_size, tippe_top_of_size
 from . import tippetop
 from .charts import EULER, FLIGHT, PAPER_NAMES, VECTOR, Chart, euler_to_vector, vector_to_euler
-from .errors import ConvergenceError, ParameterError, PhasekitError, Status
+from .errors import ConvergenceError, ParameterError, PhasekitError, Status, WorkerError
 from .friction import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous, friction_law
 from .hybrid import Event, Mode
 from .model import OBSERVABLES, Model
 from .options import BACKENDS, SolverOptions
+from .settle import Settle
 from .simulate import simulate, taylor_integrator
 from .trajectory import SAMPLE_COLUMNS, EventRecord, Flight, Segment, Trajectory
 from .sections import poincare
@@ -165,6 +166,7 @@ __all__ = [
     "Mode",
     "Event",
     "SolverOptions",
+    "Settle",
     "BACKENDS",
     "simulate",
     "Trajectory",
@@ -178,6 +180,7 @@ __all__ = [
     "Status",
     "PhasekitError",
     "ConvergenceError",
+    "WorkerError",
     "ParameterError",
     "gyroscopic_start",
     "vertical_spin_start",

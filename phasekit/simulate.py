@@ -19,10 +19,12 @@ from .hybrid import Event, Mode, Transition
 from .model import Model
 from .options import SolverOptions
 from .resets import contact_state
+from .settle import settled
 from .starts import RATE_MAX
 from .system import declare, watched
 from .trajectory import EventRecord, Segment, Trajectory
 from .validate import check_bool, check_finite, check_range, check_times, check_vector
+from .watch import WALL_REASON, deadline
 
 __all__ = ["simulate", "solver_options", "taylor_integrator"]
 
@@ -119,12 +121,14 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
         raise ParameterError("t_eval", f"must lie in the requested span [t0, t_end] = [{t0:.10g}, {t_end:.10g}]",
                              float(te[0] if te[0] < t0 else te[-1]))
     system = _declared(model, stop_at, restitution, events)
-    run = _Run(model, system, opts, t_end, dense=opts.dense or te is not None)
+    run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
     run.apply(system.initial(model, t0, x0, start_mode))
     while run.status is None:
         run.step()
         if run.status is None and run.budget.wall_exceeded():  # many short segments (stick-slip chatter)
             run.status, run.reason = Status.FAILED, f"wall-time limit ({opts.max_wall:g} s) reached at t = {run.t:.6g}"
+    if run.call_budget is not None and run.status is Status.FAILED and "wall-time limit" in (run.reason or ""):
+        run.reason = f"{WALL_REASON} (max_wall = {run.call_budget:g} s) ran out at t = {run.t:.6g}"
     traj = run.result(x0, t0, stop_at, restitution, events, te)
     if throw and traj.status is Status.FAILED:
         raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
@@ -153,9 +157,9 @@ def _tracked(flow, track_minima: bool):
     return flow if track_minima or flow.mode is Mode.FLIGHT else replace(flow, monitor=None)
 
 
-def apply_transition(run, tr: Transition, max_switches: int) -> None:
+def apply_transition(run, tr: Transition, max_switches: int, settle=None, t_start: float = 0.0) -> None:
     """Log a transition's records on ``run`` (simulate's loop or a lane of simulate_batch),
-    then continue in its mode or stop."""
+    then continue in its mode or stop (the switch budget, or a settled body with ``settle``)."""
     for r in tr.records:
         run.record(r.name, tr.t, r.mode_before, r.mode_after, r.x, r.detail)
     if tr.resume:
@@ -170,15 +174,23 @@ def apply_transition(run, tr: Transition, max_switches: int) -> None:
     if len(run.records) >= max_switches:
         run.status = Status.FAILED
         run.reason = f"more than {max_switches} mode switches by t = {run.t:.6g} (chattering)"
+    elif settle is not None and tr.records:
+        why = settled(run.model, run.records, t_start, settle)
+        if why is not None:
+            run.status, run.reason = Status.SETTLED, why
 
 
 class _Run:
     """The state of one run of the loop."""
 
-    def __init__(self, model, system, opts, t_end, dense):
+    def __init__(self, model, system, opts, t0, t_end, dense):
         self.model, self.system, self.opts, self.t_end, self.dense = model, system, opts, t_end, dense
-        self.budget = Budget(opts.max_steps, time.perf_counter() + opts.max_wall)
+        self.t_start, self.switch_limit = t0, opts.switch_limit(t_end - t0)
         self.wall0 = time.perf_counter()
+        own, call = self.wall0 + opts.max_wall, deadline()
+        # the caller's budget (a search, a map) when it ends first: the reason then names it
+        self.call_budget = call[1] if call is not None and call[0] < own else None
+        self.budget = Budget(opts.max_steps, own if self.call_budget is None else call[0])
         self.mode, self.t, self.x = Mode.SLIDING, 0.0, None
         self.status = self.reason = None
         self.segments, self.records = [], []
@@ -193,7 +205,7 @@ class _Run:
         self.records.append(EventRecord(name, float(t), before, after, x, detail, y))
 
     def apply(self, tr: Transition) -> None:
-        apply_transition(self, tr, self.opts.max_switches)
+        apply_transition(self, tr, self.switch_limit, self.opts.settle, self.t_start)
 
     def engine(self, flow):
         name = flow.engine or self.opts.backend

@@ -311,6 +311,7 @@ def make_client(scheduler: str | None = None, workers: int | None = None, *, tim
     from dask.distributed import Client, LocalCluster
 
     from .errors import ParameterError
+    from .pool import main_not_reimported
 
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ParameterError("workers", "must be an integer >= 1 (or None: one per core)", workers)
@@ -358,8 +359,9 @@ def make_client(scheduler: str | None = None, workers: int | None = None, *, tim
     try:
         # no dashboard, the scheduler's small HTTP server on any free port (8787 may be taken);
         # Dask's own warnings off (e.g. each task cancelled when a run is stopped): errors stay
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                               scheduler_kwargs={"dashboard_address": ":0"}, silence_logs=logging.ERROR)
+        with main_not_reimported():  # spawn would re-import the calling script (see phasekit.pool)
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                                   scheduler_kwargs={"dashboard_address": ":0"}, silence_logs=logging.ERROR)
     finally:
         if main_thread and previous is not None:
             signal.signal(signal.SIGINT, previous)

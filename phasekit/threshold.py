@@ -43,6 +43,7 @@ from .hybrid import Event
 from .manifolds import horizontal_stability_threshold, unstable_manifold_start, vertical_stability_threshold
 from .model import Model
 from .options import RTOL_RANGE
+from .settle import Settle, check_settle
 from .simulate import simulate
 from .starts import gyroscopic_start, to_chart
 from .validate import check_choice, check_int, check_positive, check_range
@@ -50,6 +51,10 @@ from .validate import check_choice, check_int, check_positive, check_range
 __all__ = ["Definition", "Outcome", "Threshold", "Sensitivity", "ThresholdSearch", "find_threshold", "continue_threshold",
            "run_searches", "evaluate_outcomes", "find_stick_boundary",
            "threshold_searches", "threshold_result", "stick_search", "DEFAULT_DEFINITIONS", "ENGINES", "as_body"]
+
+
+#: the settle rule of every built-in definition (see :mod:`phasekit.settle`)
+DEFAULT_SETTLE = Settle()
 
 
 def as_body(body) -> Body:
@@ -74,8 +79,12 @@ class Definition:
     rise_margin: float = 0.1
     t_max: float = 3000.0
     max_steps: int = 20_000_000
+    #: a run that has settled (zero slip, steady state; exact Coulomb only) ends as no jump:
+    #: a body that settles tilted (an egg) would otherwise stick and slip until t_max
+    settle: Settle | None = DEFAULT_SETTLE
 
     def __post_init__(self):
+        object.__setattr__(self, "settle", check_settle(self.settle))
         check_choice("seed", self.seed, ("viscous", "sliding", "literal"))
         check_range("amplitude", self.amplitude, 0.0, 0.5, closed="r")
         check_range("mu", self.mu, 0.0, 10.0, closed="r")
@@ -99,9 +108,13 @@ class Definition:
         return f"{self.law_label}; seed: {what}"
 
     def key(self) -> str:
-        """Identifies results that can be reused: every field that changes the answer."""
+        """Identifies results that can be reused: every field that changes the answer. The
+        default settle rule is left out: it ends only runs that would not jump (checked on the
+        published studies), so results computed before it existed keep their keys."""
         d = asdict(self)
         d.pop("name")
+        if self.settle == DEFAULT_SETTLE:
+            d.pop("settle")
         return ";".join(f"{k}={v}" for k, v in sorted(d.items()))
 
     def friction(self):
@@ -147,7 +160,7 @@ class Definition:
         body = as_body(body)
         model, x0 = self.start(body, value)
         r = simulate(model, x0, self.t_max, rtol=self.rtol, events=[self.rise_event(body)], track_minima=False,
-                     dense=False, max_steps=self.max_steps)
+                     dense=False, max_steps=self.max_steps, settle=self.settle)
         return self.classify(body, value, model, x0, r)
 
     def classify(self, body, value: float, model, x0, r) -> "Outcome":
@@ -197,15 +210,16 @@ def evaluate_outcomes(jobs, engine: str = "scalar", stats=None) -> list["Outcome
             continue
         body = as_body(body)
         ev = defn.rise_event(body)
-        groups.setdefault((ev.level, ev.direction, defn.rtol, defn.max_steps), []).append((i, defn, body, value))
+        groups.setdefault((ev.level, ev.direction, defn.rtol, defn.max_steps, defn.settle), []).append((i, defn, body, value))
     if groups:
         from .batch import simulate_batch
 
-        for (_, _, rtol, max_steps), items in groups.items():
+        for (_, _, rtol, max_steps, settle), items in groups.items():
             starts = [d.start(b, v) for _, d, b, v in items]
             ev = items[0][1].rise_event(items[0][2])
             runs = simulate_batch([m for m, _ in starts], [x for _, x in starts], [d.t_max for _, d, _, _ in items],
-                                  events=[ev], rtol=rtol, max_steps=max_steps, track_minima=False, dense=False, stats=stats)
+                                  events=[ev], rtol=rtol, max_steps=max_steps, track_minima=False, dense=False, stats=stats,
+                                  settle=settle)
             for (i, d, b, v), (m, x0), r in zip(items, starts, runs):
                 out[i] = d.classify(b, v, m, x0, r)
     return out
@@ -214,7 +228,8 @@ def evaluate_outcomes(jobs, engine: str = "scalar", stats=None) -> list["Outcome
 @dataclass(frozen=True)
 class Outcome:
     """One trajectory of a threshold search: did it jump, and how did it end
-    (``status``: jumped; stopped = the rise completed; completed = reached t_max; failed).
+    (``status``: jumped; stopped = the rise completed; completed = reached t_max; settled =
+    the body settled in contact (the definition's ``settle`` rule); failed).
     ``theta``: the inclination where it ended (at lift-off for a jump); ``rise_fraction``:
     how much of the rise from theta0 to the final state (0 prolate, pi/2 oblate) was done."""
 
@@ -230,7 +245,8 @@ class Outcome:
 
     @property
     def how(self) -> str:
-        return {Status.JUMPED: "jumped", Status.STOPPED: "rise-complete", Status.COMPLETED: "t_max"}.get(self.status, "failed")
+        return {Status.JUMPED: "jumped", Status.STOPPED: "rise-complete", Status.COMPLETED: "t_max",
+                Status.SETTLED: "settled"}.get(self.status, "failed")
 
     @property
     def kind(self) -> str:
