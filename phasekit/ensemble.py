@@ -44,7 +44,7 @@ __all__ = ["ensemble", "rerun", "summary_row", "ROW_COLUMNS"]
 
 #: columns of an ensemble row after the start (i, U, V, Omega, Lambda, theta, n)
 ROW_COLUMNS = ("status", "reason", "t_jump", "R_min", "t_end", "theta_end", "mode_end", "n_events", "stuck", "n_steps",
-               "wall_s")
+               "n_liftoffs", "n_flights", "t_flight", "longest_flight", "gap_max", "wall_s")
 #: keywords of :func:`phasekit.simulate` an ensemble passes on (``t_eval`` and ``throw`` are not
 #: per-row quantities: an ensemble tabulates failures)
 PASSED = ("t0", "stop_at", "restitution", "mode", "options")
@@ -55,9 +55,12 @@ def summary_row(traj, events=()) -> dict:
     time of each user event (column ``t_<event name>``, None if it never fired)."""
     start = traj.to_dict(events=False)["start"]
     row = {name: start[name] for name in PAPER_NAMES}
+    hops = traj.hops
     row.update(status=traj.status.value, reason=traj.reason, t_jump=traj.t_jump, R_min=traj.R_min, t_end=traj.t,
                theta_end=float(traj.euler_end[4]), mode_end=traj.mode, n_events=len(traj.events), stuck=traj.stuck,
-               n_steps=int(traj.n_steps), wall_s=float(traj.wall_s))
+               n_steps=int(traj.n_steps), **{k: hops[k] for k in ("n_liftoffs", "n_flights", "t_flight",
+                                                                 "longest_flight", "gap_max")},
+               wall_s=float(traj.wall_s))
     for ev in events:
         hit = next((e.t for e in traj.events if e.name == ev.name), None)
         row[f"t_{ev.name}"] = hit

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 
+from .resets import BOUNCE_STOP, BOUNCE_TAIL
 from .settle import Settle, check_settle
 from .validate import check_bool, check_choice, check_int, check_positive, check_range
 
@@ -53,6 +54,13 @@ class SolverOptions:
         Budget of recorded mode switches (stick, slip, lift-off, touchdown, impact); reaching
         it ends the run "failed" with the count and the time. None: 100 per unit of the
         requested span, at least 10 000.
+    bounce_stop : float, default 1e-4
+        A rebound slower than this (units sqrt(g b)) ends a bounce train: contact resumes.
+    bounce_tail : int or None, default 100
+        A bounce train whose flight times shrink geometrically with more than this many
+        rebounds left before ``bounce_stop`` is resolved at once (its accumulation point is
+        reached: contact resumes; :func:`phasekit.resets.bounce_tail`); None integrates every
+        rebound down to ``bounce_stop``.
     settle : Settle, True or None, default None
         End a run that has settled (zero slip, steady state: :class:`phasekit.Settle`) with
         status "settled"; True is ``Settle()``.
@@ -70,6 +78,8 @@ class SolverOptions:
     max_steps: int = 5_000_000
     max_wall: float = 600.0
     max_switches: int | None = None
+    bounce_stop: float = BOUNCE_STOP
+    bounce_tail: int | None = BOUNCE_TAIL
     settle: Settle | None = None
     track_minima: bool = True
     dense: bool = True
@@ -84,6 +94,9 @@ class SolverOptions:
         object.__setattr__(self, "max_wall", check_positive("max_wall", self.max_wall))
         if self.max_switches is not None:
             object.__setattr__(self, "max_switches", check_int("max_switches", self.max_switches, minimum=1))
+        object.__setattr__(self, "bounce_stop", check_range("bounce_stop", self.bounce_stop, 0.0, 1.0, closed="r"))
+        if self.bounce_tail is not None:
+            object.__setattr__(self, "bounce_tail", check_int("bounce_tail", self.bounce_tail, minimum=1))
         object.__setattr__(self, "settle", check_settle(self.settle))
         object.__setattr__(self, "track_minima", check_bool("track_minima", self.track_minima))
         object.__setattr__(self, "dense", check_bool("dense", self.dense))

@@ -120,7 +120,7 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     if te is not None and te.size and (te[0] < t0 or te[-1] > t_end):
         raise ParameterError("t_eval", f"must lie in the requested span [t0, t_end] = [{t0:.10g}, {t_end:.10g}]",
                              float(te[0] if te[0] < t0 else te[-1]))
-    system = _declared(model, stop_at, restitution, events)
+    system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail))
     run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
     run.apply(system.initial(model, t0, x0, start_mode))
     while run.status is None:
@@ -135,19 +135,20 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     return traj
 
 
-def _declared(model, stop_at, restitution, events):
+def _declared(model, stop_at, restitution, events, bounce):
     """:func:`phasekit.system.declare`, kept for runs that declare the same system again (a
     sweep calls simulate thousands of times; declaring costs ~25 us a call, a few % of a run)."""
     events = tuple(events)
     try:  # events compare without their reset: key on the reset objects too
-        return _declare_cached(model, stop_at, restitution, events, tuple(id(getattr(e, "reset", None)) for e in events))
+        return _declare_cached(model, stop_at, restitution, events, bounce,
+                               tuple(id(getattr(e, "reset", None)) for e in events))
     except TypeError:  # unhashable arguments: declare (which validates them)
-        return declare(model, stop_at=stop_at, restitution=restitution, events=events)
+        return declare(model, stop_at=stop_at, restitution=restitution, events=events, bounce=bounce)
 
 
 @functools.lru_cache(maxsize=64)
-def _declare_cached(model, stop_at, restitution, events, _reset_ids):
-    return declare(model, stop_at=stop_at, restitution=restitution, events=events)
+def _declare_cached(model, stop_at, restitution, events, bounce, _reset_ids):
+    return declare(model, stop_at=stop_at, restitution=restitution, events=events, bounce=bounce)
 
 
 @functools.lru_cache(maxsize=64)
@@ -244,7 +245,8 @@ class _Run:
             if ev.stop is Status.STOPPED:
                 self.reason = f"{ev.name}: {ev.on} reached {ev.level:g}"
         else:
-            self.apply(ev.reset(self.model, ev, self.mode, prop.t, prop.x))
+            log = {"log": self.records} if getattr(ev.reset, "uses_log", False) else {}  # a bounce train so far
+            self.apply(ev.reset(self.model, ev, self.mode, prop.t, prop.x, **log))
 
     def propagate(self, flow, engine, events) -> tuple[Propagation, Event | None]:
         """One call of the integrator; events armed after a delay are left out for that
