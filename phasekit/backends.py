@@ -58,6 +58,7 @@ class Budget:
 
     steps: int
     deadline: float  # time.perf_counter() value
+    tick: object = None  # called with the time reached between chunks of a long call (a progress bar)
 
     def wall_exceeded(self) -> bool:
         return time.perf_counter() > self.deadline
@@ -283,6 +284,8 @@ class TaylorEngine:
                 if budget.wall_exceeded():
                     prop.outcome, prop.reason = "failed", f"wall-time limit reached at t = {ta.time:.6g}"
                     break
+                if budget.tick is not None:
+                    budget.tick(float(ta.time))
                 continue
             code = int(outcome.value)
             if outcome == hy.taylor_outcome.time_limit:
@@ -436,6 +439,8 @@ class CvodesEngine:
                 prop.outcome, prop.reason = "failed", f"step limit ({prop.n_steps} steps) reached at t = {t:.6g}"
             elif budget.wall_exceeded() and prop.outcome == "time" and t < t_end:
                 prop.outcome, prop.reason = "failed", f"wall-time limit reached at t = {t:.6g}"
+            elif budget.tick is not None:
+                budget.tick(t)
         prop.t, prop.x = t, x
         if dense and len(grid_t) > 1:
             prop.dense.append(_Span(HermiteDense(grid_t, grid_x, flow.field, p), grid_t[0], grid_t[-1]))

@@ -317,7 +317,7 @@ def simulate_batch(models, starts, t_end, *, events=(), lanes: int = LANES, opti
         job = _prepare(i, model, x0, float(t_ends[i]), events, opts)
         if isinstance(job, str):
             stats.handed_back(job)
-            out[i] = simulate(model, x0, float(t_ends[i]), events=events, options=opts)
+            out[i] = simulate(model, x0, float(t_ends[i]), events=events, options=opts, progress=False)
         elif job.status is not None:  # ended at the start (e.g. R <= 0)
             stats.batched += 1
             out[i] = job.trajectory(opts)
@@ -342,7 +342,7 @@ def _run_group(jobs, events, opts, lanes, out, stats) -> None:
     def finish(job, why=None):
         if why is not None:
             stats.handed_back(why)
-            out[job.index] = simulate(job.model, job.x0, job.t_end, events=events, options=opts)
+            out[job.index] = simulate(job.model, job.x0, job.t_end, events=events, options=opts, progress=False)
         else:
             stats.batched += 1
             out[job.index] = job.trajectory(opts)

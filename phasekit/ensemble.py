@@ -76,7 +76,7 @@ def _run_shipped(token: str, path: str, i: int, x0) -> tuple[int, dict]:
 
 def _run_one(i: int, x0, job: dict) -> tuple[int, dict]:
     try:
-        traj = simulate(job["model"], x0, job["t_end"], events=job["events"], **job["kwargs"])
+        traj = simulate(job["model"], x0, job["t_end"], events=job["events"], progress=False, **job["kwargs"])
         return i, summary_row(traj, job["events"])
     except Exception as exc:  # a worker never loses a row: it reports the failure
         return i, {"status": Status.FAILED.value, "reason": f"{type(exc).__name__}: {exc}"}
@@ -196,7 +196,8 @@ def ensemble(model: Model, starts, t_end: float, *, events=(), scheduler=None, p
     job = {"model": model, "t_end": t_end, "events": events, "kwargs": kwargs}
     try:  # the arguments are checked here, once (a worker would report them as a failed row each), and the
         # integrators of the first mode compiled (workers then load them from the disk cache): a short run
-        simulate(model, X[0], t_end, events=events, **{**kwargs, "options": replace(kwargs["options"], max_steps=CHECK_STEPS)})
+        simulate(model, X[0], t_end, events=events, progress=False,
+                 **{**kwargs, "options": replace(kwargs["options"], max_steps=CHECK_STEPS)})
     except ParameterError as exc:
         if exc.param == "x0":
             raise ParameterError("starts", f"row 0 {exc.expected}", X[0]) from None

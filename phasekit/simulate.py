@@ -24,12 +24,14 @@ from .starts import RATE_MAX
 from .system import declare, watched
 from .trajectory import EventRecord, Segment, Trajectory
 from .validate import check_bool, check_finite, check_range, check_times, check_vector
-from .watch import WALL_REASON, deadline
+from .watch import WALL_REASON, deadline, progress_bar, show_progress
 
 __all__ = ["simulate", "solver_options", "taylor_integrator"]
 
 #: the largest |t0| a run may start at (see simulate)
 T_MAX = 1e6
+#: a single run shows its progress bar (where one is shown) once it has run this long, in s
+PROGRESS_DELAY = 2.0
 
 
 def solver_options(options: SolverOptions | None = None, **overrides) -> SolverOptions:
@@ -60,7 +62,7 @@ def _solver_options(options: SolverOptions | None = None, **overrides) -> Solver
 
 def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = "jump", restitution: float = 0.0,
              events=(), t_eval=None, mode=None, options: SolverOptions | None = None, throw: bool = False,
-             **option_fields) -> Trajectory:
+             progress: bool | None = None, **option_fields) -> Trajectory:
     """Integrate the dynamics of ``model`` from ``x0`` until ``t_end``, a stop, or failure.
 
     Parameters
@@ -89,6 +91,9 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     throw : bool
         True: raise ConvergenceError (with the trajectory attached) if the run fails.
         False (default): return it with status "failed" and the reason.
+    progress : bool or None
+        A progress bar of the simulated time on stderr for a run that lasts more than
+        PROGRESS_DELAY (2 s); None (default): only on a terminal or in a notebook.
 
     Returns
     -------
@@ -122,11 +127,18 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
                              float(te[0] if te[0] < t0 else te[-1]))
     system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail))
     run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
+    bar = progress_bar(t_end - t0, desc="simulate", unit="t", progress=progress, delay=PROGRESS_DELAY) \
+        if show_progress(progress) else None
+    run.budget.tick = None if bar is None else (lambda t: bar.update(t - t0 - bar.n))
     run.apply(system.initial(model, t0, x0, start_mode))
     while run.status is None:
         run.step()
+        if run.budget.tick is not None:
+            run.budget.tick(run.t)
         if run.status is None and run.budget.wall_exceeded():  # many short segments (stick-slip chatter)
             run.status, run.reason = Status.FAILED, f"wall-time limit ({opts.max_wall:g} s) reached at t = {run.t:.6g}"
+    if bar is not None:
+        bar.close()
     if run.call_budget is not None and run.status is Status.FAILED and "wall-time limit" in (run.reason or ""):
         run.reason = f"{WALL_REASON} (max_wall = {run.call_budget:g} s) ran out at t = {run.t:.6g}"
     traj = run.result(x0, t0, stop_at, restitution, events, te)
@@ -293,10 +305,12 @@ class _Run:
 
     def result(self, x0, t0, stop_at, restitution, events, te) -> Trajectory:
         segs = self.segments
+        settled_now = self.status is Status.SETTLED  # it ends in the mode it settled into (rolling)
         traj = Trajectory(model=self.model, x0=x0, t0=t0, t_end=self.t_end, options=self.opts, status=self.status,
                           reason=self.reason, segments=segs, events=self.records, wall_s=time.perf_counter() - self.wall0,
                           stop_at=stop_at, restitution=restitution, user_events=events, t_eval=te,
-                          x_end=None if segs else self.x, mode_end=None if segs else self.mode)
+                          x_end=None if segs and not settled_now else self.x,
+                          mode_end=None if segs and not settled_now else self.mode)
         if not self.opts.dense and self.dense:  # dense output was kept only to answer t_eval
             traj.segments = tuple(replace(s, dense=()) for s in traj.segments)
         return traj

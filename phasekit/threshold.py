@@ -47,6 +47,7 @@ from .settle import Settle, check_settle
 from .simulate import simulate
 from .starts import gyroscopic_start, to_chart
 from .validate import check_choice, check_int, check_positive, check_range
+from .watch import WALL_REASON, check_max_wall, deadline, passed, progress_bar, wall_deadline
 
 __all__ = ["Definition", "Outcome", "Threshold", "Sensitivity", "ThresholdSearch", "find_threshold", "continue_threshold",
            "run_searches", "evaluate_outcomes", "find_stick_boundary",
@@ -160,7 +161,7 @@ class Definition:
         body = as_body(body)
         model, x0 = self.start(body, value)
         r = simulate(model, x0, self.t_max, rtol=self.rtol, events=[self.rise_event(body)], track_minima=False,
-                     dense=False, max_steps=self.max_steps, settle=self.settle)
+                     dense=False, max_steps=self.max_steps, settle=self.settle, progress=False)
         return self.classify(body, value, model, x0, r)
 
     def classify(self, body, value: float, model, x0, r) -> "Outcome":
@@ -181,7 +182,8 @@ class Definition:
         body = as_body(body)
         value = 2.0 * self.lower_bound(body)
         model, x0 = self.start(body, value)
-        simulate(model, x0, 1e-3, rtol=self.rtol, events=[self.rise_event(body)], track_minima=False, dense=False)
+        simulate(model, x0, 1e-3, rtol=self.rtol, events=[self.rise_event(body)], track_minima=False, dense=False,
+                 progress=False)
         if check_choice("engine", engine, ENGINES) == "batch":
             from .batch import compile_batch
 
@@ -401,6 +403,7 @@ class ThresholdSearch:
         self.trans: list[tuple[float, float]] = []
         self.brackets: list[_Bracket] = []
         self._asked: list[float] = []
+        self.stopped: str | None = None  # why the search was ended before it finished
 
     @property
     def done(self) -> bool:
@@ -423,6 +426,21 @@ class ThresholdSearch:
                     return vals
                 self.phase = "done"
         return []
+
+    def stop(self, reason: str) -> None:
+        """End the search where it is (a wall budget ran out): its result keeps the bracket it
+        has, with status BRACKET_ONLY (FAILED before any transition was found) and ``reason``."""
+        if self.phase == "scan":
+            self._after_scan()
+        if not self.done:
+            self.phase, self.stopped = "done", reason
+
+    def describe(self) -> str:
+        """Where the search stands, in a few words (a progress bar's postfix)."""
+        live = [b for b in self.brackets if b.active]
+        if live:
+            return f"bracket [{live[0].lo:.6g}, {live[0].hi:.6g}]"
+        return f"scan [{self.w_lo:.4g}, {self.w_hi:.4g}]" if self.phase == "scan" else self.phase
 
     def tell(self, outcomes) -> None:
         outcomes = list(outcomes)
@@ -465,6 +483,14 @@ class ThresholdSearch:
     def result(self, wall_s: float = 0.0) -> Threshold:
         a = getattr(self.body, "a", float("nan"))
         outs, n = tuple(self.outcomes), len(self.outcomes)
+        if self.stopped is not None and not self.trans:
+            return Threshold(a, None, (None, None), Status.FAILED, n, (), outs, wall_s,
+                             f"{self.stopped} before a transition was found", n_rounds=self.n_rounds)
+        if self.stopped is not None and any(b.active for b in self.brackets):
+            first = next(b for b in self.brackets if b.active)
+            return Threshold(a, math.sqrt(first.lo * first.hi) if not first.o_lo.jumped else None, (first.lo, first.hi),
+                             Status.BRACKET_ONLY, n, tuple((b.lo, b.hi) for b in self.brackets), outs, wall_s,
+                             f"{self.stopped}: the bracket is as far as it was narrowed", n_rounds=self.n_rounds)
         if not self.trans:
             valid = [o for o in self.outcomes if o.jumped is not None]
             if not valid:
@@ -484,16 +510,23 @@ class ThresholdSearch:
         return Threshold(a, value, first, status, n, tuple(brackets), outs, wall_s, reason, n_rounds=self.n_rounds)
 
 
-def run_searches(searches, *, engine: str = "scalar", evaluate=None, stats=None) -> int:
+def run_searches(searches, *, engine: str = "scalar", evaluate=None, stats=None, bar=None) -> int:
     """Drive searches in lock-step: each round simulates the values every unfinished search
     asks for, all at once (on the batch integrator with ``engine="batch"``, or through
     ``evaluate(jobs) -> outcomes`` with jobs (definition, body, value), e.g. on a cluster).
+    A wall budget in force (:func:`phasekit.watch.wall_deadline`) that has run out ends every
+    search between rounds (:meth:`ThresholdSearch.stop`); ``bar`` (tqdm) counts the runs.
     Returns the number of rounds."""
     rounds = 0
     while True:
         asks = [(s, s.ask()) for s in searches if not s.done]
         asks = [(s, v) for s, v in asks if v]
         if not asks:
+            return rounds
+        if passed():
+            budget = deadline()[1]
+            for s, _ in asks:
+                s.stop(f"{WALL_REASON} (max_wall = {budget:g} s) ran out")
             return rounds
         jobs = [s.job(x) for s, vals in asks for x in vals]
         outs = evaluate(jobs) if evaluate is not None else evaluate_outcomes(jobs, engine=engine, stats=stats)
@@ -502,6 +535,9 @@ def run_searches(searches, *, engine: str = "scalar", evaluate=None, stats=None)
             s.tell(outs[k:k + len(vals)])
             k += len(vals)
         rounds += 1
+        if bar is not None:
+            bar.update(len(jobs))
+            bar.set_postfix_str(searches[len(searches) // 2].describe(), refresh=False)
 
 
 def threshold_searches(defn: Definition, body, *, lo: float | None = None, hi: float = 60.0, guess: float | None = None,
@@ -547,7 +583,8 @@ def threshold_result(searches: list[ThresholdSearch], wall_s: float = 0.0) -> Th
 
 def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float = 60.0, guess: float | None = None,
                    n_coarse: int = 8, window: float = 1.5, tol: float = 1e-3, levels: int = 1, engine: str = "scalar",
-                   sensitivity: bool = False, evaluate=None, throw: bool = False) -> Threshold:
+                   sensitivity: bool = False, evaluate=None, throw: bool = False, max_wall: float | None = None,
+                   progress: bool | None = None) -> Threshold:
     """Bracket and bisect the jump/no-jump transition in Omega0 (prolate) or n0 (oblate).
 
     A coarse geometric scan of ``n_coarse`` >= 2 points (over [lo, hi], or over
@@ -563,16 +600,28 @@ def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float
     searches at the seed distance (``defn.amplitude``) halved and doubled, in the same
     rounds, and fills :attr:`Threshold.sensitivity`. ``throw``: raise ConvergenceError
     instead of returning status FAILED.
+
+    ``max_wall`` (seconds) bounds the whole search: a run under way when it runs out ends
+    "failed", and the search returns the bracket it has (status BRACKET_ONLY, or FAILED
+    before a transition was found) with a reason naming the budget. ``progress``: a bar of
+    the runs with the current bracket (None: on a terminal or in a notebook only).
     """
     t0 = time.perf_counter()
     check_choice("engine", engine, ENGINES)
+    max_wall = check_max_wall(max_wall)
     searches = threshold_searches(defn, body, lo=lo, hi=hi, guess=guess, n_coarse=n_coarse, window=window, tol=tol,
                                   levels=levels, sensitivity=sensitivity)
-    run_searches(searches, engine=engine, evaluate=evaluate)
+    with progress_bar(desc=_bar_label(searches[0]), progress=progress) as bar, wall_deadline(max_wall):
+        run_searches(searches, engine=engine, evaluate=evaluate, bar=bar)
     th = threshold_result(searches, time.perf_counter() - t0)
     if throw and th.status is Status.FAILED:
         raise ConvergenceError(f"threshold search failed: {th.reason}", th)
     return th
+
+
+def _bar_label(search: ThresholdSearch) -> str:
+    a = getattr(search.body, "a", None)
+    return "threshold" + (f" a={a:g}" if a is not None else "")
 
 
 def stick_search(defn: Definition, body, value: float, *, lo: float = 1e-4, hi: float = 0.2, n_coarse: int = 8,
@@ -593,30 +642,49 @@ def stick_search(defn: Definition, body, value: float, *, lo: float = 1e-4, hi: 
 
 
 def find_stick_boundary(defn: Definition, body, value: float, *, lo: float = 1e-4, hi: float = 0.2, n_coarse: int = 8,
-                        tol: float = 1e-2, levels: int = 1, engine: str = "scalar", evaluate=None) -> Threshold:
+                        tol: float = 1e-2, levels: int = 1, engine: str = "scalar", evaluate=None,
+                        max_wall: float | None = None, progress: bool | None = None) -> Threshold:
     """The sticking boundary d_min at one value of the family parameter: the smallest seed
     distance ``d`` (``defn.amplitude``) in [lo, hi] whose start does not stick and roll
     (outcome kind "stuck"), bracketed and bisected in d to relative width ``tol``.
 
     Returns a :class:`Threshold` over d: ``value`` is d_min (the lowest transition from
     stuck below to not stuck above), its outcomes carry d as ``value`` and "not stuck" as
-    ``jumped``.
+    ``jumped``. ``max_wall`` and ``progress`` as for :func:`find_threshold`.
     """
     t0 = time.perf_counter()
     check_choice("engine", engine, ENGINES)
+    max_wall = check_max_wall(max_wall)
     search = stick_search(defn, body, value, lo=lo, hi=hi, n_coarse=n_coarse, tol=tol, levels=levels)
-    run_searches([search], engine=engine, evaluate=evaluate)
+    with progress_bar(desc="stick boundary", progress=progress) as bar, wall_deadline(max_wall):
+        run_searches([search], engine=engine, evaluate=evaluate, bar=bar)
     return search.result(time.perf_counter() - t0)
 
 
-def continue_threshold(defn: Definition, bodies, **kw) -> list[Threshold]:
-    """Thresholds along a list of bodies (or aspect ratios), each search seeded by the previous result."""
+def continue_threshold(defn: Definition, bodies, *, max_wall: float | None = None, progress: bool | None = None,
+                       **kw) -> list[Threshold]:
+    """Thresholds along a list of bodies (or aspect ratios), each search seeded by the previous
+    result (keywords of :func:`find_threshold`). ``max_wall`` bounds the whole continuation: a
+    search under way when it runs out returns its bracket, and the bodies after it a FAILED
+    Threshold saying so; ``progress``: a bar over the bodies."""
+    max_wall = check_max_wall(max_wall)
+    bodies = list(bodies)
     out, guess = [], None
-    for b in bodies:
-        th = find_threshold(defn, b, guess=guess, **kw)
-        out.append(th)
-        if th.value is not None:
-            guess = th.value
+    with progress_bar(len(bodies), desc="thresholds", unit="body", progress=progress) as bar, \
+            wall_deadline(max_wall):
+        for b in bodies:
+            if passed():
+                why = f"not searched: {WALL_REASON} (max_wall = {max_wall:g} s) ran out"
+                out.append(Threshold(getattr(as_body(b), "a", float("nan")), None, (None, None), Status.FAILED, 0,
+                                     reason=why))
+                continue
+            th = find_threshold(defn, b, guess=guess, progress=False, **kw)
+            out.append(th)
+            if th.value is not None:
+                guess = th.value
+            bar.update()
+            bar.set_postfix_str(f"last {th.status.value} {th.value if th.value is None else format(th.value, '.6g')}",
+                                refresh=False)
     return out
 
 

@@ -62,9 +62,9 @@ def show_progress(progress) -> bool:
     return progress
 
 
-def progress_bar(total=None, *, desc: str = "", unit: str = "run", progress=None):
+def progress_bar(total=None, *, desc: str = "", unit: str = "run", progress=None, delay: float = 0.0):
     """A tqdm bar on stderr (a widget in a notebook when ipywidgets is there); disabled per
-    :func:`show_progress`."""
+    :func:`show_progress`; shown only after ``delay`` seconds."""
     enabled = show_progress(progress)
     if enabled and in_jupyter():
         try:
@@ -75,7 +75,7 @@ def progress_bar(total=None, *, desc: str = "", unit: str = "run", progress=None
     else:
         from tqdm import tqdm
     return tqdm(total=total, desc=desc, unit=unit, disable=not enabled, file=sys.stderr, leave=False,
-                dynamic_ncols=True)
+                dynamic_ncols=True, delay=delay)
 
 
 def check_max_wall(value, name: str = "max_wall") -> float | None:
