@@ -8,6 +8,10 @@ hybrid system (modes, events, resets) is data: see :mod:`phasekit.system`.
 This module is the one place users import from; drawing is in :mod:`phasekit.viz`.
 """
 
+from . import _startup
+
+_startup.install()  # first: Ctrl-C during the imports below ends phasekit's own programs in one line
+
 from .body import Body, CustomBody, EccentricSphere, MassProperties, Spheroid, uniform_mass_properties
 from .egg import Egg
 from .units import Scale, as_quantity, egg_of_size, tippe_top_of_size

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import os
 import time
+import warnings
 from dataclasses import replace
 
 import numpy as np
@@ -76,7 +77,9 @@ def _run_shipped(token: str, path: str, i: int, x0) -> tuple[int, dict]:
 
 def _run_one(i: int, x0, job: dict) -> tuple[int, dict]:
     try:
-        traj = simulate(job["model"], x0, job["t_end"], events=job["events"], progress=False, **job["kwargs"])
+        with warnings.catch_warnings():  # said once, by the check in the calling process
+            warnings.simplefilter("ignore")
+            traj = simulate(job["model"], x0, job["t_end"], events=job["events"], progress=False, **job["kwargs"])
         return i, summary_row(traj, job["events"])
     except Exception as exc:  # a worker never loses a row: it reports the failure
         return i, {"status": Status.FAILED.value, "reason": f"{type(exc).__name__}: {exc}"}

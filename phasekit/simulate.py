@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import functools
 import time
+import warnings
 from dataclasses import replace
 
 import numpy as np
@@ -32,6 +33,9 @@ __all__ = ["simulate", "solver_options", "taylor_integrator"]
 T_MAX = 1e6
 #: a single run shows its progress bar (where one is shown) once it has run this long, in s
 PROGRESS_DELAY = 2.0
+#: more simulated time per second of wall time than any run covers (measured: ~750 sliding, ~15 000
+#: for a body that rolls steadily): a span beyond max_wall x this cannot be reached
+REACH_PER_S = 1e5
 
 
 def solver_options(options: SolverOptions | None = None, **overrides) -> SolverOptions:
@@ -121,6 +125,10 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     if n == model.n_states and not model.chart.regular_at_poles and min(x0[4], np.pi - x0[4]) < POLE_GUARD:
         raise ParameterError("x0", "has theta at 0 or pi, where the Euler chart is singular (2.7c): use "
                                    "Model(body, law, chart='vector')", x0)
+    if t_end - t0 > REACH_PER_S * opts.max_wall:  # said at once, not after max_wall seconds of silence
+        warnings.warn(f"`t_end` = {t_end:g} cannot be reached within `max_wall` = {opts.max_wall:g} s (no run covers "
+                      f"more than {REACH_PER_S:g} time units per second): the run will end \"failed\" when its wall "
+                      "budget runs out", stacklevel=2)
     te = None if t_eval is None else check_times("t_eval", t_eval)
     if te is not None and te.size and (te[0] < t0 or te[-1] > t_end):
         raise ParameterError("t_eval", f"must lie in the requested span [t0, t_end] = [{t0:.10g}, {t_end:.10g}]",

@@ -461,6 +461,8 @@ def run_pending(specs: list[TaskSpec], *, store_get: Callable[[str], object | No
     t0 = time.perf_counter()
     pending = [s for s in specs if store_get(s.key) is None]
     if not pending:
+        if scheduler is not None:  # a bad address is bad input whether or not there is work left
+            make_client(scheduler, workers)[0].close()
         return PendingRun(0, len(specs), "all stored")
     pack = ModelPack.build(warm_up)
     client = cluster = None

@@ -368,8 +368,10 @@ def run_study(main, argv=None, *, resume: str | None = None, flags: Mapping[str,
     shown then leaves out ``--fresh``, which would discard it); the default is for studies
     that write their files whole at the end: nothing was changed, rerun.
     """
+    from .. import _startup
     from ..errors import ParameterError, PhasekitError
 
+    _startup.started()  # Ctrl-C is a KeyboardInterrupt from here on, turned into one line below
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
         with _ctrl_c_guard():
