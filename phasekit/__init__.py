@@ -8,9 +8,7 @@ hybrid system (modes, events, resets) is data: see :mod:`phasekit.system`.
 This module is the one place users import from; drawing is in :mod:`phasekit.viz`.
 """
 
-from . import _startup
-
-_startup.install()  # first: Ctrl-C during the imports below ends phasekit's own programs in one line
+from . import _startup  # noqa: F401  (first: Ctrl-C during the imports below ends phasekit's programs in one line)
 
 from .body import Body, CustomBody, EccentricSphere, MassProperties, Spheroid, uniform_mass_properties
 from .egg import Egg

@@ -3,7 +3,7 @@
 The CLI (``phasekit``, ``python -m phasekit``) and the studies (``python studies/NAME.py``)
 spend their first second importing numpy, CasADi, heyoka and matplotlib, before their own
 handler (:func:`phasekit.cli.main`, :func:`phasekit.viz.run_study`) is in place. This module is
-the first thing ``import phasekit`` runs; when the program is one of those, it installs a SIGINT
+the first thing ``import phasekit`` runs; when the program is one of those, importing it installs a SIGINT
 handler that prints one line and exits with 130 until :func:`started` hands Ctrl-C back to
 Python's default (KeyboardInterrupt, which those handlers turn into their own one line). Any
 other program (a user's script, a notebook, the tests) is left alone.
@@ -48,6 +48,9 @@ def install() -> None:
     if threading.current_thread() is threading.main_thread() and _is_ours() \
             and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
         signal.signal(signal.SIGINT, _interrupted)
+
+
+install()  # on import: this module is the first that ``import phasekit`` runs
 
 
 def started() -> None:

@@ -186,40 +186,17 @@ def ensemble(model: Model, starts, t_end: float, *, events=(), scheduler=None, p
         raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
     X = _starts(model, starts)
     t_end = check_finite("t_end", t_end)
-    events = tuple(events)
-    for ev in events:
-        if not isinstance(ev, Event):
-            raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
-    if len({ev.name for ev in events}) != len(events):
-        raise ParameterError("events", "must have distinct names (each names a column t_<name>)", show_value=False)
+    events = _events(events)
     if processes is not None:
         processes = check_int("processes", processes, minimum=1)
     max_wall_total = check_max_wall(max_wall_total, "max_wall_total")
-    kwargs = _kwargs(simulate_kwargs)
-    job = {"model": model, "t_end": t_end, "events": events, "kwargs": kwargs}
-    try:  # the arguments are checked here, once (a worker would report them as a failed row each), and the
-        # integrators of the first mode compiled (workers then load them from the disk cache): a short run
-        simulate(model, X[0], t_end, events=events, progress=False,
-                 **{**kwargs, "options": replace(kwargs["options"], max_steps=CHECK_STEPS)})
-    except ParameterError as exc:
-        if exc.param == "x0":
-            raise ParameterError("starts", f"row 0 {exc.expected}", X[0]) from None
-        raise
+    job = {"model": model, "t_end": t_end, "events": events, "kwargs": _kwargs(simulate_kwargs)}
+    _check_run(job, X[0])
     t0 = time.perf_counter()
-    n_proc = min(processes or os.cpu_count() or 1, len(X))
     rows: dict = {}
     with progress_bar(len(X), desc="ensemble", progress=progress) as bar, wall_deadline(max_wall_total) as end:
         try:
-            if scheduler is not None:
-                _on_dask(scheduler, job, X, bar, rows)
-            elif n_proc <= 1:
-                for i, x in enumerate(X):
-                    if time.perf_counter() > end:
-                        raise TimeoutError
-                    rows[i] = _run_one(i, x, job)[1]
-                    bar.update()
-            else:
-                _on_processes(n_proc, job, X, bar, rows, end)
+            _run_rows(job, X, rows, bar, end, scheduler, min(processes or os.cpu_count() or 1, len(X)))
         except TimeoutError:
             why = f"not finished: {WALL_REASON} (max_wall_total = {max_wall_total:g} s) ran out"
             for i in range(len(X)):
@@ -230,6 +207,44 @@ def ensemble(model: Model, starts, t_end: float, *, events=(), scheduler=None, p
             raise WorkerError(f"ensemble: {exc} (the finished rows are in this error's .result; rerun the others, "
                               "or pass processes=1)", _table(model, X, rows, job, time.perf_counter() - t0)) from None
     return _table(model, X, rows, job, time.perf_counter() - t0)
+
+
+def _events(events) -> tuple:
+    events = tuple(events)
+    for ev in events:
+        if not isinstance(ev, Event):
+            raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
+    if len({ev.name for ev in events}) != len(events):
+        raise ParameterError("events", "must have distinct names (each names a column t_<name>)", show_value=False)
+    return events
+
+
+def _check_run(job: dict, x0) -> None:
+    """The arguments are checked here, once (a worker would report them as a failed row each),
+    and the integrators of the first mode compiled (workers then load them from the disk
+    cache): a short run of the first start."""
+    kwargs = job["kwargs"]
+    try:
+        simulate(job["model"], x0, job["t_end"], events=job["events"], progress=False,
+                 **{**kwargs, "options": replace(kwargs["options"], max_steps=CHECK_STEPS)})
+    except ParameterError as exc:
+        if exc.param == "x0":
+            raise ParameterError("starts", f"row 0 {exc.expected}", x0) from None
+        raise
+
+
+def _run_rows(job: dict, X: np.ndarray, rows: dict, bar, end: float, scheduler, n_proc: int) -> None:
+    """Fill ``rows`` on Dask, in this process or on local workers; TimeoutError at ``end``."""
+    if scheduler is not None:
+        _on_dask(scheduler, job, X, bar, rows)
+    elif n_proc <= 1:
+        for i, x in enumerate(X):
+            if time.perf_counter() > end:
+                raise TimeoutError
+            rows[i] = _run_one(i, x, job)[1]
+            bar.update()
+    else:
+        _on_processes(n_proc, job, X, bar, rows, end)
 
 
 def _kwargs(given: dict) -> dict:

@@ -29,7 +29,7 @@ import numpy as np
 
 from .hybrid import Mode
 from .model import evaluate_function
-from .validate import check_positive, check_range
+from .validate import check_range
 
 __all__ = ["Settle", "check_settle", "settled"]
 

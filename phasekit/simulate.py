@@ -135,20 +135,7 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
                              float(te[0] if te[0] < t0 else te[-1]))
     system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail))
     run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
-    bar = progress_bar(t_end - t0, desc="simulate", unit="t", progress=progress, delay=PROGRESS_DELAY) \
-        if show_progress(progress) else None
-    run.budget.tick = None if bar is None else (lambda t: bar.update(t - t0 - bar.n))
-    run.apply(system.initial(model, t0, x0, start_mode))
-    while run.status is None:
-        run.step()
-        if run.budget.tick is not None:
-            run.budget.tick(run.t)
-        if run.status is None and run.budget.wall_exceeded():  # many short segments (stick-slip chatter)
-            run.status, run.reason = Status.FAILED, f"wall-time limit ({opts.max_wall:g} s) reached at t = {run.t:.6g}"
-    if bar is not None:
-        bar.close()
-    if run.call_budget is not None and run.status is Status.FAILED and "wall-time limit" in (run.reason or ""):
-        run.reason = f"{WALL_REASON} (max_wall = {run.call_budget:g} s) ran out at t = {run.t:.6g}"
+    run.loop(system.initial(model, t0, x0, start_mode), progress)
     traj = run.result(x0, t0, stop_at, restitution, events, te)
     if throw and traj.status is Status.FAILED:
         raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
@@ -216,6 +203,26 @@ class _Run:
         self.status = self.reason = None
         self.segments, self.records = [], []
         self.resume, self.engines, self.steps_done = False, {}, 0
+
+    def loop(self, first: Transition, progress) -> None:
+        """Run from the start transition ``first`` until a status is set (with a progress bar
+        of the simulated time where one is shown, after PROGRESS_DELAY)."""
+        t0 = self.t_start
+        bar = progress_bar(self.t_end - t0, desc="simulate", unit="t", progress=progress, delay=PROGRESS_DELAY) \
+            if show_progress(progress) else None
+        self.budget.tick = None if bar is None else (lambda t: bar.update(t - t0 - bar.n))
+        self.apply(first)
+        while self.status is None:
+            self.step()
+            if self.budget.tick is not None:
+                self.budget.tick(self.t)
+            if self.status is None and self.budget.wall_exceeded():  # many short segments (stick-slip chatter)
+                self.status = Status.FAILED
+                self.reason = f"wall-time limit ({self.opts.max_wall:g} s) reached at t = {self.t:.6g}"
+        if bar is not None:
+            bar.close()
+        if self.call_budget is not None and self.status is Status.FAILED and "wall-time limit" in (self.reason or ""):
+            self.reason = f"{WALL_REASON} (max_wall = {self.call_budget:g} s) ran out at t = {self.t:.6g}"
 
     def record(self, name, t, before, after, x, detail="") -> None:
         chart = self.model.chart
