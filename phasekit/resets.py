@@ -10,8 +10,8 @@ slip onset ROLLING -> SLIDING when |F_req| reaches mu R. The friction force is c
 lift-off   contact -> FLIGHT: positions and velocities carry over (R = 0, so the friction,
            proportional to R, vanishes and no impulse acts); the gap and its rate start at 0.
 touchdown  FLIGHT -> contact or FLIGHT: the impact law (:mod:`phasekit.impact`); a rebound
-           slower than BOUNCE_STOP ends a bounce train, and so does a train whose rebounds
-           decay geometrically with more than BOUNCE_TAIL of them left (:func:`bounce_tail`).
+           slower than BOUNCE_STOP ends a bounce train, and so does a ballistic train with more
+           than BOUNCE_TAIL rebounds left (:func:`bounce_tail`).
 The regularised law's "stick" and "slip" only change the mode (the field is the same).
 """
 
@@ -59,14 +59,14 @@ SLIP_ONSET = 1e-6
 #: time. Such a hop lasts ~2e-4 and rises ~5e-9 b, still 20 times the unguarded start of a
 #: flight (system.GUARD_DELAY), so every flight that is integrated is resolved.
 BOUNCE_STOP = 1e-4
-#: a bounce train whose flights shrink geometrically (the last TAIL_RATIOS ratios of
-#: successive flight times within TAIL_SPREAD of their mean, below 1) with more than this many
-#: rebounds left before BOUNCE_STOP is resolved at once (see :func:`bounce_tail`). Chosen
-#: above the longest train of the published bouncing runs (e <= 0.9: at most ~60 rebounds),
-#: so that their numbers stay those of the cut-off alone.
+#: a bounce train that has become ballistic (its last TAIL_RATIOS ratios of successive flight
+#: times within TAIL_SPREAD x (1 - e) of the restitution e, as free flights between Newton
+#: impacts give) with more than this many rebounds left before BOUNCE_STOP is resolved at once
+#: (see :func:`bounce_tail`). Chosen above the longest train of the published bouncing runs
+#: (e <= 0.9: at most ~60 rebounds), so that their numbers stay those of the cut-off alone.
 BOUNCE_TAIL = 100
 TAIL_RATIOS = 3
-TAIL_SPREAD = 0.05
+TAIL_SPREAD = 0.1
 #: ... and only once the rebound speed is below TAIL_SPEED x the cut-off: what resuming contact
 #: drops is that rebound momentum, and the state after the train moves by about as much
 #: (measured: 0.6 x the rebound speed in Lambda, against the train integrated to a cut-off ten
@@ -274,21 +274,24 @@ class LiftOff:
         return Transition(Mode.FLIGHT, t, flight_state(model, x), (Record("lift-off", mode.value, "flight", x),))
 
 
-def bounce_tail(log, t: float, v_after: float, stop: float = BOUNCE_STOP, tail: int | None = BOUNCE_TAIL):
-    """The geometric tail of the bounce train an impact at ``t`` continues, if it is to be
-    resolved now: (ratio, rebounds left, time left), else None.
+def bounce_tail(log, t: float, v_after: float, e: float, stop: float = BOUNCE_STOP, tail: int | None = BOUNCE_TAIL):
+    """The tail of the bounce train an impact at ``t`` continues, if it is to be resolved now:
+    (ratio, rebounds left, time left), else None.
 
-    A ballistic train (flight times tau_k proportional to the rebound speeds, each e times
-    the last) accumulates: infinitely many impacts before t + tau_k rho / (1 - rho), rho the
-    ratio of successive flight times. Event-driven contact solvers resolve the accumulation
-    rather than integrate it; here the last TAIL_RATIOS ratios must agree within TAIL_SPREAD
-    (the train has reached its geometric tail: spin no longer changes the flights), the
-    rebound speed ``v_after`` must be below TAIL_SPEED x ``stop``, and more than ``tail``
-    rebounds must be left before it falls below ``stop``. Contact then resumes at once with
-    zero normal velocity, as after a rebound below ``stop``; what is dropped is the tail's
-    remaining time (tau_k rho / (1 - rho)) and its rebound momentum (``v_after``).
-    ``log``: the run's records so far (this impact not yet in it)."""
-    if tail is None or not stop < v_after <= TAIL_SPEED * stop:
+    A ballistic train (free flights between Newton impacts of restitution ``e``: each rebound
+    e times as fast and its flight e times as long) accumulates: infinitely many impacts before
+    t + tau_k e / (1 - e). Event-driven contact solvers resolve the accumulation rather than
+    integrate it. Here the train must have become ballistic (the last TAIL_RATIOS ratios of
+    successive flight times within TAIL_SPREAD x (1 - e) of e: spin and nutation no longer
+    shape the flights, as they do while the body hops), its rebound speed ``v_after`` must be
+    below TAIL_SPEED x ``stop``, and more than ``tail`` rebounds must be left before it falls
+    below ``stop``. Contact then resumes at once with zero normal velocity, as after a rebound
+    below ``stop``; what is dropped is the tail's remaining time and its rebound momentum
+    (``v_after``). ``log``: the run's records so far (this impact not yet in it)."""
+    if tail is None or not stop < v_after <= TAIL_SPEED * stop or not 0.0 < e < 1.0:
+        return None
+    left = math.log(stop / v_after) / math.log(e)
+    if left <= tail:
         return None
     times = [t]
     for r in reversed(log):  # the impacts of this train, back to its lift-off
@@ -302,13 +305,9 @@ def bounce_tail(log, t: float, v_after: float, stop: float = BOUNCE_STOP, tail: 
         return None
     tau = np.diff(np.array(times[::-1]))  # flight times between impacts, oldest first
     ratios = tau[1:] / tau[:-1]
-    rho = float(np.mean(ratios))
-    if not (0.0 < rho < 1.0) or np.any(np.abs(ratios - rho) > TAIL_SPREAD * rho):
+    if np.any(np.abs(ratios - e) > TAIL_SPREAD * (1.0 - e)):
         return None
-    left = math.log(stop / v_after) / math.log(rho)
-    if left <= tail:
-        return None
-    return rho, left, float(tau[-1] * rho / (1.0 - rho))
+    return float(np.mean(ratios)), left, float(tau[-1] * e / (1.0 - e))
 
 
 @dataclass(frozen=True)
@@ -329,7 +328,8 @@ class Touchdown:
         bounce = imp.v_normal_after > self.bounce_stop
         detail = (f"e={self.restitution:g}, dE={imp.energy_after - imp.energy_before:.3e}"
                   + (", stick" if imp.sticking else "") + (", friction limited" if imp.energy_limited else ""))
-        tail = bounce_tail(log, t, imp.v_normal_after, self.bounce_stop, self.bounce_tail) if bounce else None
+        tail = bounce_tail(log, t, imp.v_normal_after, self.restitution, self.bounce_stop, self.bounce_tail) \
+            if bounce else None
         if tail is not None:
             bounce = False
             detail += (f", bounce train resolved: geometric tail (ratio {tail[0]:.4g}, {tail[1]:.0f} rebounds, "
