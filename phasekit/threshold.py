@@ -23,7 +23,9 @@ Outcome of one trajectory
 "jump" means R reaches 0 with dR/dt < 0 before the rise completes. The rise is complete
 when theta comes within ``rise_margin`` (0.1 rad) of the final state (theta -> 0 for a
 prolate body, pi/2 for an oblate one): a stop event; a run that reaches ``t_max`` first
-(typically a body that stuck and rolls) also counts as no jump and is flagged. Jumps happen
+(typically a body that stuck and rolls) also counts as no jump and is flagged, and so does one
+that has settled (``settle``, :class:`phasekit.Settle`: rolling in a steady state; an egg that
+settles tilted would otherwise stick and slip until ``t_max``). Jumps happen
 at theta* ~ 0.5-1.4 (prolate); near the end of the rise some bodies alternate stick and slip
 for thousands of cycles (measured: a = 2, Omega0 = 7.19), which the 0.1 margin cuts short.
 """
