@@ -161,3 +161,14 @@ def test_a_bad_scheduler_is_refused_when_no_work_is_left():
 
 def test_version_flag_help_says_json():
     assert "JSON" in json.dumps(cli._build_parser().format_help())
+
+
+@pytest.mark.parametrize("argv, flag", [(["--quick", "--quick"], "--quick"), (["--out", "a", "--out=b"], "--out")])
+def test_a_study_refuses_a_repeated_flag_too(argv, flag, capsys):
+    from phasekit.viz import study_parser
+
+    ap = study_parser("a study", default_out=ROOT / "figures")
+    with pytest.raises(SystemExit) as info:
+        ap.parse_args(argv)
+    err = capsys.readouterr().err
+    assert info.value.code == 2 and err.count("\n") == 1 and f"error: {flag} is given 2 times: give it once" in err

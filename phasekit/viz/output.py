@@ -71,6 +71,17 @@ class StudyParser(argparse.ArgumentParser):
     def error(self, message):  # one line, no usage block
         self.exit(EXIT_USAGE, f"{self.prog}: error: {' '.join(str(message).split())}\n")
 
+    def parse_args(self, args=None, namespace=None):
+        """As argparse, and an option given twice is refused (argparse would keep the last
+        silently), a switch too, as the CLI does."""
+        argv = sys.argv[1:] if args is None else list(args)
+        argv = argv[:argv.index("--")] if "--" in argv else argv
+        typed = [a.split("=", 1)[0] for a in argv if isinstance(a, str) and a.startswith("--") and len(a) > 2]
+        for flag in dict.fromkeys(typed):
+            if flag in self._option_string_actions and typed.count(flag) > 1:
+                self.error(f"{flag} is given {typed.count(flag)} times: give it once")
+        return super().parse_args(args, namespace)
+
     @staticmethod
     def integer(min: int | None = None, max: int | None = None):
         """An argparse ``type``: an integer in [min, max] (either bound may be None)."""
