@@ -172,3 +172,23 @@ def test_a_study_refuses_a_repeated_flag_too(argv, flag, capsys):
         ap.parse_args(argv)
     err = capsys.readouterr().err
     assert info.value.code == 2 and err.count("\n") == 1 and f"error: {flag} is given 2 times: give it once" in err
+
+
+def test_an_interrupt_that_compiled_code_turns_into_another_error_ends_a_study_as_interrupted(capsys):
+    """CasADi's argument dispatch turns a KeyboardInterrupt into NotImplementedError ("Wrong
+    number or type of arguments"), which propagated as a traceback (found at 1.2 s into a study)."""
+    from phasekit.viz import run_study
+
+    if signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+        pytest.skip("SIGINT is handled by something else in this process")
+
+    def main(argv):
+        try:
+            signal.raise_signal(signal.SIGINT)
+        except KeyboardInterrupt:
+            raise NotImplementedError("Wrong number or type of arguments for function 'Function_call'") from None
+
+    with pytest.raises(SystemExit) as info:
+        run_study(main, [])
+    lines = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
+    assert info.value.code == 130 and len(lines) == 1 and lines[0].startswith("interrupted:")

@@ -323,9 +323,9 @@ def _ctrl_c_guard(late_s: float = 0.5):
     import threading
 
     if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
-        yield
+        yield {}
         return
-    state = {"at": None}
+    state = {"at": None, "seen": False}  # seen: a Ctrl-C arrived (whatever compiled code made of it)
     stderr, previous_trace = sys.stderr, sys.gettrace()
 
     def again(frame, event, arg):  # a trace function: runs before each line of Python in this thread
@@ -341,6 +341,7 @@ def _ctrl_c_guard(late_s: float = 0.5):
         return again
 
     def interrupted(signum, frame):
+        state["seen"] = True
         if state["at"] is None:
             import logging
 
@@ -357,7 +358,7 @@ def _ctrl_c_guard(late_s: float = 0.5):
 
     signal.signal(signal.SIGINT, interrupted)
     try:
-        yield
+        yield state
     finally:
         if state["at"] is not None:
             state["at"] = None
@@ -385,8 +386,13 @@ def run_study(main, argv=None, *, resume: str | None = None, flags: Mapping[str,
     _startup.started()  # Ctrl-C is a KeyboardInterrupt from here on, turned into one line below
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        with _ctrl_c_guard():
-            main(argv)
+        with _ctrl_c_guard() as guard:
+            try:
+                main(argv)
+            except Exception:
+                if guard.get("seen"):  # CasADi's dispatch turned the KeyboardInterrupt into an error of its own
+                    raise KeyboardInterrupt from None
+                raise
     except KeyboardInterrupt:
         how = resume or "no result file was changed (each is written whole, at the end); to resume, run it again"
         again = [a for a in argv if a != "--fresh"] if resume else argv
