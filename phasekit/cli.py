@@ -700,6 +700,8 @@ def _main(argv, interrupted: list) -> int:
         first = (str(exc).strip().splitlines() or [""])[0][:200]
         return _error(f"internal error: {type(exc).__name__}: {first} (please report it; set {DEBUG_ENV}=1 for the "
                       "traceback)", None, as_json, code=1)
+    if interrupted:  # a Ctrl-C that compiled code swallowed (the run went on): still an interrupted run
+        return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
     if as_json:
         print(json.dumps(out, default=_json_default, allow_nan=False))
     else:
