@@ -46,7 +46,7 @@ class Settle:
         Time (units sqrt(b/g)) over which the body must have rolled in a steady state.
     tol : float, default 0.01
         Steadiness: theta within ``tol`` rad of its mean over the window, the rates within
-        ``tol`` times 1 + |Omega| + |n|.
+        ``tol`` times ``1 + abs(Omega) + abs(n)``.
     R_floor : float, default 0.5
         Smallest normal reaction (units M g) allowed at the window's events.
     """
