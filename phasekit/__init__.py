@@ -8,16 +8,19 @@ hybrid system (modes, events, resets) is data: see :mod:`phasekit.system`.
 This module is the one place users import from; drawing is in :mod:`phasekit.viz`.
 """
 
+from . import _startup  # noqa: F401  (first: Ctrl-C during the imports below ends phasekit's programs in one line)
+
 from .body import Body, CustomBody, EccentricSphere, MassProperties, Spheroid, uniform_mass_properties
 from .egg import Egg
 from .units import Scale, as_quantity, egg_of_size, tippe_top_of_size
 from . import tippetop
 from .charts import EULER, FLIGHT, PAPER_NAMES, VECTOR, Chart, euler_to_vector, vector_to_euler
-from .errors import ConvergenceError, ParameterError, PhasekitError, Status
+from .errors import ConvergenceError, ParameterError, PhasekitError, Status, WorkerError
 from .friction import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous, friction_law
 from .hybrid import Event, Mode
 from .model import OBSERVABLES, Model
 from .options import BACKENDS, SolverOptions
+from .settle import Settle
 from .simulate import simulate, taylor_integrator
 from .trajectory import SAMPLE_COLUMNS, EventRecord, Flight, Segment, Trajectory
 from .pose import POSE_COLUMNS, Pose, rotation_matrix
@@ -178,6 +181,7 @@ __all__ = [
     "Mode",
     "Event",
     "SolverOptions",
+    "Settle",
     "BACKENDS",
     "simulate",
     "Trajectory",
@@ -196,6 +200,7 @@ __all__ = [
     "Status",
     "PhasekitError",
     "ConvergenceError",
+    "WorkerError",
     "ParameterError",
     "gyroscopic_start",
     "vertical_spin_start",

@@ -20,7 +20,9 @@ non-finite state, gives outcome "failed" with the reason, never an exception.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
+import io
 import os
 import pickle
 import re
@@ -58,6 +60,7 @@ class Budget:
 
     steps: int
     deadline: float  # time.perf_counter() value
+    tick: object = None  # called with the time reached between chunks of a long call (a progress bar)
 
     def wall_exceeded(self) -> bool:
         return time.perf_counter() > self.deadline
@@ -292,6 +295,8 @@ class TaylorEngine:
                 if budget.wall_exceeded():
                     prop.outcome, prop.reason = "failed", f"wall-time limit reached at t = {ta.time:.6g}"
                     break
+                if budget.tick is not None:
+                    budget.tick(float(ta.time))
                 continue
             code = int(outcome.value)
             if outcome == hy.taylor_outcome.time_limit:
@@ -419,44 +424,47 @@ class CvodesEngine:
         def run(xa, T):
             return np.asarray(single(x0=xa, p=np.concatenate([p, [T]]))["xf"]).ravel() if T > 0 else xa
 
-        while t < t_end and prop.outcome == "time":
-            # 20 grid points per period of the fastest rotation resolve the oscillation of R.
-            dt = min(2 * np.pi / 20 / flow.rate_hint(x) * ng, t_end - t)
-            try:
-                r = chunk(x0=x, p=np.concatenate([p, [dt]]))
-            except RuntimeError as exc:
-                prop.outcome, prop.reason = "failed", f"{self.plugin}: {sundials_message(exc)} (chunk from t = {t:.6g})"
-                break
-            st = chunk.stats()
-            prop.n_steps += int(st.get("nsteps", 0))
-            prop.n_rhs += int(st.get("nfevals", 0))
-            X = np.vstack([x[None, :], np.asarray(r["xf"]).T])  # (ng + 1, nx), row 0 = start
-            tk = t + dt * np.arange(ng + 1) / ng
-            if not np.all(np.isfinite(X)):
-                prop.outcome, prop.reason = "failed", f"non-finite state near t = {t:.6g}"
-                break
-            M = np.asarray(monitor(X.T, P, L)) if ne or flow.monitor else np.zeros((1, ng + 1))
-            hit, last = self._first_event(flow, run, p, levels, X, tk, M, dt / ng, ne, cool, t0)
-            if hit is not None:
-                t, x = hit[0], hit[1]
-                prop.outcome, prop.event = "event", hit[2]
-            if flow.monitor is not None:
-                Ms = M[2 * ne]
-                for j in np.flatnonzero(np.sign(Ms[:-1]) * flow.monitor.direction < 0):
-                    if j < last and np.sign(Ms[j + 1]) * flow.monitor.direction >= 0:
-                        prop.monitored.append((float(tk[j + 1]), X[j + 1].copy()))
-            keep = tk <= (t if hit is not None else tk[-1])
-            grid_t.extend(tk[1:][keep[1:]])
-            grid_x.extend(X[1:][keep[1:]])
-            if hit is not None:
-                grid_t.append(t)
-                grid_x.append(x.copy())
-            else:
-                t, x = float(tk[-1]), X[-1].copy()
-            if prop.n_steps >= budget.steps:
-                prop.outcome, prop.reason = "failed", f"step limit ({prop.n_steps} steps) reached at t = {t:.6g}"
-            elif budget.wall_exceeded() and prop.outcome == "time" and t < t_end:
-                prop.outcome, prop.reason = "failed", f"wall-time limit reached at t = {t:.6g}"
+        with _library_output_dropped():  # SUNDIALS' own error lines: the reason carries them
+            while t < t_end and prop.outcome == "time":
+                # 20 grid points per period of the fastest rotation resolve the oscillation of R.
+                dt = min(2 * np.pi / 20 / flow.rate_hint(x) * ng, t_end - t)
+                try:
+                    r = chunk(x0=x, p=np.concatenate([p, [dt]]))
+                except RuntimeError as exc:
+                    prop.outcome, prop.reason = "failed", f"{self.plugin}: {sundials_message(exc)} (chunk from t = {t:.6g})"
+                    break
+                st = chunk.stats()
+                prop.n_steps += int(st.get("nsteps", 0))
+                prop.n_rhs += int(st.get("nfevals", 0))
+                X = np.vstack([x[None, :], np.asarray(r["xf"]).T])  # (ng + 1, nx), row 0 = start
+                tk = t + dt * np.arange(ng + 1) / ng
+                if not np.all(np.isfinite(X)):
+                    prop.outcome, prop.reason = "failed", f"non-finite state near t = {t:.6g}"
+                    break
+                M = np.asarray(monitor(X.T, P, L)) if ne or flow.monitor else np.zeros((1, ng + 1))
+                hit, last = self._first_event(flow, run, p, levels, X, tk, M, dt / ng, ne, cool, t0)
+                if hit is not None:
+                    t, x = hit[0], hit[1]
+                    prop.outcome, prop.event = "event", hit[2]
+                if flow.monitor is not None:
+                    Ms = M[2 * ne]
+                    for j in np.flatnonzero(np.sign(Ms[:-1]) * flow.monitor.direction < 0):
+                        if j < last and np.sign(Ms[j + 1]) * flow.monitor.direction >= 0:
+                            prop.monitored.append((float(tk[j + 1]), X[j + 1].copy()))
+                keep = tk <= (t if hit is not None else tk[-1])
+                grid_t.extend(tk[1:][keep[1:]])
+                grid_x.extend(X[1:][keep[1:]])
+                if hit is not None:
+                    grid_t.append(t)
+                    grid_x.append(x.copy())
+                else:
+                    t, x = float(tk[-1]), X[-1].copy()
+                if prop.n_steps >= budget.steps:
+                    prop.outcome, prop.reason = "failed", f"step limit ({prop.n_steps} steps) reached at t = {t:.6g}"
+                elif budget.wall_exceeded() and prop.outcome == "time" and t < t_end:
+                    prop.outcome, prop.reason = "failed", f"wall-time limit reached at t = {t:.6g}"
+                elif budget.tick is not None:
+                    budget.tick(t)
         prop.t, prop.x = t, x
         if dense and len(grid_t) > 1:
             prop.dense.append(_Span(HermiteDense(grid_t, grid_x, flow.field, p), grid_t[0], grid_t[-1]))
@@ -489,6 +497,16 @@ class CvodesEngine:
             if found is not None:
                 return (tk[j] + found[0], found[1], found[2]), j
         return None, ng
+
+
+@contextlib.contextmanager
+def _library_output_dropped():
+    """SUNDIALS reports some errors itself ("At t = 0, too much accuracy requested.") through
+    CasADi's output streams, which go to Python's sys.stderr/stdout: drop them while CVODES or
+    IDAS runs (the reason of a failed run carries the message, see :func:`sundials_message`)."""
+    sink = io.StringIO()
+    with contextlib.redirect_stderr(sink), contextlib.redirect_stdout(sink):
+        yield
 
 
 def sundials_message(exc) -> str:

@@ -50,6 +50,7 @@ from .model import Model
 from .options import SolverOptions
 from .charts import POLE_GUARD
 from .simulate import apply_transition, simulate, solver_options
+from .watch import deadline as watch_deadline
 from .system import declare, watched
 from .trajectory import EventRecord, Segment, Trajectory
 from .validate import check_int
@@ -172,8 +173,8 @@ class _Job:
         self.records.append(EventRecord(name, float(t), before, after, x, detail,
                                         None if x is None else self.model.chart.to_paper(x)))
 
-    def apply(self, tr, max_switches: int) -> None:
-        apply_transition(self, tr, max_switches)
+    def apply(self, tr, opts) -> None:
+        apply_transition(self, tr, opts.switch_limit(self.t_end), opts.settle, 0.0)
 
     def add_segment(self, t1, x1, end, order, extend) -> None:
         steps, self.seg_steps = self.seg_steps, 0
@@ -208,7 +209,7 @@ def _prepare(i, model, x0, t_end, events, opts) -> "_Job | str":
         return "start at a pole of the Euler chart"
     system = declare(model, stop_at="jump", events=events)
     job = _Job(i, model, system, np.asarray(x0, float), t_end, tuple(events), wall0=time.perf_counter())
-    job.apply(system.initial(model, 0.0, x0, None), opts.max_switches)
+    job.apply(system.initial(model, 0.0, x0, None), opts)
     return job
 
 
@@ -316,7 +317,7 @@ def simulate_batch(models, starts, t_end, *, events=(), lanes: int = LANES, opti
         job = _prepare(i, model, x0, float(t_ends[i]), events, opts)
         if isinstance(job, str):
             stats.handed_back(job)
-            out[i] = simulate(model, x0, float(t_ends[i]), events=events, options=opts)
+            out[i] = simulate(model, x0, float(t_ends[i]), events=events, options=opts, progress=False)
         elif job.status is not None:  # ended at the start (e.g. R <= 0)
             stats.batched += 1
             out[i] = job.trajectory(opts)
@@ -341,7 +342,7 @@ def _run_group(jobs, events, opts, lanes, out, stats) -> None:
     def finish(job, why=None):
         if why is not None:
             stats.handed_back(why)
-            out[job.index] = simulate(job.model, job.x0, job.t_end, events=events, options=opts)
+            out[job.index] = simulate(job.model, job.x0, job.t_end, events=events, options=opts, progress=False)
         else:
             stats.batched += 1
             out[job.index] = job.trajectory(opts)
@@ -355,8 +356,9 @@ def _run_group(jobs, events, opts, lanes, out, stats) -> None:
             return finish(job, f"{job.mode.value} mode is stiff (CVODES) or not batched")
         target.queue.append(job)
 
+    call = watch_deadline()  # a search's or a map's budget, when it ends first
     for job in jobs:
-        deadline[job.index] = job.wall0 + opts.max_wall
+        deadline[job.index] = min(job.wall0 + opts.max_wall, call[0] if call else np.inf)
         route(job)
     while any(L.busy() for L in modes.values()):
         # Work on the mode with the most starts, a slice at a time while another mode has
@@ -418,7 +420,7 @@ def _lane_step(hy, res, k, L, job, opts, late) -> str:
         if ev.stop is Status.STOPPED:
             job.reason = f"{ev.name}: {ev.on} reached {ev.level:g}"
         return "moved"
-    job.apply(ev.reset(job.model, ev, job.mode, t, x), opts.max_switches)
+    job.apply(ev.reset(job.model, ev, job.mode, t, x), opts)
     if job.resume and job.status is None:
         return "running"  # grazed: the same lane goes on, its cooldown kept
     return "moved"

@@ -150,6 +150,30 @@ class _Parser(argparse.ArgumentParser):
         return before[-1] if before else None
 
 
+class _Version(argparse.Action):
+    """--version: "phasekit X.Y.Z", or {"program": "phasekit", "version": "X.Y.Z"} when --json is
+    anywhere on the command line (stdout then holds JSON only); the rest is not read."""
+
+    def __init__(self, option_strings, version, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, **kw):
+        super().__init__(option_strings, dest=dest, default=default, **kw)
+        self.version = version
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        if "--json" in parser.argv:
+            print(json.dumps({"program": "phasekit", "version": self.version}))
+        else:
+            print(f"phasekit {self.version}")
+        raise _Exit(0)
+
+
+class _Exit(Exception):
+    """End the CLI with this exit code (what argparse's own version action does with SystemExit)."""
+
+    def __init__(self, code: int):
+        super().__init__(code)
+        self.code = code
+
+
 def _real(text: str) -> float:
     """A real number as typed (inf and nan are refused later by range checks, with the flag)."""
     try:
@@ -229,8 +253,12 @@ def _add_solver(p):
     g.add_argument("--backend", default="auto", help="auto | taylor | cvodes | cvodes-adams | idas (default: %(default)s)")
     g.add_argument("--formulation", default="auto", help="euler | vector | auto (vector within 1e-5 of the poles) "
                                                          "(default: %(default)s)")
-    g.add_argument("--max-steps", type=_count, default=5_000_000, help="step budget of the run (default: %(default)s)")
-    g.add_argument("--max-wall", type=_real, default=600.0, help="wall-time budget in seconds (default: %(default)s)")
+    g.add_argument("--max-steps", type=_count, default=5_000_000,
+                   help="step budget of the run: Taylor steps (heyoka), or CVODES/IDAS internal steps, which are "
+                        "counted after each chunk of 100 output points, so those may pass it by one chunk (the reason "
+                        "gives the count) (default: %(default)s)")
+    g.add_argument("--max-wall", type=_real, default=600.0,
+                   help="wall-time budget in seconds; a --t-end it cannot reach is said at once (default: %(default)s)")
 
 
 def _add_run_options(sim) -> None:
@@ -251,8 +279,9 @@ def _add_run_options(sim) -> None:
     g.add_argument("--theta0", type=_real_or_units, default=None, help="initial inclination of the axis, radians "
                                                                         "(or e.g. '89.4 deg')")
     g.add_argument("--omega0", type=_real_or_units, default=None,
-                   help="precession rate Omega0 (prolate starts; or e.g. '41 rev/s', '2500 rpm' with --size)")
-    g.add_argument("--n0", type=_real_or_units, default=None, help="spin n0 (oblate starts; units as --omega0)")
+                   help="precession rate Omega0 (prolate starts), |OMEGA0| <= 1e5; or e.g. '41 rev/s', '2500 rpm' with "
+                        "--size")
+    g.add_argument("--n0", type=_real_or_units, default=None, help="spin n0 (oblate starts), |N0| <= 1e5; units as --omega0")
     g.add_argument("--delta", type=_real, default=None,
                    help="seed amplitude on the unstable manifold (with --unstable-manifold; default: 0.01)")
     g.add_argument("--branch", default=None,
@@ -317,7 +346,8 @@ def _build_parser() -> _Parser:
 
     parser = _Parser(prog="phasekit", description="Phase space of an axisymmetric body spinning on a table.",
                      epilog=EXAMPLES)
-    parser.add_argument("--version", action="version", version=f"phasekit {__version__}")
+    parser.add_argument("--version", action=_Version, nargs=0, version=__version__,
+                        help="print the version and exit (a JSON object with --json)")
     sub = parser.add_subparsers(dest="command", parser_class=_Parser,
                                 metavar="{simulate,animate,fixed-points,steady-states,gyroscopic}")
 
@@ -366,8 +396,9 @@ def _build_parser() -> _Parser:
     _add_body(gy)
     gy.add_argument("--mu", type=_real, required=True, help="friction coefficient mu > 0 (sets the slow time mu t)")
     g2 = gy.add_mutually_exclusive_group(required=True)
-    g2.add_argument("--omega0", type=_real, help="precession rate (prolate)")
-    g2.add_argument("--n0", type=_real, help="spin (oblate)")
+    g2.add_argument("--omega0", type=_real, help="precession rate (prolate), 0 < |OMEGA0| <= 1e12 (the mean solution "
+                                                 "is closed-form; simulate takes up to 1e5)")
+    g2.add_argument("--n0", type=_real, help="spin (oblate), 0 < |N0| <= 1e12, with |Omega| <= 1e12 on the fast branch")
     gy.add_argument("--theta0", type=_real, required=True, help="initial inclination, radians, in (0, pi)")
     gy.add_argument("--t", type=_real, nargs="+", required=True, help="times (units sqrt(b/g))")
     gy.add_argument("--json", action="store_true", help="print one JSON object")
@@ -807,12 +838,15 @@ DEBUG_ENV = "PHASEKIT_DEBUG"
 
 
 def _refuse_repeats(parser: _Parser, argv) -> None:
-    """An option that takes a value, given twice: refused (argparse would keep the last silently)."""
+    """An option given twice is refused: a value-taking one (argparse would keep the last
+    silently) and a switch too (``--json --json`` is a typing slip, as the README says)."""
     typed = _typed(argv)
     for flag in dict.fromkeys(typed):
         action = parser._option_string_actions.get(flag)
-        if action is None or action.nargs == 0 or typed.count(flag) < 2:  # a switch: repeating it changes nothing
+        if action is None or typed.count(flag) < 2:
             continue
+        if action.nargs == 0:
+            raise _UsageError(f"{flag} is given {typed.count(flag)} times: give it once", flag)
         if action.nargs is None:
             values = [t.split("=", 1)[1] if "=" in t else nxt for t, nxt in zip(argv, [*argv[1:], ""])
                       if t.split("=", 1)[0] == flag]
@@ -843,6 +877,39 @@ def _run(argv, as_json: bool):
 
 def main(argv=None) -> int:
     """Run the CLI; returns the exit status (0 success, 1 failed run, 2 bad input, 130 interrupted)."""
+    from . import _startup
+
+    _startup.started()  # from here on Ctrl-C is a KeyboardInterrupt, handled below
+    with _interrupts_remembered() as interrupted:
+        return _main(argv, interrupted)
+
+
+@contextlib.contextmanager
+def _interrupts_remembered():
+    """Ctrl-C raises KeyboardInterrupt as usual, and is remembered: compiled code that it lands
+    in (heyoka's module initialising, a CasADi call) may turn it into an error of its own
+    ("ImportError: initialization failed"), which must still end the run as interrupted."""
+    import signal
+    import threading
+
+    seen: list[bool] = []
+    if threading.current_thread() is not threading.main_thread() or \
+            signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+        yield seen
+        return
+
+    def remember(signum, frame):
+        seen.append(True)
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGINT, remember)
+    try:
+        yield seen
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+def _main(argv, interrupted: list) -> int:
     from .errors import ParameterError, PhasekitError
 
     argv = list(sys.argv[1:] if argv is None else argv)
@@ -853,6 +920,8 @@ def main(argv=None) -> int:
             warnings.simplefilter("default")
             warnings.showwarning = functools.partial(_show_warning, names=names)
             out, args = _run(argv, as_json)
+    except _Exit as exc:
+        return exc.code
     except _UsageError as exc:
         return _error(str(exc), exc.flag, as_json, names=names)
     except ParameterError as exc:
@@ -867,11 +936,15 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
     except Exception as exc:  # a bug: one line, not a traceback (PHASEKIT_DEBUG=1 shows it)
+        if interrupted:  # Ctrl-C that compiled code turned into an error of its own
+            return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
         if os.environ.get(DEBUG_ENV):
             raise
         first = (str(exc).strip().splitlines() or [""])[0][:200]
         return _error(f"internal error: {type(exc).__name__}: {first} (please report it; set {DEBUG_ENV}=1 for the "
                       "traceback)", None, as_json, code=1)
+    if interrupted:  # a Ctrl-C that compiled code swallowed (the run went on): still an interrupted run
+        return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
     if as_json:
         print(json.dumps(out, default=_json_default, allow_nan=False))
     else:

@@ -7,43 +7,45 @@ call with the same arguments gives: the runs are independent and deterministic.
 
 Where the runs go
 -----------------
-* Local processes by default: a :class:`concurrent.futures.ProcessPoolExecutor` with the
-  "spawn" start method. Spawn, because heyoka keeps a thread pool (TBB) that a forked child
-  would inherit half-initialised; a process pool rather than a Dask LocalCluster because it
-  starts in about a second, needs no optional package, and each worker is handed the model
-  once (its initializer) and then only starts. Workers load the compiled integrators from the
-  on-disk cache (~/.cache/phasekit), warmed by one run in this process first, so no worker
-  compiles anything.
+* Local processes by default: loky's reusable executor (:mod:`phasekit.pool`, where the
+  measurements behind the choice are). It works from a script with or without a main guard,
+  from standard input, ``python -c`` and a Jupyter kernel; a worker that dies ends the call at
+  once with :class:`phasekit.WorkerError` (the finished rows in its ``result``). Workers read
+  the model once and load the compiled integrators from the on-disk cache (~/.cache/phasekit),
+  warmed by one run in this process first, so no worker compiles anything.
 * Dask when ``scheduler`` is given: an address ("tcp://host:8786"), a
   ``dask.distributed.Client``, or a cluster object (anything with ``scheduler_address``).
 * ``processes=1`` (or a single start) runs in this process.
 
-A tqdm progress bar is written to stderr (``progress=False`` turns it off).
+A tqdm progress bar is written to stderr where a person watches (a terminal or a notebook;
+``progress=True`` forces it, False turns it off). ``max_wall`` bounds each run (as in
+:func:`phasekit.simulate`), ``max_wall_total`` the whole call.
 """
 
 from __future__ import annotations
 
-import concurrent.futures as cf
-import multiprocessing
 import os
-import sys
 import time
+import warnings
+from dataclasses import replace
 
 import numpy as np
 
 from .charts import FLIGHT, PAPER_NAMES
-from .errors import ParameterError, PhasekitError, Status
+from .errors import ParameterError, Status, WorkerError
 from .hybrid import Event
 from .model import Model
+from .pool import job_of, run_local, shipped
 from .simulate import simulate, solver_options
 from .sweep import make_client
 from .validate import check_finite, check_int, check_vector
+from .watch import WALL_REASON, check_max_wall, progress_bar, wall_deadline
 
 __all__ = ["ensemble", "rerun", "summary_row", "ROW_COLUMNS"]
 
 #: columns of an ensemble row after the start (i, U, V, Omega, Lambda, theta, n)
 ROW_COLUMNS = ("status", "reason", "t_jump", "R_min", "t_end", "theta_end", "mode_end", "n_events", "stuck", "n_steps",
-               "wall_s")
+               "n_liftoffs", "n_flights", "t_flight", "longest_flight", "gap_max", "wall_s")
 #: keywords of :func:`phasekit.simulate` an ensemble passes on (``t_eval`` and ``throw`` are not
 #: per-row quantities: an ensemble tabulates failures)
 PASSED = ("t0", "stop_at", "restitution", "mode", "options")
@@ -54,9 +56,12 @@ def summary_row(traj, events=()) -> dict:
     time of each user event (column ``t_<event name>``, None if it never fired)."""
     start = traj.to_dict(events=False)["start"]
     row = {name: start[name] for name in PAPER_NAMES}
+    hops = traj.hops
     row.update(status=traj.status.value, reason=traj.reason, t_jump=traj.t_jump, R_min=traj.R_min, t_end=traj.t,
                theta_end=float(traj.euler_end[4]), mode_end=traj.mode, n_events=len(traj.events), stuck=traj.stuck,
-               n_steps=int(traj.n_steps), wall_s=float(traj.wall_s))
+               n_steps=int(traj.n_steps), **{k: hops[k] for k in ("n_liftoffs", "n_flights", "t_flight",
+                                                                 "longest_flight", "gap_max")},
+               wall_s=float(traj.wall_s))
     for ev in events:
         hit = next((e.t for e in traj.events if e.name == ev.name), None)
         row[f"t_{ev.name}"] = hit
@@ -64,19 +69,17 @@ def summary_row(traj, events=()) -> dict:
 
 
 # -- worker side -----------------------------------------------------------------------------
-_JOB: dict = {}
 
 
-def _install(job: dict) -> None:
-    """Worker initializer: keep the model and the run's arguments for every start."""
-    _JOB.clear()
-    _JOB.update(job)
+def _run_shipped(token: str, path: str, i: int, x0) -> tuple[int, dict]:
+    return _run_one(i, x0, job_of(token, path))
 
 
-def _run_one(i: int, x0, job: dict | None = None) -> tuple[int, dict]:
-    job = job or _JOB
+def _run_one(i: int, x0, job: dict) -> tuple[int, dict]:
     try:
-        traj = simulate(job["model"], x0, job["t_end"], events=job["events"], **job["kwargs"])
+        with warnings.catch_warnings():  # said once, by the check in the calling process
+            warnings.simplefilter("ignore")
+            traj = simulate(job["model"], x0, job["t_end"], events=job["events"], progress=False, **job["kwargs"])
         return i, summary_row(traj, job["events"])
     except Exception as exc:  # a worker never loses a row: it reports the failure
         return i, {"status": Status.FAILED.value, "reason": f"{type(exc).__name__}: {exc}"}
@@ -107,6 +110,8 @@ def _starts(model: Model, starts) -> np.ndarray:
     return np.array(rows)
 
 
+#: steps of the run that checks an ensemble's arguments in this process before any worker starts
+CHECK_STEPS = 2000
 CONNECT_TIMEOUT = 10  # seconds to reach a scheduler before the address is called bad
 
 
@@ -124,14 +129,8 @@ def _client(scheduler):
                          scheduler)
 
 
-def _progress(total: int, enabled: bool):
-    from tqdm import tqdm
-
-    return tqdm(total=total, desc="ensemble", unit="run", disable=not enabled, file=sys.stderr, leave=False)
-
-
 def ensemble(model: Model, starts, t_end: float, *, events=(), scheduler=None, processes: int | None = None,
-             progress: bool = True, **simulate_kwargs):
+             progress: bool | None = None, max_wall_total: float | None = None, **simulate_kwargs):
     """Simulate ``model`` from every start; one row per start.
 
     Parameters
@@ -149,8 +148,11 @@ def ensemble(model: Model, starts, t_end: float, *, events=(), scheduler=None, p
     processes : int, optional
         Local worker processes (default: the number of cores, at most the number of starts);
         1 runs in this process.
-    progress : bool
-        A progress bar on stderr.
+    progress : bool or None
+        A progress bar on stderr; None (default): only on a terminal or in a notebook.
+    max_wall_total : float, optional
+        Wall budget of the whole call in seconds: rows not finished by then (their workers
+        are stopped) are "failed" with a reason naming it. ``max_wall`` bounds each run.
     **simulate_kwargs
         ``t0``, ``stop_at``, ``restitution``, ``mode``, ``options`` and any field of
         :class:`phasekit.SolverOptions` (``rtol=...``, ``max_steps=...``). ``dense``
@@ -163,6 +165,12 @@ def ensemble(model: Model, starts, t_end: float, *, events=(), scheduler=None, p
         then :data:`ROW_COLUMNS` and ``t_<event>`` per user event. ``df.attrs["inputs"]``
         holds the model, the starts in the model's chart, t_end, the events and the solver
         options, so that :func:`rerun` can repeat any row.
+
+    Raises
+    ------
+    WorkerError
+        A worker process died (killed, out of memory): at once, naming how and the rows left;
+        its ``result`` is the table with those rows "failed".
 
     Examples
     --------
@@ -178,35 +186,65 @@ def ensemble(model: Model, starts, t_end: float, *, events=(), scheduler=None, p
         raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
     X = _starts(model, starts)
     t_end = check_finite("t_end", t_end)
+    events = _events(events)
+    if processes is not None:
+        processes = check_int("processes", processes, minimum=1)
+    max_wall_total = check_max_wall(max_wall_total, "max_wall_total")
+    job = {"model": model, "t_end": t_end, "events": events, "kwargs": _kwargs(simulate_kwargs)}
+    _check_run(job, X[0])
+    t0 = time.perf_counter()
+    rows: dict = {}
+    with progress_bar(len(X), desc="ensemble", progress=progress) as bar, wall_deadline(max_wall_total) as end:
+        try:
+            _run_rows(job, X, rows, bar, end, scheduler, min(processes or os.cpu_count() or 1, len(X)))
+        except TimeoutError:
+            why = f"not finished: {WALL_REASON} (max_wall_total = {max_wall_total:g} s) ran out"
+            for i in range(len(X)):
+                rows.setdefault(i, {"status": Status.FAILED.value, "reason": why})
+        except WorkerError as exc:
+            for i in exc.result:
+                rows.setdefault(i, {"status": Status.FAILED.value, "reason": f"not finished: {exc}"})
+            raise WorkerError(f"ensemble: {exc} (the finished rows are in this error's .result; rerun the others, "
+                              "or pass processes=1)", _table(model, X, rows, job, time.perf_counter() - t0)) from None
+    return _table(model, X, rows, job, time.perf_counter() - t0)
+
+
+def _events(events) -> tuple:
     events = tuple(events)
     for ev in events:
         if not isinstance(ev, Event):
             raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
     if len({ev.name for ev in events}) != len(events):
         raise ParameterError("events", "must have distinct names (each names a column t_<name>)", show_value=False)
-    if processes is not None:
-        processes = check_int("processes", processes, minimum=1)
-    kwargs = _kwargs(simulate_kwargs)
-    job = {"model": model, "t_end": t_end, "events": events, "kwargs": kwargs}
-    try:  # the arguments are checked here, once (a worker would report them as a failed row each)
-        simulate(model, X[0], t_end, events=events, **kwargs)  # and the on-disk integrator cache is warm
+    return events
+
+
+def _check_run(job: dict, x0) -> None:
+    """The arguments are checked here, once (a worker would report them as a failed row each),
+    and the integrators of the first mode compiled (workers then load them from the disk
+    cache): a short run of the first start."""
+    kwargs = job["kwargs"]
+    try:
+        simulate(job["model"], x0, job["t_end"], events=job["events"], progress=False,
+                 **{**kwargs, "options": replace(kwargs["options"], max_steps=CHECK_STEPS)})
     except ParameterError as exc:
         if exc.param == "x0":
-            raise ParameterError("starts", f"row 0 {exc.expected}", X[0]) from None
+            raise ParameterError("starts", f"row 0 {exc.expected}", x0) from None
         raise
-    t0 = time.perf_counter()
-    n_proc = min(processes or os.cpu_count() or 1, len(X))
-    with _progress(len(X), progress) as bar:
-        if scheduler is not None:
-            rows = _on_dask(scheduler, job, X, bar)
-        elif n_proc <= 1:
-            rows = {}
-            for i, x in enumerate(X):
-                rows[i] = _run_one(i, x, job)[1]
-                bar.update()
-        else:
-            rows = _on_processes(n_proc, job, X, bar)
-    return _table(model, X, rows, job, time.perf_counter() - t0)
+
+
+def _run_rows(job: dict, X: np.ndarray, rows: dict, bar, end: float, scheduler, n_proc: int) -> None:
+    """Fill ``rows`` on Dask, in this process or on local workers; TimeoutError at ``end``."""
+    if scheduler is not None:
+        _on_dask(scheduler, job, X, bar, rows)
+    elif n_proc <= 1:
+        for i, x in enumerate(X):
+            if time.perf_counter() > end:
+                raise TimeoutError
+            rows[i] = _run_one(i, x, job)[1]
+            bar.update()
+    else:
+        _on_processes(n_proc, job, X, bar, rows, end)
 
 
 def _kwargs(given: dict) -> dict:
@@ -220,37 +258,27 @@ def _kwargs(given: dict) -> dict:
     return {**kw, "options": opts}
 
 
-def _on_processes(n: int, job: dict, X: np.ndarray, bar) -> dict:
-    rows = {}
-    ctx = multiprocessing.get_context("spawn")
-    try:
-        with cf.ProcessPoolExecutor(max_workers=n, mp_context=ctx, initializer=_install, initargs=(job,)) as pool:
-            futures = [pool.submit(_run_one, i, x) for i, x in enumerate(X)]
-            for f in cf.as_completed(futures):
-                i, row = f.result()
-                rows[i] = row
-                bar.update()
-    except (cf.process.BrokenProcessPool, RuntimeError) as exc:
-        raise PhasekitError("ensemble: the worker processes stopped before finishing. Workers are started with "
-                            "'spawn', which re-imports the calling script: call pk.ensemble under "
-                            "`if __name__ == '__main__':`, or pass processes=1"
-                            f" ({type(exc).__name__}: {' '.join(str(exc).split())[:200]})") from None
-    return rows
+def _on_processes(n: int, job: dict, X: np.ndarray, bar, rows: dict, end: float) -> None:
+    """Rows into ``rows`` as the local workers finish them (:mod:`phasekit.pool`)."""
+    with shipped(job) as (token, path):
+        tasks = [(token, path, i, x) for i, x in enumerate(X)]
+        for _, (i, row) in run_local(_run_shipped, tasks, n, deadline=None if end == float("inf") else end,
+                                     what="start"):
+            rows[i] = row
+            bar.update()
 
 
-def _on_dask(scheduler, job: dict, X: np.ndarray, bar) -> dict:
+def _on_dask(scheduler, job: dict, X: np.ndarray, bar, rows: dict) -> None:
     from dask.distributed import as_completed
 
     client, owned = _client(scheduler)
     try:
         job_f = client.scatter(job, broadcast=True)
         futures = [client.submit(_run_one, i, x, job_f, pure=False) for i, x in enumerate(X)]
-        rows = {}
         for f in as_completed(futures):
             i, row = f.result()
             rows[i] = row
             bar.update()
-        return rows
     finally:
         if owned:
             client.close()

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import enum
 
-__all__ = ["PhasekitError", "ConvergenceError", "ParameterError", "Status"]
+__all__ = ["PhasekitError", "ConvergenceError", "ParameterError", "WorkerError", "Status"]
 
 
 class PhasekitError(Exception):
@@ -19,6 +19,15 @@ class PhasekitError(Exception):
 
 class ConvergenceError(PhasekitError):
     """A Newton solve or an integration did not converge; ``result`` holds what was obtained."""
+
+    def __init__(self, message: str, result: object = None):
+        super().__init__(message)
+        self.result = result
+
+
+class WorkerError(PhasekitError):
+    """A worker process died while it computed (killed, out of memory, a crash in compiled
+    code); ``result`` holds what was obtained (e.g. the rows of an ensemble that finished)."""
 
     def __init__(self, message: str, result: object = None):
         super().__init__(message)
@@ -71,6 +80,7 @@ class Status(str, enum.Enum):
     TOUCHDOWN = ("touchdown", "stopped at the first re-contact after a flight")
     STOPPED = ("stopped", "a stop condition was met")
     COMPLETED = ("completed", "reached the end time")
+    SETTLED = ("settled", "the body settled: it rolls in a steady state (the option settle)")
     # a threshold search
     CONVERGED = ("converged", "the bracket is narrower than the tolerance")
     NON_MONOTONE = ("non_monotone", "more than one jump / no-jump transition")

@@ -19,7 +19,7 @@ import numpy as np
 
 from .body import Body
 from .errors import ParameterError
-from .validate import check_finite, check_vector
+from .validate import check_finite, check_vector, finite_result
 
 __all__ = [
     "FlightConstants",
@@ -51,6 +51,7 @@ class FlightConstants:
     C4: float
 
 
+@finite_result
 def flight_constants(body: Body, euler_state, W: float) -> FlightConstants:
     """(4.5)-(4.14) from (U, V, Omega, Lambda, theta, n) at lift-off and the vertical velocity W*."""
     _, _, Om, Lam, th, n = (float(v) for v in check_vector("euler_state", euler_state, 6))
@@ -68,29 +69,34 @@ def flight_constants(body: Body, euler_state, W: float) -> FlightConstants:
     return FlightConstants(th, Lam, Om, Psi, n, W, body.h(th)[0], C1, C2, C1p, C3, C4)
 
 
+@finite_result
 def cos_theta_exact(k: FlightConstants, t):
     """(4.12): cos(theta(t)) of the free motion, t measured from lift-off."""
     t = np.asarray(t, dtype=float)
     return -k.C4 - k.thetadot * np.sin(k.theta) * np.sin(k.C3 * t) / k.C3 + (np.cos(k.theta) + k.C4) * np.cos(k.C3 * t)
 
 
+@finite_result
 def gap_exact(body: Body, k: FlightConstants, t):
     """(4.1) with (4.12): Delta(t) = h* + W* t - t^2/2 - h(theta(t))."""
     th = np.arccos(np.clip(cos_theta_exact(k, t), -1.0, 1.0))
     return k.h + k.W * np.asarray(t) - 0.5 * np.asarray(t) ** 2 - body.h(th)[0]
 
 
+@finite_result
 def gap_series(Omega: float, W: float, t):
     """(4.22): Delta ~ Omega*^2 t^3 (4 W* - t) / 24."""
     t = np.asarray(t, dtype=float)
     return Omega**2 * t**3 * (4 * W - t) / 24.0
 
 
+@finite_result
 def gap_max_series(Omega: float, W: float) -> tuple[float, float]:
     """(4.23): (Delta_max, t at the maximum) = (9/8 Omega*^2 W*^4, 3 W*)."""
     return 9.0 / 8.0 * Omega**2 * W**4, 3.0 * W
 
 
+@finite_result
 def flight_invariants(body: Body, euler_states) -> np.ndarray:
     """(4.6)-(4.8) along a flight: columns C1 = Omega - Psi cot, C2^2 = Psi^2 + thetadot^2,
     n0 = Omega cos - Psi / sin (all constant in free flight)."""

@@ -25,8 +25,8 @@ import numpy as np
 
 from .body import Body, Spheroid
 from .errors import ConvergenceError, ParameterError
-from .validate import check_array, check_finite, check_instance, check_positive, check_range
-from .starts import gyroscopic_start
+from .validate import check_array, check_finite, check_instance, check_positive, check_range, finite_result
+from .starts import GYRO_RATE_MAX, balanced_state
 
 __all__ = ["mean_slip", "jellett_constant", "gyroscopic_numeric", "gyroscopic_closed", "gyroscopic_solution", "rise_time"]
 
@@ -39,6 +39,7 @@ def _body(body) -> Body:
     return check_instance("body", body, Body, "Spheroid(1.5)")
 
 
+@finite_result
 def mean_slip(body: Body, theta, omega):
     """Leading-order mean slip velocity Vbar_P of the gyroscopic state (generalised (3.10))."""
     return _mean_slip(_body(body), check_array("theta", theta), check_array("omega", omega))
@@ -51,6 +52,7 @@ def _mean_slip(body: Body, theta, omega):
     return omega * (ht + (body.A - body.C) * c * xP / body.C)
 
 
+@finite_result
 def jellett_constant(body: Body, theta, omega):
     """J = A Omega h (3.17)."""
     body, theta, omega = _body(body), check_array("theta", theta), check_array("omega", omega)
@@ -64,6 +66,7 @@ def _rhs(T, y, body):
     return [-ht * v / body.A, h * v / (body.A * om)]
 
 
+@finite_result
 def gyroscopic_numeric(body: Body, theta0: float, omega0: float, T, *, rtol: float = 1e-13):
     """Integrate (3.16) numerically (any body): returns (theta(T), Omega(T)) at the slow
     times T (>= 0, any order), with ``rtol`` in [1e-14, 1e-3].
@@ -94,6 +97,7 @@ def gyroscopic_numeric(body: Body, theta0: float, omega0: float, T, *, rtol: flo
     return th, om
 
 
+@finite_result
 def gyroscopic_closed(a: float, J: float, theta0: float, T, *, A: float | None = None):
     """Closed form (3.18)-(3.19) for a spheroid of aspect ratio a: returns (theta(T), Omega(T)).
 
@@ -122,6 +126,7 @@ def gyroscopic_closed(a: float, J: float, theta0: float, T, *, A: float | None =
     return th, J / (body.A * h)
 
 
+@finite_result
 def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()) -> dict:
     """Mean theta and Omega at slow times T (>= 0, at least one) from a gyroscopic start
     (Omega0 given, or n0 with Omega on the fast branch); the closed form for spheroids
@@ -129,7 +134,7 @@ def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()
 
     Returns {"theta", "Omega", "J", "Omega0", "method"}.
     """
-    y0 = gyroscopic_start(body, theta0, omega0=omega0, n0=n0)
+    y0 = balanced_state(body, theta0, omega0=omega0, n0=n0, limit=GYRO_RATE_MAX)  # no fast motion: any rate
     T = check_array("T", T, nonnegative=True)
     om0 = float(y0[2])
     J = float(jellett_constant(body, theta0, om0))
@@ -142,6 +147,7 @@ def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()
     return {"theta": np.atleast_1d(th), "Omega": np.atleast_1d(om), "J": J, "Omega0": om0, "method": method}
 
 
+@finite_result
 def rise_time(a: float, J: float, theta0: float) -> float:
     """Slow time T at which the closed-form rise ends (theta reaches 0 or pi/2)."""
     a = check_positive("a", a)

@@ -25,7 +25,7 @@ import numpy as np
 
 from .body import Body
 from .errors import ParameterError
-from .validate import check_instance, check_nonnegative, check_vector
+from .validate import check_instance, check_nonnegative, check_vector, finite_result
 
 __all__ = ["ImpactResult", "impact", "contact_point", "collision_matrix"]
 
@@ -51,6 +51,7 @@ def _skew(r):
     return np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
 
 
+@finite_result
 def contact_point(body, k) -> np.ndarray:
     """r_P = -H'(c)(k - c e_Z) - H(c) e_Z for the lowest point, c = k_Z (vector form); ``k``
     is the unit symmetry axis."""
@@ -76,6 +77,7 @@ def _inverse_inertia(body, k) -> np.ndarray:
     return (np.eye(3) - P) / body.A + P / body.C
 
 
+@finite_result
 def collision_matrix(body, k) -> np.ndarray:
     """K = 1 + [r_P]x^T I^-1 [r_P]x: the contact point's velocity change per unit impulse."""
     return _collision_matrix(_body(body), _axis(k))
@@ -107,6 +109,7 @@ def _kinetic(body, k, w, v) -> float:
     return 0.5 * v @ v + 0.5 * w @ L
 
 
+@finite_result
 def impact(body, k, w, v, *, e: float, mu: float) -> ImpactResult:
     """Apply the impact law at touchdown to the rigid-body velocities (k, w, v = velocity of O).
 

@@ -25,7 +25,7 @@ import numpy as np
 
 from .body import Body
 from .errors import ParameterError
-from .validate import check_array
+from .validate import check_array, finite_result
 from .gyroscopic import mean_slip
 
 __all__ = [
@@ -70,6 +70,7 @@ def _rate(name: str, value):
     return v
 
 
+@finite_result
 def omega2(body: Body, theta, Omega):
     """(3.30): A/(A + h_t^2) [Omega^2 + (h_tt + h_t cot)/A + (h_t/(A Omega sin))^2]."""
     theta, Omega = _angle("theta", theta), _rate("Omega", Omega)
@@ -78,12 +79,14 @@ def omega2(body: Body, theta, Omega):
     return A / (A + ht**2) * (Omega**2 + (htt + ht * c / s) / A + (ht / (A * Omega * s)) ** 2)
 
 
+@finite_result
 def omega_gyro(body: Body, theta, Omega):
     """(3.47): |Omega| (A/(A + h_t^2))^(1/2)."""
     _, ht, _, _, _ = _geom(body, theta)
     return np.abs(Omega) * np.sqrt(body.A / (body.A + ht**2))
 
 
+@finite_result
 def slow_rates(body: Body, theta, Omega):
     """(dOmega/dT, dtheta/dT, Vhat_P, Vbar_P) of (3.16) at the mean state."""
     h, ht, _, _, _ = _geom(body, theta)
@@ -92,6 +95,7 @@ def slow_rates(body: Body, theta, Omega):
     return -ht * v / body.A, h * v / (body.A * Omega), v, VP
 
 
+@finite_result
 def lam(body: Body, theta, Omega):
     """(3.35)."""
     h, ht, _, s, c = _geom(body, theta)
@@ -101,6 +105,7 @@ def lam(body: Body, theta, Omega):
     return (ht * v / A + dOm + (Omega * c / s + ht / (A * Omega * s**2)) * dth) / w2 - h * ht * v / A
 
 
+@finite_result
 def zeta(body: Body, theta, Omega):
     """(3.38), with h^2/|Vbar_P| as the last term (see the module notes)."""
     h, ht, htt, s, c = _geom(body, theta)
@@ -118,6 +123,7 @@ def _zeta_gyro_terms(body: Body, theta, Omega):
     return (-A * ht / (A + ht**2) * Omega**2, -(a * a - 1) / (A - a * a * C) * A * C / (A + ht**2) * h / ht, c / s)
 
 
+@finite_result
 def zeta_gyro(body: Body, theta, Omega):
     """(3.48) (spheroid: the second term uses a)."""
     _, dth, _, _ = slow_rates(body, theta, Omega)
@@ -129,6 +135,7 @@ def _along_rise(body, J, theta0, theta):
     return J / (body.A * body.h(theta)[0])
 
 
+@finite_result
 def I_quadrature(body: Body, J: float, theta0: float, theta, *, form: str = "gyro", parts: bool = False):
     """(3.45) by adaptive quadrature in theta-bar along the gyroscopic solution.
 
@@ -170,6 +177,7 @@ def I_quadrature(body: Body, J: float, theta0: float, theta, *, form: str = "gyr
     return res.sum(axis=1)
 
 
+@finite_result
 def alpha_beta(body: Body):
     """(3.54), (3.55)."""
     A, a = body.A, body.shape_params[0]
@@ -177,6 +185,7 @@ def alpha_beta(body: Body):
     return np.sqrt(0.5 * (A + a * a + 1 + root)), np.sqrt(0.5 * (A + a * a + 1 - root))
 
 
+@finite_result
 def I1_closed(body: Body, J: float, theta0: float, theta):
     """(3.53)."""
     al, be = alpha_beta(body)
@@ -185,17 +194,20 @@ def I1_closed(body: Body, J: float, theta0: float, theta):
     return J**2 / (4 * body.A * (al**2 - be**2)) * g
 
 
+@finite_result
 def I2_dominant(body: Body, theta0: float, theta):
     """(3.57): the dominant part of I2 near theta-bar = 0 or pi/2 only."""
     A, C, a = body.A, body.C, body.shape_params[0]
     return C / (2 * (a * a * C - A)) * np.log((np.sin(theta) / np.sin(theta0)) ** (a * a) * np.cos(theta0) / np.cos(theta))
 
 
+@finite_result
 def I3_closed(theta0: float, theta):
     """(3.52)."""
     return 0.5 * np.log(np.sin(theta0) / np.sin(theta))
 
 
+@finite_result
 def Gamma(body: Body, J: float, theta0: float, theta, *, form: str = "gyro"):
     """(3.44) with I by quadrature and omega from (3.47) ("gyro") or (3.30) ("full")."""
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
@@ -204,6 +216,7 @@ def Gamma(body: Body, J: float, theta0: float, theta, *, form: str = "gyro"):
     return w ** (-0.5) * np.exp(I_quadrature(body, J, theta0, theta, form=form))
 
 
+@finite_result
 def Gamma_closed(body: Body, J: float, theta0: float, theta):
     """(3.58)-(3.60): omega^(-1/2) sigma gamma^(J^2/(4 A (alpha^2 - beta^2))); sigma uses the
     dominant-part I2 of (3.57)."""
@@ -217,6 +230,7 @@ def Gamma_closed(body: Body, J: float, theta0: float, theta):
     return omega_gyro(body, theta, om) ** (-0.5) * sig * gam ** (J**2 / (4 * A * (al**2 - be**2)))
 
 
+@finite_result
 def Sigma(body: Body, J: float, theta0: float, theta, c: float, *, form: str = "closed"):
     """(3.64): 1 - |h_theta omega^2 c Gamma|, the envelope of the minima of R.
 
@@ -235,6 +249,7 @@ def Sigma(body: Body, J: float, theta0: float, theta, c: float, *, form: str = "
     return 1 - np.abs(ht * w2 * c * G)
 
 
+@finite_result
 def c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, dtheta0: float, dthetadot0: float):
     """(3.46) inverted: amplitude c and phase xi of the initial nutation (theta', d theta'/dt)."""
     theta_bar0, Omega_bar0 = float(_angle("theta_bar0", theta_bar0)), float(_rate("Omega_bar0", Omega_bar0))
@@ -247,6 +262,7 @@ def c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, dtheta0: f
     return float(np.hypot(cc, cs)) * (1 if cc >= 0 else -1), float(np.arctan2(cs, cc) if cc >= 0 else np.arctan2(-cs, -cc))
 
 
+@finite_result
 def perturbation_from_c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, c: float, xi: float):
     """Initial fluctuation (theta', Lambda', Omega') for amplitude c and phase xi: (3.46) for
     theta' and its rate, (3.27) for Omega' (with Psi' = -Omega theta' (3.28), n' = 0 (3.31))."""

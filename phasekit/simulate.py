@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import functools
 import time
+import warnings
 from dataclasses import replace
 
 import numpy as np
@@ -20,15 +21,22 @@ from .model import Model
 from .options import SolverOptions
 from .pose import Pose
 from .resets import contact_state
+from .settle import settled
 from .starts import RATE_MAX
 from .system import declare, watched
 from .trajectory import EventRecord, Segment, Trajectory
 from .validate import check_bool, check_finite, check_range, check_times, check_vector
+from .watch import WALL_REASON, deadline, progress_bar, show_progress
 
 __all__ = ["simulate", "solver_options", "taylor_integrator"]
 
 #: the largest |t0| a run may start at (see simulate)
 T_MAX = 1e6
+#: a single run shows its progress bar (where one is shown) once it has run this long, in s
+PROGRESS_DELAY = 2.0
+#: more simulated time per second of wall time than any run covers (measured: ~750 sliding, ~15 000
+#: for a body that rolls steadily): a span beyond max_wall x this cannot be reached
+REACH_PER_S = 1e5
 
 
 def solver_options(options: SolverOptions | None = None, **overrides) -> SolverOptions:
@@ -59,7 +67,7 @@ def _solver_options(options: SolverOptions | None = None, **overrides) -> Solver
 
 def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = "jump", restitution: float = 0.0,
              events=(), t_eval=None, mode=None, options: SolverOptions | None = None, throw: bool = False,
-             pose0=None, **option_fields) -> Trajectory:
+             pose0=None, progress: bool | None = None, **option_fields) -> Trajectory:
     """Integrate the dynamics of ``model`` from ``x0`` until ``t_end``, a stop, or failure.
 
     Parameters
@@ -91,6 +99,9 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     pose0 : Pose, dict or 4 numbers, optional
         Start values of psi, phi, X, Y (default 0), for :meth:`Trajectory.pose`: quadratures
         after the run, on which no number of the run depends.
+    progress : bool or None
+        A progress bar of the simulated time on stderr for a run that lasts more than
+        PROGRESS_DELAY (2 s); None (default): only on a terminal or in a notebook.
 
     Returns
     -------
@@ -119,17 +130,17 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     if n == model.n_states and not model.chart.regular_at_poles and min(x0[4], np.pi - x0[4]) < POLE_GUARD:
         raise ParameterError("x0", "has theta at 0 or pi, where the Euler chart is singular (2.7c): use "
                                    "Model(body, law, chart='vector')", x0)
+    if t_end - t0 > REACH_PER_S * opts.max_wall:  # said at once, not after max_wall seconds of silence
+        warnings.warn(f"`t_end` = {t_end:g} cannot be reached within `max_wall` = {opts.max_wall:g} s (no run covers "
+                      f"more than {REACH_PER_S:g} time units per second): the run will end \"failed\" when its wall "
+                      "budget runs out", stacklevel=2)
     te = None if t_eval is None else check_times("t_eval", t_eval)
     if te is not None and te.size and (te[0] < t0 or te[-1] > t_end):
         raise ParameterError("t_eval", f"must lie in the requested span [t0, t_end] = [{t0:.10g}, {t_end:.10g}]",
                              float(te[0] if te[0] < t0 else te[-1]))
-    system = _declared(model, stop_at, restitution, events)
-    run = _Run(model, system, opts, t_end, dense=opts.dense or te is not None)
-    run.apply(system.initial(model, t0, x0, start_mode))
-    while run.status is None:
-        run.step()
-        if run.status is None and run.budget.wall_exceeded():  # many short segments (stick-slip chatter)
-            run.status, run.reason = Status.FAILED, f"wall-time limit ({opts.max_wall:g} s) reached at t = {run.t:.6g}"
+    system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail))
+    run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
+    run.loop(system.initial(model, t0, x0, start_mode), progress)
     traj = run.result(x0, t0, stop_at, restitution, events, te)
     traj.pose0 = pose0
     if throw and traj.status is Status.FAILED:
@@ -137,19 +148,20 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     return traj
 
 
-def _declared(model, stop_at, restitution, events):
+def _declared(model, stop_at, restitution, events, bounce):
     """:func:`phasekit.system.declare`, kept for runs that declare the same system again (a
     sweep calls simulate thousands of times; declaring costs ~25 us a call, a few % of a run)."""
     events = tuple(events)
     try:  # events compare without their reset: key on the reset objects too
-        return _declare_cached(model, stop_at, restitution, events, tuple(id(getattr(e, "reset", None)) for e in events))
+        return _declare_cached(model, stop_at, restitution, events, bounce,
+                               tuple(id(getattr(e, "reset", None)) for e in events))
     except TypeError:  # unhashable arguments: declare (which validates them)
-        return declare(model, stop_at=stop_at, restitution=restitution, events=events)
+        return declare(model, stop_at=stop_at, restitution=restitution, events=events, bounce=bounce)
 
 
 @functools.lru_cache(maxsize=64)
-def _declare_cached(model, stop_at, restitution, events, _reset_ids):
-    return declare(model, stop_at=stop_at, restitution=restitution, events=events)
+def _declare_cached(model, stop_at, restitution, events, bounce, _reset_ids):
+    return declare(model, stop_at=stop_at, restitution=restitution, events=events, bounce=bounce)
 
 
 @functools.lru_cache(maxsize=64)
@@ -159,9 +171,9 @@ def _tracked(flow, track_minima: bool):
     return flow if track_minima or flow.mode is Mode.FLIGHT else replace(flow, monitor=None)
 
 
-def apply_transition(run, tr: Transition, max_switches: int) -> None:
+def apply_transition(run, tr: Transition, max_switches: int, settle=None, t_start: float = 0.0) -> None:
     """Log a transition's records on ``run`` (simulate's loop or a lane of simulate_batch),
-    then continue in its mode or stop."""
+    then continue in its mode or stop (the switch budget, or a settled body with ``settle``)."""
     for r in tr.records:
         run.record(r.name, tr.t, r.mode_before, r.mode_after, r.x, r.detail)
     if tr.resume:
@@ -176,19 +188,47 @@ def apply_transition(run, tr: Transition, max_switches: int) -> None:
     if len(run.records) >= max_switches:
         run.status = Status.FAILED
         run.reason = f"more than {max_switches} mode switches by t = {run.t:.6g} (chattering)"
+    elif settle is not None and tr.records:
+        why = settled(run.model, run.records, t_start, settle)
+        if why is not None:
+            run.status, run.reason = Status.SETTLED, why
 
 
 class _Run:
     """The state of one run of the loop."""
 
-    def __init__(self, model, system, opts, t_end, dense):
+    def __init__(self, model, system, opts, t0, t_end, dense):
         self.model, self.system, self.opts, self.t_end, self.dense = model, system, opts, t_end, dense
-        self.budget = Budget(opts.max_steps, time.perf_counter() + opts.max_wall)
+        self.t_start, self.switch_limit = t0, opts.switch_limit(t_end - t0)
         self.wall0 = time.perf_counter()
+        own, call = self.wall0 + opts.max_wall, deadline()
+        # the caller's budget (a search, a map) when it ends first: the reason then names it
+        self.call_budget = call[1] if call is not None and call[0] < own else None
+        self.budget = Budget(opts.max_steps, own if self.call_budget is None else call[0])
         self.mode, self.t, self.x = Mode.SLIDING, 0.0, None
         self.status = self.reason = None
         self.segments, self.records = [], []
         self.resume, self.engines, self.steps_done = False, {}, 0
+
+    def loop(self, first: Transition, progress) -> None:
+        """Run from the start transition ``first`` until a status is set (with a progress bar
+        of the simulated time where one is shown, after PROGRESS_DELAY)."""
+        t0 = self.t_start
+        bar = progress_bar(self.t_end - t0, desc="simulate", unit="t", progress=progress, delay=PROGRESS_DELAY) \
+            if show_progress(progress) else None
+        self.budget.tick = None if bar is None else (lambda t: bar.update(t - t0 - bar.n))
+        self.apply(first)
+        while self.status is None:
+            self.step()
+            if self.budget.tick is not None:
+                self.budget.tick(self.t)
+            if self.status is None and self.budget.wall_exceeded():  # many short segments (stick-slip chatter)
+                self.status = Status.FAILED
+                self.reason = f"wall-time limit ({self.opts.max_wall:g} s) reached at t = {self.t:.6g}"
+        if bar is not None:
+            bar.close()
+        if self.call_budget is not None and self.status is Status.FAILED and "wall-time limit" in (self.reason or ""):
+            self.reason = f"{WALL_REASON} (max_wall = {self.call_budget:g} s) ran out at t = {self.t:.6g}"
 
     def record(self, name, t, before, after, x, detail="") -> None:
         chart = self.model.chart
@@ -199,7 +239,7 @@ class _Run:
         self.records.append(EventRecord(name, float(t), before, after, x, detail, y))
 
     def apply(self, tr: Transition) -> None:
-        apply_transition(self, tr, self.opts.max_switches)
+        apply_transition(self, tr, self.switch_limit, self.opts.settle, self.t_start)
 
     def engine(self, flow):
         name = flow.engine or self.opts.backend
@@ -238,7 +278,8 @@ class _Run:
             if ev.stop is Status.STOPPED:
                 self.reason = f"{ev.name}: {ev.on} reached {ev.level:g}"
         else:
-            self.apply(ev.reset(self.model, ev, self.mode, prop.t, prop.x))
+            log = {"log": self.records} if getattr(ev.reset, "uses_log", False) else {}  # a bounce train so far
+            self.apply(ev.reset(self.model, ev, self.mode, prop.t, prop.x, **log))
 
     def propagate(self, flow, engine, events) -> tuple[Propagation, Event | None]:
         """One call of the integrator; events armed after a delay are left out for that
@@ -285,10 +326,12 @@ class _Run:
 
     def result(self, x0, t0, stop_at, restitution, events, te) -> Trajectory:
         segs = self.segments
+        settled_now = self.status is Status.SETTLED  # it ends in the mode it settled into (rolling)
         traj = Trajectory(model=self.model, x0=x0, t0=t0, t_end=self.t_end, options=self.opts, status=self.status,
                           reason=self.reason, segments=segs, events=self.records, wall_s=time.perf_counter() - self.wall0,
                           stop_at=stop_at, restitution=restitution, user_events=events, t_eval=te,
-                          x_end=None if segs else self.x, mode_end=None if segs else self.mode)
+                          x_end=None if segs and not settled_now else self.x,
+                          mode_end=None if segs and not settled_now else self.mode)
         if not self.opts.dense and self.dense:  # dense output was kept only to answer t_eval
             traj.segments = tuple(replace(s, dense=()) for s in traj.segments)
         return traj

@@ -27,6 +27,9 @@ __all__ = ["gyroscopic_start", "vertical_spin_start", "raw_start", "to_chart"]
 #: the largest rate (units sqrt(g/b)) a start may have: beyond it the dynamics are beyond
 #: double precision (Omega^2 terms against 1) and the Taylor steps vanish
 RATE_MAX = 1e5
+#: the largest rate the gyroscopic (mean) solution takes: it is closed-form (or a slow-time
+#: quadrature) and does not integrate the fast motion, so only overflow of A Omega^2 limits it
+GYRO_RATE_MAX = 1e12
 
 
 def _q(body: Body, theta: float) -> float:
@@ -34,10 +37,10 @@ def _q(body: Body, theta: float) -> float:
     return -body.height_slope(np.cos(theta))[1]
 
 
-def _rate(name: str, value) -> float:
+def _rate(name: str, value, limit: float = RATE_MAX) -> float:
     v = check_finite(name, value, nonzero=True)
-    if abs(v) > RATE_MAX:
-        raise ParameterError(name, f"must be nonzero with |{name}| <= {RATE_MAX:g}", value)
+    if abs(v) > limit:
+        raise ParameterError(name, f"must be nonzero with |{name}| <= {limit:g}", value)
     return v
 
 
@@ -58,6 +61,12 @@ def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, 
     -------
     array (6,): (U, V, Omega, Lambda, theta, n) = (0, 0, Omega0, 0, theta0, n).
     """
+    return balanced_state(body, theta0, omega0=omega0, n0=n0)
+
+
+def balanced_state(body: Body, theta0: float, *, omega0=None, n0=None, limit: float = RATE_MAX) -> np.ndarray:
+    """:func:`gyroscopic_start` with rates up to ``limit`` (the gyroscopic solution's is
+    GYRO_RATE_MAX)."""
     if not isinstance(body, Body):
         raise ParameterError("body", "must be a phasekit Body such as Spheroid(a)", body)
     theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
@@ -67,13 +76,13 @@ def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, 
     c = np.cos(theta0)
     q = _q(body, theta0)
     if omega0 is not None:
-        omega0 = _rate("omega0", omega0)
+        omega0 = _rate("omega0", omega0, limit)
         n = (A * omega0 * c - q / omega0) / C
-        if not abs(n) <= RATE_MAX:
+        if not abs(n) <= limit:
             raise ParameterError("omega0", f"is too small for a gyroscopic balance at theta0 = {theta0:g} (it needs a "
-                                           f"spin |n| = {abs(n):.3g} > {RATE_MAX:g})", omega0)
+                                           f"spin |n| = {abs(n):.3g} > {limit:g})", omega0)
         return np.array([0.0, 0.0, omega0, 0.0, theta0, n])
-    n0 = _rate("n0", n0)
+    n0 = _rate("n0", n0, limit)
     if body.is_prolate:
         warnings.warn("`n0` given for a prolate body: its gyroscopic start is normally given `omega0` (the precession "
                       "rate; n then follows from the balance); with `n0`, Omega is put on the fast branch, "
@@ -85,6 +94,9 @@ def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, 
         need = np.sqrt(max(-4.0 * A * c * q, 0.0)) / C
         raise ParameterError("n0", f"must satisfy |n0| > {need:.6g} for a gyroscopic balance at theta0 = {theta0:g}", n0)
     omega = (C * n0 + np.sign(n0) * np.sqrt(disc)) / (2.0 * A * c)
+    if not abs(omega) <= limit:
+        raise ParameterError("n0", f"gives a precession rate |Omega| = {abs(omega):.3g} > {limit:g} on the fast branch at "
+                                   f"theta0 = {theta0:g}", n0)
     return np.array([0.0, 0.0, omega, 0.0, theta0, n0])
 
 

@@ -311,6 +311,7 @@ def make_client(scheduler: str | None = None, workers: int | None = None, *, tim
     from dask.distributed import Client, LocalCluster
 
     from .errors import ParameterError
+    from .pool import main_not_reimported
 
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ParameterError("workers", "must be an integer >= 1 (or None: one per core)", workers)
@@ -358,8 +359,9 @@ def make_client(scheduler: str | None = None, workers: int | None = None, *, tim
     try:
         # no dashboard, the scheduler's small HTTP server on any free port (8787 may be taken);
         # Dask's own warnings off (e.g. each task cancelled when a run is stopped): errors stay
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                               scheduler_kwargs={"dashboard_address": ":0"}, silence_logs=logging.ERROR)
+        with main_not_reimported():  # spawn would re-import the calling script (see phasekit.pool)
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                                   scheduler_kwargs={"dashboard_address": ":0"}, silence_logs=logging.ERROR)
     finally:
         if main_thread and previous is not None:
             signal.signal(signal.SIGINT, previous)
@@ -367,12 +369,19 @@ def make_client(scheduler: str | None = None, workers: int | None = None, *, tim
 
 
 def run_tasks(specs: list[TaskSpec], *, store_get: Callable[[str], object | None], on_result: Callable[[TaskSpec, object], None],
-              client=None, pack: ModelPack | None = None, progress: bool = True, desc: str = "tasks") -> dict[str, object]:
+              client=None, pack: ModelPack | None = None, progress: bool | None = True, desc: str = "tasks",
+              max_wall: float | None = None) -> dict[str, object]:
     """Run every task not already stored; results go to ``on_result`` as they finish.
 
     ``store_get(key)`` returns a stored result (the task is then skipped, and its result
-    still feeds the tasks that continue from it).
+    still feeds the tasks that continue from it). ``max_wall`` (seconds) bounds the call:
+    tasks not finished by then are left undone (cancelled on Dask; in this process the run
+    under way ends "failed" with a reason naming the budget), and what finished is returned
+    (and was passed to ``on_result``, so that a rerun resumes from it).
     """
+    from .watch import check_max_wall, progress_bar, wall_deadline
+
+    max_wall = check_max_wall(max_wall)
     results: dict[str, object] = {}
     todo = []
     for s in specs:
@@ -381,40 +390,49 @@ def run_tasks(specs: list[TaskSpec], *, store_get: Callable[[str], object | None
             results[s.key] = stored
         else:
             todo.append(s)
-    from tqdm import tqdm
-
-    bar = tqdm(total=len(todo), desc=desc, unit="task", disable=not progress, file=sys.stderr)
-    try:
+    with progress_bar(len(todo), desc=desc, unit="task", progress=progress) as bar, wall_deadline(max_wall) as end:
         if client is None:
-            order = {s.key: i for i, s in enumerate(todo)}
-            independent = sorted((s for s in todo if not s.after), key=lambda s: (-s.cost, order[s.key]))
-            chained = [s for s in todo if s.after]
-            for s in independent + chained:  # every chained task comes after the one it continues
-                prev = results.get(s.after) if s.after else None
-                r = _call(s.func, pack, prev, *s.args)
-                results[s.key] = r
-                on_result(s, r)
-                bar.update()
+            _run_here(todo, results, on_result, pack, bar, end)
         else:
-            from dask.distributed import as_completed
-
-            pack_f = client.scatter(pack, broadcast=True) if pack is not None else None
-            futures, by_future = {}, {}
-            for s in todo:
-                prev = futures.get(s.after, results.get(s.after)) if s.after else None
-                f = client.submit(_call, s.func, pack_f, prev, *s.args, key=f"task-{abs(hash(s.key))}", pure=False,
-                                  priority=int(round(1000 * s.cost)))
-                futures[s.key] = f
-                by_future[f] = s
-            for f in as_completed(list(futures.values())):
-                s = by_future[f]
-                r = f.result()
-                results[s.key] = r
-                on_result(s, r)
-                bar.update()
-    finally:
-        bar.close()
+            _run_on(client, todo, results, on_result, pack, bar, end)
     return results
+
+
+def _run_here(todo, results, on_result, pack, bar, end) -> None:
+    order = {s.key: i for i, s in enumerate(todo)}
+    independent = sorted((s for s in todo if not s.after), key=lambda s: (-s.cost, order[s.key]))
+    chained = [s for s in todo if s.after]
+    for s in independent + chained:  # every chained task comes after the one it continues
+        if time.perf_counter() > end:
+            return
+        prev = results.get(s.after) if s.after else None
+        r = _call(s.func, pack, prev, *s.args)
+        results[s.key] = r
+        on_result(s, r)
+        bar.update()
+
+
+def _run_on(client, todo, results, on_result, pack, bar, end) -> None:
+    from dask.distributed import as_completed
+
+    pack_f = client.scatter(pack, broadcast=True) if pack is not None else None
+    futures, by_future = {}, {}
+    for s in todo:
+        prev = futures.get(s.after, results.get(s.after)) if s.after else None
+        f = client.submit(_call, s.func, pack_f, prev, *s.args, key=f"task-{abs(hash(s.key))}", pure=False,
+                          priority=int(round(1000 * s.cost)))
+        futures[s.key] = f
+        by_future[f] = s
+    timeout = None if end == float("inf") else max(0.0, end - time.perf_counter())
+    try:
+        for f in as_completed(list(futures.values()), timeout=timeout):
+            s = by_future[f]
+            r = f.result()
+            results[s.key] = r
+            on_result(s, r)
+            bar.update()
+    except TimeoutError:  # the wall budget: what is not done stays undone (a rerun resumes)
+        client.cancel([f for f in futures.values() if not f.done()])
 
 
 @dataclass(frozen=True)
@@ -424,21 +442,27 @@ class PendingRun:
     computed: int
     total: int
     mode: str
+    left: int = 0  # tasks left undone when the wall budget ran out
 
     def __str__(self) -> str:
-        return f"{self.computed} of {self.total} tasks computed now ({self.mode})"
+        end = f"; {self.left} left undone: the wall budget ran out (rerun to resume)" if self.left else ""
+        return f"{self.computed} of {self.total} tasks computed now ({self.mode}){end}"
 
 
 def run_pending(specs: list[TaskSpec], *, store_get: Callable[[str], object | None],
                 on_result: Callable[[TaskSpec, object], None], warm_up: Callable[[], None], serial: bool = False,
-                scheduler: str | None = None, workers: int | None = None, progress: bool = True,
-                desc: str = "tasks") -> PendingRun:
+                scheduler: str | None = None, workers: int | None = None, progress: bool | None = True,
+                desc: str = "tasks", max_wall: float | None = None) -> PendingRun:
     """:func:`run_tasks` as a study runs it: nothing is compiled and no cluster is started
     when every task is stored; otherwise ``warm_up`` compiles the models once into a
     :class:`ModelPack`, and the tasks run on Dask (:func:`make_client`: ``scheduler`` or a
-    LocalCluster of ``workers``), or in this process with ``serial=True``."""
+    LocalCluster of ``workers``), or in this process with ``serial=True``; ``max_wall`` as
+    for :func:`run_tasks` (the cluster's start-up counts)."""
+    t0 = time.perf_counter()
     pending = [s for s in specs if store_get(s.key) is None]
     if not pending:
+        if scheduler is not None:  # a bad address is bad input whether or not there is work left
+            make_client(scheduler, workers)[0].close()
         return PendingRun(0, len(specs), "all stored")
     pack = ModelPack.build(warm_up)
     client = cluster = None
@@ -447,13 +471,15 @@ def run_pending(specs: list[TaskSpec], *, store_get: Callable[[str], object | No
         client, cluster = make_client(scheduler, workers)
         mode = f"dask: {len(client.scheduler_info()['workers'])} workers, model pack {pack.size_mb:.1f} MB shipped once"
     try:
-        run_tasks(specs, store_get=store_get, on_result=on_result, client=client, pack=pack, progress=progress, desc=desc)
+        done = run_tasks(specs, store_get=store_get, on_result=on_result, client=client, pack=pack, progress=progress,
+                         desc=desc, max_wall=None if max_wall is None else max(1e-3, max_wall - (time.perf_counter() - t0)))
     finally:
         if client is not None:
             client.close()
         if cluster is not None:
             cluster.close()
-    return PendingRun(len(pending), len(specs), mode)
+    left = sum(1 for s in pending if s.key not in done)
+    return PendingRun(len(pending) - left, len(specs), mode, left)
 
 
 def _evaluate_part(pack, jobs, engine):

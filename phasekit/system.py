@@ -26,7 +26,8 @@ import numpy as np
 from .errors import ParameterError, Status
 from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
 from .model import STICK_SLIP
-from .resets import LiftOff, SlipOnset, Stick, SwitchMode, Touchdown, contact_start, flight_start_state
+from .resets import (BOUNCE_STOP, BOUNCE_TAIL, LiftOff, SlipOnset, Stick, SwitchMode, Touchdown, contact_start,
+                     flight_start_state)
 from .validate import check_choice, check_range
 
 __all__ = ["declare", "STOP_AT", "STIFF_RATE", "GUARD_DELAY"]
@@ -46,9 +47,11 @@ GUARD_DELAY = 1e-5
 CONTACT = frozenset({Mode.SLIDING, Mode.ROLLING})
 
 
-def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()) -> HybridSystem:
-    """The modes, events and resets of ``model``'s law, with the run's stop rule and the
-    user's ``events`` appended."""
+def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=(),
+            bounce: tuple[float, int | None] = (BOUNCE_STOP, BOUNCE_TAIL)) -> HybridSystem:
+    """The modes, events and resets of ``model``'s law, with the run's stop rule, the end of a
+    bounce train (``bounce``: the rebound-speed cut-off and the geometric tail resolved, see
+    :class:`phasekit.resets.Touchdown`) and the user's ``events`` appended."""
     check_choice("stop_at", stop_at, STOP_AT)
     restitution = check_range("restitution", restitution, 0.0, 1.0, closed="lr")
     law = model.friction
@@ -73,7 +76,7 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
             evs.append(Event("unstick_guard", name="slip", direction=-1, modes={Mode.ROLLING},
                              reset=SwitchMode(Mode.SLIDING, "slip", "slip > 100 eps (regularised)")))
     evs.append(Event("gap", name="touchdown", direction=-1, modes={Mode.FLIGHT}, arm_after=GUARD_DELAY,
-                     stop=Status.TOUCHDOWN, reset=None if stop_at == "touchdown" else Touchdown(restitution)))
+                     stop=Status.TOUCHDOWN, reset=None if stop_at == "touchdown" else Touchdown(restitution, *bounce)))
     for ev in events:
         if not isinstance(ev, Event):
             raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)

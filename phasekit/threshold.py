@@ -23,7 +23,9 @@ Outcome of one trajectory
 "jump" means R reaches 0 with dR/dt < 0 before the rise completes. The rise is complete
 when theta comes within ``rise_margin`` (0.1 rad) of the final state (theta -> 0 for a
 prolate body, pi/2 for an oblate one): a stop event; a run that reaches ``t_max`` first
-(typically a body that stuck and rolls) also counts as no jump and is flagged. Jumps happen
+(typically a body that stuck and rolls) also counts as no jump and is flagged, and so does one
+that has settled (``settle``, :class:`phasekit.Settle`: rolling in a steady state; an egg that
+settles tilted would otherwise stick and slip until ``t_max``). Jumps happen
 at theta* ~ 0.5-1.4 (prolate); near the end of the rise some bodies alternate stick and slip
 for thousands of cycles (measured: a = 2, Omega0 = 7.19), which the 0.1 margin cuts short.
 """
@@ -43,13 +45,19 @@ from .hybrid import Event
 from .manifolds import horizontal_stability_threshold, unstable_manifold_start, vertical_stability_threshold
 from .model import Model
 from .options import RTOL_RANGE
+from .settle import Settle, check_settle
 from .simulate import simulate
 from .starts import gyroscopic_start, to_chart
 from .validate import check_choice, check_int, check_positive, check_range
+from .watch import WALL_REASON, check_max_wall, deadline, passed, progress_bar, wall_deadline
 
 __all__ = ["Definition", "Outcome", "Threshold", "Sensitivity", "ThresholdSearch", "find_threshold", "continue_threshold",
            "run_searches", "evaluate_outcomes", "find_stick_boundary",
            "threshold_searches", "threshold_result", "stick_search", "DEFAULT_DEFINITIONS", "ENGINES", "as_body"]
+
+
+#: the settle rule of every built-in definition (see :mod:`phasekit.settle`)
+DEFAULT_SETTLE = Settle()
 
 
 def as_body(body) -> Body:
@@ -74,8 +82,12 @@ class Definition:
     rise_margin: float = 0.1
     t_max: float = 3000.0
     max_steps: int = 20_000_000
+    #: a run that has settled (zero slip, steady state; exact Coulomb only) ends as no jump:
+    #: a body that settles tilted (an egg) would otherwise stick and slip until t_max
+    settle: Settle | None = DEFAULT_SETTLE
 
     def __post_init__(self):
+        object.__setattr__(self, "settle", check_settle(self.settle))
         check_choice("seed", self.seed, ("viscous", "sliding", "literal"))
         check_range("amplitude", self.amplitude, 0.0, 0.5, closed="r")
         check_range("mu", self.mu, 0.0, 10.0, closed="r")
@@ -99,9 +111,13 @@ class Definition:
         return f"{self.law_label}; seed: {what}"
 
     def key(self) -> str:
-        """Identifies results that can be reused: every field that changes the answer."""
+        """Identifies results that can be reused: every field that changes the answer. The
+        default settle rule is left out: it ends only runs that would not jump (checked on the
+        published studies), so results computed before it existed keep their keys."""
         d = asdict(self)
         d.pop("name")
+        if self.settle == DEFAULT_SETTLE:
+            d.pop("settle")
         return ";".join(f"{k}={v}" for k, v in sorted(d.items()))
 
     def friction(self):
@@ -147,7 +163,7 @@ class Definition:
         body = as_body(body)
         model, x0 = self.start(body, value)
         r = simulate(model, x0, self.t_max, rtol=self.rtol, events=[self.rise_event(body)], track_minima=False,
-                     dense=False, max_steps=self.max_steps)
+                     dense=False, max_steps=self.max_steps, settle=self.settle, progress=False)
         return self.classify(body, value, model, x0, r)
 
     def classify(self, body, value: float, model, x0, r) -> "Outcome":
@@ -168,7 +184,8 @@ class Definition:
         body = as_body(body)
         value = 2.0 * self.lower_bound(body)
         model, x0 = self.start(body, value)
-        simulate(model, x0, 1e-3, rtol=self.rtol, events=[self.rise_event(body)], track_minima=False, dense=False)
+        simulate(model, x0, 1e-3, rtol=self.rtol, events=[self.rise_event(body)], track_minima=False, dense=False,
+                 progress=False)
         if check_choice("engine", engine, ENGINES) == "batch":
             from .batch import compile_batch
 
@@ -197,15 +214,16 @@ def evaluate_outcomes(jobs, engine: str = "scalar", stats=None) -> list["Outcome
             continue
         body = as_body(body)
         ev = defn.rise_event(body)
-        groups.setdefault((ev.level, ev.direction, defn.rtol, defn.max_steps), []).append((i, defn, body, value))
+        groups.setdefault((ev.level, ev.direction, defn.rtol, defn.max_steps, defn.settle), []).append((i, defn, body, value))
     if groups:
         from .batch import simulate_batch
 
-        for (_, _, rtol, max_steps), items in groups.items():
+        for (_, _, rtol, max_steps, settle), items in groups.items():
             starts = [d.start(b, v) for _, d, b, v in items]
             ev = items[0][1].rise_event(items[0][2])
             runs = simulate_batch([m for m, _ in starts], [x for _, x in starts], [d.t_max for _, d, _, _ in items],
-                                  events=[ev], rtol=rtol, max_steps=max_steps, track_minima=False, dense=False, stats=stats)
+                                  events=[ev], rtol=rtol, max_steps=max_steps, track_minima=False, dense=False, stats=stats,
+                                  settle=settle)
             for (i, d, b, v), (m, x0), r in zip(items, starts, runs):
                 out[i] = d.classify(b, v, m, x0, r)
     return out
@@ -214,7 +232,8 @@ def evaluate_outcomes(jobs, engine: str = "scalar", stats=None) -> list["Outcome
 @dataclass(frozen=True)
 class Outcome:
     """One trajectory of a threshold search: did it jump, and how did it end
-    (``status``: jumped; stopped = the rise completed; completed = reached t_max; failed).
+    (``status``: jumped; stopped = the rise completed; completed = reached t_max; settled =
+    the body settled in contact (the definition's ``settle`` rule); failed).
     ``theta``: the inclination where it ended (at lift-off for a jump); ``rise_fraction``:
     how much of the rise from theta0 to the final state (0 prolate, pi/2 oblate) was done."""
 
@@ -230,7 +249,8 @@ class Outcome:
 
     @property
     def how(self) -> str:
-        return {Status.JUMPED: "jumped", Status.STOPPED: "rise-complete", Status.COMPLETED: "t_max"}.get(self.status, "failed")
+        return {Status.JUMPED: "jumped", Status.STOPPED: "rise-complete", Status.COMPLETED: "t_max",
+                Status.SETTLED: "settled"}.get(self.status, "failed")
 
     @property
     def kind(self) -> str:
@@ -385,6 +405,7 @@ class ThresholdSearch:
         self.trans: list[tuple[float, float]] = []
         self.brackets: list[_Bracket] = []
         self._asked: list[float] = []
+        self.stopped: str | None = None  # why the search was ended before it finished
 
     @property
     def done(self) -> bool:
@@ -407,6 +428,21 @@ class ThresholdSearch:
                     return vals
                 self.phase = "done"
         return []
+
+    def stop(self, reason: str) -> None:
+        """End the search where it is (a wall budget ran out): its result keeps the bracket it
+        has, with status BRACKET_ONLY (FAILED before any transition was found) and ``reason``."""
+        if self.phase == "scan":
+            self._after_scan()
+        if not self.done:
+            self.phase, self.stopped = "done", reason
+
+    def describe(self) -> str:
+        """Where the search stands, in a few words (a progress bar's postfix)."""
+        live = [b for b in self.brackets if b.active]
+        if live:
+            return f"bracket [{live[0].lo:.6g}, {live[0].hi:.6g}]"
+        return f"scan [{self.w_lo:.4g}, {self.w_hi:.4g}]" if self.phase == "scan" else self.phase
 
     def tell(self, outcomes) -> None:
         outcomes = list(outcomes)
@@ -449,6 +485,14 @@ class ThresholdSearch:
     def result(self, wall_s: float = 0.0) -> Threshold:
         a = getattr(self.body, "a", float("nan"))
         outs, n = tuple(self.outcomes), len(self.outcomes)
+        if self.stopped is not None and not self.trans:
+            return Threshold(a, None, (None, None), Status.FAILED, n, (), outs, wall_s,
+                             f"{self.stopped} before a transition was found", n_rounds=self.n_rounds)
+        if self.stopped is not None and any(b.active for b in self.brackets):
+            first = next(b for b in self.brackets if b.active)
+            return Threshold(a, math.sqrt(first.lo * first.hi) if not first.o_lo.jumped else None, (first.lo, first.hi),
+                             Status.BRACKET_ONLY, n, tuple((b.lo, b.hi) for b in self.brackets), outs, wall_s,
+                             f"{self.stopped}: the bracket is as far as it was narrowed", n_rounds=self.n_rounds)
         if not self.trans:
             valid = [o for o in self.outcomes if o.jumped is not None]
             if not valid:
@@ -468,16 +512,23 @@ class ThresholdSearch:
         return Threshold(a, value, first, status, n, tuple(brackets), outs, wall_s, reason, n_rounds=self.n_rounds)
 
 
-def run_searches(searches, *, engine: str = "scalar", evaluate=None, stats=None) -> int:
+def run_searches(searches, *, engine: str = "scalar", evaluate=None, stats=None, bar=None) -> int:
     """Drive searches in lock-step: each round simulates the values every unfinished search
     asks for, all at once (on the batch integrator with ``engine="batch"``, or through
     ``evaluate(jobs) -> outcomes`` with jobs (definition, body, value), e.g. on a cluster).
+    A wall budget in force (:func:`phasekit.watch.wall_deadline`) that has run out ends every
+    search between rounds (:meth:`ThresholdSearch.stop`); ``bar`` (tqdm) counts the runs.
     Returns the number of rounds."""
     rounds = 0
     while True:
         asks = [(s, s.ask()) for s in searches if not s.done]
         asks = [(s, v) for s, v in asks if v]
         if not asks:
+            return rounds
+        if passed():
+            budget = deadline()[1]
+            for s, _ in asks:
+                s.stop(f"{WALL_REASON} (max_wall = {budget:g} s) ran out")
             return rounds
         jobs = [s.job(x) for s, vals in asks for x in vals]
         outs = evaluate(jobs) if evaluate is not None else evaluate_outcomes(jobs, engine=engine, stats=stats)
@@ -486,6 +537,9 @@ def run_searches(searches, *, engine: str = "scalar", evaluate=None, stats=None)
             s.tell(outs[k:k + len(vals)])
             k += len(vals)
         rounds += 1
+        if bar is not None:
+            bar.update(len(jobs))
+            bar.set_postfix_str(searches[len(searches) // 2].describe(), refresh=False)
 
 
 def threshold_searches(defn: Definition, body, *, lo: float | None = None, hi: float = 60.0, guess: float | None = None,
@@ -531,7 +585,8 @@ def threshold_result(searches: list[ThresholdSearch], wall_s: float = 0.0) -> Th
 
 def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float = 60.0, guess: float | None = None,
                    n_coarse: int = 8, window: float = 1.5, tol: float = 1e-3, levels: int = 1, engine: str = "scalar",
-                   sensitivity: bool = False, evaluate=None, throw: bool = False) -> Threshold:
+                   sensitivity: bool = False, evaluate=None, throw: bool = False, max_wall: float | None = None,
+                   progress: bool | None = None) -> Threshold:
     """Bracket and bisect the jump/no-jump transition in Omega0 (prolate) or n0 (oblate).
 
     A coarse geometric scan of ``n_coarse`` >= 2 points (over [lo, hi], or over
@@ -547,16 +602,28 @@ def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float
     searches at the seed distance (``defn.amplitude``) halved and doubled, in the same
     rounds, and fills :attr:`Threshold.sensitivity`. ``throw``: raise ConvergenceError
     instead of returning status FAILED.
+
+    ``max_wall`` (seconds) bounds the whole search: a run under way when it runs out ends
+    "failed", and the search returns the bracket it has (status BRACKET_ONLY, or FAILED
+    before a transition was found) with a reason naming the budget. ``progress``: a bar of
+    the runs with the current bracket (None: on a terminal or in a notebook only).
     """
     t0 = time.perf_counter()
     check_choice("engine", engine, ENGINES)
+    max_wall = check_max_wall(max_wall)
     searches = threshold_searches(defn, body, lo=lo, hi=hi, guess=guess, n_coarse=n_coarse, window=window, tol=tol,
                                   levels=levels, sensitivity=sensitivity)
-    run_searches(searches, engine=engine, evaluate=evaluate)
+    with progress_bar(desc=_bar_label(searches[0]), progress=progress) as bar, wall_deadline(max_wall):
+        run_searches(searches, engine=engine, evaluate=evaluate, bar=bar)
     th = threshold_result(searches, time.perf_counter() - t0)
     if throw and th.status is Status.FAILED:
         raise ConvergenceError(f"threshold search failed: {th.reason}", th)
     return th
+
+
+def _bar_label(search: ThresholdSearch) -> str:
+    a = getattr(search.body, "a", None)
+    return "threshold" + (f" a={a:g}" if a is not None else "")
 
 
 def stick_search(defn: Definition, body, value: float, *, lo: float = 1e-4, hi: float = 0.2, n_coarse: int = 8,
@@ -577,30 +644,49 @@ def stick_search(defn: Definition, body, value: float, *, lo: float = 1e-4, hi: 
 
 
 def find_stick_boundary(defn: Definition, body, value: float, *, lo: float = 1e-4, hi: float = 0.2, n_coarse: int = 8,
-                        tol: float = 1e-2, levels: int = 1, engine: str = "scalar", evaluate=None) -> Threshold:
+                        tol: float = 1e-2, levels: int = 1, engine: str = "scalar", evaluate=None,
+                        max_wall: float | None = None, progress: bool | None = None) -> Threshold:
     """The sticking boundary d_min at one value of the family parameter: the smallest seed
     distance ``d`` (``defn.amplitude``) in [lo, hi] whose start does not stick and roll
     (outcome kind "stuck"), bracketed and bisected in d to relative width ``tol``.
 
     Returns a :class:`Threshold` over d: ``value`` is d_min (the lowest transition from
     stuck below to not stuck above), its outcomes carry d as ``value`` and "not stuck" as
-    ``jumped``.
+    ``jumped``. ``max_wall`` and ``progress`` as for :func:`find_threshold`.
     """
     t0 = time.perf_counter()
     check_choice("engine", engine, ENGINES)
+    max_wall = check_max_wall(max_wall)
     search = stick_search(defn, body, value, lo=lo, hi=hi, n_coarse=n_coarse, tol=tol, levels=levels)
-    run_searches([search], engine=engine, evaluate=evaluate)
+    with progress_bar(desc="stick boundary", progress=progress) as bar, wall_deadline(max_wall):
+        run_searches([search], engine=engine, evaluate=evaluate, bar=bar)
     return search.result(time.perf_counter() - t0)
 
 
-def continue_threshold(defn: Definition, bodies, **kw) -> list[Threshold]:
-    """Thresholds along a list of bodies (or aspect ratios), each search seeded by the previous result."""
+def continue_threshold(defn: Definition, bodies, *, max_wall: float | None = None, progress: bool | None = None,
+                       **kw) -> list[Threshold]:
+    """Thresholds along a list of bodies (or aspect ratios), each search seeded by the previous
+    result (keywords of :func:`find_threshold`). ``max_wall`` bounds the whole continuation: a
+    search under way when it runs out returns its bracket, and the bodies after it a FAILED
+    Threshold saying so; ``progress``: a bar over the bodies."""
+    max_wall = check_max_wall(max_wall)
+    bodies = list(bodies)
     out, guess = [], None
-    for b in bodies:
-        th = find_threshold(defn, b, guess=guess, **kw)
-        out.append(th)
-        if th.value is not None:
-            guess = th.value
+    with progress_bar(len(bodies), desc="thresholds", unit="body", progress=progress) as bar, \
+            wall_deadline(max_wall):
+        for b in bodies:
+            if passed():
+                why = f"not searched: {WALL_REASON} (max_wall = {max_wall:g} s) ran out"
+                out.append(Threshold(getattr(as_body(b), "a", float("nan")), None, (None, None), Status.FAILED, 0,
+                                     reason=why))
+                continue
+            th = find_threshold(defn, b, guess=guess, progress=False, **kw)
+            out.append(th)
+            if th.value is not None:
+                guess = th.value
+            bar.update()
+            bar.set_postfix_str(f"last {th.status.value} {th.value if th.value is None else format(th.value, '.6g')}",
+                                refresh=False)
     return out
 
 

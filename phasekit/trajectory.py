@@ -284,6 +284,23 @@ class Trajectory:
     def flights(self) -> tuple[Flight, ...]:
         return tuple(self._flight(s) for s in self.segments if s.mode is Mode.FLIGHT)
 
+    @property
+    def hops(self) -> dict:
+        """Hop statistics: ``n_liftoffs`` (losses of contact), ``n_flights`` (every flight,
+        rebounds included), ``n_impacts``, ``t_flight`` (time in flight), ``flight_fraction``
+        (of the simulated span), ``longest_flight``, ``gap_max`` (the largest gap, units b)
+        and ``n_trains_resolved`` (bounce trains whose geometric tail was summed)."""
+        spans = [(s.t1 - s.t0, s) for s in self.segments if s.mode is Mode.FLIGHT]
+        gaps = [max(x[8] for _, x in s.monitored) for _, s in spans if s.monitored]
+        span = self.t - self.t0
+        t_flight = float(sum(d for d, _ in spans))
+        return {"n_liftoffs": sum(1 for e in self.events if e.name == "lift-off"), "n_flights": len(spans),
+                "n_impacts": sum(1 for e in self.events if e.name == "impact"), "t_flight": t_flight,
+                "flight_fraction": t_flight / span if span > 0 else 0.0,
+                "longest_flight": float(max((d for d, _ in spans), default=0.0)),
+                "gap_max": float(max(gaps)) if gaps else 0.0,
+                "n_trains_resolved": sum(1 for e in self.events if e.name == "impact" and "train resolved" in e.detail)}
+
     def _flight(self, s: Segment) -> Flight:
         m = self.model
         gmax = tg = None
@@ -493,6 +510,7 @@ class Trajectory:
         if fl:
             d["flight"] = fl[0].to_dict()
             d["n_flights"] = len(fl)
+            d["hops"] = self.hops
         d["model"] = self.model.to_dict()
         d["start"] = dict(zip(PAPER_NAMES, map(float, chart.to_paper(self.x0) if self.x0.size == chart.n_states
                                                    else FLIGHT.to_paper(self.x0))))

@@ -7,6 +7,7 @@ naming the parameter, its valid range and the value given, in plain numbers.
 from __future__ import annotations
 
 import math
+import threading
 from collections.abc import Sequence
 
 import numpy as np
@@ -161,3 +162,70 @@ def check_instance(name: str, value, cls: type, example: str):
     if not isinstance(value, cls):
         raise ParameterError(name, f"must be a phasekit {cls.__name__} such as {example}", value)
     return value
+
+
+def _all_finite(out) -> bool:
+    """Are all numbers in a result finite (scalars, arrays, sequences, dicts, dataclasses)?"""
+    import dataclasses
+
+    if out is None or isinstance(out, (bool, np.bool_, str)):
+        return True
+    if isinstance(out, (int, float, np.integer, np.floating, complex, np.complexfloating)):
+        return bool(np.isfinite(out))
+    if isinstance(out, np.ndarray):
+        return out.dtype.kind not in "fc" or bool(np.all(np.isfinite(out)))
+    if isinstance(out, dict):
+        return all(_all_finite(v) for v in out.values())
+    if isinstance(out, (list, tuple)):
+        return all(_all_finite(v) for v in out)
+    if dataclasses.is_dataclass(out):
+        return all(_all_finite(getattr(out, f.name)) for f in dataclasses.fields(out))
+    return True
+
+
+def _magnitude(value) -> float:
+    try:
+        a = np.abs(np.asarray(value, dtype=float))
+    except (TypeError, ValueError):
+        return -1.0
+    a = a[np.isfinite(a)]
+    return float(a.max()) if a.size else -1.0
+
+
+_NESTED = threading.local()
+
+
+def finite_result(func):
+    """Decorate a theory helper: a result that is not finite (an overflow of double precision,
+    or a singular configuration) is a ParameterError naming the argument of largest magnitude,
+    never a NaN or inf handed back (nor an OverflowError)."""
+    import functools
+    import inspect
+
+    sig = inspect.signature(func)
+
+    @functools.wraps(func)
+    def checked(*args, **kwargs):
+        if getattr(_NESTED, "depth", 0):  # called by another checked helper: that one names its own argument
+            return func(*args, **kwargs)
+        _NESTED.depth = 1
+        try:
+            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                out = func(*args, **kwargs)
+        except (OverflowError, FloatingPointError, ZeroDivisionError):
+            out, ok = None, False
+        else:
+            ok = _all_finite(out)
+        finally:
+            _NESTED.depth = 0
+        if ok:
+            return out
+        bound = sig.bind(*args, **kwargs).arguments
+        sizes = {k: _magnitude(v) for k, v in bound.items() if k != "body"}
+        name = max(sizes, key=sizes.get) if sizes else next(iter(bound), "arguments")
+        if sizes.get(name, -1.0) > 1e10:
+            raise ParameterError(name, "is too large in size: the result overflows double precision", bound[name])
+        raise ParameterError(name, "gives a non-finite result here (a singular configuration of the theory)",
+                             bound.get(name))
+
+    return checked

@@ -19,9 +19,9 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
+import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
-import phasekit as pk
 from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"

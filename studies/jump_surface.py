@@ -27,9 +27,9 @@ import sys
 import time
 from pathlib import Path
 
+import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
-import phasekit as pk
 from phasekit.viz import atomic_path, output_dir, progress, run_study, study_parser, write_csv
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"

@@ -33,9 +33,9 @@ from dataclasses import asdict, replace
 from functools import partial
 from pathlib import Path
 
+import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
-import phasekit as pk
 from phasekit.viz import output_dir, plain_log_ticks, pyplot, run_study, save_figure, study_parser
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"

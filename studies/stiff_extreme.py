@@ -21,9 +21,9 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
-import phasekit as pk
 from phasekit.viz import output_dir, progress, run_study, study_parser, write_csv
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"

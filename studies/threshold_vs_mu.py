@@ -27,9 +27,9 @@ import time
 from dataclasses import asdict, replace
 from pathlib import Path
 
+import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
-import phasekit as pk
 from phasekit.viz import output_dir, plain_log_ticks, pyplot, run_study, save_figure, study_parser
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"

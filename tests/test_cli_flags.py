@@ -201,9 +201,12 @@ def test_repeated_single_value_shows_both_values():
     assert msg == "--a takes one value and is given 2 times (got 1, then 2): give it once"
 
 
-def test_repeated_switch_changes_nothing_and_is_accepted(started):
-    code, out, _ = run_cli(*MINIMAL["simulate"], "--json", "--json")
-    assert code == 0 and strict_json(out)["status"] == "completed" and len(started) == 1
+def test_repeated_switch_is_refused_before_anything_runs(started):
+    """Issue 24 reversed issue 17's choice: `--json --json` is refused like any repeated flag."""
+    code, out, err = run_cli(*MINIMAL["simulate"], "--json", "--json")
+    d = strict_json(out)
+    assert code == 2 and d["parameter"] == "--json" and d["message"] == "--json is given 2 times: give it once"
+    assert err == f"phasekit: error: {d['message']}\n" and not started
 
 
 # -- 6. gyroscopic times in the order given ---------------------------------------------------------

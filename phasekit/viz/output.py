@@ -71,6 +71,17 @@ class StudyParser(argparse.ArgumentParser):
     def error(self, message):  # one line, no usage block
         self.exit(EXIT_USAGE, f"{self.prog}: error: {' '.join(str(message).split())}\n")
 
+    def parse_args(self, args=None, namespace=None):
+        """As argparse, and an option given twice is refused (argparse would keep the last
+        silently), a switch too, as the CLI does."""
+        argv = sys.argv[1:] if args is None else list(args)
+        argv = argv[:argv.index("--")] if "--" in argv else argv
+        typed = [a.split("=", 1)[0] for a in argv if isinstance(a, str) and a.startswith("--") and len(a) > 2]
+        for flag in dict.fromkeys(typed):
+            if flag in self._option_string_actions and typed.count(flag) > 1:
+                self.error(f"{flag} is given {typed.count(flag)} times: give it once")
+        return super().parse_args(args, namespace)
+
     @staticmethod
     def integer(min: int | None = None, max: int | None = None):
         """An argparse ``type``: an integer in [min, max] (either bound may be None)."""
@@ -316,9 +327,9 @@ def _ctrl_c_guard(late_s: float = 0.5):
     import threading
 
     if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
-        yield
+        yield {}
         return
-    state = {"at": None}
+    state = {"at": None, "seen": False}  # seen: a Ctrl-C arrived (whatever compiled code made of it)
     stderr, previous_trace = sys.stderr, sys.gettrace()
 
     def again(frame, event, arg):  # a trace function: runs before each line of Python in this thread
@@ -334,6 +345,7 @@ def _ctrl_c_guard(late_s: float = 0.5):
         return again
 
     def interrupted(signum, frame):
+        state["seen"] = True
         if state["at"] is None:
             import logging
 
@@ -350,7 +362,7 @@ def _ctrl_c_guard(late_s: float = 0.5):
 
     signal.signal(signal.SIGINT, interrupted)
     try:
-        yield
+        yield state
     finally:
         if state["at"] is not None:
             state["at"] = None
@@ -372,12 +384,19 @@ def run_study(main, argv=None, *, resume: str | None = None, flags: Mapping[str,
     shown then leaves out ``--fresh``, which would discard it); the default is for studies
     that write their files whole at the end: nothing was changed, rerun.
     """
+    from .. import _startup
     from ..errors import ParameterError, PhasekitError
 
+    _startup.started()  # Ctrl-C is a KeyboardInterrupt from here on, turned into one line below
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        with _ctrl_c_guard():
-            main(argv)
+        with _ctrl_c_guard() as guard:
+            try:
+                main(argv)
+            except Exception:
+                if guard.get("seen"):  # CasADi's dispatch turned the KeyboardInterrupt into an error of its own
+                    raise KeyboardInterrupt from None
+                raise
     except KeyboardInterrupt:
         how = resume or "no result file was changed (each is written whole, at the end); to resume, run it again"
         again = [a for a in argv if a != "--fresh"] if resume else argv

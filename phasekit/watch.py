@@ -1,0 +1,110 @@
+"""Long calls report and end: progress bars where a person waits, and wall budgets.
+
+Progress
+--------
+``progress=None`` (the default of every long call) shows a tqdm bar on stderr only where a
+person is watching: stderr is a terminal, or the call runs in a Jupyter kernel (where tqdm
+draws a widget if ipywidgets is installed, else text). ``progress=True`` asks for a bar
+anyway (a log file then gets tqdm's lines), ``progress=False`` turns it off.
+
+Wall budgets
+------------
+``max_wall`` of a search, a map or an ensemble is a deadline for the whole call.
+:func:`wall_deadline` sets it for everything computed inside (a context variable, so nested
+calls keep the earliest), and :func:`phasekit.simulate` ends a run that reaches it with
+status "failed" and a reason naming the budget; the caller then returns what it has, with a
+status that says the budget ran out.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import contextvars
+import math
+import sys
+import time
+
+from .validate import check_positive
+
+__all__ = ["show_progress", "progress_bar", "wall_deadline", "deadline", "check_max_wall", "WALL_REASON"]
+
+#: the start of the reason of a run or a search ended by the caller's wall budget
+WALL_REASON = "the call's wall budget"
+
+_DEADLINE: contextvars.ContextVar[tuple[float, float] | None] = contextvars.ContextVar("phasekit_deadline", default=None)
+
+
+def in_jupyter() -> bool:
+    """Does this process run a Jupyter (IPython) kernel?"""
+    shell = sys.modules.get("IPython")
+    if shell is None or "ipykernel" not in sys.modules:
+        return False
+    try:
+        ip = shell.get_ipython()
+    except Exception:  # an IPython too old or too new to ask: assume no kernel
+        return False
+    return ip is not None and type(ip).__name__ == "ZMQInteractiveShell"
+
+
+def show_progress(progress) -> bool:
+    """Resolve a ``progress`` argument: None shows a bar only on a terminal or in a notebook."""
+    if progress is None:
+        try:
+            tty = sys.stderr.isatty()
+        except (AttributeError, ValueError):  # a closed or replaced stderr
+            tty = False
+        return tty or in_jupyter()
+    if not isinstance(progress, bool):
+        from .errors import ParameterError
+
+        raise ParameterError("progress", "must be True, False or None (a bar on a terminal or in a notebook only)",
+                             progress)
+    return progress
+
+
+def progress_bar(total=None, *, desc: str = "", unit: str = "run", progress=None, delay: float = 0.0):
+    """A tqdm bar on stderr (a widget in a notebook when ipywidgets is there); disabled per
+    :func:`show_progress`; shown only after ``delay`` seconds."""
+    enabled = show_progress(progress)
+    if enabled and in_jupyter():
+        try:
+            import ipywidgets  # noqa: F401  (tqdm.notebook needs it; without it tqdm warns and draws text)
+            from tqdm.notebook import tqdm
+        except ImportError:
+            from tqdm import tqdm
+    else:
+        from tqdm import tqdm
+    return tqdm(total=total, desc=desc, unit=unit, disable=not enabled, file=sys.stderr, leave=False,
+                dynamic_ncols=True, delay=delay)
+
+
+def check_max_wall(value, name: str = "max_wall") -> float | None:
+    """None (no budget) or a wall time in seconds > 0."""
+    return None if value is None else check_positive(name, value)
+
+
+@contextlib.contextmanager
+def wall_deadline(max_wall: float | None):
+    """Within the block, every run ends by ``max_wall`` seconds from now (or an earlier
+    deadline set outside). Yields the deadline as a ``time.perf_counter()`` value (inf: none)."""
+    outer = _DEADLINE.get()
+    if max_wall is None:
+        yield outer[0] if outer else math.inf
+        return
+    mine = (time.perf_counter() + max_wall, max_wall)
+    token = _DEADLINE.set(mine if outer is None or mine[0] < outer[0] else outer)
+    try:
+        yield _DEADLINE.get()[0]
+    finally:
+        _DEADLINE.reset(token)
+
+
+def deadline() -> tuple[float, float] | None:
+    """The deadline in force, (``time.perf_counter()`` value, the budget in seconds), or None."""
+    return _DEADLINE.get()
+
+
+def passed() -> bool:
+    """Has the deadline in force passed?"""
+    d = _DEADLINE.get()
+    return d is not None and time.perf_counter() > d[0]
