@@ -114,7 +114,7 @@ def measure(quick: bool, log) -> dict:
     try:
         client.run(lambda: study.structure_at("tippe-top", 0.3, 0.95))  # warm the workers' compiled functions
         rows_dask, grid_dask = run(specs, client)
-        bounds_dask, edges_dask = run(especs, client)
+        _, edges_dask = run(especs, client)
     finally:
         client.close()
         cluster.close()

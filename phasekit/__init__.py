@@ -46,17 +46,16 @@ from .fixedpoints import (
     side_equilibrium,
     vertical_state,
 )
-from .manifolds import (
+from .criteria import (
     PoleCriterion,
     equator_stability_threshold,
     horizontal_is_unstable,
     pole_stability_threshold,
     horizontal_stability_threshold,
     vertical_is_stable,
-    unstable_manifold_start,
-    unstable_seeds,
     vertical_stability_threshold,
 )
+from .manifolds import unstable_manifold_start, unstable_seeds
 from .threshold import (
     DEFAULT_DEFINITIONS,
     Definition,

@@ -81,15 +81,6 @@ def parse_stop(stop: str) -> tuple[str, list[Event]]:
     return "none", [Event(name, level, direction=0, name=f"{name}={level:g}")]
 
 
-def _frictionless(exc: ParameterError, law, state: str) -> ParameterError:
-    """A state "without an unstable direction" at mu = 0 has none because there is no friction
-    (it drives the instabilities of these states): blame `mu`, not the rate that was given."""
-    if law.mu == 0.0 and exc.param in ("omega0", "n0") and "without an unstable direction" in exc.expected:
-        return ParameterError("mu", f"must be > 0 for an unstable-manifold start of the {state} state: without "
-                                    "friction it has no unstable direction to seed", law.mu)
-    return exc
-
-
 def _start(body, law, start: dict, formulation: str):
     """(model, x0, seed info) for a start description."""
     kind = start["kind"]
@@ -99,12 +90,9 @@ def _start(body, law, start: dict, formulation: str):
         for key in ("omega0", "n0"):
             if start.get(key) is not None and abs(start[key]) > RATE_MAX:
                 raise ParameterError(key, f"must satisfy |{key}| <= {RATE_MAX:g} for a simulation", start[key])
-        try:
-            model, x0, fp = unstable_manifold_start(
-                body, law, state=start["state"], delta=start["delta"], omega0=start.get("omega0"), n0=start.get("n0"),
-                branch=start.get("branch", "+0"), seed_law=start.get("seed_law", "viscous"))
-        except ParameterError as exc:
-            raise _frictionless(exc, law, start["state"]) from None
+        model, x0, fp = unstable_manifold_start(
+            body, law, state=start["state"], delta=start["delta"], omega0=start.get("omega0"), n0=start.get("n0"),
+            branch=start.get("branch", "+0"), seed_law=start.get("seed_law", "viscous"))
         if formulation not in ("auto", model.chart.name):
             raise ParameterError("formulation", f"cannot start on the {start['state']} state (use {model.chart.name} or auto)",
                                  formulation)

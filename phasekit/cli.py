@@ -880,36 +880,18 @@ def main(argv=None) -> int:
     from . import _startup
 
     _startup.started()  # from here on Ctrl-C is a KeyboardInterrupt, handled below
-    with _interrupts_remembered() as interrupted:
-        return _main(argv, interrupted)
+    from .interrupts import interrupt_guard
+
+    with interrupt_guard(mute=False) as guard:
+        try:
+            return _main(argv, guard)
+        except KeyboardInterrupt:  # raised again by the guard after _main's own handlers
+            guard["handled"] = True
+            return _error("interrupted (a single run keeps nothing: run it again)", None, "--json" in (argv or sys.argv),
+                          code=130)
 
 
-@contextlib.contextmanager
-def _interrupts_remembered():
-    """Ctrl-C raises KeyboardInterrupt as usual, and is remembered: compiled code that it lands
-    in (heyoka's module initialising, a CasADi call) may turn it into an error of its own
-    ("ImportError: initialization failed"), which must still end the run as interrupted."""
-    import signal
-    import threading
-
-    seen: list[bool] = []
-    if threading.current_thread() is not threading.main_thread() or \
-            signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
-        yield seen
-        return
-
-    def remember(signum, frame):
-        seen.append(True)
-        raise KeyboardInterrupt
-
-    signal.signal(signal.SIGINT, remember)
-    try:
-        yield seen
-    finally:
-        signal.signal(signal.SIGINT, signal.default_int_handler)
-
-
-def _main(argv, interrupted: list) -> int:
+def _main(argv, guard: dict) -> int:
     from .errors import ParameterError, PhasekitError
 
     argv = list(sys.argv[1:] if argv is None else argv)
@@ -934,16 +916,17 @@ def _main(argv, interrupted: list) -> int:
     except PhasekitError as exc:
         return _error(str(exc), None, as_json, code=1, names=names)
     except KeyboardInterrupt:
+        guard["handled"] = True
         return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
     except Exception as exc:  # a bug: one line, not a traceback (PHASEKIT_DEBUG=1 shows it)
-        if interrupted:  # Ctrl-C that compiled code turned into an error of its own
+        if guard.get("seen"):  # Ctrl-C that compiled code turned into an error of its own
             return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
         if os.environ.get(DEBUG_ENV):
             raise
         first = (str(exc).strip().splitlines() or [""])[0][:200]
         return _error(f"internal error: {type(exc).__name__}: {first} (please report it; set {DEBUG_ENV}=1 for the "
                       "traceback)", None, as_json, code=1)
-    if interrupted:  # a Ctrl-C that compiled code swallowed (the run went on): still an interrupted run
+    if guard.get("seen"):  # a Ctrl-C that compiled code swallowed (the run went on): still an interrupted run
         return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
     if as_json:
         print(json.dumps(out, default=_json_default, allow_nan=False))

@@ -68,6 +68,7 @@ import casadi as ca
 import numpy as np
 
 from .charts import EULER, PAPER_NAMES, VECTOR
+from .criteria import pole_stability_threshold
 from .errors import ConvergenceError, ParameterError
 from .hybrid import Mode
 from .model import Model
@@ -113,7 +114,7 @@ class FixedPoint:
     residual : max |f(x)| of the mode's vector field at x
     law : the linearised law ("viscous", "coulomb-regularised", "coulomb-rolling")
     parameter : the family parameter (Omega0 or n0), and for the poles the closed-form
-        stability criterion under sliding friction (phasekit.manifolds.pole_stability)
+        stability criterion under sliding friction (phasekit.criteria.pole_stability_threshold)
     error_bounds : a bound on the error of each eigenvalue (same order): its condition number
         (1 / |y^H x| for unit left and right eigenvectors) times the size of the error in the
         Jacobian (the rounding of its evaluation and of the eigensolver, JACOBIAN_ROUNDING
@@ -728,8 +729,6 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
 def _pole(model_vector: Model, n0: float, pole: str) -> FixedPoint:
     """The spinning state at theta = 0 (Newton, as every family) or theta = pi (exact), with the
     closed-form criterion under sliding friction attached."""
-    from .manifolds import pole_stability_threshold
-
     if pole == "upright":
         fp = find_fixed_point(model_vector, vertical_state(n0), kind="vertical", value=n0)
     else:

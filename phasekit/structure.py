@@ -21,7 +21,7 @@ theta on which q rho_2 / D > 0 (rho_2 > 0 on a convex body). An interval ends wh
 * theta = 0 or pi (a **pole**: the branch meets the spin about the vertical there at the
   finite spin n = Omega h0 / rho with rho = h0 + h_tt the radius of curvature at the pole;
   squared, n^2 rho (A rho - C h0) = h_tt h0^2, the closed-form pole criterion of
-  :func:`phasekit.manifolds.pole_stability_threshold`: the branch is born where the pole
+  :func:`phasekit.criteria.pole_stability_threshold`: the branch is born where the pole
   changes stability).
 
 Where q and D vanish together (a static equilibrium with its axis horizontal, theta = pi/2 for
@@ -48,12 +48,20 @@ from dataclasses import dataclass, field, replace
 import casadi as ca
 import numpy as np
 
-from .charts import EULER, VECTOR, euler_to_vector
 from .body import Body
+from .charts import EULER, VECTOR, euler_to_vector
+from .criteria import PoleCriterion, pole_stability_threshold
 from .errors import ConvergenceError, ParameterError, Status
-from .fixedpoints import FixedPoint, _eigen_with_bounds, _jacobian_error, _law_jacobian, _mode_for, find_fixed_point, linearise
+from .fixedpoints import (
+    FixedPoint,
+    _eigen_with_bounds,
+    _jacobian_error,
+    _law_jacobian,
+    _mode_for,
+    find_fixed_point,
+    linearise,
+)
 from .friction import FrictionLaw, Viscous
-from .manifolds import PoleCriterion, pole_stability_threshold
 from .model import Model
 from .validate import check_bool, check_finite
 
@@ -373,8 +381,7 @@ def _roots(fun, grid: np.ndarray, values: np.ndarray) -> list[float]:
     dips = np.flatnonzero((a[1:-1] < a[:-2]) & (a[1:-1] < a[2:]) & (sgn[:-2] == sgn[1:-1]) & (sgn[1:-1] == sgn[2:])
                           & (sgn[1:-1] != 0)) + 1
     for k in dips:  # a dip toward zero: does f cross between grid[k-1] and grid[k+1]?
-        s = sgn[k]
-        res = minimize_scalar(lambda t: s * fun(t), bounds=(grid[k - 1], grid[k + 1]), method="bounded",
+        res = minimize_scalar(lambda t, s=sgn[k]: s * fun(t), bounds=(grid[k - 1], grid[k + 1]), method="bounded",
                               options={"xatol": 1e-14})
         if res.fun < 0:
             t0 = float(res.x)
@@ -566,7 +573,7 @@ def _n_positive(fp: FixedPoint) -> int:
 def _locate_change(at, lo: float, hi: float, f_lo: FixedPoint, f_hi: FixedPoint):
     """Bisect one change of stability between two states with different counts to CHANGE_XTOL;
     returns the change and the state at the upper end of its bracket."""
-    c_lo, c_hi = _n_positive(f_lo), _n_positive(f_hi)
+    c_lo = _n_positive(f_lo)
     while hi - lo > CHANGE_XTOL:
         mid = 0.5 * (lo + hi)
         if mid in (lo, hi):

@@ -42,7 +42,8 @@ from .body import Body, Spheroid
 from .errors import ConvergenceError, ParameterError, Status
 from .friction import Coulomb, RegularisedCoulomb, Viscous
 from .hybrid import Event
-from .manifolds import horizontal_stability_threshold, unstable_manifold_start, vertical_stability_threshold
+from .criteria import horizontal_stability_threshold, vertical_stability_threshold
+from .manifolds import unstable_manifold_start
 from .model import Model
 from .options import RTOL_RANGE
 from .settle import Settle, check_settle

@@ -134,8 +134,9 @@ def test_ctrl_c_at_any_moment_of_the_start_is_one_line_and_130(which, tmp_path):
         hopping = [a if a != "10.5" else "30" for a in SIM]  # hops to t = 400: a few seconds of work
         cmd = [sys.executable, "-m", "phasekit", *hopping, "--t-end", "400", "--stop-at", "none", "--restitution", "0.5"]
     else:
-        cmd = [sys.executable, str(ROOT / "studies" / "stability_map.py"), "--quick", "--no-progress", "--out",
-               str(tmp_path)]
+        # a study that runs for tens of seconds, so that every delay interrupts it
+        cmd = [sys.executable, str(ROOT / "studies" / "steady_structure.py"), "--quick", "--serial", "--no-scene",
+               "--no-progress", "--fresh", "--out", str(tmp_path)]
     for delay in (0.3, 0.5, 0.8, 1.2):  # (the first ~30 ms, before Python runs any of phasekit, are out of reach)
         proc = subprocess.Popen(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         time.sleep(delay)

@@ -13,10 +13,9 @@ from phasekit.fixedpoints import (
     linearise,
     vertical_state,
 )
-from phasekit.manifolds import (
+from phasekit.manifolds import unstable_manifold_start, unstable_seeds
+from phasekit.criteria import (
     horizontal_stability_threshold,
-    unstable_manifold_start,
-    unstable_seeds,
     vertical_is_stable,
     vertical_stability_threshold,
 )

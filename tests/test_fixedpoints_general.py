@@ -18,11 +18,11 @@ from phasekit.fixedpoints import (
     side_equilibrium,
     vertical_state,
 )
-from phasekit.manifolds import (
+from phasekit.manifolds import unstable_manifold_start
+from phasekit.criteria import (
     equator_stability_threshold,
     horizontal_stability_threshold,
     pole_stability_threshold,
-    unstable_manifold_start,
     vertical_stability_threshold,
 )
 

@@ -250,7 +250,7 @@ def test_cli_steady_states_json_and_bad_input():
         assert b["ends"][0]["theta"] < b["ends"][1]["theta"]
         s0 = b["samples"][0]
         assert {"theta", "Omega", "n", "stable"} <= set(s0)
-        om, n = precession_on_branch(pk.Spheroid(1.5, offset=0.2), np.array([s["theta"] for s in b["samples"]]))
+        om, _ = precession_on_branch(pk.Spheroid(1.5, offset=0.2), np.array([s["theta"] for s in b["samples"]]))
         assert np.array([s["Omega"] for s in b["samples"]]) == pytest.approx(om, rel=1e-14)
     assert [s["kind"] for s in d["static_equilibria"]] == ["pole", "tilted", "pole"]
     code, out, err = run_cli("steady-states", "--a", "1.5", "--offset", "1.6", "--mu", "0.1")

@@ -25,13 +25,11 @@ from __future__ import annotations
 import argparse
 import contextlib
 import csv
-import io
 import math
 import os
 import re
 import shlex
 import sys
-import time
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -292,85 +290,6 @@ def _fail(message: str, code: int):
     raise SystemExit(code) from None
 
 
-def _chained_to_interrupt(exc) -> bool:
-    """Is ``exc`` a KeyboardInterrupt, or raised while one was being handled?"""
-    while exc is not None:
-        if isinstance(exc, KeyboardInterrupt):
-            return True
-        exc = exc.__context__
-    return False
-
-
-class _Muted(io.TextIOBase):
-    """A stand-in for sys.stderr that drops what is written (see :func:`_ctrl_c_guard`)."""
-
-    def write(self, text) -> int:
-        return len(text)
-
-
-@contextlib.contextmanager
-def _ctrl_c_guard(late_s: float = 0.5):
-    """While ``main`` runs, Ctrl-C (SIGINT) raises KeyboardInterrupt as usual, and also:
-
-    * mutes what this process writes to sys.stderr while the run winds down (Dask's warnings
-      while it stops workers in mid-task, CasADi's "rhs failed: KeyboardInterrupt"), so that
-      the one line of :func:`run_study` is all that is printed;
-    * makes sure the interrupt is not lost. When it lands inside compiled code, CasADi's
-      integrators turn the KeyboardInterrupt into an error of their own (a failed run, and
-      the study would go on). So until ``main`` has ended, the KeyboardInterrupt is raised
-      again at the first line of Python that runs in a handler of another exception (where
-      such an error is caught), or, ``late_s`` after the signal, anywhere outside the
-      cleanup of the KeyboardInterrupt itself (``except`` / ``finally`` / ``__exit__`` blocks
-      on its way out run undisturbed). A second Ctrl-C raises at once.
-    """
-    import signal
-    import threading
-
-    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
-        yield {}
-        return
-    state = {"at": None, "seen": False}  # seen: a Ctrl-C arrived (whatever compiled code made of it)
-    stderr, previous_trace = sys.stderr, sys.gettrace()
-
-    def again(frame, event, arg):  # a trace function: runs before each line of Python in this thread
-        if state["at"] is None:
-            return None
-        exc = sys.exc_info()[1]
-        if _chained_to_interrupt(exc):
-            return again
-        if exc is not None or time.monotonic() - state["at"] > late_s:
-            state["at"] = None  # once: this one is not caught by compiled code
-            sys.settrace(previous_trace)
-            raise KeyboardInterrupt
-        return again
-
-    def interrupted(signum, frame):
-        state["seen"] = True
-        if state["at"] is None:
-            import logging
-
-            state["at"] = time.monotonic()
-            for name in ("distributed", "tornado", "asyncio"):
-                logging.getLogger(name).setLevel(logging.CRITICAL + 1)
-            sys.stderr = _Muted()
-            f = frame
-            while f is not None:  # trace the frames running now, and every frame called from now on
-                f.f_trace = again
-                f = f.f_back
-            sys.settrace(again)
-        raise KeyboardInterrupt
-
-    signal.signal(signal.SIGINT, interrupted)
-    try:
-        yield state
-    finally:
-        if state["at"] is not None:
-            state["at"] = None
-            sys.settrace(previous_trace)
-        sys.stderr = stderr
-        signal.signal(signal.SIGINT, signal.default_int_handler)
-
-
 def run_study(main, argv=None, *, resume: str | None = None, flags: Mapping[str, str] | None = None) -> None:
     """Run ``main(argv)`` as a command: Ctrl-C ends it with one line on stderr (no traceback)
     saying what was kept and how to resume, and exit code 130; a closed stdout pipe ends it
@@ -386,17 +305,20 @@ def run_study(main, argv=None, *, resume: str | None = None, flags: Mapping[str,
     """
     from .. import _startup
     from ..errors import ParameterError, PhasekitError
+    from ..interrupts import interrupt_guard
 
     _startup.started()  # Ctrl-C is a KeyboardInterrupt from here on, turned into one line below
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        with _ctrl_c_guard() as guard:
+        with interrupt_guard() as guard:
             try:
                 main(argv)
             except Exception:
                 if guard.get("seen"):  # CasADi's dispatch turned the KeyboardInterrupt into an error of its own
                     raise KeyboardInterrupt from None
                 raise
+            if guard.get("seen"):  # a Ctrl-C that compiled code swallowed: the user still asked to stop
+                raise KeyboardInterrupt
     except KeyboardInterrupt:
         how = resume or "no result file was changed (each is written whole, at the end); to resume, run it again"
         again = [a for a in argv if a != "--fresh"] if resume else argv
