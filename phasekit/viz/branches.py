@@ -107,10 +107,10 @@ def render_structure(structure, path, *, trajectories=(), surface: bool = False,
                        xtitle="Omega [sqrt(g/b)]", ytitle="theta [rad]", ztitle="n [sqrt(g/b)]", color="k", font_size=16,
                        location="outer", grid="back", ticks="outside")
         legend = [["stable branch state", STABLE], ["unstable branch state", UNSTABLE], ["end of a branch", "black"],
-                  ["change of stability", "#fdae61"]]
+                  ["change of stability", "#fdae61"], ["families (thin; same colours)", "0.4"]]
         if trs:
             legend.append(["trajectory", TRAJECTORY_COLORS[0]])
-        pl.add_legend(legend, bcolor="white", face="rectangle", size=(0.2, 0.13), loc="lower left")
+        pl.add_legend(legend, bcolor="white", face="rectangle", size=(0.22, 0.15), loc="lower left")
         if title:
             actor = pl.add_text(title, position=(16, window_size[1] - 14), font_size=11, color="k")
             actor.GetTextProperty().SetVerticalJustificationToTop()
