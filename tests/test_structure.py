@@ -255,3 +255,47 @@ def test_cli_steady_states_json_and_bad_input():
     assert [s["kind"] for s in d["static_equilibria"]] == ["pole", "tilted", "pole"]
     code, out, err = run_cli("steady-states", "--a", "1.5", "--offset", "1.6", "--mu", "0.1")
     assert code == 2 and "--offset" in err and len(err.strip().splitlines()) == 1
+
+
+# -- generated command lines ------------------------------------------------------------------
+
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_NUM = st.one_of(st.floats(allow_nan=True, allow_infinity=True, width=32), st.sampled_from(["0", "-1", "1e9", "abc", ""]))
+
+
+@st.composite
+def _structure_argv(draw):
+    body = draw(st.sampled_from(["spheroid", "tippe-top", "egg"]))
+    argv = ["steady-states", "--body", body, "--mu", draw(st.sampled_from(["0.1", "0.3", "0", "-1", "nan"]))]
+    options = {"spheroid": ["--a", "--offset", "--A", "--C"], "tippe-top": ["--offset", "--A", "--C"], "egg": ["--a", "--w"]}
+    for flag in draw(st.lists(st.sampled_from(options[body] + ["--a", "--w"]), unique=True, max_size=4)):
+        value = draw(st.one_of(st.floats(0.05, 3.0).map(lambda v: f"{v:.4g}"), _NUM.map(str)))
+        argv += [flag, value]
+    argv += draw(st.sampled_from([[], ["--friction", "viscous"], ["--slip-eps", "1e-3"], ["--friction", "magic"]]))
+    argv += draw(st.sampled_from([[], ["--omega0", "2"], ["--n0", "3"]]))
+    return [*argv, "--json"]
+
+
+@settings(max_examples=40, deadline=None, derandomize=True, suppress_health_check=list(HealthCheck))
+@given(_structure_argv())
+def test_generated_steady_states_command_lines_end_in_a_result_or_one_line(argv):
+    """Every generated command line gives strict JSON: a structure (ends ordered and of the three
+    kinds, finite samples) with exit 0, or an error naming one of the flags typed with exit 2."""
+    code, out, err = run_cli(*argv)
+    d = json.loads(out, parse_constant=lambda name: (_ for _ in ()).throw(ValueError(name)))
+    if code == 0:
+        for b in d["branches"]:
+            assert b["ends"][0]["theta"] < b["ends"][1]["theta"]
+            assert {e["kind"] for e in b["ends"]} <= {"pole", "static", "infinite-spin"}
+            assert all(np.isfinite([s["theta"], s["Omega"], s["n"]]).all() for s in b["samples"])
+        assert d["signature"] == " | ".join(b["label"] for b in d["branches"]) or d["signature"] == "none"
+    else:
+        from phasekit import cli
+
+        flags = cli._build_parser().commands["steady-states"]._option_string_actions
+        # the flag typed, or a required one left out (e.g. --a for a spheroid)
+        assert code == 2 and d["status"] == "error" and d["parameter"] in flags, (argv, d)
+        assert d["parameter"] in argv or d["parameter"] in ("--a", "--offset"), (argv, d)
+        assert len(err.strip().splitlines()) == 1
