@@ -36,9 +36,9 @@ import os
 import time
 from pathlib import Path
 
+import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
-import phasekit as pk
 from phasekit.viz import (animate, film_strip, output_dir, plain_log_ticks, progress, pyplot, run_study, save_figure,
                           study_parser, write_csv)
 

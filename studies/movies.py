@@ -20,9 +20,9 @@ import math
 import time
 from pathlib import Path
 
+import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
-import phasekit as pk
 from phasekit.viz import animate, film_strip, output_dir, run_study, study_parser
 
 FIGURES = Path(__file__).resolve().parents[1] / "figures"

@@ -139,11 +139,15 @@ def test_ctrl_c_at_any_moment_of_the_start_is_one_line_and_130(which, tmp_path):
                "--no-progress", "--fresh", "--out", str(tmp_path)]
     for delay in (0.3, 0.5, 0.8, 1.2):  # (the first ~30 ms, before Python runs any of phasekit, are out of reach)
         proc = subprocess.Popen(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        time.sleep(delay)
-        if proc.poll() is not None:
-            break  # it finished: nothing left to interrupt
-        proc.send_signal(signal.SIGINT)
-        out, err = proc.communicate(timeout=60)
+        try:
+            time.sleep(delay)
+            assert proc.poll() is None, ("ended before the interrupt", delay, proc.communicate())
+            proc.send_signal(signal.SIGINT)
+            out, err = proc.communicate(timeout=60)
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+                proc.communicate()
         lines = [ln for ln in err.splitlines() if ln.strip()]
         assert proc.returncode == 130 and len(lines) == 1 and "Traceback" not in err, (delay, err)
         assert "interrupted" in lines[0]

@@ -95,3 +95,7 @@ def test_rolling_spectra_stay_neutral_and_zero_eigenvalues_are_not_counted():
     fp = pk.find_fixed_point(model, pk.horizontal_state(2.0), kind="horizontal", value=2.0)
     assert fp.law == "coulomb-rolling" and fp.stable and fp.n_unstable == 0
     assert fp.classification == "neutral (spectrally stable)"
+    # every real part lies within its bound (a reversible, energy-conserving field), and two
+    # eigenvalues are zero within theirs: the family in Omega0 and its conjugate
+    assert np.all(np.abs(fp.eigenvalues.real) <= fp.bounds)
+    assert int(np.sum(np.abs(fp.eigenvalues) <= fp.bounds)) == 2 and np.max(np.abs(fp.eigenvalues.imag)) > 1.0
