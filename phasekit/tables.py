@@ -84,7 +84,9 @@ def write_trajectory(traj, path, times=None, *, n: int = 2001) -> Path:
             to_xarray(traj, times, n=n).to_netcdf(tmp, engine=_netcdf_engine())
         else:
             df = traj.sample(_times(traj, times, n))
-            df.attrs = {k: json.dumps(v) for k, v in traj.to_dict(events=False).items() if k in ATTRS}
+            d = traj.to_dict(events=False)
+            df.attrs = {k: json.dumps(v) for k, v in d.items() if k in ATTRS}
+            df.attrs["run"] = json.dumps(d)  # as in the NetCDF file: enough to repeat the run
             _write_frame(df, tmp, suffix)
     return path
 

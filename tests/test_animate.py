@@ -69,6 +69,26 @@ def test_film_strip_places_the_body_by_its_pose(jump_run, tmp_path):
         assert _body_pixels(img[30:, k * SMALL[0]:], SMALL[0]) > 2000
 
 
+def _elongation(view: np.ndarray) -> float:
+    """Ratio of the principal second moments of the body's pixels: how long it looks."""
+    v = view.astype(int)
+    yy, xx = np.nonzero((v[..., 0] - v[..., 2] > 50) & (v[..., 0] > 80))
+    w = np.linalg.eigvalsh(np.cov(np.vstack([xx - xx.mean(), yy - yy.mean()])))
+    return float(w[1] / w[0])
+
+
+def test_film_strip_turns_the_body_with_its_azimuth(jump_run, tmp_path):
+    """Seen by a fixed camera, the prolate body looks end-on and then broadside a quarter turn of
+    psi later: the drawing follows the pose, not just the trajectory."""
+    ts = np.linspace(1.0, 5.0, 400)
+    psi = jump_run.pose(ts)["psi"].to_numpy()
+    t2 = ts[np.argmin(np.abs(psi - psi[0] - np.pi / 2))]
+    pk.viz.film_strip(jump_run, tmp_path / "q.png", times=[ts[0], t2], window_size=(320, 240), camera="fixed")
+    img = np.asarray(Image.open(tmp_path / "q.png").convert("RGB"))
+    first, second = _elongation(img[30:, :320]), _elongation(img[30:, 320:640])
+    assert max(first, second) > 1.5 * min(first, second)
+
+
 def test_body_mesh_is_the_support_function_surface():
     """The drawn surface's lowest point below G is h(theta) for every tilt: the mesh is the
     body the dynamics uses (spheroid, egg, tippe-top ball)."""

@@ -184,9 +184,23 @@ def test_pose_needs_dense_output():
         pk.simulate(traj.model, traj.x0, 5.0, pose0=dict(psi=float("nan")))
 
 
-def test_rotation_matrix_is_zyz():
-    """R = Rz(psi) Ry(theta) Rz(phi): its third column is the axis k of the paper's section 2."""
+def test_rotation_matrix_is_zyz(prolate_run):
+    """R = Rz(psi) Ry(theta) Rz(phi): its third column is the axis k of the paper's section 2,
+    and along a run dR/dt R^T is the body's angular velocity w = Omega e_Z + Lambda e_Y +
+    (n - Omega cos theta) k (phasekit.euler_to_vector, turned by psi), which fixes the signs
+    and the conventions of all three angles."""
     R = rotation_matrix(0.4, 1.1, -2.0)
     np.testing.assert_allclose(R[:, 2], [math.sin(1.1) * math.cos(0.4), math.sin(1.1) * math.sin(0.4), math.cos(1.1)],
                                atol=1e-15)
     np.testing.assert_allclose(R @ R.T, np.eye(3), atol=1e-15)
+    _, traj = prolate_run
+    h = 1e-4
+    for t in (5.0, 20.0, 40.0):
+        df = traj.sample([t - h, t, t + h])
+        Rs = rotation_matrix(df.psi.to_numpy(), df.theta.to_numpy(), df.phi.to_numpy())
+        W = (Rs[2] - Rs[0]) / (2 * h) @ Rs[1].T
+        w = np.array([W[2, 1], W[0, 2], W[1, 0]])
+        y = df.iloc[1][list(pk.PAPER_NAMES)].to_numpy(float)
+        psi = df.psi.iloc[1]
+        Rz = np.array([[math.cos(psi), -math.sin(psi), 0], [math.sin(psi), math.cos(psi), 0], [0, 0, 1]])
+        np.testing.assert_allclose(w, Rz @ pk.euler_to_vector(y)[3:6], atol=1e-6 * max(1.0, np.abs(w).max()))

@@ -3,6 +3,7 @@
 import csv
 import io
 import json
+import os
 import subprocess
 from pathlib import Path
 
@@ -59,6 +60,9 @@ def test_parquet_keeps_the_table_and_the_inputs(run, tmp_path):
     pd.testing.assert_frame_equal(back, run.sample(ts), check_dtype=False)
     meta = json.loads(pq.read_schema(tmp_path / "r.parquet").metadata[b"phasekit"])
     assert json.loads(meta["status"]) == "completed"
+    assert json.loads(meta["model"])["a"] == 1.5 and json.loads(meta["pose0"])["X"] == 1.0
+    again = pk.rerun(json.loads(meta["run"]))  # the metadata are enough to repeat the run
+    assert again.t == run.t and [e.t for e in again.events] == [e.t for e in run.events]
 
 
 def _cells(text: str) -> list[list[str]]:
@@ -74,6 +78,8 @@ def test_committed_csvs_changed_format_only(name):
         old = subprocess.run(["git", "-C", str(ROOT), "show", f"{BEFORE}:figures/{name}.csv"], capture_output=True,
                              text=True, timeout=30, check=True).stdout
     except (OSError, subprocess.CalledProcessError):
+        if os.environ.get("CI"):
+            raise
         pytest.skip("no git history of the committed tables here")
     new = (ROOT / "figures" / f"{name}.csv").read_text()
     a, b = _cells(old), _cells(new)
