@@ -4,13 +4,13 @@ results pages read their numbers from figures/ (a changed number in a copy chang
 the event table comes from the declarations, and the examples in the docstrings run."""
 
 import doctest
-from html import unescape
 import importlib
 import json
 import re
 import shutil
 import subprocess
 import sys
+from html import unescape
 from pathlib import Path
 
 import pandas as pd
@@ -27,8 +27,8 @@ RESULTS = ["reproduction", "findings", "maps", "bodies", "steady_structure", "pe
 
 
 def sphinx(out: Path, *options: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html", *options, str(DOCS),
-                           str(out)], cwd=ROOT, capture_output=True, text=True, timeout=1200)
+    cmd = [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html", *options, str(DOCS), str(out)]
+    return subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=1200)
 
 
 @pytest.fixture(scope="module")

@@ -11,8 +11,9 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 TEXT = (ROOT / "README.md").read_text()
 BLOCKS = re.findall(r"^```python\n(.*?)^```", TEXT, flags=re.S | re.M)
-MAIN = 'python3 -m venv .venv && . .venv/bin/activate && pip install -e ".[sweep]" && python studies/threshold_vs_aspect.py'
-TEST = 'python3 -m venv .venv && . .venv/bin/activate && pip install -e ".[test]" && python -m pytest -m "not slow" -q'
+VENV = "python3 -m venv .venv && . .venv/bin/activate && "
+MAIN = VENV + 'pip install -e ".[sweep]" && python studies/threshold_vs_aspect.py'
+TEST = VENV + 'pip install -e ".[test]" && python -m pytest -m "not slow" -q'
 
 sys.path.insert(0, str(ROOT / "docs" / "_ext"))
 
@@ -57,8 +58,9 @@ def test_generated_blocks_match_the_committed_data():
 
 def test_the_readme_carries_what_the_issue_asks():
     for needle in ("## Reproduction of the paper", "## Steady-state structure", "figures/steady_structure_atlas.png",
-                   "figures/tippe_top_inversion_strip.png", "figures/egg_jump_strip.png", "Egg jumps against experiment",
-                   "## Robustness", "## How to cite", "## Documentation", "## A 30-second tour"):
+                   "figures/tippe_top_inversion_strip.png", "figures/egg_jump_strip.png",
+                   "Egg jumps against experiment", "## Robustness", "## How to cite", "## Documentation",
+                   "## A 30-second tour"):
         assert needle in TEXT, needle
 
 

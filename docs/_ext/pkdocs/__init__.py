@@ -15,7 +15,6 @@ from __future__ import annotations
 import json
 import shlex
 import time
-from pathlib import Path
 
 from docutils import nodes
 from docutils.statemachine import StringList
@@ -97,24 +96,37 @@ class PkCliSchema(SphinxDirective):
             if self.env.app.config.pk_execute:
                 raise self.error(f"no runs of `phasekit {command}` (known: {', '.join(cli_schema.RUNS)})")
             return _markdown(self, "*(not run in this build: `pk_execute = False`)*")
-        results = [r for r in runs if r.returncode != 2]   # exit 2: bad input, its own small object
+        results = [r for r in runs if r.returncode != 2]  # exit 2: bad input, its own small object
         errors = [r for r in runs if r.returncode == 2]
         labels = [r.label for r in results]
         node = cli_schema.merge([(r.label, r.output) for r in results])
         schema_dir = DOCS / "_generated" / "schemas"
         schema_dir.mkdir(parents=True, exist_ok=True)
         (schema_dir / f"{command}.schema.json").write_text(
-            json.dumps(cli_schema.json_schema(node, labels, f"phasekit {command} --json"), indent=1))
+            json.dumps(cli_schema.json_schema(node, labels, f"phasekit {command} --json"), indent=1)
+        )
         lines = ["The runs (made when these pages were built):", ""]
         for r in runs:
             status = r.output.get("status", "") if isinstance(r.output, dict) else ""
-            lines.append(f"- **{r.label}**: `{shlex.join(r.argv)}` (exit {r.returncode}"
-                         + (f", status `{status}`)" if status else ")"))
-        lines += ["", f"JSON Schema of the results: {{download}}`{command}.schema.json "
-                      f"</_generated/schemas/{command}.schema.json>`", "", cli_schema.schema_table(node, labels), ""]
+            lines.append(
+                f"- **{r.label}**: `{shlex.join(r.argv)}` (exit {r.returncode}"
+                + (f", status `{status}`)" if status else ")")
+            )
+        lines += [
+            "",
+            f"JSON Schema of the results: {{download}}`{command}.schema.json "
+            f"</_generated/schemas/{command}.schema.json>`",
+            "",
+            cli_schema.schema_table(node, labels),
+            "",
+        ]
         if errors:
             enode = cli_schema.merge([(r.label, r.output) for r in errors])
-            lines += ["Bad input (exit 2) prints instead:", "", cli_schema.schema_table(enode, [r.label for r in errors])]
+            lines += [
+                "Bad input (exit 2) prints instead:",
+                "",
+                cli_schema.schema_table(enode, [r.label for r in errors]),
+            ]
         return _markdown(self, "\n".join(lines))
 
 

@@ -35,7 +35,10 @@ RUNS = {
         ("bad input", "--a -1 --mu 0.1 --gyroscopic --theta0 1 --omega0 5"),
     ],
     "animate": [
-        ("gif", f"{{tmp}}/run.gif {PROLATE} --omega0 11 --stop-at touchdown --frames 4 --window-size 160 120 --no-progress"),
+        (
+            "gif",
+            f"{{tmp}}/run.gif {PROLATE} --omega0 11 --stop-at touchdown --frames 4 --window-size 160 120 --no-progress",
+        ),
     ],
     "fixed-points": [
         ("viscous", "--a 1.5 --mu 0.1 --friction viscous --omega0 10"),
@@ -64,9 +67,14 @@ class CommandRun:
 
 def _run(command: str, label: str, args: str, tmp: str) -> CommandRun:
     argv = ["phasekit", command, *shlex.split(args.format(tmp=tmp)), "--json"]
-    env = {**os.environ, "MPLBACKEND": "Agg", "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")]))}
-    p = subprocess.run([sys.executable, "-m", "phasekit", *argv[1:]], cwd=ROOT, env=env, capture_output=True, text=True,
-                       timeout=600)
+    env = {
+        **os.environ,
+        "MPLBACKEND": "Agg",
+        "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])),
+    }
+    p = subprocess.run(
+        [sys.executable, "-m", "phasekit", *argv[1:]], cwd=ROOT, env=env, capture_output=True, text=True, timeout=600
+    )
     try:
         out = json.loads(p.stdout)
     except json.JSONDecodeError:
@@ -81,6 +89,7 @@ def run_all(jobs: int = 2) -> list[CommandRun]:
 
 
 # -- merging outputs into a schema ----------------------------------------------------------------
+
 
 def _type(v) -> str:
     if v is None:
@@ -102,8 +111,8 @@ def _type(v) -> str:
 class Node:
     types: set = field(default_factory=set)
     runs: set = field(default_factory=set)
-    keys: dict = field(default_factory=dict)      # object members
-    items: "Node | None" = None                    # array items
+    keys: dict = field(default_factory=dict)  # object members
+    items: "Node | None" = None  # array items
     example: object = None
 
     def add(self, v, run: str):
@@ -162,6 +171,7 @@ def schema_table(node: Node, labels: list[str]) -> str:
 
 def json_schema(node: Node, labels: list[str], title: str = "") -> dict:
     """The merged outputs as a JSON Schema: keys present in every run are required."""
+
     def conv(n: Node) -> dict:
         t = sorted(n.types - ({"integer"} if "number" in n.types else set()))
         s: dict = {"type": t[0] if len(t) == 1 else t}
@@ -172,6 +182,10 @@ def json_schema(node: Node, labels: list[str], title: str = "") -> dict:
             s["items"] = conv(n.items)
         return s
 
-    out = {"$schema": "https://json-schema.org/draft/2020-12/schema", "title": title,
-           "description": f"derived from the runs: {', '.join(labels)}", **conv(node)}
+    out = {
+        "$schema": "https://json-schema.org/draft/2020-12/schema",
+        "title": title,
+        "description": f"derived from the runs: {', '.join(labels)}",
+        **conv(node),
+    }
     return out

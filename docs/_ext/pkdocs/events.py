@@ -28,8 +28,11 @@ def _guards():
 def _laws():
     import phasekit as pk
 
-    return {"exact Coulomb": pk.Coulomb(0.1), "regularised Coulomb": pk.RegularisedCoulomb(0.1, 1e-3),
-            "viscous": pk.Viscous(0.1)}
+    return {
+        "exact Coulomb": pk.Coulomb(0.1),
+        "regularised Coulomb": pk.RegularisedCoulomb(0.1, 1e-3),
+        "viscous": pk.Viscous(0.1),
+    }
 
 
 def _markdown(doc: str) -> str:
@@ -96,17 +99,23 @@ def event_table() -> str:
         r["outcomes"].setdefault(_outcome(ev), {}).setdefault(law, set()).add(stop)
         r["engines"] |= _integrators(sys_, ev)
     lines = []
-    for (name, on), r in sorted(rows.items(), key=lambda kv: ORDER.index(kv[0][0]) if kv[0][0] in ORDER else len(ORDER)):
+    for (name, on), r in sorted(
+        rows.items(), key=lambda kv: ORDER.index(kv[0][0]) if kv[0][0] in ORDER else len(ORDER)
+    ):
         ev = r["ev"]
         if not on:
-            guard = (f"any observable minus a level (e.g. `pk.Event(\"{ev.on}\", {ev.level:g})`), in either direction "
-                     "unless `direction` is -1 or +1")
+            guard = (
+                f'any observable minus a level (e.g. `pk.Event("{ev.on}", {ev.level:g})`), in either direction '
+                "unless `direction` is -1 or +1"
+            )
         elif on in guards:
             guard = guards[on]
         elif on in m.OBSERVABLES:
             guard = f"{on} = {ev.level:g} ({m.OBSERVABLES[on]})"
         else:
-            raise KeyError(f"the event {name!r} watches the guard {on!r}, which docs/_ext/pkdocs/events.py does not describe")
+            raise KeyError(
+                f"the event {name!r} watches the guard {on!r}, which docs/_ext/pkdocs/events.py does not describe"
+            )
         if on:
             guard += {-1: ", downward", 1: ", upward", 0: ""}[ev.direction]
         if ev.arm_after:
@@ -122,5 +131,14 @@ def event_table() -> str:
             outs.append(who + when + text)
         engines = "both" if len(r["engines"]) == 2 else ", ".join(sorted(r["engines"]))
         lines.append([f"{name} (`{on}`)" if on else name, guard, modes, laws, engines, "; ".join(outs)])
-    return table(["event (guard function)", "fires when", "watched in", "friction laws", "integrators",
-                  "reset or outcome (`phasekit/resets.py`)"], lines)
+    return table(
+        [
+            "event (guard function)",
+            "fires when",
+            "watched in",
+            "friction laws",
+            "integrators",
+            "reset or outcome (`phasekit/resets.py`)",
+        ],
+        lines,
+    )

@@ -38,6 +38,7 @@ def rng(lo: float, hi: float, f=sig, sep: str = "-") -> str:
 
 def table(header: list[str], rows: list[list]) -> str:
     """A Markdown pipe table."""
+
     def cell(v):
         return str(v).replace("|", "\\|").replace("\n", " ")
 

@@ -30,7 +30,7 @@ MAX_OUTPUT_LINES = 60
 
 @dataclass
 class Run:
-    name: str                   # script file name
+    name: str  # script file name
     stem: str
     seconds: float = 0.0
     returncode: int | None = None
@@ -68,8 +68,12 @@ def out_dir(path: Path) -> Path:
 def run(path: Path, timeout: float = 600.0) -> Run:
     """Run one script with no arguments, as the README says a user does."""
     r = Run(path.name, path.stem)
-    env = {**os.environ, "MPLBACKEND": "Agg", "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])),
-           "PYTHON": sys.executable}
+    env = {
+        **os.environ,
+        "MPLBACKEND": "Agg",
+        "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])),
+        "PYTHON": sys.executable,
+    }
     cmd = [sys.executable, str(path)] if path.suffix == ".py" else ["bash", str(path)]
     start = time.time()
     try:
@@ -125,7 +129,7 @@ def _tail(text: str, n: int = MAX_OUTPUT_LINES) -> str:
     lines = text.rstrip().splitlines()
     if len(lines) <= n:
         return "\n".join(lines)
-    return "\n".join(lines[: n // 2] + [f"... ({len(lines) - n} lines left out) ..."] + lines[-n // 2:])
+    return "\n".join(lines[: n // 2] + [f"... ({len(lines) - n} lines left out) ..."] + lines[-n // 2 :])
 
 
 def page(path: Path, r: Run | None, image_dir: Path, docs_gallery: Path) -> str:
@@ -137,14 +141,24 @@ def page(path: Path, r: Run | None, image_dir: Path, docs_gallery: Path) -> str:
     if r is None:
         lines += ["```{note}", "Not run in this build (`pk_execute = False`).", "```", ""]
     else:
-        lines += [f"`{how}` ran in {r.seconds:.1f} s when these pages were built (exit status {r.returncode}) "
-                  f"and wrote {len(r.files)} file{'s' if len(r.files) != 1 else ''} into `examples/out/{stem}/`.", ""]
+        lines += [
+            f"`{how}` ran in {r.seconds:.1f} s when these pages were built (exit status {r.returncode}) "
+            f"and wrote {len(r.files)} file{'s' if len(r.files) != 1 else ''} into `examples/out/{stem}/`.",
+            "",
+        ]
         for img in r.images:
             dest = image_dir / stem / img.name
             dest.parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(img, dest)
             rel = dest.relative_to(docs_gallery).as_posix()
-            lines += [f"```{{figure}} {rel}", f":alt: {img.name} written by {path.name}", "", f"`{img.name}`", "```", ""]
+            lines += [
+                f"```{{figure}} {rel}",
+                f":alt: {img.name} written by {path.name}",
+                "",
+                f"`{img.name}`",
+                "```",
+                "",
+            ]
         if r.stdout.strip():
             lines += ["What it printed:", "", "```text", _tail(r.stdout), "```", ""]
         others = [f for f in r.files if f.suffix not in IMAGES]
@@ -163,23 +177,34 @@ def page(path: Path, r: Run | None, image_dir: Path, docs_gallery: Path) -> str:
 
 
 def index(paths: list[Path], runs: dict[str, Run] | None, image_dir: Path, docs_gallery: Path) -> str:
-    lines = ["# Gallery", "",
-             "Every script in `examples/`, run when these pages were built, as a user runs it: with no arguments, "
-             "in its own process, writing into `examples/out/<name>/` (git-ignored; `--out DIR` elsewhere). "
-             "Each page shows what the script printed, the figures and movies it wrote, and its source. "
-             "`tests/test_examples.py` checks what they compute.", ""]
+    lines = [
+        "# Gallery",
+        "",
+        "Every script in `examples/`, run when these pages were built, as a user runs it: with no arguments, "
+        "in its own process, writing into `examples/out/<name>/` (git-ignored; `--out DIR` elsewhere). "
+        "Each page shows what the script printed, the figures and movies it wrote, and its source. "
+        "`tests/test_examples.py` checks what they compute.",
+        "",
+    ]
     if runs:
         total = sum(r.seconds for r in runs.values())
         lines += [f"Run time of all {len(runs)} scripts in this build: {total:.0f} s (two at a time).", ""]
-    lines += ["````{list-table}", ":header-rows: 1", ":widths: 20 50 30", "", "* - script", "  - what it shows",
-              "  - figure"]
+    lines += [
+        "````{list-table}",
+        ":header-rows: 1",
+        ":widths: 20 50 30",
+        "",
+        "* - script",
+        "  - what it shows",
+        "  - figure",
+    ]
     for p in paths:
         r = runs.get(p.name) if runs else None
         lines += [f"* - {{ref}}`{p.name} <gallery-{p.stem}>`", f"  - {_escape(summary(docstring(p)))}"]
         if r and r.images:
             first = next((i for i in r.images if i.suffix == ".png"), r.images[0])
             rel = (image_dir / p.stem / first.name).relative_to(docs_gallery).as_posix()
-            lines += [f"  - ```{{image}} {rel}", f"    :width: 240px", f"    :alt: {first.name}", "    ```"]
+            lines += [f"  - ```{{image}} {rel}", "    :width: 240px", f"    :alt: {first.name}", "    ```"]
         else:
             lines.append("  - (text output)" if r else "  - (not run)")
     lines += ["````", "", "```{toctree}", ":hidden:", "", *(p.stem for p in paths), "```", ""]
