@@ -202,6 +202,15 @@ def test_a_missing_data_file_fails_the_build(tmp_path):
         facts.lookup(Sources(figs), "theory.mu_e_range")
 
 
+GUIDE_BLOCKS = re.findall(r"^```python\n(.*?)^```", (DOCS / "guide.md").read_text(), flags=re.S | re.M)
+
+
+@pytest.mark.parametrize("code", GUIDE_BLOCKS, ids=[f"guide-block{i + 1}" for i in range(len(GUIDE_BLOCKS))])
+def test_guide_python_blocks_run(code):
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600, cwd=ROOT)
+    assert p.returncode == 0, p.stderr[-2000:]
+
+
 @pytest.mark.parametrize("module", ["phasekit.sections", "phasekit.ensemble", "phasekit.viz.mpl", "phasekit.paper",
                                     "phasekit.surface", "phasekit.units"])
 def test_docstring_examples_run(module):
