@@ -37,6 +37,7 @@ class Run:
     stdout: str = ""
     stderr: str = ""
     files: list[Path] = field(default_factory=list)
+    missing: str = ""           # a program the script needs that is not installed (it was not run)
 
     @property
     def images(self) -> list[Path]:
@@ -65,9 +66,18 @@ def out_dir(path: Path) -> Path:
     return EXAMPLES / "out" / path.stem
 
 
+def needs(path: Path) -> list[str]:
+    """Programs a shell script checks for itself (``command -v jq >/dev/null || ...``)."""
+    return re.findall(r"command -v (\S+) >/dev/null", path.read_text()) if path.suffix == ".sh" else []
+
+
 def run(path: Path, timeout: float = 600.0) -> Run:
     """Run one script with no arguments, as the README says a user does."""
     r = Run(path.name, path.stem)
+    absent = [prog for prog in needs(path) if shutil.which(prog) is None]
+    if absent:
+        r.missing = ", ".join(absent)
+        return r
     env = {
         **os.environ,
         "MPLBACKEND": "Agg",
@@ -138,8 +148,9 @@ def page(path: Path, r: Run | None, image_dir: Path, docs_gallery: Path) -> str:
     lang = "python" if path.suffix == ".py" else "bash"
     how = f"python examples/{path.name}" if path.suffix == ".py" else f"bash examples/{path.name}"
     lines = [f"(gallery-{stem})=", f"# {path.name}", "", prose(doc), ""]
-    if r is None:
-        lines += ["```{note}", "Not run in this build (`pk_execute = False`).", "```", ""]
+    if r is None or r.missing:
+        why = f"{r.missing} is not installed here" if r else "`pk_execute = False`"
+        lines += ["```{note}", f"Not run in this build ({why}).", "```", ""]
     else:
         lines += [
             f"`{how}` ran in {r.seconds:.1f} s when these pages were built (exit status {r.returncode}) "
@@ -201,7 +212,7 @@ def index(paths: list[Path], runs: dict[str, Run] | None, image_dir: Path, docs_
     for p in paths:
         r = runs.get(p.name) if runs else None
         lines += [f"* - {{ref}}`{p.name} <gallery-{p.stem}>`", f"  - {_escape(summary(docstring(p)))}"]
-        if r and r.images:
+        if r and r.images and not r.missing:
             first = next((i for i in r.images if i.suffix == ".png"), r.images[0])
             rel = (image_dir / p.stem / first.name).relative_to(docs_gallery).as_posix()
             lines += [f"  - ```{{image}} {rel}", "    :width: 240px", f"    :alt: {first.name}", "    ```"]
