@@ -2,6 +2,8 @@
 started on the sliding branch next to the horizontal precession jumps before it has risen.
 
 The default definition ("sliding", d = 0.01) bisected to 1e-3 relative, searched near a guess.
+Writes threshold.json (the threshold, its bracket and status) and threshold.png (every start
+simulated, in the order of the search, with its outcome: the bracket closes on the threshold).
 
     python examples/threshold.py            # writes examples/out/threshold/ (git-ignored)
     python examples/threshold.py --out /tmp/threshold
@@ -12,6 +14,7 @@ import json
 from pathlib import Path
 
 import phasekit as pk
+from phasekit.viz import pyplot, save_figure
 
 
 #: where the outputs go without --out (git-ignored)
@@ -21,7 +24,7 @@ DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "threshold"
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default=str(DEFAULT_OUT),
-                    help="directory for threshold.json (default: examples/out/threshold)")
+                    help="directory for threshold.json and threshold.png (default: examples/out/threshold)")
     ap.add_argument("--a", type=float, default=1.5, help="aspect ratio (default 1.5)")
     args = ap.parse_args(argv)
     out = Path(args.out)
@@ -47,6 +50,21 @@ def main(argv=None):
             }
         )
     )
+
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(7, 3.6))
+    for k, o in enumerate(th.outcomes):  # in the order they were simulated
+        ax.plot(o.value, k, "o" if o.jumped else "s", color="#d73027" if o.jumped else "#4575b4", ms=6,
+                label=("jumped" if o.jumped else o.how) if k == next(i for i, p in enumerate(th.outcomes)
+                                                                    if p.jumped == o.jumped) else None)
+    ax.axvspan(lo, hi, color="0.85", label=f"bracket [{lo:.4f}, {hi:.4f}]")
+    ax.set_yticks(range(len(th.outcomes)))
+    ax.axvline(th.value, color="k", lw=0.8)
+    ax.set(xlabel=r"$\Omega_0$ ($\sqrt{g/b}$)", ylabel="simulation, in the order of the search",
+           title=f"a = {args.a:g}: jump threshold {th.value:.4f} ({th.status}, {th.n_sims} simulations)")
+    ax.legend(fontsize=8, loc="upper left")
+    fig.tight_layout()
+    save_figure(fig, out / "threshold.png")
 
 
 if __name__ == "__main__":

@@ -1,17 +1,8 @@
 """phasekit's hybrid system, declared in one place: its modes, events and resets.
 
-====================  =========================  ==================  ===========================
-event                 guard (fires when)         watched in          reset / outcome
-====================  =========================  ==================  ===========================
-lift-off              R = 0, downward            sliding, rolling    stop "jumped", or -> flight
-stick                 |u| = 1e-10 (+10 eps)      sliding             exact: -> rolling (or slide
-                                                                     on); regularised: -> rolling
-slip                  |F_req| = mu R (exact);    rolling             -> sliding along -F_req
-                      |u| = 100 eps (reg.)                           (regularised: mode only)
-touchdown             gap = 0, downward          flight              stop "touchdown", or impact
-                                                                     -> flight (rebound) / contact
-user events           observable = level         all (or as given)   stop "stopped", or record
-====================  =========================  ==================  ===========================
+The table of events (guard, modes, friction laws, reset or outcome) is generated from
+:func:`declare` when the documentation is built: docs/architecture.md, "Modes, events and
+resets".
 
 Flows: SLIDING (``rhs_sliding``), ROLLING (``rhs_rolling``; for a regularised law the same
 field as sliding, integrated by CVODES when it is stiff), FLIGHT (``rhs_flight``, always
