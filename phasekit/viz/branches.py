@@ -107,7 +107,7 @@ def render_structure(structure, path, *, trajectories=(), surface: bool = False,
                        xtitle="Omega [sqrt(g/b)]", ytitle="theta [rad]", ztitle="n [sqrt(g/b)]", color="k", font_size=16,
                        location="outer", grid="back", ticks="outside")
         legend = [["stable branch state", STABLE], ["unstable branch state", UNSTABLE], ["end of a branch", "black"],
-                  ["change of stability", "#fdae61"], ["families (thin; same colours)", "0.4"]]
+                  ["change of stability", "#fdae61"], ["families (thin; same colours)", (0.4, 0.4, 0.4)]]
         if trs:
             legend.append(["trajectory", TRAJECTORY_COLORS[0]])
         pl.add_legend(legend, bcolor="white", face="rectangle", size=(0.22, 0.15), loc="lower left")
@@ -153,7 +153,7 @@ def _add_special_points(pl, pv, f, structure, bounds) -> int:
         side = [fam.stable_on[int(np.searchsorted(fam.criticals, abs(v)))] for v in vals]
         known = all(v is not None for v in side)
         for run, st in _segments_by_stability(P, np.array([bool(v) for v in side])):
-            color = STABLE if known and st else UNSTABLE if known else "0.5"
+            color = STABLE if known and st else UNSTABLE if known else (0.5, 0.5, 0.5)
             pl.add_mesh(pv.lines_from_points(f(run)), color=color, line_width=2, opacity=0.7)
     return count
 
