@@ -13,7 +13,6 @@ from pathlib import Path
 
 import phasekit as pk
 
-
 #: where the outputs go without --out (git-ignored)
 DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "threshold"
 

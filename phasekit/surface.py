@@ -27,7 +27,15 @@ from .body import Body, Spheroid
 from .errors import ParameterError
 from .friction import Coulomb, FrictionLaw
 from .model import Model
-from .validate import check_array, check_finite, check_instance, check_int, check_nonnegative, check_positive, check_range
+from .validate import (
+    check_array,
+    check_finite,
+    check_instance,
+    check_int,
+    check_nonnegative,
+    check_positive,
+    check_range,
+)
 
 __all__ = ["surface_n", "exact_boundary", "Scene", "SceneData", "Crossing", "compute_scene", "ELEMENTS", "AXES"]
 
@@ -69,7 +77,7 @@ def surface_n(body, Omega, theta):
     numbers or arrays of shapes that broadcast together.
 
     >>> import phasekit as pk
-    >>> round(float(pk.surface_n(pk.Spheroid(1.5), 12.0, 1.0)), 6)
+    >>> round(float(pk.theory.surface_n(pk.Spheroid(1.5), 12.0, 1.0)), 6)
     10.20507
     """
     body = _body(body)
@@ -93,7 +101,14 @@ def exact_boundary(body, mu: float, Omega, theta, Lambda: float = 0.0, *, fricti
     Found by Brent's method on R(n) from the compiled model (Coulomb friction with ``mu``,
     or the law ``friction``; slip direction of that state), independently of the closed
     form (6.3). ``Omega`` and ``theta`` as for :func:`surface_n`; ``Lambda`` finite. Returns an
-    array of their broadcast shape (at least 1-d), NaN where no sign change of R(n) was found."""
+    array of their broadcast shape (at least 1-d), NaN where no sign change of R(n) was found.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.exact_boundary(pk.Spheroid(1.5), 0.1, [10.0, 12.0], [1.0, 1.0]).round(6)
+    array([ 8.382922, 10.20507 ])
+    """
     body = _body(body)
     if friction is not None:
         check_instance("friction", friction, FrictionLaw, "Coulomb(0.1)")
@@ -368,7 +383,15 @@ def _ranges(scene: Scene, data: SceneData, body) -> tuple:
 
 def compute_scene(scene: Scene) -> SceneData:
     """Compute exactly the data the scene's elements need (no simulation for a scene
-    without trajectories or crossings)."""
+    without trajectories or crossings).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> data = pk.compute_scene(pk.Scene('prolate', 1.5, values=(12.0,), show={'crossings'}))
+    >>> len(data.crossings), round(data.crossings[0].theta, 4)
+    (1, np.float64(0.9774))
+    """
     check_instance("scene", scene, Scene, 'Scene("prolate", 1.5)')
     show = scene.show
     data = SceneData(scene)
