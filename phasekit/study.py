@@ -1,23 +1,32 @@
-"""Output shared by the studies and benchmarks: an argument parser with --quick/--out/--no-progress,
-a progress bar, matplotlib off-screen, figures and tables written so that a kill leaves no torn
-file, and a runner that turns Ctrl-C into one line saying how to resume.
+"""The scaffold of a study script: its flags, output folder, resumable stores, Dask runs,
+provenance, figures and tables, and the runner that turns Ctrl-C into one line saying how to resume.
 
-A study is ``main(argv) -> result`` written with these helpers and ended by
-``run_study(main)`` under ``if __name__ == "__main__":``::
+A study is the science plus a few lines::
 
-    ap = study_parser(__doc__, default_out=FIGURES)
-    ap.add_argument("--seed", type=ap.integer(min=0), default=1)   # checked at parse time, named
-    args = ap.parse_args(argv)
-    out = output_dir(args)                       # figures/, figures/quick/ or --out
-    for case in progress(cases, desc="cases", enabled=not args.no_progress): ...
-    save_figure(fig, out / "name.png")
-    write_csv(out / "name.csv", header, rows)
+    import phasekit as pk
+
+    def main(argv=None) -> dict:
+        st = pk.sweep.Study(__file__, __doc__, dask=True)    # --quick --out --no-progress --fresh
+        st.parser.add_argument("--seed", type=st.parser.integer(min=0), default=1)  # --serial ...
+        args = st.parse(argv)                               # checked at parse time; st.out made
+        store = st.store(MyRow, {"grid": GRID})             # resumable rows + provenance manifest
+        ran = st.run(specs, store, warm_up=compile_models)  # Dask (or --serial), only what is missing
+        for case in st.progress(cases, desc="cases"): ...
+        st.save(fig, "name.png"); st.csv("name.csv", header, rows); st.json("summary.json", d)
+
+    if __name__ == "__main__":
+        pk.sweep.run_study(main)
+
+Everything a study writes goes to ``figures/`` next to its folder (``figures/quick/`` with
+``--quick``, or ``--out DIR``), each file written whole under a temporary name and renamed.
 
 Bad input ends a study with one line on stderr naming the flag as typed, its valid range and
 the value, and exit code 2: argparse errors (the parser prints no usage block), the number
 types ``ap.integer`` / ``ap.real``, an ``--out`` that cannot be used, and any
 :class:`phasekit.ParameterError` that escapes ``main`` (its parameter is named by the study's
-flag). Another :class:`phasekit.PhasekitError` is one line and exit code 1.
+flag). Another :class:`phasekit.PhasekitError` is one line and exit code 1. Ctrl-C is one line
+and exit code 130, saying which result files keep the finished rows (those of the stores the
+study opened) and the command that resumes (:mod:`phasekit.interrupts` keeps it from being lost).
 """
 
 from __future__ import annotations
@@ -25,16 +34,23 @@ from __future__ import annotations
 import argparse
 import contextlib
 import csv
+import json
 import math
 import os
 import re
 import shlex
 import sys
+import time
 from collections.abc import Mapping
 from pathlib import Path
 
-__all__ = ["study_parser", "StudyParser", "output_dir", "pyplot", "save_figure", "write_csv", "atomic_path", "progress",
-           "run_study"]
+from .errors import ParameterError, PhasekitError
+from .interrupts import interrupt_guard
+from .tables import atomic_path
+from .tasks import ResultStore, provenance, run_pending, stored_rows
+
+__all__ = ["Study", "study_parser", "StudyParser", "output_dir", "save_figure", "write_csv", "write_json", "atomic_path",
+           "progress", "run_study"]
 
 #: exit code of a run ended by Ctrl-C (128 + SIGINT), as shells report it
 EXIT_INTERRUPTED = 130
@@ -43,6 +59,8 @@ EXIT_USAGE, EXIT_FAILED = 2, 1
 
 #: the parser of the study running in this process (run_study names API parameters by its flags)
 _PARSER: argparse.ArgumentParser | None = None
+#: the result stores the study running in this process opened (run_study names them on Ctrl-C)
+_STORES: list = []
 
 
 def _typed(text: str) -> str:
@@ -158,8 +176,6 @@ def output_dir(args) -> Path:
 
     Raises :class:`phasekit.ParameterError` (parameter ``out``) for an empty ``--out``, a path
     that is not a directory, cannot be created or is not writable."""
-    from ..errors import ParameterError
-
     given = getattr(args, "out", None)
     if given is not None:
         if not str(given).strip():
@@ -191,40 +207,18 @@ def output_dir(args) -> Path:
     return out
 
 
-def pyplot():
-    """matplotlib.pyplot with the off-screen Agg backend."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-@contextlib.contextmanager
-def atomic_path(path):
-    """A temporary path next to ``path`` to write to; renamed onto ``path`` when the block
-    ends without an exception, removed otherwise. A kill at any moment leaves either the old
-    file or the new one, never a torn one.
-
-    >>> with atomic_path("figures/scene.png") as tmp:  # doctest: +SKIP
-    ...     render_scene(data, tmp)
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    # keep the suffix: writers (matplotlib, VTK) pick the format from it
-    tmp = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
-    try:
-        yield tmp
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-
-
 def save_figure(fig, path, *, dpi: int = 130, **savefig_kwargs) -> Path:
-    """Save ``fig`` atomically (see :func:`atomic_path`) and close it; ``savefig_kwargs`` go to
-    ``Figure.savefig`` (e.g. ``bbox_inches="tight"``)."""
+    """Save a matplotlib figure atomically (see :func:`atomic_path`) and close it;
+    ``savefig_kwargs`` go to ``Figure.savefig`` (e.g. ``bbox_inches="tight"``).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from phasekit.viz import pyplot, save_figure
+    >>> fig, ax = pyplot().subplots()
+    >>> save_figure(fig, pathlib.Path(tempfile.mkdtemp()) / "line.png").name
+    'line.png'
+    """
     import matplotlib.pyplot as plt
 
     path = Path(path)
@@ -238,7 +232,18 @@ def save_figure(fig, path, *, dpi: int = 130, **savefig_kwargs) -> Path:
 def write_csv(path, header, rows) -> Path:
     """Write a whole table at once, atomically. ``rows`` are sequences in the order of
     ``header``, or mappings (their keys outside ``header`` are left out, missing ones empty).
-    A missing value (None or NaN) is an empty cell."""
+    A missing value (None or NaN) is an empty cell.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> import tempfile, pathlib
+    >>> path = pk.sweep.write_csv(pathlib.Path(tempfile.mkdtemp()) / 't.csv', ['a', 'b'], [[1, None], {'a': 2, 'b': 'x'}])
+    >>> print(path.read_text(), end="")
+    a,b
+    1,
+    2,x
+    """
 
     def blank(v):  # one spelling of missing: an empty cell (None and NaN alike)
         return "" if v is None or (isinstance(v, float) and math.isnan(v)) else v
@@ -258,11 +263,138 @@ def write_csv(path, header, rows) -> Path:
     return Path(path)
 
 
+def write_json(path, obj, *, indent: int = 1, default=str) -> Path:
+    """Write ``obj`` as JSON at once, atomically (``default`` turns what JSON cannot hold into text).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, phasekit as pk
+    >>> path = pk.sweep.write_json(pathlib.Path(tempfile.mkdtemp()) / "s.json", {"a": 1.5})
+    >>> print(path.read_text())
+    {
+     "a": 1.5
+    }
+    """
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(obj, indent=indent, default=default))
+    return Path(path)
+
+
 def progress(iterable=None, *, total=None, desc: str = "", enabled: bool = True):
     """A tqdm progress bar on stderr (stdout stays the study's report); cleared when done."""
     from tqdm import tqdm
 
     return tqdm(iterable, total=total, desc=desc, disable=not enabled, file=sys.stderr, leave=False, dynamic_ncols=True)
+
+
+class Study:
+    """The scaffold of a study script (module notes): its flags, output folder, stores, runs and files.
+
+    Parameters
+    ----------
+    script : str or Path
+        The study's ``__file__``: its name names the study, and its results go to ``figures/``
+        beside its folder (``figures/quick/`` with ``--quick``, or ``--out DIR``).
+    doc : str
+        The study's ``__doc__`` (its ``--help``).
+    quick_help : str, optional
+        What ``--quick`` reduces; ``quick=False``: the study has no quick mode.
+    resumable : bool
+        It keeps finished rows (:meth:`store`): adds ``--fresh``.
+    dask : bool
+        It runs tasks on Dask (:meth:`run`): adds ``--serial``, ``--scheduler``, ``--workers``
+        and ``--fresh``.
+
+    Examples
+    --------
+    >>> import tempfile, phasekit as pk
+    >>> st = pk.sweep.Study("studies/demo.py", "A demo study.", dask=True)
+    >>> args = st.parse(["--quick", "--out", tempfile.mkdtemp(), "--serial"])
+    >>> st.name, args.quick, args.serial, st.show
+    ('demo', True, True, True)
+    """
+
+    def __init__(self, script, doc: str, *, quick_help: str | None = None, quick: bool = True, resumable: bool = False,
+                 dask: bool = False):
+        script = Path(script)
+        self.name = script.stem
+        self.parser = study_parser(doc, default_out=script.resolve().parents[1] / "figures", quick=quick,
+                                   quick_help=quick_help)
+        if dask:
+            self.parser.add_argument("--serial", action="store_true", help="run in this process, without Dask")
+            self.parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                                     help="address of a running Dask scheduler (host:port)")
+            self.parser.add_argument("--workers", type=self.parser.integer(min=1), default=None, metavar="N",
+                                     help="LocalCluster workers (default: one per core)")
+        if resumable or dask:
+            self.parser.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
+        self.args = self.out = None
+        self.t0 = time.perf_counter()
+
+    def parse(self, argv=None, check=None) -> argparse.Namespace:
+        """Parse the command line (bad input: one line, exit code 2), call ``check(args)`` (the
+        study's own checks of its flags through the API, before anything is made), and make
+        the output folder."""
+        self.args = self.parser.parse_args(argv)
+        if check is not None:
+            check(self.args)
+        self.out = output_dir(self.args)
+        self.t0 = time.perf_counter()
+        return self.args
+
+    @property
+    def quick(self) -> bool:
+        return bool(getattr(self.args, "quick", False))
+
+    @property
+    def show(self) -> bool:
+        """Whether progress bars are shown (``--no-progress`` turns them off)."""
+        return not self.args.no_progress
+
+    @property
+    def wall(self) -> float:
+        """Seconds since the command line was parsed."""
+        return time.perf_counter() - self.t0
+
+    def path(self, name: str) -> Path:
+        return self.out / name
+
+    def store(self, row_type, meta: dict | None = None, *, name: str | None = None):
+        """The :class:`phasekit.sweep.ResultStore` ``<name>.csv`` (default: the study's name) of
+        ``row_type`` rows in the output folder, its manifest carrying the provenance and ``meta``;
+        emptied first with ``--fresh``. Ctrl-C then says that its rows are kept."""
+        stem = name or self.name
+        store = ResultStore(self.out / f"{stem}.csv", self.out / f"{stem}.json", row_type,
+                            provenance({"study": self.name, **(meta or {})}), fresh=bool(getattr(self.args, "fresh", False)))
+        _STORES.append(store)
+        return store
+
+    def run(self, specs, *stores, members: dict | None = None, warm_up=None, desc: str = "tasks"):
+        """Run the tasks whose rows are not stored yet (:func:`phasekit.sweep.run_pending`: on Dask,
+        or in this process with ``--serial`` or without the Dask flags), each finished row added to
+        the store of its type at once. A task's rows are ``members[task key]`` (row keys), or the
+        one row keyed like the task. Returns the :class:`phasekit.sweep.PendingRun`."""
+        get, on_result = stored_rows(stores, members)
+        a = self.args
+        return run_pending(specs, store_get=get, on_result=on_result, warm_up=warm_up or (lambda: None),
+                           serial=getattr(a, "serial", True), scheduler=getattr(a, "scheduler", None),
+                           workers=getattr(a, "workers", None), progress=self.show, desc=desc)
+
+    def progress(self, iterable=None, *, total=None, desc: str = ""):
+        """A progress bar on stderr, unless ``--no-progress``."""
+        return progress(iterable, total=total, desc=desc, enabled=self.show)
+
+    def save(self, fig, name: str, **savefig_kwargs) -> Path:
+        """Save a matplotlib figure in the output folder (:func:`save_figure`)."""
+        return save_figure(fig, self.out / name, **savefig_kwargs)
+
+    def csv(self, name: str, header, rows) -> Path:
+        """Write a table in the output folder (:func:`write_csv`)."""
+        return write_csv(self.out / name, header, rows)
+
+    def json(self, name: str, obj, **kw) -> Path:
+        """Write a JSON summary in the output folder (:func:`write_json`)."""
+        return write_json(self.out / name, obj, **kw)
 
 
 def _command(argv) -> str:
@@ -300,15 +432,21 @@ def run_study(main, argv=None, *, resume: str | None = None, flags: Mapping[str,
     it) and exit code 2; another :class:`phasekit.PhasekitError` with one line and exit code 1.
 
     ``resume`` says how a rerun picks up (for a study that keeps finished work; the command
-    shown then leaves out ``--fresh``, which would discard it); the default is for studies
-    that write their files whole at the end: nothing was changed, rerun.
+    shown then leaves out ``--fresh``, which would discard it). By default it names the result
+    stores the study opened (:meth:`Study.store`); a study that opened none writes its files
+    whole at the end: nothing was changed, rerun.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.sweep.run_study(lambda argv: print("ran with", argv), ["--quick"])
+    ran with ['--quick']
     """
-    from .. import _startup
-    from ..errors import ParameterError, PhasekitError
-    from ..interrupts import interrupt_guard
+    from . import _startup
 
     _startup.started()  # Ctrl-C is a KeyboardInterrupt from here on, turned into one line below
     argv = sys.argv[1:] if argv is None else list(argv)
+    _STORES.clear()
     try:
         with interrupt_guard() as guard:
             try:
@@ -320,6 +458,9 @@ def run_study(main, argv=None, *, resume: str | None = None, flags: Mapping[str,
             if guard.get("seen"):  # a Ctrl-C that compiled code swallowed: the user still asked to stop
                 raise KeyboardInterrupt
     except KeyboardInterrupt:
+        if resume is None and _STORES:
+            kept = " and ".join(Path(store.csv_path).name for store in _STORES)
+            resume = f"the finished rows are kept in {kept} (in the output folder); rerunning the command resumes from them"
         how = resume or "no result file was changed (each is written whole, at the end); to resume, run it again"
         again = [a for a in argv if a != "--fresh"] if resume else argv
         with contextlib.suppress(Exception):

@@ -1,0 +1,24 @@
+"""Figures off-screen; written atomically by :func:`phasekit.sweep.save_figure` (re-exported here)."""
+
+from __future__ import annotations
+
+from ..study import save_figure
+
+__all__ = ["pyplot", "save_figure"]
+
+
+def pyplot():
+    """matplotlib.pyplot with the off-screen Agg backend.
+
+    Examples
+    --------
+    >>> from phasekit.viz import pyplot
+    >>> pyplot().get_backend().lower()
+    'agg'
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
