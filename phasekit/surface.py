@@ -19,7 +19,7 @@ those elements need (no simulation unless trajectories or crossings are asked fo
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -309,7 +309,7 @@ class Crossing:
         return abs(self.n_surface - self.n) / abs(self.n)
 
 
-@dataclass
+@dataclass(frozen=True)
 class SceneData:
     """What :func:`compute_scene` computed: the grids, the trajectories' (Omega, theta, n)
     points, the crossings, the fixed points and the box ``bounds`` (Omega, theta, n pairs)."""
@@ -325,6 +325,23 @@ class SceneData:
     bounds: tuple | None = None
     labels: list = field(default_factory=list)  # one per trajectory (None: a simulated one)
     bodies: list = field(default_factory=list)  # (body, (Omega, theta, n), rotation matrix) to draw
+
+
+@dataclass
+class _SceneBuilder:
+    """SceneData while :func:`compute_scene` fills it in."""
+
+    scene: Scene
+    surface: tuple | None = None
+    exact: tuple | None = None
+    exact_lambda: float | None = None
+    trajectories: list = field(default_factory=list)
+    crossings: list = field(default_factory=list)
+    fixed_points: np.ndarray | None = None
+    n_simulations: int = 0
+    bounds: tuple | None = None
+    labels: list = field(default_factory=list)
+    bodies: list = field(default_factory=list)
 
 
 def _simulate(scene: Scene, value: float, dense: bool):
@@ -343,7 +360,7 @@ def _simulate(scene: Scene, value: float, dense: bool):
     return body, simulate(model, y0, 1000.0, events=[rise], track_minima=False, dense=dense)
 
 
-def _add_run(data: SceneData, body, r, value, label, show) -> None:
+def _add_run(data: _SceneBuilder, body, r, value, label, show) -> None:
     """The drawn points and the crossing of one trajectory."""
     if "trajectories" in show:
         ts = np.arange(r.t0, r.t, data.scene.dt)
@@ -394,7 +411,7 @@ def compute_scene(scene: Scene) -> SceneData:
     """
     check_instance("scene", scene, Scene, 'Scene("prolate", 1.5)')
     show = scene.show
-    data = SceneData(scene)
+    data = _SceneBuilder(scene)
     body = scene.make_body()
     if {"trajectories", "crossings"} & show:
         for v in scene.values:
@@ -419,7 +436,7 @@ def compute_scene(scene: Scene) -> SceneData:
         else:  # vertical spins: theta = 0, plotted at the fast-branch limit Omega = C n0 / A
             data.fixed_points = np.array([[body.C * v / body.A, 0.0, v] for v in scene.values])
     data.bounds = _bounds(scene, data, om_rng, th_rng)
-    return data
+    return SceneData(**{f.name: getattr(data, f.name) for f in fields(data)})
 
 
 def _grids(scene, data, body, om_rng, th_rng) -> None:

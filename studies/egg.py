@@ -243,10 +243,10 @@ def main(argv=None) -> dict:
             starts += [math.pi / 2 - 0.05, math.pi / 2 + 0.05]  # both sides of the horizontal
             for th in starts:
                 tasks.append((w, om, th))
-    specs = pk.sweep.each(tasks, lambda w, om, th: end_key(w, om, th, cfg["t_max"]),
-                          lambda w, om, th: which_end(w, om, th, cfg["t_max"]))
-    st.run(specs, store, desc="which end")
-    keys = {s.key for s in specs}
+    keys = [end_key(*t, cfg["t_max"]) for t in tasks]
+    # (some starts coincide: each is run and stored as often as it is listed, as the committed rows were)
+    for t in st.progress([t for t, k in zip(tasks, keys) if k not in store], desc="which end"):
+        store.add(which_end(*t, cfg["t_max"]))
     rows = [r for r in store.rows() if r.key in keys]
     plot_which_end(rows, cfg, st.path("egg_which_end.png"), args.quick)
     thr, checks = threshold_rows(cfg, st)
