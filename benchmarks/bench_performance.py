@@ -38,7 +38,6 @@ import sys
 import time
 
 import phasekit as pk
-from phasekit.sweep import run_study
 
 import numpy as np
 
@@ -189,4 +188,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    run_study(main, resume="nothing was written; run it again")
+    pk.sweep.run_study(main, resume="nothing was written; run it again")

@@ -138,7 +138,8 @@ class Engine(Protocol):
 
     ``name`` is what the segments it integrates record; ``pointwise`` says it sees the guards
     only at output points (the stick guard is then watched in its smooth form with a rate, see
-    :func:`phasekit.system.watched`).
+    :func:`phasekit.system.watched`). The batch engine (:class:`TaylorBatchEngine`) has the same
+    name and pointwise flag, and its ``propagate`` takes every lane of an integrator at once.
 
     Examples
     --------
@@ -504,6 +505,7 @@ class TaylorBatchEngine:
                 end = End.TIME  # the call ended on the lane's last step
             out.append((end, event, int(res[3]), str(res[0])))
         return out
+
 
 class HermiteDense:
     """Cubic Hermite interpolation on an integrator's output grid (for output only)."""
