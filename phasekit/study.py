@@ -6,8 +6,9 @@ A study is the science plus a few lines::
     import phasekit as pk
 
     def main(argv=None) -> dict:
-        st = pk.sweep.Study(__file__, __doc__, dask=True)    # --quick --out --no-progress --fresh
-        st.parser.add_argument("--seed", type=st.parser.integer(min=0), default=1)  # --serial ...
+        st = pk.sweep.Study(__file__, __doc__, dask=True)    # --quick --out --no-progress --fresh, and
+                                                            # --serial --scheduler --workers for Dask
+        st.parser.add_argument("--seed", type=st.parser.integer(min=0), default=1)  # the study's own
         args = st.parse(argv)                               # checked at parse time; st.out made
         store = st.store(MyRow, {"grid": GRID})             # resumable rows + provenance manifest
         ran = st.run(specs, store, warm_up=compile_models)  # Dask (or --serial), only what is missing
@@ -22,7 +23,7 @@ Everything a study writes goes to ``figures/`` next to its folder (``figures/qui
 
 Bad input ends a study with one line on stderr naming the flag as typed, its valid range and
 the value, and exit code 2: argparse errors (the parser prints no usage block), the number
-types ``ap.integer`` / ``ap.real``, an ``--out`` that cannot be used, and any
+types ``st.parser.integer`` / ``st.parser.real``, an ``--out`` that cannot be used, and any
 :class:`phasekit.ParameterError` that escapes ``main`` (its parameter is named by the study's
 flag). Another :class:`phasekit.PhasekitError` is one line and exit code 1. Ctrl-C is one line
 and exit code 130, saying which result files keep the finished rows (those of the stores the
