@@ -9,7 +9,7 @@ minimum of R located, which costs a few times the bare integration).
 1. phasekit against scipy BDF on a plain NumPy right-hand side, at equal or better t* error:
    goal >= 1000x (the sweep path; the default options are printed beside it).
 2. phasekit against the bare heyoka propagate on the same compiled Taylor integrator
-   (``pk.taylor_integrator(model, rtol=1e-9, track_minima=False)``, ``propagate_until`` to
+   (``pk.baseline.taylor_integrator(model, rtol=1e-9, track_minima=False)``, ``propagate_until`` to
    the lift-off event, nothing else), both at rtol 1e-9: goal <= 1.35x for the sweep path,
    which is the one compared with bare heyoka (same integrator, same events); the default
    options' ratio and CVODES BDF and Adams are printed for reference.
@@ -37,10 +37,9 @@ import statistics
 import sys
 import time
 
-import numpy as np
-
 import phasekit as pk
-from phasekit.viz import run_study
+
+import numpy as np
 
 SWEEP = dict(dense=False, track_minima=False)
 GOALS = {"scipy_bdf": 1000.0, "bare_heyoka": 1.35, "rolling_sliding": 3.0}
@@ -74,7 +73,7 @@ def ms(t: Timing) -> str:
 
 def bare_heyoka(model, y0, rtol):
     """The compiled Taylor integrator of the sliding mode, driven directly."""
-    ta, _ = pk.taylor_integrator(model, rtol=rtol, track_minima=False)
+    ta, _ = pk.baseline.taylor_integrator(model, rtol=rtol, track_minima=False)
 
     def run():
         ta.time = 0.0
@@ -86,9 +85,9 @@ def bare_heyoka(model, y0, rtol):
 
 
 def scipy_vs_phasekit(model, body, y0, err, repeats, say) -> dict:
-    t_sp, res = timed({"bdf": lambda: pk.solve_ivp_to_jump(y0, 200.0, a=body.a, A=body.A, C=body.C, mu=0.1, rtol=1e-9)},
+    t_sp, res = timed({"bdf": lambda: pk.baseline.solve_ivp_to_jump(y0, 200.0, a=body.a, A=body.A, C=body.C, mu=0.1, rtol=1e-9)},
                       max(1, min(3, repeats // 10)))
-    t_sp, (tj_sp, _, nfev) = t_sp["bdf"], res["bdf"]
+    t_sp, tj_sp, nfev = t_sp["bdf"], res["bdf"].t_jump, res["bdf"].n_rhs
     e_sp = err(tj_sp)
     # the loosest tolerance whose t* error is no worse than scipy's
     for rt in (1e-6, 1e-7, 1e-8, 1e-9):
@@ -189,4 +188,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    run_study(main, resume="nothing was written; run it again")
+    pk.sweep.run_study(main, resume="nothing was written; run it again")

@@ -31,9 +31,9 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
-
 import phasekit as pk
+
+import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -83,20 +83,20 @@ def time_structures() -> dict:
 def atlas_specs(study, quick: bool):
     g = study.QUICK if quick else study.FULL
     pts = study.grid_points(g)
-    specs = [pk.TaskSpec(f"atlas|{i}", study.signatures, (pts[i:i + g["chunk"]],), cost=1.0)
+    specs = [pk.sweep.TaskSpec(f"atlas|{i}", study.signatures, (pts[i:i + g["chunk"]],), cost=1.0)
              for i in range(0, len(pts), g["chunk"])]
     return g, pts, specs
 
 
 def run(specs, client=None) -> tuple[list, float]:
     t0 = time.perf_counter()
-    res = pk.run_tasks(specs, store_get=lambda k: None, on_result=lambda s, r: None, client=client, progress=False)
+    res = pk.sweep.run_tasks(specs, store_get=lambda k: None, on_result=lambda s, r: None, client=client, progress=False)
     return [row for rows in res.values() for row in rows], time.perf_counter() - t0
 
 
 def edge_specs(study, rows, g):
     edges = study.boundary_edges(rows)
-    return [pk.TaskSpec(f"edges|{i}", study.trace, (edges[i:i + 40], g["xtol"]), cost=1.0)
+    return [pk.sweep.TaskSpec(f"edges|{i}", study.trace, (edges[i:i + 40], g["xtol"]), cost=1.0)
             for i in range(0, len(edges), 40)]
 
 
@@ -109,7 +109,7 @@ def measure(quick: bool, log) -> dict:
     especs = edge_specs(study, rows_serial, g)
     bounds_serial, edges_serial = run(especs)
     t0 = time.perf_counter()
-    client, cluster = pk.make_client(workers=2)
+    client, cluster = pk.sweep.make_client(workers=2)
     cluster_start = time.perf_counter() - t0
     try:
         client.run(lambda: study.structure_at("tippe-top", 0.3, 0.95))  # warm the workers' compiled functions

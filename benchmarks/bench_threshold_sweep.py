@@ -64,9 +64,9 @@ def _timed(func, prev, *args):
 def run(specs, client=None, pack=None, times=None) -> tuple[dict, float]:
     """Run the tasks (nothing stored), return {row key: row} and the wall time; ``times``
     (a dict) gets the tasks' summed CPU and wall time."""
-    timed = [pk.TaskSpec(s.key, partial(_timed, s.func), s.args, s.after, s.label, s.meta, s.cost) for s in specs]
+    timed = [pk.sweep.TaskSpec(s.key, partial(_timed, s.func), s.args, s.after, s.label, s.meta, s.cost) for s in specs]
     t0 = time.perf_counter()
-    res = pk.run_tasks(timed, store_get=lambda k: None, on_result=lambda s, r: None, client=client, pack=pack,
+    res = pk.sweep.run_tasks(timed, store_get=lambda k: None, on_result=lambda s, r: None, client=client, pack=pack,
                        progress=False)
     wall = time.perf_counter() - t0
     if times is not None:
@@ -83,8 +83,8 @@ def default_curve_specs(aspect, engine: str, levels: int, per_task: int):
     search = dict(aspect.SEARCH, levels=levels)
     defn = next(d for d in pk.DEFAULT_DEFINITIONS if d.name == aspect.DEFAULT_NAME)
     a_list = aspect.PROLATE + aspect.OBLATE
-    jobs = [pk.search_job(asdict(defn), a, search) for a in a_list]
-    specs, _ = pk.group_search_tasks(jobs, [1.0 / abs(a - 1.0) for a in a_list], per_task=per_task, study="bench",
+    jobs = [pk.sweep.search_job(asdict(defn), a, search) for a in a_list]
+    specs, _ = pk.sweep.group_search_tasks(jobs, [1.0 / abs(a - 1.0) for a in a_list], per_task=per_task, study="bench",
                                      engine=engine)
     return specs
 
@@ -116,15 +116,15 @@ def measure(quick: bool, log, per_task: int = 1) -> dict:
     mu_study, aspect = load("threshold_vs_mu"), load("threshold_vs_aspect")
     load_avg = os.getloadavg()
     specs, _ = mu_study.build_tasks(quick, "batch", per_task=per_task)
-    pack = pk.ModelPack.build(mu_study.warm_up)  # compile or load everything before timing
+    pack = pk.sweep.ModelPack.build(mu_study.warm_up)  # compile or load everything before timing
     t_serial, t_dask = {}, {}
     serial_rows, wall_serial = run(specs, times=t_serial)
     load_mid = os.getloadavg()
     t0 = time.perf_counter()
-    client, cluster = pk.make_client(workers=2)
+    client, cluster = pk.sweep.make_client(workers=2)
     cluster_start = time.perf_counter() - t0
     try:
-        client.run(pk.ModelPack.install, pack)  # the workers get the compiled code before timing
+        client.run(pk.sweep.ModelPack.install, pack)  # the workers get the compiled code before timing
         dask_rows, wall_dask = run(specs, client, pack, times=t_dask)
         load_end = os.getloadavg()
         same = all(serial_rows[k].threshold == dask_rows[k].threshold for k in serial_rows)

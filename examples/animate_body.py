@@ -13,10 +13,10 @@ draw the gap a million times larger (printed on those frames).
 import argparse
 from pathlib import Path
 
-import numpy as np
-
 import phasekit as pk
 from phasekit.viz import animate, film_strip
+
+import numpy as np
 
 #: where the outputs go without --out (git-ignored)
 DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "animate_body"

@@ -12,11 +12,10 @@ Coulomb friction: see examples/paper_start_rounding.py.)
 import argparse
 from pathlib import Path
 
-import numpy as np
-
 import phasekit as pk
 from phasekit.viz import plot_events, plot_minima, plot_timeseries, pyplot, save_figure
 
+import numpy as np
 
 #: where the outputs go without --out (git-ignored)
 DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "fig4_case"

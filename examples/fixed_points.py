@@ -10,11 +10,10 @@ the rate of the unstable eigenvalue.
 import argparse
 from pathlib import Path
 
-import numpy as np
-
 import phasekit as pk
 from phasekit.viz import pyplot, save_figure
 
+import numpy as np
 
 #: where the outputs go without --out (git-ignored)
 DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "fixed_points"

@@ -20,10 +20,10 @@ import argparse
 import math
 from pathlib import Path
 
-import numpy as np
-
 import phasekit as pk
 from phasekit.viz import pyplot, save_figure
+
+import numpy as np
 
 NAMES = ("U", "V", "Lambda", "theta", "n")  # the printed components (Omega0 = 10.5 is the family value)
 INDEX = {"U": 0, "V": 1, "Lambda": 3, "theta": 4, "n": 5}

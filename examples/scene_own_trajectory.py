@@ -15,7 +15,6 @@ from pathlib import Path
 import phasekit as pk
 from phasekit.viz import render_scene
 
-
 #: where the outputs go without --out (git-ignored)
 DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "scene_own_trajectory"
 

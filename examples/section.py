@@ -9,11 +9,10 @@ sliding-branch start), as a table with the state and R at each crossing.
 import argparse
 from pathlib import Path
 
-import numpy as np
-
 import phasekit as pk
 from phasekit.viz import plot_section, pyplot, save_figure
 
+import numpy as np
 
 #: where the outputs go without --out (git-ignored)
 DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "section"

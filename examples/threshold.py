@@ -16,7 +16,6 @@ from pathlib import Path
 import phasekit as pk
 from phasekit.viz import pyplot, save_figure
 
-
 #: where the outputs go without --out (git-ignored)
 DEFAULT_OUT = Path(__file__).resolve().parent / "out" / "threshold"
 

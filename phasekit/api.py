@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .body import Body, EccentricSphere, Spheroid
+from .body import Body, Spheroid
+from .charts import choose_chart
 from .errors import ParameterError
 from .friction import friction_law
 from .hybrid import Event
@@ -18,47 +19,8 @@ from .simulate import simulate
 from .starts import RATE_MAX, gyroscopic_start, raw_start, to_chart, vertical_spin_start
 from .validate import check_choice, check_finite
 
-__all__ = ["choose_formulation", "make_body", "parse_stop", "run_start", "simulate_start", "real_units_report",
-           "fixed_points_report", "gyroscopic_report", "steady_structure_report", "POLE_MARGIN", "BODIES"]
-
-#: within this angle of theta = 0 or pi the vector chart is the default. Measured (oblate
-#: a = 0.6, n0 = 12, viscous mu = 0.1, rtol 1e-9, to t = 40): away from the pole the Euler
-#: chart takes 380-510 Taylor steps against 570-810 for the vector chart (whose state
-#: follows the precession) with 10-100x smaller errors; at theta0 = 1e-6 the vector chart
-#: wins (382 vs 510 steps, error 8e-8 vs 1.6e-7). Exactly at the pole only it can start.
-POLE_MARGIN = 1e-5
-BODIES = ("spheroid", "tippe-top", "egg")
-
-
-def choose_formulation(theta0: float, requested: str = "auto") -> str:
-    """``euler`` away from the poles (fewer steps, smaller errors), ``vector`` within POLE_MARGIN."""
-    check_choice("formulation", requested, ("auto", "euler", "vector"))
-    if requested != "auto":
-        return requested
-    return "vector" if min(theta0, np.pi - theta0) < POLE_MARGIN else "euler"
-
-
-def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, A=None, C=None) -> Body:
-    """A built-in body by name: ``spheroid`` (a, offset), ``tippe-top`` (offset), ``egg`` (a, w)."""
-    check_choice("body", kind, BODIES)
-    given = {"a": a, "offset": offset, "w": w}
-    allowed = {"spheroid": ("a", "offset"), "tippe-top": ("offset",), "egg": ("a", "w")}[kind]
-    for name, value in given.items():
-        if value is not None and name not in allowed:
-            raise ParameterError(name, f"does not apply to the {kind} body (its parameters: {', '.join(allowed)})", value)
-    if kind == "spheroid":
-        if a is None:
-            raise ParameterError("a", "is required for the spheroid body (aspect ratio, > 0)", show_value=False)
-        return Spheroid(a, A=A, C=C, offset=0.0 if offset is None else offset)
-    if kind == "tippe-top":
-        if offset is None:
-            raise ParameterError("offset", "is required for the tippe-top body (centre of mass below the centre, in [0, 1))",
-                                 show_value=False)
-        return EccentricSphere(offset, A=A, C=C)
-    from .egg import Egg
-
-    return Egg(1.3 if a is None else a, 0.0 if w is None else w, A=A, C=C)
-
+__all__ = ["parse_stop", "run_start", "simulate_start", "real_units_report", "fixed_points_report", "gyroscopic_report",
+           "steady_structure_report"]
 
 def parse_stop(stop: str) -> tuple[str, list[Event]]:
     """``jump``, ``touchdown`` or ``none``, or ``NAME=VALUE`` (stop when the observable NAME
@@ -81,7 +43,7 @@ def parse_stop(stop: str) -> tuple[str, list[Event]]:
     return "none", [Event(name, level, direction=0, name=f"{name}={level:g}")]
 
 
-def _start(body, law, start: dict, formulation: str):
+def _start(body, law, start: dict, chart: str):
     """(model, x0, seed info) for a start description."""
     kind = start["kind"]
     if kind == "unstable-manifold":
@@ -93,9 +55,9 @@ def _start(body, law, start: dict, formulation: str):
         model, x0, fp = unstable_manifold_start(
             body, law, state=start["state"], delta=start["delta"], omega0=start.get("omega0"), n0=start.get("n0"),
             branch=start.get("branch", "+0"), seed_law=start.get("seed_law", "viscous"))
-        if formulation not in ("auto", model.chart.name):
-            raise ParameterError("formulation", f"cannot start on the {start['state']} state (use {model.chart.name} or auto)",
-                                 formulation)
+        if chart not in ("auto", model.chart.name):
+            raise ParameterError("chart", f"cannot start on the {start['state']} state (use {model.chart.name} or auto)",
+                                 chart)
         return model, x0, {"fixed_point": fp.to_dict(), "delta": start["delta"], "branch": start.get("branch", "+0"),
                            "seed_law": fp.law}
     if kind == "gyroscopic":
@@ -111,28 +73,28 @@ def _start(body, law, start: dict, formulation: str):
         if not (isinstance(body, Spheroid) and body.uniform and abs(body.a - case.a) <= 1e-4 * case.a):
             raise ParameterError("a", f"must be {case.a:.6g} for the paper's start ({case.label}), a uniform spheroid "
                                       "(no `A`, `C`)", getattr(body, "a", None))
-        if formulation not in ("auto", model.chart.name):
-            raise ParameterError("formulation", f"must be auto or {model.chart.name} for the paper's start "
-                                                f"({start['label']})", formulation)
+        if chart not in ("auto", model.chart.name):
+            raise ParameterError("chart", f"must be auto or {model.chart.name} for the paper's start "
+                                          f"({start['label']})", chart)
         return model, x0, None
     else:
         # the Euler chart only if asked for: "auto" takes a state at a pole into the vector chart
-        y0 = raw_start(start["state"], chart="euler" if formulation == "euler" else "vector")
-    chart = choose_formulation(float(y0[4]), formulation)
+        y0 = raw_start(start["state"], chart="euler" if chart == "euler" else "vector")
+    chart = choose_chart(float(y0[4]), chart)
     if chart == "euler":
         raw_start(y0, chart="euler")  # theta strictly inside (0, pi)
     return Model(body, law, chart), to_chart(chart, y0), None
 
 
 def run_start(*, body: Body, friction="coulomb", mu, slip_eps=None, start: dict, t_end=200.0, stop_at="jump",
-              restitution=0.0, formulation="auto", options: dict | None = None, pose0=None):
+              restitution=0.0, chart="auto", options: dict | None = None, pose0=None):
     """Run one simulation described by plain parameters: (Trajectory, seed info or None).
     The dense output is kept: the pose (psi, phi, X, Y, X_P, Y_P) at the events and the end
     comes from it, and keeping it changes no number of the run."""
     law = friction_law(friction, mu, slip_eps)
-    check_choice("formulation", formulation, ("auto", "euler", "vector"))
+    check_choice("chart", chart, ("auto", "euler", "vector"))
     stop, events = parse_stop(stop_at)
-    model, x0, seed = _start(body, law, start, formulation)
+    model, x0, seed = _start(body, law, start, chart)
     res = simulate(model, x0, t_end, stop_at=stop, restitution=restitution, events=events, dense=True, pose0=pose0,
                    **(options or {}))
     return res, seed

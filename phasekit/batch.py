@@ -10,12 +10,14 @@ parameters at once.
 The loop
 --------
 :func:`simulate_batch` is the hybrid loop of :func:`phasekit.simulate` run for many starts
-at once (``stop_at="jump"``, no dense output): one batch integrator per contact mode
-(SLIDING, ROLLING; the same compiled flows, guards and tolerance as
-:class:`phasekit.backends.TaylorEngine`); a lane propagates its start to the mode's first
-event; the event's reset (:mod:`phasekit.resets`, called exactly as the scalar loop calls
-it) moves the start to the queue of its next mode, or ends it (lift-off: "jumped"; a stop
-event: "stopped"; ``t_end``: "completed"). A start that the batch cannot follow - a stiff
+at once (``stop_at="jump"``, no dense output): one batch integrator
+(:class:`phasekit.engines.TaylorBatchEngine`: the scalar Taylor engine's build, compact mode and
+event cooldown) per contact flow of the declared system (:mod:`phasekit.system`; a new contact
+mode is one more Flow there); a lane propagates its start to the mode's first event, and the
+end of the segment is handled by the scalar loop's own routine
+(:meth:`phasekit.simulate.RunState.end_segment`: the event's reset moves the start to the queue of
+its next mode, or ends it: lift-off "jumped", a stop event "stopped", ``t_end`` "completed").
+A start that the batch cannot follow - a stiff
 mode handed to CVODES (a regularised law that has stuck), a non-finite state, a budget
 overrun, a user event that is not a terminal stop - is run again from t = 0 by the scalar
 :func:`phasekit.simulate`, so its result is the scalar one by construction.
@@ -34,26 +36,22 @@ batched: the non-terminal monitor changes heyoka's steps.
 
 from __future__ import annotations
 
-import hashlib
-import os
-import pickle
-import threading
 import time
 from collections import deque
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .errors import ParameterError, Status
-from .hybrid import Mode
+from .charts import POLE_GUARD
+from .engines import End, TaylorBatchEngine
+from .errors import ParameterError
 from .model import Model
 from .options import SolverOptions
-from .charts import POLE_GUARD
-from .simulate import apply_transition, simulate, solver_options
-from .watch import deadline as watch_deadline
+from .simulate import RunState, simulate, solver_options
 from .system import declare, watched
-from .trajectory import EventRecord, Segment, Trajectory
+from .trajectory import Trajectory
 from .validate import check_int
+from .watch import deadline as watch_deadline
 
 __all__ = ["LANES", "simulate_batch", "compile_batch", "BatchStats"]
 
@@ -63,14 +61,20 @@ LANES = 8
 STEP_CHUNK = 20_000
 #: steps per call while another mode has starts waiting (the modes take turns)
 STEP_SLICE = 500
-#: bump when the layout of the pickled cache entries changes
-CACHE_FORMAT = 1
 
 
 @dataclass
 class BatchStats:
-    """What :func:`simulate_batch` did: starts finished in batch, starts handed to the scalar
-    path (with the reasons), calls of heyoka's propagate, and the wall time."""
+    """What :func:`simulate_batch` did, filled in as it runs: starts finished in batch, starts
+    handed to the scalar path (with the reasons), calls of heyoka's propagate, and the wall time.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> stats = pk.sweep.BatchStats()
+    >>> stats.handed_back("a reason"); (stats.scalar, stats.reasons)
+    (1, {'a reason': 1})
+    """
 
     batched: int = 0
     scalar: int = 0
@@ -83,114 +87,30 @@ class BatchStats:
         self.reasons[why] = self.reasons.get(why, 0) + 1
 
 
-class _Integrators:
-    """Compiled batch integrators, in memory and on disk (as the scalar ones)."""
-
-    _lock = threading.Lock()
-    memory: dict = {}
-
-    @classmethod
-    def get(cls, cflow, n_params: int, rtol: float, lanes: int):
-        key = (cflow.signature, float(rtol), int(lanes))
-        with cls._lock:
-            entry = cls.memory.get(key)
-        if entry is None:
-            entry = cls._load_or_build(cflow, n_params, rtol, lanes, key)
-            with cls._lock:
-                cls.memory[key] = entry
-        return entry
-
-    @classmethod
-    def _load_or_build(cls, cflow, n_params, rtol, lanes, key):
-        from .backends import _cache_dir, _heyoka
-
-        hy = _heyoka()
-        digest = hashlib.sha256(repr((CACHE_FORMAT, "batch", key, hy.__version__)).encode()).hexdigest()[:24]
-        cache = _cache_dir()
-        path = cache / f"taylor-batch-{digest}.pkl" if cache else None
-        if path is not None and path.exists():
-            try:
-                with open(path, "rb") as fh:
-                    return pickle.load(fh)
-            except Exception:  # a stale or partial file: rebuild it
-                pass
-        entry = _build(hy, cflow, n_params, rtol, lanes)
-        if path is not None:
-            try:
-                tmp = path.with_suffix(f".{os.getpid()}.tmp")
-                with open(tmp, "wb") as fh:
-                    pickle.dump(entry, fh)
-                os.replace(tmp, path)
-            except Exception:
-                pass
-        return entry
-
-
-def _build(hy, cflow, n_params, rtol, lanes):
-    """The batch twin of TaylorEngine's integrator: same field, guards and tolerance."""
-    from ._translate import to_heyoka
-
-    xs = hy.make_vars(*[f"x{i}" for i in range(cflow.n_states)])
-    ps = [hy.par[i] for i in range(n_params)]
-    rhs = to_heyoka(cflow.field, [list(xs), ps])[0]
-    direction = {-1: hy.event_direction.negative, 1: hy.event_direction.positive, 0: hy.event_direction.any}
-    t_events = [hy.t_event_batch(to_heyoka(g.function, [list(xs), ps, [hy.par[n_params + i]]])[0][0],
-                                 direction=direction[g.direction]) for i, g in enumerate(cflow.guards)]
-    used = hy.get_params(list(rhs) + [e.expression for e in t_events])
-    npar = 1 + max((int(str(q)[1:]) for q in used), default=-1)
-    ta = hy.taylor_adaptive_batch(list(zip(xs, rhs)), np.zeros((cflow.n_states, lanes)), pars=np.zeros((npar, lanes)),
-                                  tol=rtol, t_events=t_events)
-    return ta, npar
-
-
 # -- one start ---------------------------------------------------------------------------------
 
 
-@dataclass
-class _Job:
-    """One start on its way through the modes (the batch twin of simulate's _Run)."""
+class _Job(RunState):
+    """One start on its way through the modes: a run of the loop whose segments come from lanes."""
 
-    index: int
-    model: Model
-    system: object
-    x0: np.ndarray
-    t_end: float
-    user_events: tuple
-    mode: Mode = Mode.SLIDING
-    t: float = 0.0
-    x: np.ndarray | None = None
-    resume: bool = False  # a grazed guard: the lane goes on with its cooldown
-    status: Status | None = None
-    reason: str | None = None
-    segments: list = field(default_factory=list)
-    records: list = field(default_factory=list)
-    steps: int = 0  # in finished segments
-    seg_steps: int = 0  # in the segment under way
-    wall0: float = 0.0
+    def __init__(self, index, model, system, x0, t_end, user_events, opts):
+        super().__init__(model, system, opts, 0.0, t_end)
+        self.index, self.x0, self.user_events = index, np.asarray(x0, float), tuple(user_events)
+        self.steps = 0  # in finished segments
+        self.seg_steps = 0  # in the segment under way
+        self.wall0 = time.perf_counter()
 
-    def record(self, name, t, before, after, x, detail="") -> None:
-        x = None if x is None else np.asarray(x, dtype=float)
-        self.records.append(EventRecord(name, float(t), before, after, x, detail,
-                                        None if x is None else self.model.chart.to_paper(x)))
-
-    def apply(self, tr, opts) -> None:
-        apply_transition(self, tr, opts.switch_limit(self.t_end), opts.settle, 0.0)
-
-    def add_segment(self, t1, x1, end, order, extend) -> None:
+    def finish_segment(self, end: End, t, x, ev, order: int) -> None:
+        """The lane's segment ends at (t, x): record it and let the shared loop handle the end."""
+        extend, self.resume = self.resume, False
         steps, self.seg_steps = self.seg_steps, 0
-        if extend and self.segments and self.segments[-1].mode is self.mode:
-            last = self.segments[-1]
-            self.segments[-1] = Segment(self.mode, last.t0, t1, last.x0, x1, "taylor", end, last.n_steps + steps,
-                                        last.n_rhs + steps * (order + 1))
-        else:
-            self.segments.append(Segment(self.mode, self.t, t1, self.x, x1, "taylor", end, steps, steps * (order + 1)))
+        self.add_segment("taylor", t, x, ev.name if end is End.EVENT else str(end), steps, steps * (order + 1),
+                         extend=extend)
         self.steps += steps
+        self.end_segment(end, t, x, ev)
 
-    def trajectory(self, opts) -> Trajectory:
-        return Trajectory(model=self.model, x0=self.x0, t0=0.0, t_end=self.t_end, options=opts, status=self.status,
-                          reason=self.reason, segments=self.segments, events=self.records,
-                          wall_s=time.perf_counter() - self.wall0, stop_at="jump", user_events=self.user_events,
-                          x_end=None if self.segments else self.x, mode_end=None if self.segments else self.mode)
+    def result(self) -> Trajectory:
+        return self.trajectory(self.x0, time.perf_counter() - self.wall0, user_events=self.user_events)
 
 
 def _prepare(i, model, x0, t_end, events, opts) -> "_Job | str":
@@ -208,9 +128,19 @@ def _prepare(i, model, x0, t_end, events, opts) -> "_Job | str":
     if not model.chart.regular_at_poles and min(x0[4], np.pi - x0[4]) < POLE_GUARD:
         return "start at a pole of the Euler chart"
     system = declare(model, stop_at="jump", events=events)
-    job = _Job(i, model, system, np.asarray(x0, float), t_end, tuple(events), wall0=time.perf_counter())
-    job.apply(system.initial(model, 0.0, x0, None), opts)
+    job = _Job(i, model, system, x0, t_end, events, opts)
+    job.apply(system.initial(model, 0.0, x0, None))
     return job
+
+
+def _batched(model, system, opts) -> list:
+    """The flows the batch runs: the model's contact flows (the runs stop at the first lift-off)
+    that the scalar loop would integrate with the Taylor method."""
+    def taylor(flow):
+        name = flow.engine or opts.backend
+        return name == "taylor" or (name == "auto" and not flow.stiff)
+
+    return [f for f in system.contact_flows if f.mode in model.modes and taylor(f)]
 
 
 # -- the lanes of one mode -----------------------------------------------------------------------
@@ -221,13 +151,19 @@ class _Lanes:
 
     def __init__(self, model, system, mode, opts, lanes):
         self.mode, self.opts, self.lanes, self.n_params = mode, opts, lanes, len(model.p)
+        self.engine = TaylorBatchEngine(opts.rtol, lanes)
         flow = replace(system.flow(mode), monitor=None)  # what simulate integrates with track_minima=False
-        self.guards = watched(system, mode, "taylor")
+        self.guards = watched(system, mode, self.engine)
         self.cflow = model.compile_flow(flow, self.guards)
         self.ta = self.npar = None
         self.slot: list[_Job | None] = [None] * lanes
         self.queue: deque = deque()
         self.limit = np.zeros(lanes)
+
+    def compile(self):
+        if self.ta is None:
+            self.ta, self.npar = self.engine.integrator(self.cflow, self.n_params)
+        return self.ta
 
     def busy(self) -> bool:
         return bool(self.queue) or any(j is not None for j in self.slot)
@@ -238,9 +174,7 @@ class _Lanes:
 
     def fill(self) -> None:
         """Put queued jobs into free lanes; park the others (time limit = their time)."""
-        if self.ta is None:
-            self.ta, self.npar = _Integrators.get(self.cflow, self.n_params, self.opts.rtol, self.lanes)
-        ta = self.ta
+        ta = self.compile()
         hi, lo = (np.array(a, copy=True) for a in ta.dtime)
         fresh, idle = [], []
         if self.queue and any(j is None for j in self.slot):
@@ -300,6 +234,15 @@ def simulate_batch(models, starts, t_end, *, events=(), lanes: int = LANES, opti
         simulate) are scalar-only: pass ``track_minima=False, dense=False`` to batch.
     stats : BatchStats, optional
         Filled with what was batched and what was handed back.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> starts = [pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=w) for w in (9.0, 10.5)]
+    >>> runs = pk.simulate_batch(pk.Model(body, pk.Coulomb(0.1)), starts, 300.0, track_minima=False, dense=False)
+    >>> [r.status.value for r in runs]
+    ['completed', 'jumped']
     """
     opts = solver_options(options, **option_fields)
     lanes = check_int("lanes", lanes, minimum=1, maximum=64)
@@ -320,7 +263,7 @@ def simulate_batch(models, starts, t_end, *, events=(), lanes: int = LANES, opti
             out[i] = simulate(model, x0, float(t_ends[i]), events=events, options=opts, progress=False)
         elif job.status is not None:  # ended at the start (e.g. R <= 0)
             stats.batched += 1
-            out[i] = job.trajectory(opts)
+            out[i] = job.result()
         else:
             groups.setdefault(model.compiled.signature, []).append(job)
     for jobs in groups.values():
@@ -330,13 +273,9 @@ def simulate_batch(models, starts, t_end, *, events=(), lanes: int = LANES, opti
 
 
 def _run_group(jobs, events, opts, lanes, out, stats) -> None:
-    """Run the jobs of one compiled model through one batch integrator per contact mode."""
-    from .backends import _heyoka
-
-    hy = _heyoka()
+    """Run the jobs of one compiled model through one batch integrator per contact flow."""
     first = jobs[0]
-    modes = {mode: _Lanes(first.model, first.system, mode, opts, lanes) for mode in (Mode.SLIDING, Mode.ROLLING)
-             if mode in first.model.modes}
+    modes = {f.mode: _Lanes(first.model, first.system, f.mode, opts, lanes) for f in _batched(first.model, first.system, opts)}
     deadline = {}
 
     def finish(job, why=None):
@@ -345,14 +284,14 @@ def _run_group(jobs, events, opts, lanes, out, stats) -> None:
             out[job.index] = simulate(job.model, job.x0, job.t_end, events=events, options=opts, progress=False)
         else:
             stats.batched += 1
-            out[job.index] = job.trajectory(opts)
+            out[job.index] = job.result()
 
     def route(job):
         """Send a job to its mode's queue, or end it."""
         if job.status is not None:
             return finish(job)
         target = modes.get(job.mode)
-        if target is None or (opts.backend == "auto" and job.system.flow(job.mode).stiff):
+        if target is None:
             return finish(job, f"{job.mode.value} mode is stiff (CVODES) or not batched")
         target.queue.append(job)
 
@@ -368,7 +307,7 @@ def _run_group(jobs, events, opts, lanes, out, stats) -> None:
         others = any(M.busy() for M in modes.values() if M is not L)
         L.fill()
         try:
-            L.ta.propagate_until(L.limit, max_steps=STEP_SLICE if others else STEP_CHUNK)
+            ends = L.engine.propagate(L.ta, L.limit, STEP_SLICE if others else STEP_CHUNK)
         except Exception as exc:  # e.g. a non-finite state inside an event function
             for k, job in enumerate(L.slot):
                 if job is not None:
@@ -376,11 +315,11 @@ def _run_group(jobs, events, opts, lanes, out, stats) -> None:
                     finish(job, f"batch propagation raised {type(exc).__name__}")
             continue
         stats.calls += 1
-        for k, res in enumerate(L.ta.propagate_res):
+        for k, lane_end in enumerate(ends):
             job = L.slot[k]
             if job is None:
                 continue
-            verdict = _lane_step(hy, res, k, L, job, opts, time.perf_counter() > deadline[job.index])
+            verdict = _lane_step(lane_end, k, L, job, opts, time.perf_counter() > deadline[job.index])
             if verdict == "running":
                 continue
             L.slot[k] = None
@@ -390,37 +329,21 @@ def _run_group(jobs, events, opts, lanes, out, stats) -> None:
                 finish(job, verdict)
 
 
-def _lane_step(hy, res, k, L, job, opts, late) -> str:
+def _lane_step(lane_end, k, L, job, opts, late) -> str:
     """Handle one lane after a propagate call: "running" (goes on in its lane), "moved"
     (to route: next mode or ended), or a reason to hand it to the scalar path."""
-    outcome, code = res[0], int(res[0].value)
-    job.seg_steps += int(res[3])
+    end, event, steps, what = lane_end
+    job.seg_steps += steps
     t, x = float(L.ta.time[k]), np.array(L.ta.state[:, k], copy=True)
-    if outcome in (hy.taylor_outcome.success, hy.taylor_outcome.step_limit) and t >= job.t_end:
-        outcome = hy.taylor_outcome.time_limit  # the slice ended on the lane's last step
-    if outcome in (hy.taylor_outcome.success, hy.taylor_outcome.step_limit):
+    if end is None:
         if not np.all(np.isfinite(x)):
             return "non-finite state in a lane"
         if job.steps + job.seg_steps >= opts.max_steps or late:
             return "step or wall budget of the lane"
         return "running"
-    extend, job.resume = job.resume, False
-    if outcome == hy.taylor_outcome.time_limit:
-        job.add_segment(t, x, "time", L.ta.order, extend)
-        job.t, job.x, job.status = t, x, Status.COMPLETED
-        return "moved"
-    if not -(2**31) < code < 0:
-        return f"lane outcome {outcome}"
-    ev = L.guards[-code - 1]
-    job.add_segment(t, x, ev.name, L.ta.order, extend)
-    job.t, job.x = t, x
-    if ev.reset is None:
-        job.record(ev.name, t, job.mode.value, "end", x)
-        job.status = ev.stop
-        if ev.stop is Status.STOPPED:
-            job.reason = f"{ev.name}: {ev.on} reached {ev.level:g}"
-        return "moved"
-    job.apply(ev.reset(job.model, ev, job.mode, t, x), opts)
+    if end is End.FAILED:
+        return f"lane outcome {what}"
+    job.finish_segment(end, t, x, L.guards[event] if end is End.EVENT else None, L.ta.order)
     if job.resume and job.status is None:
         return "running"  # grazed: the same lane goes on, its cooldown kept
     return "moved"
@@ -428,15 +351,19 @@ def _lane_step(hy, res, k, L, job, opts, late) -> str:
 
 def compile_batch(model: Model, events=(), *, lanes: int = LANES, **option_fields) -> int:
     """Compile (or load from the disk cache) the batch integrators that
-    :func:`simulate_batch` uses for ``model`` and ``events`` (one per contact mode it can
+    :func:`simulate_batch` uses for ``model`` and ``events`` (one per contact flow it can
     batch), without running anything; returns how many. Sweeps call it before snapshotting
-    their compiled code for the workers."""
+    their compiled code for the workers.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.sweep.compile_batch(pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)), track_minima=False, dense=False)
+    2
+    """
     opts = solver_options(**option_fields)
     system = declare(model, stop_at="jump", events=events)
-    n = 0
-    for mode in (Mode.SLIDING, Mode.ROLLING):
-        if mode in model.modes and not (opts.backend == "auto" and system.flow(mode).stiff):
-            L = _Lanes(model, system, mode, opts, lanes)
-            _Integrators.get(L.cflow, L.n_params, opts.rtol, lanes)
-            n += 1
-    return n
+    flows = _batched(model, system, opts)
+    for f in flows:
+        _Lanes(model, system, f.mode, opts, lanes).compile()
+    return len(flows)

@@ -55,6 +55,13 @@ class Body:
         ``shape`` (one per shape parameter) and ``c`` only. Must be smooth on [-1, 1].
     ``describe()`` (optional) -> str
         A one-line description for reports.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> isinstance(body, pk.Body), round(float(body.h(0.3)[0]), 6)
+    (True, 1.463159)
     """
 
     def __init__(self, A: float, C: float):
@@ -365,6 +372,15 @@ class EccentricSphere(Body):
     inverts when spun fast enough (phasekit.tippetop.classical_inversion). Commercial tippe tops
     (a truncated ball with a stem) have gamma closer to 1; the example in the README uses
     offset 0.3, A = 0.38, C = 0.4 (gamma = 0.95).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> top = pk.EccentricSphere(0.3, A=0.38, C=0.4)
+    >>> top
+    EccentricSphere(offset=0.3, A=0.38, C=0.4)
+    >>> round(float(top.h(0.0)[0]), 6)
+    0.7
     """
 
     def __init__(self, offset: float, A: float | None = None, C: float | None = None):
@@ -417,6 +433,14 @@ class CustomBody(Body):
 
     The profile is checked for smoothness and convexity over [0, pi] (both radii of
     curvature > 0); a bad one raises ParameterError naming `height`.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> import casadi as ca
+    >>> b = pk.CustomBody(lambda c: ca.sqrt(2.25 * c**2 + 1 - c**2), A=0.65, C=0.4, variable='cos')
+    >>> round(float(b.h(0.3)[0]), 6) == round(float(pk.Spheroid(1.5).h(0.3)[0]), 6)
+    True
     """
 
     def __init__(self, height, A: float | None = None, C: float | None = None, *, variable: str = "theta",

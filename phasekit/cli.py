@@ -50,7 +50,7 @@ FLAGS = {
     "t_end": "--t-end", "rtol": "--rtol", "atol": "--atol", "restitution": "--restitution", "stop_at": "--stop-at",
     "backend": "--backend", "state": "--state", "x0": "--state", "theta": "--state (theta)", "U": "--state (U)",
     "V": "--state (V)", "Omega": "--state (Omega)", "Lambda": "--state (Lambda)", "n": "--state (n)",
-    "delta": "--delta", "branch": "--branch", "seed_law": "--seed-law", "formulation": "--formulation",
+    "delta": "--delta", "branch": "--branch", "seed_law": "--seed-law", "chart": "--chart",
     "max_steps": "--max-steps", "max_wall": "--max-wall", "unstable_manifold": "--unstable-manifold",
     "t": "--t", "T": "--t", "label": "--paper-start", "level": "--stop-at", "max_switches": "--max-switches",
     "b": "--size", "g": "--g", "pose0.psi": "--psi0", "pose0.phi": "--phi0", "pose0.X": "--X0", "pose0.Y": "--Y0",
@@ -61,6 +61,7 @@ FLAGS = {
 #: API parameters that more than one flag feeds: (flag typed, name to print), the first typed one wins
 #: (e.g. `n0` is --spin-about-vertical's value in that start, and theta its --theta0)
 SOURCES = {
+    "chart": (("--formulation", "--formulation"), ("--chart", "--chart")),  # --formulation: the old name
     "n0": (("--spin-about-vertical", "--spin-about-vertical"), ("--n0", "--n0")),
     "theta": (("--state", "--state (theta)"), ("--theta0", "--theta0")),
     "Omega": (("--state", "--state (Omega)"), ("--spin-about-vertical", "--spin-about-vertical")),
@@ -251,8 +252,9 @@ def _add_solver(p):
     g.add_argument("--rtol", type=_real, default=1e-9, help="tolerance in [1e-16, 0.1] (default: %(default)s)")
     g.add_argument("--atol", type=_real, default=None, help="absolute tolerance of CVODES/IDAS (default: rtol/100)")
     g.add_argument("--backend", default="auto", help="auto | taylor | cvodes | cvodes-adams | idas (default: %(default)s)")
-    g.add_argument("--formulation", default="auto", help="euler | vector | auto (vector within 1e-5 of the poles) "
-                                                         "(default: %(default)s)")
+    g.add_argument("--chart", "--formulation", dest="chart", default="auto",
+                   help="the state's chart: euler | vector | auto (vector within 1e-5 of the poles; --formulation is "
+                        "its old name) (default: %(default)s)")
     g.add_argument("--max-steps", type=_count, default=5_000_000,
                    help="step budget of the run: Taylor steps (heyoka), or CVODES/IDAS internal steps, which are "
                         "counted after each chunk of 100 output points, so those may pass it by one chunk (the reason "
@@ -412,7 +414,7 @@ def _build_parser() -> _Parser:
 
 
 def _body(args):
-    from .api import make_body
+    from .model import make_body
 
     return make_body(args.body, a=args.a, offset=args.offset, w=args.w, A=args.A, C=args.C)
 
@@ -531,7 +533,7 @@ def _simulate_args(args, runner):
     opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall)
     return runner(body=body, friction=friction, mu=mu, slip_eps=eps, start=start, t_end=args.t_end,
                   stop_at=args.stop_at, restitution=0.0 if args.restitution is None else args.restitution,
-                  formulation=args.formulation, options=opts, pose0=_pose_of(args))
+                  chart=args.chart, options=opts, pose0=_pose_of(args))
 
 
 def _refuse(args, names, why):
@@ -727,7 +729,7 @@ def _print_human(out: dict, events: bool) -> None:
             st = si["state_end"]
             print(f"  at the end: Omega={_fmt(st['Omega'], '.5g')} {u['rate']}, n={_fmt(st['n'], '.5g')} {u['rate']}")
     print(f"{out['n_events']} events, {out['n_steps']} steps, {out['wall_s'] * 1e3:.1f} ms, "
-          f"{out['formulation']} chart, {out['backend']}" + ("" if events else " (list the events with --events)"))
+          f"{out['chart']} chart, {out['backend']}" + ("" if events else " (list the events with --events)"))
     if events:
         for e in out["events"]:
             print(f"  {e['kind']:<12s} t = {_fmt(e['t'])}  {e['mode_before']} -> {e['mode_after']}"

@@ -36,6 +36,13 @@ def vertical_stability_threshold(A: float, C: float, a: float) -> float | None:
     mode according to the side of that frequency it lies on, so stability changes where a
     frictionless mode crosses it: (a^2 C - A) n^2 = a^3 (a^2 - 1). For the uniform spheroid
     this is n0 = sqrt(5 a^3). Returns None when there is no crossing.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> b = pk.Spheroid(0.6)
+    >>> round(pk.theory.vertical_stability_threshold(b.A, b.C, b.a), 6)
+    1.03923
     """
     A, C, a = _moments(A, C, a)
     D = a * a * C - A
@@ -45,7 +52,15 @@ def vertical_stability_threshold(A: float, C: float, a: float) -> float | None:
 
 
 def vertical_is_stable(A: float, C: float, a: float, n0: float) -> bool:
-    """Linear stability of the vertical spin with friction: (a^2 C - A) n0^2 > a^3 (a^2 - 1)."""
+    """Linear stability of the vertical spin with friction: (a^2 C - A) n0^2 > a^3 (a^2 - 1).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> b = pk.Spheroid(0.6)
+    >>> pk.theory.vertical_is_stable(b.A, b.C, b.a, 0.5), pk.theory.vertical_is_stable(b.A, b.C, b.a, 10.0)
+    (True, False)
+    """
     A, C, a = _moments(A, C, a)
     n0 = check_finite("n0", n0)
     return (a * a * C - A) * n0 * n0 > a**3 * (a * a - 1)
@@ -58,7 +73,15 @@ def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None
     the exact linearisations (stability_map study) and tested. It holds for viscous friction up to
     a coefficient of about 0.8 (a = 1.5, measured); above, a second mode goes unstable first and
     the threshold falls (mu = 1: 1.9652, mu = 5: 1.4710). :func:`equator_stability_threshold` is
-    the same criterion for any flip-symmetric body. None when there is no crossing."""
+    the same criterion for any flip-symmetric body. None when there is no crossing.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> b = pk.Spheroid(1.5)
+    >>> round(pk.theory.horizontal_stability_threshold(b.A, b.C, b.a), 6)
+    2.236068
+    """
     A, C, a = _moments(A, C, a)
     D = a * a * C - A
     if D == 0 or (a * a - 1) / D <= 0:
@@ -68,7 +91,15 @@ def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None
 
 def horizontal_is_unstable(A: float, C: float, a: float, omega0: float) -> bool:
     """The horizontal steady precession has a (real, rising) unstable mode iff
-    (a^2 C - A) Omega0^2 > a^2 - 1 (weak friction; see horizontal_stability_threshold)."""
+    (a^2 C - A) Omega0^2 > a^2 - 1 (weak friction; see horizontal_stability_threshold).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> b = pk.Spheroid(1.5)
+    >>> pk.theory.horizontal_is_unstable(b.A, b.C, b.a, 2.0), pk.theory.horizontal_is_unstable(b.A, b.C, b.a, 10.0)
+    (False, True)
+    """
     A, C, a = _moments(A, C, a)
     omega0 = check_finite("omega0", omega0)
     return (a * a * C - A) * omega0 * omega0 > a * a - 1
@@ -84,7 +115,14 @@ class PoleCriterion:
     radius of curvature rho = h0 + h2 of the surface at the contact point.
 
     The spin n0 state is stable iff n0^2 rho (A rho - C h0) < h2 h0^2; ``threshold`` is the
-    |n0| where that changes (None: never), ``stable_above`` whether the fast side is stable.
+    abs(n0) where that changes (None: never), ``stable_above`` whether the fast side is stable.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> crit = pk.theory.pole_stability_threshold(pk.Spheroid(0.6))
+    >>> isinstance(crit, pk.theory.PoleCriterion), crit.pole
+    (True, 'upright')
     """
 
     pole: str
@@ -137,6 +175,13 @@ def pole_stability_threshold(body, pole: str = "upright") -> PoleCriterion:
     (a^2 C - A) n^2 = a^3 (a^2 - 1). Eccentric sphere: rho = 1, h0 = 1 -+ alpha, h2 = +-alpha give
     phasekit.tippetop's upright_unstable_spin and inverted_stable_spin. Under exact Coulomb
     friction the zero-slip state rolls and the linearisation is neutral (phasekit.fixedpoints).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> crit = pk.theory.pole_stability_threshold(pk.EccentricSphere(0.3, A=0.38, C=0.4))
+    >>> crit.pole, round(crit.threshold, 6), crit.stable(20.0)
+    ('upright', 1.212436, False)
     """
     check_choice("pole", pole, ("upright", "inverted"))
     h0, _, h2 = body.h(0.0 if pole == "upright" else np.pi)
@@ -153,6 +198,12 @@ def equator_stability_threshold(body) -> float | None:
     below a body-dependent coefficient (a = 1.5 uniform: the threshold is sqrt(5) for every
     mu <= 0.8); above it a second mode goes unstable first and the threshold falls (mu = 1:
     1.9652, mu = 5: 1.4710). None when the body is not balanced at pi/2 or there is no crossing.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.equator_stability_threshold(pk.Spheroid(1.5)), 6)
+    2.236068
     """
     he, h1, h2 = body.h(np.pi / 2)
     if abs(h1) > 1e-14:

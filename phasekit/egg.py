@@ -103,9 +103,6 @@ CHOP_REL = 1e-14
 #: interpolation degree used to measure the coefficients (twice the largest tier, so that
 #: aliasing of a series that does not fit in MAX_DEGREE shows up as a long tail)
 _SAMPLE_DEGREE = 2 * MAX_DEGREE
-#: theta = 0 rests on this end, theta = pi on the other
-FAT_END_THETA = 0.0
-THIN_END_THETA = math.pi
 
 
 # -- the meridian ----------------------------------------------------------------------------

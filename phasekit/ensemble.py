@@ -37,7 +37,7 @@ from .hybrid import Event
 from .model import Model
 from .pool import job_of, run_local, shipped
 from .simulate import simulate, solver_options
-from .sweep import make_client
+from .tasks import make_client
 from .validate import check_finite, check_int, check_vector
 from .watch import WALL_REASON, check_max_wall, progress_bar, wall_deadline
 
@@ -309,24 +309,11 @@ def _table(model: Model, X: np.ndarray, rows: dict, job: dict, wall: float):
 
 
 def _model_from(d: dict, model: Model | None) -> Model:
-    if model is not None:
-        if not isinstance(model, Model):
-            raise ParameterError("model", "must be a phasekit Model", model)
-        return model
-    from .api import make_body
-    from .friction import Coulomb, RegularisedCoulomb, Viscous
-
-    kind = d.get("body")
-    if kind not in ("spheroid", "tippe-top", "egg"):
-        raise ParameterError("model", f"must be given to rerun a {kind or 'user-defined'} body (only the built-in "
-                                      "bodies can be rebuilt from their description)", show_value=False)
-    body = make_body(kind, a=d.get("a"), offset=d.get("offset"), w=d.get("w"), A=d["A"], C=d["C"])
-    laws = {"coulomb": lambda: Coulomb(d["mu"]), "viscous": lambda: Viscous(d["mu"]),
-            "coulomb-regularised": lambda: RegularisedCoulomb(d["mu"], d["slip_eps"])}
-    if d.get("law") not in laws:
-        raise ParameterError("model", f"must be given to rerun the friction law {d.get('law')!r} (only the built-in "
-                                      "laws can be rebuilt from their description)", show_value=False)
-    return Model(body, laws[d["law"]](), d.get("chart", "euler"))
+    if model is None:
+        return Model.from_dict(d)
+    if not isinstance(model, Model):
+        raise ParameterError("model", "must be a phasekit Model", model)
+    return model
 
 
 def _events_from(items) -> list[Event]:
@@ -355,6 +342,14 @@ def rerun(source, index: int | None = None, *, model: Model | None = None, **ove
     Trajectory
         With the same start, end time, stop rule, events and solver options, hence the same
         numbers (t_jump to the last digit).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> pk.rerun(traj.to_dict()).t_jump == traj.t_jump
+    True
     """
     try:
         m, x0, t_end, events, kw = _rerun_inputs(source, index, model, overrides)

@@ -1,4 +1,4 @@
-"""Error types and the one status vocabulary of every result.
+"""Error types and the status vocabularies: one for a simulation, one for a search.
 
 Bad input raises :class:`ParameterError` (a :class:`ValueError`) at once, naming the
 parameter and its valid range. Numerical trouble is a result whose ``status`` is
@@ -10,15 +10,31 @@ from __future__ import annotations
 
 import enum
 
-__all__ = ["PhasekitError", "ConvergenceError", "ParameterError", "WorkerError", "Status"]
+__all__ = ["PhasekitError", "ConvergenceError", "ParameterError", "WorkerError", "Status", "SearchStatus"]
 
 
 class PhasekitError(Exception):
-    """Base class of phasekit's own errors (bad input is :class:`ParameterError` instead)."""
+    """Base class of phasekit's own errors (bad input is :class:`ParameterError` instead).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> issubclass(pk.ConvergenceError, pk.PhasekitError), issubclass(pk.WorkerError, pk.PhasekitError)
+    (True, True)
+    """
 
 
 class ConvergenceError(PhasekitError):
-    """A Newton solve or an integration did not converge; ``result`` holds what was obtained."""
+    """A Newton solve or an integration did not converge; ``result`` holds what was obtained.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> th = pk.Definition('sliding', 'sliding')
+    >>> err = pk.ConvergenceError('did not converge', result=th)
+    >>> err.result is th
+    True
+    """
 
     def __init__(self, message: str, result: object = None):
         super().__init__(message)
@@ -27,7 +43,14 @@ class ConvergenceError(PhasekitError):
 
 class WorkerError(PhasekitError):
     """A worker process died while it computed (killed, out of memory, a crash in compiled
-    code); ``result`` holds what was obtained (e.g. the rows of an ensemble that finished)."""
+    code); ``result`` holds what was obtained (e.g. the rows of an ensemble that finished).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.WorkerError('worker died', result=[]).result
+    []
+    """
 
     def __init__(self, message: str, result: object = None):
         super().__init__(message)
@@ -37,7 +60,15 @@ class WorkerError(PhasekitError):
 class ParameterError(ValueError):
     """An invalid argument. ``param`` is its name as the Python API spells it, ``expected`` the
     valid range in words and ``value`` what was given, so that a front end (the CLI) can
-    re-word the message with its own flag name."""
+    re-word the message with its own flag name.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> err = pk.ParameterError('mu', 'must lie in [0, 1000]', -1.0)
+    >>> str(err), err.param
+    ('`mu` must lie in [0, 1000], got -1.0.', 'mu')
+    """
 
     def __init__(self, param: str, expected: str, value: object = None, *, show_value: bool = True):
         self.param, self.expected, self.value, self.show_value = param, expected, value, show_value
@@ -71,24 +102,8 @@ def plain(value) -> str:
     return text if len(text) <= 80 else text[:77] + "..."
 
 
-class Status(str, enum.Enum):
-    """How a run or a search ended; the value is what JSON and tables print, ``message``
-    says it in words. Shared by simulations, flights and threshold searches."""
-
-    # a simulation (and a flight)
-    JUMPED = ("jumped", "R reached 0 with dR/dt < 0: the body lost contact")
-    TOUCHDOWN = ("touchdown", "stopped at the first re-contact after a flight")
-    STOPPED = ("stopped", "a stop condition was met")
-    COMPLETED = ("completed", "reached the end time")
-    SETTLED = ("settled", "the body settled: it rolls in a steady state (the option settle)")
-    # a threshold search
-    CONVERGED = ("converged", "the bracket is narrower than the tolerance")
-    NON_MONOTONE = ("non_monotone", "more than one jump / no-jump transition")
-    BRACKET_ONLY = ("bracket_only", "a run failed inside the bracket; the bracket is as far as it was narrowed")
-    NO_JUMP_IN_RANGE = ("no_jump_in_range", "no run in the searched range jumped")
-    JUMPS_AT_LOWER_BOUND = ("jumps_at_lower_bound", "every run in the searched range jumped")
-    # anything
-    FAILED = ("failed", "the computation could not continue; see the reason")
+class _Vocabulary(str, enum.Enum):
+    """A status vocabulary: the value is what JSON and tables print, ``message`` says it in words."""
 
     def __new__(cls, value: str, message: str):
         obj = str.__new__(cls, value)
@@ -101,4 +116,40 @@ class Status(str, enum.Enum):
 
     @property
     def ok(self) -> bool:
-        return self is not Status.FAILED
+        return self.value != "failed"
+
+
+class Status(_Vocabulary):
+    """How a simulation (or another computation, e.g. a steady structure) ended.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.Status.JUMPED.value, pk.Status.JUMPED.message
+    ('jumped', 'R reached 0 with dR/dt < 0: the body lost contact')
+    """
+
+    JUMPED = ("jumped", "R reached 0 with dR/dt < 0: the body lost contact")
+    TOUCHDOWN = ("touchdown", "stopped at the first re-contact after a flight")
+    STOPPED = ("stopped", "a stop condition was met")
+    COMPLETED = ("completed", "reached the end time")
+    SETTLED = ("settled", "the body settled: it rolls in a steady state (the option settle)")
+    FAILED = ("failed", "the computation could not continue; see the reason")
+
+
+class SearchStatus(_Vocabulary):
+    """How a search for a threshold or a boundary (a bisection) ended.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> str(pk.SearchStatus.CONVERGED), pk.SearchStatus.BRACKET_ONLY.ok
+    ('converged', True)
+    """
+
+    CONVERGED = ("converged", "the bracket is narrower than the tolerance")
+    NON_MONOTONE = ("non_monotone", "more than one jump / no-jump transition")
+    BRACKET_ONLY = ("bracket_only", "a run failed inside the bracket; the bracket is as far as it was narrowed")
+    NO_JUMP_IN_RANGE = ("no_jump_in_range", "no run in the searched range jumped")
+    JUMPS_AT_LOWER_BOUND = ("jumps_at_lower_bound", "every run in the searched range jumped")
+    FAILED = ("failed", "the search could not continue; see the reason")

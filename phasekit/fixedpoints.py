@@ -127,6 +127,13 @@ class FixedPoint:
     law and ``neutral`` for the rolling field, which conserves energy and is reversible, so
     that its spectrum is symmetric about the imaginary axis and a real part within the bound
     is zero.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> fp = pk.linearise(pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1)), pk.theory.horizontal_state(10.0), kind='horizontal')
+    >>> isinstance(fp, pk.FixedPoint), fp.n_unstable, len(fp.unstable_directions())
+    (True, 1, 1)
     """
 
     kind: str
@@ -231,7 +238,7 @@ class FixedPoint:
             "kind": self.kind,
             "state": state,
             "residual": float(self.residual),
-            "eigenvalues": [[float(l.real), float(l.imag)] for l in self.eigenvalues],
+            "eigenvalues": [[float(ev.real), float(ev.imag)] for ev in self.eigenvalues],
             "error_bounds": [float(b) if np.isfinite(b) else None for b in self.bounds],
             "eigenvalue_classes": list(self.eigenvalue_classes),
             "n_unstable": self.n_unstable,
@@ -270,18 +277,39 @@ class Branch:
 
 
 def horizontal_state(omega0: float) -> np.ndarray:
-    """(U, V, Omega, Lambda, theta, n) = (0, 0, Omega0, 0, pi/2, 0)."""
+    """(U, V, Omega, Lambda, theta, n) = (0, 0, Omega0, 0, pi/2, 0).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.horizontal_state(10.0).round(6)
+    array([ 0.      ,  0.      , 10.      ,  0.      ,  1.570796,  0.      ])
+    """
     return np.array([0.0, 0.0, check_finite("omega0", omega0), 0.0, np.pi / 2, 0.0])
 
 
 def vertical_state(n0: float) -> np.ndarray:
-    """Vector-chart state k = e_Z, w = n0 e_Z, v = 0 (theta = 0)."""
+    """Vector-chart state k = e_Z, w = n0 e_Z, v = 0 (theta = 0).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.vertical_state(10.0)
+    array([ 0.,  0.,  1.,  0.,  0., 10.,  0.,  0.])
+    """
     return np.array([0.0, 0.0, 1.0, 0.0, 0.0, check_finite("n0", n0), 0.0, 0.0])
 
 
 def inverted_state(n0: float) -> np.ndarray:
     """Vector-chart state k = -e_Z, w = n0 k = -n0 e_Z, v = 0 (theta = pi, spin w.k = n0).
-    An exact steady state of every body (the contact point lies straight below G)."""
+    An exact steady state of every body (the contact point lies straight below G).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.inverted_state(10.0).round(6)
+    array([  0.,   0.,  -1.,   0.,   0., -10.,   0.,   0.])
+    """
     return np.array([0.0, 0.0, -1.0, 0.0, 0.0, -check_finite("n0", n0), 0.0, 0.0])
 
 
@@ -332,7 +360,14 @@ def precession_angles(body, *, omega0: float | None = None, n0: float | None = N
     at which a steady precession with rate ``omega0`` (or spin ``n0``) exists: sign changes of
     :func:`precession_residual` on ``n_grid`` points, refined by Brent's method to ~1e-15.
     For a flip-symmetric body the neighbourhood of pi/2 (the horizontal family, where
-    G vanishes identically) is left out."""
+    G vanishes identically) is left out.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [round(t, 6) for t in pk.theory.precession_angles(pk.Egg(1.3, 0.05), omega0=6.0)]
+    [0.51274, 1.756111]
+    """
     from scipy.optimize import brentq
 
     if (omega0 is None) == (n0 is None):
@@ -367,7 +402,14 @@ def precession_state(body, theta: float, *, omega0: float | None = None, n0: flo
 def side_equilibrium(body) -> tuple[float, float]:
     """(theta_1, theta_2) nearest pi/2: theta_1 where h_theta = 0 (the body at rest on its side),
     theta_2 where (A - C) cos(theta) x_P + C h_theta = 0 (the fast-precession limit of the
-    horizontal-like state). Both are pi/2 for a flip-symmetric body."""
+    horizontal-like state). Both are pi/2 for a flip-symmetric body.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [round(t, 6) for t in pk.theory.side_equilibrium(pk.Egg(1.3, 0.05))]
+    [1.676232, 1.74775]
+    """
     from scipy.optimize import brentq
 
     if body.flip_symmetric:
@@ -397,7 +439,15 @@ def horizontal_like_angle(body, thetas) -> float | None:
     symmetric pitchfork of the spheroid (the intermediate family branching off the horizontal
     state at the stability threshold) unfolds for such a body: at slow precession the state
     near theta_1 (the body lying on its side) continues the horizontal state, at fast
-    precession the unstable state near theta_2 does. None for flip-symmetric bodies."""
+    precession the unstable state near theta_2 does. None for flip-symmetric bodies.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> egg = pk.Egg(1.3, 0.05)
+    >>> round(pk.theory.horizontal_like_angle(egg, pk.theory.precession_angles(egg, omega0=6.0)), 6)
+    1.756111
+    """
     if body.flip_symmetric or not len(thetas):
         return None
     th1, th2 = side_equilibrium(body)
@@ -408,7 +458,14 @@ def horizontal_like_angle(body, thetas) -> float | None:
 
 
 def intermediate_omega(body, theta: float) -> float | None:
-    """Omega of the intermediate steady precession at theta, or None where it does not exist."""
+    """Omega of the intermediate steady precession at theta, or None where it does not exist.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.intermediate_omega(pk.Spheroid(1.5), 1.0), 6)
+    2.068755
+    """
     h, ht, s, c, xP = _geometry(body, theta)
     denom = s * ((body.A - body.C) * c + body.C * ht / xP)
     if denom == 0.0 or ht / denom <= 0.0:
@@ -417,7 +474,14 @@ def intermediate_omega(body, theta: float) -> float | None:
 
 
 def intermediate_state(body, theta: float) -> np.ndarray | None:
-    """The intermediate steady precession at theta (Omega > 0 root), or None."""
+    """The intermediate steady precession at theta (Omega > 0 root), or None.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.intermediate_state(pk.Spheroid(1.5), 1.0).round(6)
+    array([0.      , 0.      , 2.068755, 0.      , 1.      , 2.514945])
+    """
     om = intermediate_omega(body, theta)
     if om is None:
         return None
@@ -532,6 +596,14 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
     ConvergenceError
         When Newton does not reach a state whose residual is within NEWTON_RTOL of the
         state's scale (the message gives both); ``result`` holds the last iterate.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> m = pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1))
+    >>> fp = pk.find_fixed_point(m, pk.theory.horizontal_state(10.0), kind='horizontal', value=10.0)
+    >>> fp.kind, fp.n_unstable, fp.residual < 1e-10
+    ('horizontal', 1, True)
     """
     model = _check_model(model)
     check_choice("kind", kind, KINDS)
@@ -615,7 +687,15 @@ def linearise(model: Model, x, *, kind: str = "state") -> FixedPoint:
 
     Raises ParameterError for a model that is not a Model, a state of the wrong length or
     with non-finite entries, or a state where the Jacobian overflows; ConvergenceError if
-    the eigenvalue iteration does not converge."""
+    the eigenvalue iteration does not converge.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> fp = pk.linearise(pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1)), pk.theory.horizontal_state(10.0), kind='horizontal')
+    >>> fp.n_unstable, round(float(fp.eigenvalues[0].real), 6)
+    (1, 0.089489)
+    """
     model = _check_model(model)
     if not isinstance(kind, str) or not kind:
         raise ParameterError("kind", "must be a label such as 'horizontal' or 'state'", kind)
@@ -691,6 +771,13 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
     (bodies without flip symmetry; both in the vector chart: ``model_vector``, by default
     ``model`` in the vector chart) and the precessions with spin n0. Each pole carries its
     closed-form stability criterion under sliding friction in ``parameter``.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> fps = pk.fixed_points(pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1)), omega0=10.0)
+    >>> [(fp.kind, fp.n_unstable) for fp in fps]
+    [('horizontal', 1)]
     """
     if not isinstance(model, Model):
         raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)

@@ -57,6 +57,13 @@ class FrictionLaw:
     ``has_rolling_mode`` (class attribute, default False)
         True when zero slip is a separate mode (exact Coulomb): the law must then be of the
         form d = (-mu u/|u|, 1) so that the static friction cone is mu R.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> law = pk.Coulomb(0.1)
+    >>> isinstance(law, pk.FrictionLaw), law.can_stick
+    (True, True)
     """
 
     has_rolling_mode = False
@@ -106,7 +113,14 @@ class FrictionLaw:
 
 
 class Coulomb(FrictionLaw):
-    """Exact Coulomb friction: sliding with F = -mu R u/|u|, rolling when the slip vanishes."""
+    """Exact Coulomb friction: sliding with F = -mu R u/|u|, rolling when the slip vanishes.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.Coulomb(0.1).describe()
+    'coulomb(mu=0.1)'
+    """
 
     has_rolling_mode = True
     can_stick = True
@@ -119,7 +133,14 @@ class Coulomb(FrictionLaw):
 
 
 class RegularisedCoulomb(FrictionLaw):
-    """Coulomb friction with the slip speed regularised as sqrt(|u|^2 + eps^2)."""
+    """Coulomb friction with the slip speed regularised as sqrt(|u|^2 + eps^2).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.RegularisedCoulomb(0.1, 1e-4).describe()
+    'coulomb-regularised(mu=0.1, eps=0.0001)'
+    """
 
     can_stick = True
     name = "coulomb-regularised"
@@ -148,7 +169,14 @@ class RegularisedCoulomb(FrictionLaw):
 
 
 class Viscous(FrictionLaw):
-    """Viscous ("wet") friction F = -mu u, independent of the normal reaction."""
+    """Viscous ("wet") friction F = -mu u, independent of the normal reaction.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.Viscous(0.1).describe()
+    'viscous(mu=0.1)'
+    """
 
     name = "viscous"
 

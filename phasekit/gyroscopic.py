@@ -25,8 +25,8 @@ import numpy as np
 
 from .body import Body, Spheroid
 from .errors import ConvergenceError, ParameterError
-from .validate import check_array, check_finite, check_instance, check_positive, check_range, finite_result
 from .starts import GYRO_RATE_MAX, balanced_state
+from .validate import check_array, check_finite, check_instance, check_positive, check_range, finite_result
 
 __all__ = ["mean_slip", "jellett_constant", "gyroscopic_numeric", "gyroscopic_closed", "gyroscopic_solution", "rise_time"]
 
@@ -54,7 +54,14 @@ def _mean_slip(body: Body, theta, omega):
 
 @finite_result
 def jellett_constant(body: Body, theta, omega):
-    """J = A Omega h (3.17)."""
+    """J = A Omega h (3.17).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(float(pk.theory.jellett_constant(pk.Spheroid(1.5), 1.5607963, 10.5)), 6)
+    6.825427
+    """
     body, theta, omega = _body(body), check_array("theta", theta), check_array("omega", omega)
     return body.A * omega * body.h(theta)[0]
 
@@ -73,6 +80,13 @@ def gyroscopic_numeric(body: Body, theta0: float, omega0: float, T, *, rtol: flo
 
     Stops where the mean slip vanishes (theta reaches 0 or pi/2, the end of the rise) and
     holds the state there.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> theta, omega = pk.theory.gyroscopic_numeric(pk.Spheroid(1.5), 1.5607963, 10.5, [0.0, 5.0])
+    >>> theta.round(6)
+    array([1.560796, 0.63546 ])
     """
     from scipy.integrate import solve_ivp
 
@@ -103,6 +117,13 @@ def gyroscopic_closed(a: float, J: float, theta0: float, T, *, A: float | None =
 
     theta0 may lie in (0, pi/2) or (pi/2, pi) (flip symmetry); after the rise ends
     (q (T - T0) reaches 0 or -pi/2) the state is held at the end of the rise.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> theta, omega = pk.theory.gyroscopic_closed(1.5, 6.83, 1.5607963, [0.0, 5.0])
+    >>> theta.round(6), omega.round(6)
+    (array([1.560796, 0.636347]), array([10.507036,  7.813401]))
     """
     a = check_positive("a", a)
     if a == 1.0:
@@ -133,6 +154,15 @@ def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()
     (a != 1), (3.16) numerically otherwise.
 
     Returns {"theta", "Omega", "J", "Omega0", "method"}.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> sol = pk.theory.gyroscopic_solution(pk.Spheroid(1.5), 1.5607963, omega0=10.5, T=[0.0, 5.0])
+    >>> sorted(sol)
+    ['J', 'Omega', 'Omega0', 'method', 'theta']
+    >>> sol['theta'].round(6)
+    array([1.560796, 0.63546 ])
     """
     y0 = balanced_state(body, theta0, omega0=omega0, n0=n0, limit=GYRO_RATE_MAX)  # no fast motion: any rate
     T = check_array("T", T, nonnegative=True)
@@ -149,7 +179,14 @@ def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()
 
 @finite_result
 def rise_time(a: float, J: float, theta0: float) -> float:
-    """Slow time T at which the closed-form rise ends (theta reaches 0 or pi/2)."""
+    """Slow time T at which the closed-form rise ends (theta reaches 0 or pi/2).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.rise_time(1.5, 6.83, 1.5607963), 6)
+    7.084062
+    """
     a = check_positive("a", a)
     if a == 1.0:
         raise ParameterError("a", "must differ from 1: a sphere does not rise", a)

@@ -34,6 +34,12 @@ class Mode(str, enum.Enum):
         regularised law, the stretch where the slip is below 10 eps (same field).
     FLIGHT
         no contact: gravity and torque-free rotation, until the gap closes.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [m.value for m in pk.Mode]
+    ['sliding', 'rolling', 'flight']
     """
 
     SLIDING = "sliding"
@@ -51,6 +57,8 @@ class Flow:
     ``monitor`` = (function, direction): record (t, x) wherever that function crosses zero
     in that direction without stopping (the minima of R, the maximum of the gap).
     ``engine`` forces an integrator for this flow; ``stiff`` makes "auto" pick CVODES.
+    ``contact``: the body touches the table (a run that stops at the first lift-off, as
+    :func:`phasekit.simulate_batch`'s do, stays in the contact flows).
     """
 
     mode: Mode
@@ -58,6 +66,7 @@ class Flow:
     monitor: tuple[str, int] | None = None
     engine: str | None = None
     stiff: bool = False
+    contact: bool = True
 
 
 @dataclass(frozen=True)
@@ -89,8 +98,11 @@ class Event:
 
     Examples
     --------
-    >>> Event("theta", 0.4)                         # stop when theta first reaches 0.4  # doctest: +SKIP
-    >>> Event("Lambda", 0.0, direction=+1, terminal=False)   # a Poincare section  # doctest: +SKIP
+    >>> import phasekit as pk
+    >>> pk.Event("theta", 0.4).name                      # stop when theta first reaches 0.4
+    'theta=0.4'
+    >>> pk.Event("Lambda", 0.0, direction=+1, terminal=False).to_dict()   # a Poincare section
+    {'name': 'Lambda=0', 'on': 'Lambda', 'level': 0.0, 'direction': 1, 'terminal': False}
     """
 
     on: str
@@ -182,6 +194,10 @@ class HybridSystem:
 
     def events_of(self, mode: Mode) -> tuple[Event, ...]:
         return tuple(e for e in self.events if e.watches(mode))
+
+    @property
+    def contact_flows(self) -> tuple[Flow, ...]:
+        return tuple(f for f in self.flows if f.contact)
 
 
 # -- what the integrators see ------------------------------------------------------------------

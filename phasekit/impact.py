@@ -66,11 +66,6 @@ def _contact_point(body, k) -> np.ndarray:
     return -dH * (k - c * ez) - H * ez
 
 
-def inverse_inertia(body, k) -> np.ndarray:
-    """The inverse inertia tensor (mass 1) for the unit symmetry axis ``k``."""
-    return _inverse_inertia(_body(body), _axis(k))
-
-
 def _inverse_inertia(body, k) -> np.ndarray:
     k = np.asarray(k, dtype=float) / np.linalg.norm(k)
     P = np.outer(k, k)
@@ -91,6 +86,17 @@ def _collision_matrix(body, k) -> np.ndarray:
 
 @dataclass(frozen=True)
 class ImpactResult:
+    """What :func:`impact` returns: the velocities after the impact, the impulse, the normal
+    speed of the contact point before and after, and the kinetic energy before and after.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> res = pk.theory.impact(pk.Spheroid(1.5), np.array([np.sin(1.0), 0.0, np.cos(1.0)]), np.array([0.0, 0.0, 5.0]), np.array([0.0, 0.0, -0.01]), e=0.0, mu=0.1)
+    >>> isinstance(res, pk.theory.ImpactResult), res.energy_after <= res.energy_before
+    (True, np.True_)
+    """
+
     w: np.ndarray  # post-impact angular velocity
     v: np.ndarray  # post-impact velocity of O
     impulse: np.ndarray  # (P_t1, P_t2, P_n)
@@ -115,7 +121,16 @@ def impact(body, k, w, v, *, e: float, mu: float) -> ImpactResult:
 
     ``k`` is the unit symmetry axis, ``w`` the angular velocity (3 finite numbers each), ``e``
     Newton's restitution in [0, 1], ``mu`` the friction coefficient >= 0.
-    Returns the post-impact (w, v) in ``ImpactResult.w``, ``ImpactResult.v``."""
+    Returns the post-impact (w, v) in ``ImpactResult.w``, ``ImpactResult.v``.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> res = pk.theory.impact(body, np.array([np.sin(1.0), 0.0, np.cos(1.0)]), np.array([0.0, 0.0, 5.0]), np.array([0.0, 0.0, -0.01]), e=0.5, mu=0.1)
+    >>> round(res.v_normal_after / res.v_normal_before, 6)
+    np.float64(-0.5)
+    """
     body = _body(body)
     k = _axis(k)
     w, v = check_vector("w", w, 3), check_vector("v", v, 3)

@@ -38,7 +38,15 @@ __all__ = ["unstable_seeds", "unstable_manifold_start"]
 
 
 def unstable_seeds(fp: FixedPoint, delta: float) -> list[tuple[str, np.ndarray]]:
-    """[(label, x0)] for each unstable direction and both signs; labels "+0", "-0", "+1", ..."""
+    """[(label, x0)] for each unstable direction and both signs; labels "+0", "-0", "+1", ...
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> fp = pk.linearise(pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1)), pk.theory.horizontal_state(10.0), kind='horizontal')
+    >>> [name for name, x in pk.unstable_seeds(fp, 0.01)]
+    ['+0', '-0']
+    """
     delta = check_positive("delta", delta)
     out = []
     for k, v in enumerate(fp.unstable_directions()):
@@ -68,6 +76,14 @@ def unstable_manifold_start(body, friction, *, state: str, delta: float, omega0=
         simulated law itself.
 
     Returns (model to simulate, x0 in its chart, the fixed point that gave the direction).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> model, x0, fp = pk.unstable_manifold_start(pk.Spheroid(1.5), pk.Viscous(0.1), state='horizontal', delta=0.01, omega0=10.5)
+    >>> model.chart.name, fp.kind, x0.round(4)
+    ('euler', 'horizontal', array([ 0.0000e+00,  0.0000e+00,  1.0500e+01, -1.0000e-04,  1.5702e+00,
+            1.0000e-02]))
     """
     check_choice("unstable_manifold", state, STATES)
     check_choice("seed_law", seed_law, ("viscous", "same"))

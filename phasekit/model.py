@@ -26,14 +26,16 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
-from .body import Body
+from .body import Body, EccentricSphere, Spheroid
 from .charts import FLIGHT, PAPER_NAMES, POLE_GUARD, Chart, get_chart
+from .egg import Egg
 from .errors import ParameterError
-from .validate import check_array
-from .friction import FrictionLaw
+from .friction import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous
 from .hybrid import CompiledFlow, CompiledGuard, Mode
+from .validate import check_array, check_choice
 
-__all__ = ["Model", "CompiledModel", "compiled_model", "evaluate_function", "OBSERVABLES", "STICK_SLIP", "STICK_SLIP_POINTWISE"]
+__all__ = ["Model", "CompiledModel", "compiled_model", "evaluate_function", "OBSERVABLES", "STICK_SLIP", "STICK_SLIP_POINTWISE",
+           "make_body", "BODIES", "snapshot", "install"]
 
 #: slip speed (units sqrt(g b)) at which exact Coulomb sliding is taken to have stuck;
 #: the stick time is then extrapolated to the exact zero of the slip
@@ -85,6 +87,19 @@ class CompiledModel:
 
 _CACHE: dict[tuple, CompiledModel] = {}
 _LOCK = threading.Lock()
+
+
+def snapshot() -> dict:
+    """The compiled models of this process (for :class:`phasekit.sweep.ModelPack`)."""
+    with _LOCK:
+        return dict(_CACHE)
+
+
+def install(models: dict) -> None:
+    """Add a :func:`snapshot` of another process to this one's compiled models."""
+    with _LOCK:
+        for k, v in models.items():
+            _CACHE.setdefault(k, v)
 
 
 def compiled_model(body: Body, law: FrictionLaw, chart: Chart) -> CompiledModel:
@@ -249,6 +264,15 @@ class Model:
         ``Coulomb(mu)`` (exact stick-slip), ``RegularisedCoulomb(mu, eps)`` or ``Viscous(mu)``.
     chart : "euler", "vector" or a Chart
         Coordinates: the paper's (2.7), or the singularity-free Newton-Euler form.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> m = pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1))
+    >>> m
+    Model(Spheroid(a=1.5), coulomb(mu=0.1), chart='euler')
+    >>> m.state_names
+    ('U', 'V', 'Omega', 'Lambda', 'theta', 'n')
     """
 
     def __init__(self, body: Body, friction: FrictionLaw, chart="euler"):
@@ -368,6 +392,30 @@ class Model:
     def to_dict(self) -> dict:
         return {**self.body.to_dict(), **self.friction.to_dict(), "chart": self.chart.name}
 
+    @classmethod
+    def from_dict(cls, d: dict) -> "Model":
+        """The model a :meth:`to_dict` describes (built-in bodies and laws only; a result's
+        ``model``, which :func:`phasekit.rerun` rebuilds).
+
+        Examples
+        --------
+        >>> import phasekit as pk
+        >>> m = pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1))
+        >>> pk.Model.from_dict(m.to_dict()) == m
+        True
+        """
+        kind = d.get("body")
+        if kind not in BODIES:
+            raise ParameterError("model", f"must be given to rerun a {kind or 'user-defined'} body (only the built-in "
+                                          "bodies can be rebuilt from their description)", show_value=False)
+        body = make_body(kind, a=d.get("a"), offset=d.get("offset"), w=d.get("w"), A=d["A"], C=d["C"])
+        laws = {"coulomb": lambda: Coulomb(d["mu"]), "viscous": lambda: Viscous(d["mu"]),
+                "coulomb-regularised": lambda: RegularisedCoulomb(d["mu"], d["slip_eps"])}
+        if d.get("law") not in laws:
+            raise ParameterError("model", f"must be given to rerun the friction law {d.get('law')!r} (only the built-in "
+                                          "laws can be rebuilt from their description)", show_value=False)
+        return cls(body, laws[d["law"]](), d.get("chart", d.get("formulation", "euler")))
+
     def __eq__(self, other) -> bool:
         return isinstance(other, Model) and (other.body, other.friction, other.chart) == (self.body, self.friction, self.chart)
 
@@ -433,6 +481,31 @@ class Model:
             cache[key] = CompiledFlow(mode, field, chart.n_states, tuple(guards), monitor,
                                       hashlib.sha256("|".join(parts).encode()).hexdigest(), chart.rotation_rate)
         return cache[key]
+
+
+#: the built-in bodies, by the name the CLI's --body and a model's description use
+BODIES = ("spheroid", "tippe-top", "egg")
+
+
+def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, A=None, C=None) -> Body:
+    """A built-in body by name: ``spheroid`` (a, offset), ``tippe-top`` (offset), ``egg`` (a, w)
+    (the CLI's ``--body``, and :meth:`Model.from_dict`)."""
+    check_choice("body", kind, BODIES)
+    given = {"a": a, "offset": offset, "w": w}
+    allowed = {"spheroid": ("a", "offset"), "tippe-top": ("offset",), "egg": ("a", "w")}[kind]
+    for name, value in given.items():
+        if value is not None and name not in allowed:
+            raise ParameterError(name, f"does not apply to the {kind} body (its parameters: {', '.join(allowed)})", value)
+    if kind == "spheroid":
+        if a is None:
+            raise ParameterError("a", "is required for the spheroid body (aspect ratio, > 0)", show_value=False)
+        return Spheroid(a, A=A, C=C, offset=0.0 if offset is None else offset)
+    if kind == "tippe-top":
+        if offset is None:
+            raise ParameterError("offset", "is required for the tippe-top body (centre of mass below the centre, in [0, 1))",
+                                 show_value=False)
+        return EccentricSphere(offset, A=A, C=C)
+    return Egg(1.3 if a is None else a, 0.0 if w is None else w, A=A, C=C)
 
 
 def _mode_arg(mode) -> Mode:

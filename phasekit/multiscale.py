@@ -25,8 +25,8 @@ import numpy as np
 
 from .body import Body
 from .errors import ParameterError
-from .validate import check_array, finite_result
 from .gyroscopic import mean_slip
+from .validate import check_array, finite_result
 
 __all__ = [
     "omega2",
@@ -72,7 +72,14 @@ def _rate(name: str, value):
 
 @finite_result
 def omega2(body: Body, theta, Omega):
-    """(3.30): A/(A + h_t^2) [Omega^2 + (h_tt + h_t cot)/A + (h_t/(A Omega sin))^2]."""
+    """(3.30): A/(A + h_t^2) [Omega^2 + (h_tt + h_t cot)/A + (h_t/(A Omega sin))^2].
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(float(pk.theory.omega2(pk.Spheroid(1.5), 1.0, 10.0)), 6)
+    73.238621
+    """
     theta, Omega = _angle("theta", theta), _rate("Omega", Omega)
     h, ht, htt, s, c = _geom(body, theta)
     A = body.A
@@ -81,14 +88,28 @@ def omega2(body: Body, theta, Omega):
 
 @finite_result
 def omega_gyro(body: Body, theta, Omega):
-    """(3.47): |Omega| (A/(A + h_t^2))^(1/2)."""
+    """(3.47): |Omega| (A/(A + h_t^2))^(1/2).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(float(pk.theory.omega_gyro(pk.Spheroid(1.5), 1.0, 10.0)), 6)
+    8.562205
+    """
     _, ht, _, _, _ = _geom(body, theta)
     return np.abs(Omega) * np.sqrt(body.A / (body.A + ht**2))
 
 
 @finite_result
 def slow_rates(body: Body, theta, Omega):
-    """(dOmega/dT, dtheta/dT, Vhat_P, Vbar_P) of (3.16) at the mean state."""
+    """(dOmega/dT, dtheta/dT, Vhat_P, Vbar_P) of (3.16) at the mean state.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [round(float(v), 6) for v in pk.theory.slow_rates(pk.Spheroid(1.5), 1.0, 10.0)]
+    [-0.748378, -0.179737, -1.0, -2.432228]
+    """
     h, ht, _, _, _ = _geom(body, theta)
     VP = mean_slip(body, theta, Omega)
     v = np.sign(VP)
@@ -141,6 +162,12 @@ def I_quadrature(body: Body, J: float, theta0: float, theta, *, form: str = "gyr
 
     ``form`` "gyro" integrates (3.48) (whose three terms give I1, I2, I3 of (3.50)-(3.52);
     ``parts=True`` returns them separately), "full" integrates (3.38) with (3.30).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.I_quadrature(pk.Spheroid(1.5), 6.83, 1.5607963, [1.2, 1.0]).round(6)
+    array([0.747044, 3.404539])
     """
     from scipy.integrate import quad
 
@@ -219,7 +246,14 @@ def Gamma(body: Body, J: float, theta0: float, theta, *, form: str = "gyro"):
 @finite_result
 def Gamma_closed(body: Body, J: float, theta0: float, theta):
     """(3.58)-(3.60): omega^(-1/2) sigma gamma^(J^2/(4 A (alpha^2 - beta^2))); sigma uses the
-    dominant-part I2 of (3.57)."""
+    dominant-part I2 of (3.57).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(float(pk.theory.Gamma_closed(pk.Spheroid(1.5), 6.83, 1.5607963, 1.0)), 6)
+    8.619004
+    """
     A, C, a = body.A, body.C, body.shape_params[0]
     theta = np.asarray(theta, dtype=float)
     al, be = alpha_beta(body)
@@ -236,6 +270,12 @@ def Sigma(body: Body, J: float, theta0: float, theta, c: float, *, form: str = "
 
     ``form``: "closed" uses (3.47) and (3.58) (the paper's Fig. 2); "gyro" and "full" use
     (3.44) with I by quadrature of (3.48) or (3.38).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.Sigma(pk.Spheroid(1.5), 6.83, 1.5607963, [1.2, 1.0], -0.00054).round(6)
+    array([0.98966 , 0.865734])
     """
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     om = _along_rise(body, J, theta0, theta)
@@ -251,7 +291,14 @@ def Sigma(body: Body, J: float, theta0: float, theta, c: float, *, form: str = "
 
 @finite_result
 def c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, dtheta0: float, dthetadot0: float):
-    """(3.46) inverted: amplitude c and phase xi of the initial nutation (theta', d theta'/dt)."""
+    """(3.46) inverted: amplitude c and phase xi of the initial nutation (theta', d theta'/dt).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [round(float(v), 6) for v in pk.theory.c_xi(pk.Spheroid(1.5), 1.5607963, 10.5, 0.1, 1e-3, 0.0)]
+    [0.003456, -0.343063]
+    """
     theta_bar0, Omega_bar0 = float(_angle("theta_bar0", theta_bar0)), float(_rate("Omega_bar0", Omega_bar0))
     mu, dtheta0, dthetadot0 = (float(check_array(n, v)) for n, v in (("mu", mu), ("dtheta0", dtheta0), ("dthetadot0", dthetadot0)))
     w = np.sqrt(omega2(body, theta_bar0, Omega_bar0))
@@ -265,7 +312,14 @@ def c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, dtheta0: f
 @finite_result
 def perturbation_from_c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, c: float, xi: float):
     """Initial fluctuation (theta', Lambda', Omega') for amplitude c and phase xi: (3.46) for
-    theta' and its rate, (3.27) for Omega' (with Psi' = -Omega theta' (3.28), n' = 0 (3.31))."""
+    theta' and its rate, (3.27) for Omega' (with Psi' = -Omega theta' (3.28), n' = 0 (3.31)).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [round(float(v), 8) for v in pk.theory.perturbation_from_c_xi(pk.Spheroid(1.5), 1.5607963, 10.5, 0.1, -0.00054, 0.0)]
+    [-0.00016594, 0.00062767, 1.773e-05]
+    """
     w = np.sqrt(omega2(body, theta_bar0, Omega_bar0))
     Idot = -0.5 * mu * zeta(body, theta_bar0, Omega_bar0)
     th_p = c * np.cos(xi) / np.sqrt(w)
@@ -278,7 +332,16 @@ def perturbation_from_c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu:
 def mean_over_periods(ts, values, marks):
     """(3.6) with the averaging window set to the fast period itself: the mean of ``values``
     over each interval [marks[k], marks[k+1]] (e.g. between successive located minima of R),
-    returned at the interval midpoints as (t_mid, mean)."""
+    returned at the interval midpoints as (t_mid, mean).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> ts = np.linspace(0.0, 4 * np.pi, 401)
+    >>> t_mid, means = pk.theory.mean_over_periods(ts, 1.0 + np.sin(ts), [0.0, 2 * np.pi, 4 * np.pi])
+    >>> t_mid.round(4), means.round(4)
+    (array([3.1416, 9.4248]), array([1., 1.]))
+    """
     ts = np.asarray(ts, dtype=float)
     v = np.asarray(values, dtype=float)
     marks = np.asarray(marks, dtype=float)

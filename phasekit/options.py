@@ -8,15 +8,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 
+from .engines import engine_names
 from .resets import BOUNCE_STOP, BOUNCE_TAIL
 from .settle import Settle, check_settle
 from .validate import check_bool, check_choice, check_int, check_positive, check_range
 
-__all__ = ["SolverOptions", "BACKENDS", "RTOL_RANGE", "SWITCHES_PER_TIME", "MIN_SWITCHES"]
-
-#: integrators: heyoka's Taylor method; CVODES (BDF or Adams) and IDAS through CasADi.
-#: "auto" is Taylor except in the one stiff regime (a regularised Coulomb law that has stuck).
-BACKENDS = ("auto", "taylor", "cvodes", "cvodes-adams", "idas")
+__all__ = ["SolverOptions", "RTOL_RANGE", "SWITCHES_PER_TIME", "MIN_SWITCHES"]
 #: tolerances a double-precision integrator can honour: below 1e-16 the Taylor order grows
 #: without bound (heyoka picks it from the tolerance) and CVODES cannot meet the error test.
 RTOL_RANGE = (1e-16, 0.1)
@@ -39,7 +36,9 @@ class SolverOptions:
     atol : float or None, default None
         Absolute tolerance of CVODES/IDAS; None means ``rtol / 100``. The Taylor method has
         one mixed tolerance and does not use it.
-    backend : {"auto", "taylor", "cvodes", "cvodes-adams", "idas"}, default "auto"
+    backend : {"auto", "taylor", "cvodes", "cvodes-adams", "idas"} or a registered engine, default "auto"
+        The engine (:data:`phasekit.engines.ENGINES`: heyoka's Taylor method; CVODES (BDF or
+        Adams) and IDAS through CasADi; any added by :func:`phasekit.engines.register_engine`).
         "auto" is the Taylor method, handing over to CVODES BDF only while a regularised
         Coulomb law holds the slip below ~10 eps with mu/eps > 2000 (the stiff regime).
         Free flight always uses the Taylor method (its t^3 gap needs polynomial root finding).
@@ -70,6 +69,14 @@ class SolverOptions:
         Keep the integrator's dense output (heyoka's Taylor polynomials) so that
         :meth:`Trajectory.sample` can evaluate any instant without re-integration. Costs
         ~2.5x the integration time of a bare run; sweeps turn it off.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from dataclasses import replace
+    >>> opts = pk.SolverOptions(rtol=1e-10)
+    >>> replace(opts, backend='cvodes').backend, opts.switch_limit(200.0)
+    ('cvodes', 20000)
     """
 
     rtol: float = 1e-9
@@ -89,7 +96,7 @@ class SolverOptions:
         object.__setattr__(self, "rtol", check_range("rtol", self.rtol, lo, hi, closed="lr", label=f"[{lo:g}, {hi:g}]"))
         if self.atol is not None:
             object.__setattr__(self, "atol", check_positive("atol", self.atol))
-        check_choice("backend", self.backend, BACKENDS)
+        check_choice("backend", self.backend, engine_names())
         object.__setattr__(self, "max_steps", check_int("max_steps", self.max_steps, minimum=1))
         object.__setattr__(self, "max_wall", check_positive("max_wall", self.max_wall))
         if self.max_switches is not None:
@@ -100,11 +107,6 @@ class SolverOptions:
         object.__setattr__(self, "settle", check_settle(self.settle))
         object.__setattr__(self, "track_minima", check_bool("track_minima", self.track_minima))
         object.__setattr__(self, "dense", check_bool("dense", self.dense))
-
-    @property
-    def abs_tol(self) -> float:
-        """The absolute tolerance CVODES/IDAS use."""
-        return self.rtol * 1e-2 if self.atol is None else self.atol
 
     @classmethod
     def names(cls) -> tuple[str, ...]:

@@ -34,7 +34,15 @@ __all__ = ["PaperCase", "PAPER_CASES", "paper_start"]
 
 @dataclass(frozen=True)
 class PaperCase:
-    """A printed start: the body, the family parameter it takes, and the figure's values."""
+    """A printed start: the body, the family parameter it takes, and the figure's values.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> case = pk.theory.PAPER_CASES['5.2']
+    >>> isinstance(case, pk.theory.PaperCase), case.figure, case.a, case.t_jump
+    (True, 'Fig. 4', 1.5, 111.0)
+    """
 
     label: str
     a: float

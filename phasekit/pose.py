@@ -62,6 +62,12 @@ class Pose:
         Spin angle about the axis (third z-y-z Euler angle), radians.
     X, Y : float, default 0
         Horizontal position of the centre of mass G (units b).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.Pose(psi=0.3, X=1.0).to_dict()
+    {'psi': 0.3, 'phi': 0.0, 'X': 1.0, 'Y': 0.0}
     """
 
     psi: float = 0.0

@@ -49,6 +49,12 @@ class Settle:
         ``tol`` times ``1 + abs(Omega) + abs(n)``.
     R_floor : float, default 0.5
         Smallest normal reaction (units M g) allowed at the window's events.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.Settle()
+    Settle(window=20.0, tol=0.01, R_floor=0.5)
     """
 
     window: float = 20.0

@@ -13,8 +13,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from .backends import Budget, Propagation, engine_for
 from .charts import FLIGHT, POLE_GUARD
+from .engines import Budget, End, Propagation, TaylorEngine, engine_for
 from .errors import ConvergenceError, ParameterError, Status
 from .hybrid import Event, Mode, Transition
 from .model import Model
@@ -28,7 +28,7 @@ from .trajectory import EventRecord, Segment, Trajectory
 from .validate import check_bool, check_finite, check_range, check_times, check_vector
 from .watch import WALL_REASON, deadline, progress_bar, show_progress
 
-__all__ = ["simulate", "solver_options", "taylor_integrator"]
+__all__ = ["simulate", "solver_options", "taylor_integrator", "RunState"]
 
 #: the largest |t0| a run may start at (see simulate)
 T_MAX = 1e6
@@ -106,6 +106,16 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     Returns
     -------
     Trajectory
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> traj.status.value, round(traj.t_jump, 4)
+    ('jumped', 45.256)
+    >>> round(float(traj.at(20.0)['theta']), 4)
+    1.2621
     """
     opts = solver_options(options, **option_fields)
     pose0 = Pose.of(pose0)
@@ -117,6 +127,26 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     check_bool("throw", throw)
     if isinstance(events, Event) or not isinstance(events, (list, tuple)):
         raise ParameterError("events", "must be a list of phasekit Event objects, e.g. [pk.Event('theta', 0.4)]", events)
+    x0, t0, t_end = _checked_span(model, x0, t0, t_end, start_mode)
+    if t_end - t0 > REACH_PER_S * opts.max_wall:  # said at once, not after max_wall seconds of silence
+        warnings.warn(f"`t_end` = {t_end:g} cannot be reached within `max_wall` = {opts.max_wall:g} s (no run covers "
+                      f"more than {REACH_PER_S:g} time units per second): the run will end \"failed\" when its wall "
+                      "budget runs out", stacklevel=2)
+    te = None if t_eval is None else check_times("t_eval", t_eval)
+    if te is not None and te.size and (te[0] < t0 or te[-1] > t_end):
+        raise ParameterError("t_eval", f"must lie in the requested span [t0, t_end] = [{t0:.10g}, {t_end:.10g}]",
+                             float(te[0] if te[0] < t0 else te[-1]))
+    system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail))
+    run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
+    run.loop(system.initial(model, t0, x0, start_mode), progress)
+    traj = run.result(x0, stop_at, restitution, events, te, pose0)
+    if throw and traj.status is Status.FAILED:
+        raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
+    return traj
+
+
+def _checked_span(model, x0, t0, t_end, start_mode):
+    """simulate's start state and span, checked: (x0, t0, t_end)."""
     n = FLIGHT.n_states if start_mode is Mode.FLIGHT and np.size(x0) == FLIGHT.n_states else model.n_states
     x0 = check_vector("x0", x0, n)
     if np.max(np.abs(x0)) > RATE_MAX:
@@ -130,22 +160,7 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     if n == model.n_states and not model.chart.regular_at_poles and min(x0[4], np.pi - x0[4]) < POLE_GUARD:
         raise ParameterError("x0", "has theta at 0 or pi, where the Euler chart is singular (2.7c): use "
                                    "Model(body, law, chart='vector')", x0)
-    if t_end - t0 > REACH_PER_S * opts.max_wall:  # said at once, not after max_wall seconds of silence
-        warnings.warn(f"`t_end` = {t_end:g} cannot be reached within `max_wall` = {opts.max_wall:g} s (no run covers "
-                      f"more than {REACH_PER_S:g} time units per second): the run will end \"failed\" when its wall "
-                      "budget runs out", stacklevel=2)
-    te = None if t_eval is None else check_times("t_eval", t_eval)
-    if te is not None and te.size and (te[0] < t0 or te[-1] > t_end):
-        raise ParameterError("t_eval", f"must lie in the requested span [t0, t_end] = [{t0:.10g}, {t_end:.10g}]",
-                             float(te[0] if te[0] < t0 else te[-1]))
-    system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail))
-    run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
-    run.loop(system.initial(model, t0, x0, start_mode), progress)
-    traj = run.result(x0, t0, stop_at, restitution, events, te)
-    traj.pose0 = pose0
-    if throw and traj.status is Status.FAILED:
-        raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
-    return traj
+    return x0, t0, t_end
 
 
 def _declared(model, stop_at, restitution, events, bounce):
@@ -171,44 +186,106 @@ def _tracked(flow, track_minima: bool):
     return flow if track_minima or flow.mode is Mode.FLIGHT else replace(flow, monitor=None)
 
 
-def apply_transition(run, tr: Transition, max_switches: int, settle=None, t_start: float = 0.0) -> None:
-    """Log a transition's records on ``run`` (simulate's loop or a lane of simulate_batch),
-    then continue in its mode or stop (the switch budget, or a settled body with ``settle``)."""
-    for r in tr.records:
-        run.record(r.name, tr.t, r.mode_before, r.mode_after, r.x, r.detail)
-    if tr.resume:
-        run.resume = True
-        return
-    if tr.stop is not None:
-        run.status, run.reason = tr.stop, tr.reason
-        if not run.segments:  # stopped before any integration: keep the start
-            run.t, run.x, run.mode = tr.t, np.asarray(tr.x, dtype=float), tr.mode or run.mode
-        return
-    run.mode, run.t, run.x = tr.mode, tr.t, np.asarray(tr.x, dtype=float)
-    if len(run.records) >= max_switches:
-        run.status = Status.FAILED
-        run.reason = f"more than {max_switches} mode switches by t = {run.t:.6g} (chattering)"
-    elif settle is not None and tr.records:
-        why = settled(run.model, run.records, t_start, settle)
-        if why is not None:
-            run.status, run.reason = Status.SETTLED, why
+class RunState:
+    """One run of the hybrid loop, as :func:`simulate` runs it or as a lane of
+    :func:`phasekit.simulate_batch` does: the mode, time and state it has reached, its segments
+    and event log, and its status once it ends. :meth:`end_segment` is the one place where the
+    end of a propagation (a time, an event, a failure) becomes the next mode or the end of the run."""
+
+    def __init__(self, model, system, opts, t0: float, t_end: float):
+        self.model, self.system, self.opts, self.t_end = model, system, opts, t_end
+        self.t_start, self.switch_limit = t0, opts.switch_limit(t_end - t0)
+        self.mode, self.t, self.x = Mode.SLIDING, 0.0, None
+        self.status = self.reason = None
+        self.segments, self.records = [], []
+        self.resume = False  # a non-terminal event or a graze: the segment goes on from where it stopped
+
+    def record(self, name, t, before, after, x, detail="") -> None:
+        x = None if x is None else np.asarray(x, dtype=float)
+        if x is not None and x.size == FLIGHT.n_states:
+            x = contact_state(self.model, x)
+        y = None if x is None else self.model.chart.to_paper(x)
+        self.records.append(EventRecord(name, float(t), before, after, x, detail, y))
+
+    def apply(self, tr: Transition) -> None:
+        """Log a transition's records, then continue in its mode or stop (the switch budget, or
+        a settled body with the option ``settle``)."""
+        for r in tr.records:
+            self.record(r.name, tr.t, r.mode_before, r.mode_after, r.x, r.detail)
+        if tr.resume:
+            self.resume = True
+            return
+        if tr.stop is not None:
+            self.status, self.reason = tr.stop, tr.reason
+            if not self.segments:  # stopped before any integration: keep the start
+                self.t, self.x, self.mode = tr.t, np.asarray(tr.x, dtype=float), tr.mode or self.mode
+            return
+        self.mode, self.t, self.x = tr.mode, tr.t, np.asarray(tr.x, dtype=float)
+        if len(self.records) >= self.switch_limit:
+            self.status = Status.FAILED
+            self.reason = f"more than {self.switch_limit} mode switches by t = {self.t:.6g} (chattering)"
+        elif self.opts.settle is not None and tr.records:
+            why = settled(self.model, self.records, self.t_start, self.opts.settle)
+            if why is not None:
+                self.status, self.reason = Status.SETTLED, why
+
+    def add_segment(self, engine: str, t1, x1, end: str, n_steps: int, n_rhs: int, monitored=(), dense=(),
+                    extend: bool = False) -> None:
+        """The stretch of the current mode from (t, x) to (t1, x1); ``extend``: it continues the
+        last segment (after a non-terminal event or a graze)."""
+        if extend and self.segments and self.segments[-1].mode is self.mode:
+            last = self.segments[-1]
+            self.segments[-1] = Segment(self.mode, last.t0, t1, last.x0, x1, engine, end, last.n_steps + n_steps,
+                                        last.n_rhs + n_rhs, last.monitored + tuple(monitored), last.dense + tuple(dense))
+        else:
+            self.segments.append(Segment(self.mode, self.t, t1, self.x, x1, engine, end, n_steps, n_rhs, tuple(monitored),
+                                         tuple(dense)))
+
+    def end_segment(self, end: End, t: float, x, ev: Event | None, reason: str | None = None) -> None:
+        """What the end of a propagation at (t, x) does to the run: a failure or the end time ends
+        it; a non-terminal event is recorded and the run goes on; a terminal event without a
+        reset ends it with the event's status; a reset's transition is applied."""
+        self.t, self.x = t, x
+        if end is End.FAILED:
+            self.status, self.reason = Status.FAILED, reason or f"non-finite state at t = {t:.6g}"
+        elif end is End.TIME:
+            self.status = Status.COMPLETED
+            self.reason = "in flight at t_end" if self.mode is Mode.FLIGHT else None
+        elif not ev.terminal:
+            self.record(ev.name, t, self.mode.value, self.mode.value, x)
+            self.resume = True
+        elif ev.reset is None:
+            self.record(ev.name, t, self.mode.value, "end", x)
+            self.status = ev.stop
+            if ev.stop is Status.STOPPED:
+                self.reason = f"{ev.name}: {ev.on} reached {ev.level:g}"
+        else:
+            log = {"log": self.records} if getattr(ev.reset, "uses_log", False) else {}  # a bounce train so far
+            self.apply(ev.reset(self.model, ev, self.mode, t, x, **log))
+
+    def trajectory(self, x0, wall_s: float, *, stop_at="jump", restitution=0.0, user_events=(), pose0=None,
+                   ts=None, ys=None) -> Trajectory:
+        # a run that ended before its first segment, or settled (it ends in the mode it settled
+        # into), ends where its last transition put it
+        here = not self.segments or self.status is Status.SETTLED
+        return Trajectory(model=self.model, x0=x0, t0=self.t_start, t_end=self.t_end, options=self.opts,
+                          status=self.status, reason=self.reason, segments=self.segments, events=self.records,
+                          wall_s=wall_s, stop_at=stop_at, restitution=restitution, user_events=user_events, pose0=pose0,
+                          ts=ts, ys=ys, x_stop=self.x if here else None, mode_stop=self.mode if here else None)
 
 
-class _Run:
-    """The state of one run of the loop."""
+class _Run(RunState):
+    """One run of simulate's loop: the state, the engines it uses and its budgets."""
 
     def __init__(self, model, system, opts, t0, t_end, dense):
-        self.model, self.system, self.opts, self.t_end, self.dense = model, system, opts, t_end, dense
-        self.t_start, self.switch_limit = t0, opts.switch_limit(t_end - t0)
+        super().__init__(model, system, opts, t0, t_end)
+        self.dense = dense
         self.wall0 = time.perf_counter()
         own, call = self.wall0 + opts.max_wall, deadline()
         # the caller's budget (a search, a map) when it ends first: the reason then names it
         self.call_budget = call[1] if call is not None and call[0] < own else None
         self.budget = Budget(opts.max_steps, own if self.call_budget is None else call[0])
-        self.mode, self.t, self.x = Mode.SLIDING, 0.0, None
-        self.status = self.reason = None
-        self.segments, self.records = [], []
-        self.resume, self.engines, self.steps_done = False, {}, 0
+        self.engines, self.steps_done = {}, 0
 
     def loop(self, first: Transition, progress) -> None:
         """Run from the start transition ``first`` until a status is set (with a progress bar
@@ -230,17 +307,6 @@ class _Run:
         if self.call_budget is not None and self.status is Status.FAILED and "wall-time limit" in (self.reason or ""):
             self.reason = f"{WALL_REASON} (max_wall = {self.call_budget:g} s) ran out at t = {self.t:.6g}"
 
-    def record(self, name, t, before, after, x, detail="") -> None:
-        chart = self.model.chart
-        x = None if x is None else np.asarray(x, dtype=float)
-        if x is not None and x.size == FLIGHT.n_states:
-            x = contact_state(self.model, x)
-        y = None if x is None else chart.to_paper(x)
-        self.records.append(EventRecord(name, float(t), before, after, x, detail, y))
-
-    def apply(self, tr: Transition) -> None:
-        apply_transition(self, tr, self.switch_limit, self.opts.settle, self.t_start)
-
     def engine(self, flow):
         name = flow.engine or self.opts.backend
         if name == "auto":
@@ -253,7 +319,7 @@ class _Run:
         """Propagate the current mode to its first event and handle that event."""
         flow = _tracked(self.system.flow(self.mode), self.opts.track_minima)
         engine = self.engine(flow)
-        events = watched(self.system, self.mode, engine.name)
+        events = watched(self.system, self.mode, engine)
         extend = self.resume  # a non-terminal event or a graze: the same segment goes on
         prop, ev = self.propagate(flow, engine, events)
         if not (np.isfinite(prop.t) and np.all(np.isfinite(prop.x))):
@@ -261,25 +327,10 @@ class _Run:
             self.status = Status.FAILED
             self.reason = f"the integration diverged after t = {self.t:.6g} (non-finite state)"
             return
-        self.add_segment(prop, engine.name, ev, extend)
-        self.t, self.x = prop.t, prop.x
-        if prop.outcome == "failed":
-            self.status = Status.FAILED
-            self.reason = prop.reason or f"non-finite state at t = {prop.t:.6g}"
-        elif prop.outcome == "time":
-            self.status = Status.COMPLETED
-            self.reason = "in flight at t_end" if self.mode is Mode.FLIGHT else None
-        elif not ev.terminal:
-            self.record(ev.name, prop.t, self.mode.value, self.mode.value, prop.x)
-            self.resume = True
-        elif ev.reset is None:
-            self.record(ev.name, prop.t, self.mode.value, "end", prop.x)
-            self.status = ev.stop
-            if ev.stop is Status.STOPPED:
-                self.reason = f"{ev.name}: {ev.on} reached {ev.level:g}"
-        else:
-            log = {"log": self.records} if getattr(ev.reset, "uses_log", False) else {}  # a bounce train so far
-            self.apply(ev.reset(self.model, ev, self.mode, prop.t, prop.x, **log))
+        self.steps_done += prop.n_steps
+        self.add_segment(engine.name, prop.t, prop.x, ev.name if prop.outcome is End.EVENT else str(prop.outcome),
+                         prop.n_steps, prop.n_rhs, prop.monitored, prop.dense, extend)
+        self.end_segment(prop.outcome, prop.t, prop.x, ev, prop.reason)
 
     def propagate(self, flow, engine, events) -> tuple[Propagation, Event | None]:
         """One call of the integrator; events armed after a delay are left out for that
@@ -291,12 +342,12 @@ class _Run:
         early = [e for e in events if e.arm_after == 0]
         t_arm = min(self.t + max(e.arm_after for e in delayed), self.t_end)
         first, ev = self._call(cflow(early), engine, early, self.x, self.t, t_arm)
-        if first.outcome != "time" or t_arm >= self.t_end:
+        if first.outcome is not End.TIME or t_arm >= self.t_end:
             return first, ev
         for e in delayed:
             g = float(self.model.guard_function(e.on, self.mode)(first.x, self.model.p, e.level))
             if (e.direction < 0 and g <= 0) or (e.direction > 0 and g >= 0):
-                first.outcome = "event"
+                first.outcome = End.EVENT
                 return first, e
         rest, ev = self._call(cflow(events), engine, events, first.x, first.t, self.t_end)
         rest.n_steps += first.n_steps
@@ -312,29 +363,17 @@ class _Run:
         self.resume = False
         return prop, (events[prop.event] if prop.event is not None else None)
 
-    def add_segment(self, prop: Propagation, engine: str, ev, extend: bool) -> None:
-        self.steps_done += prop.n_steps
-        end = "failed" if prop.outcome == "failed" else "time" if prop.outcome == "time" else ev.name
-        if extend and self.segments and self.segments[-1].mode is self.mode:
-            last = self.segments[-1]
-            self.segments[-1] = Segment(self.mode, last.t0, prop.t, last.x0, prop.x, engine, end,
-                                        last.n_steps + prop.n_steps, last.n_rhs + prop.n_rhs,
-                                        last.monitored + tuple(prop.monitored), last.dense + tuple(prop.dense))
-        else:
-            self.segments.append(Segment(self.mode, self.t, prop.t, self.x, prop.x, engine, end, prop.n_steps,
-                                         prop.n_rhs, tuple(prop.monitored), tuple(prop.dense)))
-
-    def result(self, x0, t0, stop_at, restitution, events, te) -> Trajectory:
-        segs = self.segments
-        settled_now = self.status is Status.SETTLED  # it ends in the mode it settled into (rolling)
-        traj = Trajectory(model=self.model, x0=x0, t0=t0, t_end=self.t_end, options=self.opts, status=self.status,
-                          reason=self.reason, segments=segs, events=self.records, wall_s=time.perf_counter() - self.wall0,
-                          stop_at=stop_at, restitution=restitution, user_events=events, t_eval=te,
-                          x_end=None if segs and not settled_now else self.x,
-                          mode_end=None if segs and not settled_now else self.mode)
+    def result(self, x0, stop_at, restitution, events, te, pose0) -> Trajectory:
+        wall = time.perf_counter() - self.wall0
+        kw = dict(stop_at=stop_at, restitution=restitution, user_events=events, pose0=pose0)
+        if te is not None and self.segments:
+            traj = self.trajectory(x0, wall, **kw)
+            te = te[(te >= traj.t0) & (te <= traj.t)]
+            if te.size:
+                kw.update(ts=te, ys=traj._chart_states(te))
         if not self.opts.dense and self.dense:  # dense output was kept only to answer t_eval
-            traj.segments = tuple(replace(s, dense=()) for s in traj.segments)
-        return traj
+            self.segments = [replace(s, dense=()) for s in self.segments]
+        return self.trajectory(x0, wall, **kw)
 
 
 def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump", rtol: float = 1e-9, events=(),
@@ -344,14 +383,20 @@ def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump",
     are the mode's guards (lift-off first, ...) with the levels of ``events`` appended; set
     ``integrator.pars[:] = parameters`` (done here) and ``integrator.state``/``.time``.
     ``track_minima=False``: the integrator simulate uses with that option (no monitor of the
-    minima of R)."""
-    from .backends import TaylorEngine
+    minima of R).
 
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> ta, pars = pk.baseline.taylor_integrator(pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)))
+    >>> type(ta).__name__, len(pars)
+    ('taylor_adaptive_dbl', 7)
+    """
     mode = Mode(mode)
     system = declare(model, stop_at=stop_at, events=events)
-    evs = watched(system, mode, "taylor")
+    evs = watched(system, mode, TaylorEngine)
     cflow = model.compile_flow(_tracked(system.flow(mode), track_minima), evs)
-    ta, _, npar = TaylorEngine(solver_options(rtol=rtol).rtol)._integrator(cflow, len(model.p))
+    ta, _, npar = TaylorEngine(solver_options(rtol=rtol).rtol).integrator(cflow, len(model.p))
     pars = np.concatenate([model.p, [e.level for e in evs]])[:npar]
     ta.pars[:] = pars
     return ta, pars

@@ -22,7 +22,7 @@ from .charts import get_chart
 from .errors import ParameterError
 from .validate import check_finite, check_range, check_vector
 
-__all__ = ["gyroscopic_start", "vertical_spin_start", "raw_start", "to_chart"]
+__all__ = ["gyroscopic_start", "vertical_spin_start", "raw_start", "to_chart", "to_paper"]
 
 #: the largest rate (units sqrt(g/b)) a start may have: beyond it the dynamics are beyond
 #: double precision (Omega^2 terms against 1) and the Taylor steps vanish
@@ -60,6 +60,13 @@ def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, 
     Returns
     -------
     array (6,): (U, V, Omega, Lambda, theta, n) = (0, 0, Omega0, 0, theta0, n).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5).round(4)
+    array([ 0.    ,  0.    , 10.5   ,  0.    ,  1.5608,  0.1736])
     """
     return balanced_state(body, theta0, omega0=omega0, n0=n0)
 
@@ -103,7 +110,15 @@ def balanced_state(body: Body, theta0: float, *, omega0=None, n0=None, limit: fl
 def vertical_spin_start(theta0: float, n0: float) -> np.ndarray:
     """Spun about the vertical with the centre of mass at rest: angular velocity n0 e_Z at
     inclination theta0, i.e. Omega = n0, Lambda = 0, n = n0 cos(theta0), U = V = 0 (the
-    usual start of a tippe top)."""
+    usual start of a tippe top).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.vertical_spin_start(0.1, 15.0)
+    array([ 0.        ,  0.        , 15.        ,  0.        ,  0.1       ,
+           14.92506248])
+    """
     theta0 = check_range("theta0", theta0, 0.0, np.pi, closed="lr", label="[0, pi]")
     n0 = _rate("n0", n0)
     return np.array([0.0, 0.0, n0, 0.0, theta0, n0 * np.cos(theta0)])
@@ -125,5 +140,26 @@ def raw_start(state, *, chart="euler") -> np.ndarray:
 
 def to_chart(chart, y) -> np.ndarray:
     """A state in the paper's variables expressed in the coordinates of ``chart``
-    ("euler", "vector" or a Chart)."""
+    ("euler", "vector" or a Chart); :func:`to_paper` is its inverse.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> pk.to_chart("vector", [0.0, 0.0, 2.0, 0.0, np.pi / 2, 10.0]).round(3)
+    array([ 1.,  0.,  0., 10.,  0.,  2.,  0.,  0.])
+    """
     return get_chart(chart).from_paper(check_vector("y", y, 6))
+
+
+def to_paper(chart, x) -> np.ndarray:
+    """A state of ``chart`` ("euler", "vector", "flight" or a Chart) in the paper's variables
+    (U, V, Omega, Lambda, theta, n): the inverse of :func:`to_chart`.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> x = pk.to_chart("vector", [0.0, 0.0, 2.0, 0.0, np.pi / 2, 10.0])
+    >>> pk.to_paper("vector", x).round(6)
+    array([ 0.      ,  0.      ,  2.      ,  0.      ,  1.570796, 10.      ])
+    """
+    return get_chart(chart).to_paper(np.asarray(x, dtype=float))

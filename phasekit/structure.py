@@ -51,7 +51,7 @@ import numpy as np
 from .body import Body
 from .charts import EULER, VECTOR, euler_to_vector
 from .criteria import PoleCriterion, pole_stability_threshold
-from .errors import ConvergenceError, ParameterError, Status
+from .errors import ConvergenceError, ParameterError, SearchStatus, Status
 from .fixedpoints import (
     FixedPoint,
     _eigen_with_bounds,
@@ -137,11 +137,11 @@ class StabilityChange:
     n: float
     below: int
     above: int
-    status: str = "converged"
+    status: SearchStatus = SearchStatus.CONVERGED
 
     def to_dict(self) -> dict:
         return {"theta": self.theta, "bracket": list(self.bracket), "kind": self.kind, "Omega": self.Omega, "n": self.n,
-                "n_unstable_below": self.below, "n_unstable_above": self.above, "status": self.status}
+                "n_unstable_below": self.below, "n_unstable_above": self.above, "status": self.status.value}
 
 
 @dataclass(frozen=True)
@@ -231,7 +231,7 @@ class SpinFamily:
     * ``rolling``: at a tilted static equilibrium, rolling along a straight line at any spin n
       (Omega = 0, G moving at n x_P: part I's rolling on the equator).
 
-    ``criticals`` are the values of |parameter| where its stability changes (the closed-form
+    ``criticals`` are the values of abs(parameter) where its stability changes (the closed-form
     pole criterion; for a precession family the rate at which a branch crosses it; located by
     bisection for a rolling family), ``stable_on`` the stability on each interval between
     them from 0 up (None: not computed), ``branch_meets`` whether a branch ends on or crosses
@@ -262,7 +262,15 @@ class SpinFamily:
 
 @dataclass(frozen=True)
 class SteadyStructure:
-    """The steady-state structure of a body under a friction law: :func:`steady_structure`."""
+    """The steady-state structure of a body under a friction law: :func:`steady_structure`.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> s = pk.steady_structure(pk.Spheroid(1.5, offset=0.2), pk.Viscous(0.1), samples=False)
+    >>> isinstance(s, pk.SteadyStructure), s.status.value, s.signature
+    (True, 'completed', 'pole0-inf | static-polePi')
+    """
 
     model: Model = field(repr=False)
     branches: tuple[SteadyBranch, ...]
@@ -590,7 +598,7 @@ def _locate_change(at, lo: float, hi: float, f_lo: FixedPoint, f_hi: FixedPoint)
     k = np.argsort(lam.real)[:1]
     kind = "complex" if k.size and abs(lam[k[0]].imag) > b[k[0]] else "real"
     t = 0.5 * (lo + hi)
-    status = "converged" if hi - lo <= CHANGE_XTOL else "bracket_only"
+    status = SearchStatus.CONVERGED if hi - lo <= CHANGE_XTOL else SearchStatus.BRACKET_ONLY
     om, n = at.curve(t)
     return StabilityChange(t, (lo, hi), kind, om, n, f_lo.n_unstable, f_hi.n_unstable, status), hi, f_hi
 
@@ -888,7 +896,16 @@ def _tokens(structure: SteadyStructure) -> dict:
 def bifurcation_between(lo: SteadyStructure, hi: SteadyStructure) -> str:
     """Name the codimension-one event that turns structure ``lo`` into ``hi`` (two bodies close
     together in parameter space, on either side of a class boundary), from how their branch
-    ends differ: the degeneracies of Omega^2 = q rho_2 / D that change a signature."""
+    ends differ: the degeneracies of Omega^2 = q rho_2 / D that change a signature.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> lo = pk.steady_structure(pk.EccentricSphere(0.3, A=0.3, C=0.4), pk.Viscous(0.1), samples=False)
+    >>> hi = pk.steady_structure(pk.EccentricSphere(0.3, A=0.45, C=0.4), pk.Viscous(0.1), samples=False)
+    >>> lo.signature != hi.signature, isinstance(pk.bifurcation_between(lo, hi), str)
+    (False, True)
+    """
     a, b = _tokens(lo), _tokens(hi)
     if lo.signature == hi.signature:
         return "none"
@@ -914,7 +931,15 @@ class RollingMotion:
     precessing at Omega, no slip, G moving on a circle (radius ``radius``) with speed V in the
     precessing frame, friction supplying the centripetal force (|F| = Omega |V| <= mu R is
     needed for static friction to hold it: ``needs_mu``). The branches (:func:`steady_structure`)
-    are its members with V = 0. ``x`` is the state (U, V, Omega, Lambda, theta, n)."""
+    are its members with V = 0. ``x`` is the state (U, V, Omega, Lambda, theta, n).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> r = pk.theory.rolling_motion(pk.Spheroid(1.5), 1.0, 5.0)
+    >>> isinstance(r, pk.theory.RollingMotion), round(r.needs_mu, 6)
+    (True, 1.439896)
+    """
 
     theta: float
     Omega: float
@@ -934,7 +959,15 @@ def rolling_motion(body, theta: float, Omega: float) -> RollingMotion:
         n = [A Omega^2 s c - h_theta (1 + h Omega^2) + h Omega^2 c x_P] / (Omega (C s + h x_P)).
 
     A two-parameter family (theta, Omega); with V = 0 it reduces to the branches. An egg that
-    settles tilted under Coulomb friction ends on it (studies/steady_structure.py)."""
+    settles tilted under Coulomb friction ends on it (studies/steady_structure.py).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> r = pk.theory.rolling_motion(pk.Spheroid(1.5), 1.0, 5.0)
+    >>> round(r.n, 6), round(r.radius, 6)
+    (5.678572, 0.057596)
+    """
     if not isinstance(body, Body):
         raise ParameterError("body", "must be a phasekit Body", body)
     theta = check_finite("theta", theta)

@@ -19,7 +19,7 @@ those elements need (no simulation unless trajectories or crossings are asked fo
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -27,7 +27,15 @@ from .body import Body, Spheroid
 from .errors import ParameterError
 from .friction import Coulomb, FrictionLaw
 from .model import Model
-from .validate import check_array, check_finite, check_instance, check_int, check_nonnegative, check_positive, check_range
+from .validate import (
+    check_array,
+    check_finite,
+    check_instance,
+    check_int,
+    check_nonnegative,
+    check_positive,
+    check_range,
+)
 
 __all__ = ["surface_n", "exact_boundary", "Scene", "SceneData", "Crossing", "compute_scene", "ELEMENTS", "AXES"]
 
@@ -69,7 +77,7 @@ def surface_n(body, Omega, theta):
     numbers or arrays of shapes that broadcast together.
 
     >>> import phasekit as pk
-    >>> round(float(pk.surface_n(pk.Spheroid(1.5), 12.0, 1.0)), 6)
+    >>> round(float(pk.theory.surface_n(pk.Spheroid(1.5), 12.0, 1.0)), 6)
     10.20507
     """
     body = _body(body)
@@ -93,7 +101,14 @@ def exact_boundary(body, mu: float, Omega, theta, Lambda: float = 0.0, *, fricti
     Found by Brent's method on R(n) from the compiled model (Coulomb friction with ``mu``,
     or the law ``friction``; slip direction of that state), independently of the closed
     form (6.3). ``Omega`` and ``theta`` as for :func:`surface_n`; ``Lambda`` finite. Returns an
-    array of their broadcast shape (at least 1-d), NaN where no sign change of R(n) was found."""
+    array of their broadcast shape (at least 1-d), NaN where no sign change of R(n) was found.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.exact_boundary(pk.Spheroid(1.5), 0.1, [10.0, 12.0], [1.0, 1.0]).round(6)
+    array([ 8.382922, 10.20507 ])
+    """
     body = _body(body)
     if friction is not None:
         check_instance("friction", friction, FrictionLaw, "Coulomb(0.1)")
@@ -294,7 +309,7 @@ class Crossing:
         return abs(self.n_surface - self.n) / abs(self.n)
 
 
-@dataclass
+@dataclass(frozen=True)
 class SceneData:
     """What :func:`compute_scene` computed: the grids, the trajectories' (Omega, theta, n)
     points, the crossings, the fixed points and the box ``bounds`` (Omega, theta, n pairs)."""
@@ -310,6 +325,23 @@ class SceneData:
     bounds: tuple | None = None
     labels: list = field(default_factory=list)  # one per trajectory (None: a simulated one)
     bodies: list = field(default_factory=list)  # (body, (Omega, theta, n), rotation matrix) to draw
+
+
+@dataclass
+class _SceneBuilder:
+    """SceneData while :func:`compute_scene` fills it in."""
+
+    scene: Scene
+    surface: tuple | None = None
+    exact: tuple | None = None
+    exact_lambda: float | None = None
+    trajectories: list = field(default_factory=list)
+    crossings: list = field(default_factory=list)
+    fixed_points: np.ndarray | None = None
+    n_simulations: int = 0
+    bounds: tuple | None = None
+    labels: list = field(default_factory=list)
+    bodies: list = field(default_factory=list)
 
 
 def _simulate(scene: Scene, value: float, dense: bool):
@@ -328,7 +360,7 @@ def _simulate(scene: Scene, value: float, dense: bool):
     return body, simulate(model, y0, 1000.0, events=[rise], track_minima=False, dense=dense)
 
 
-def _add_run(data: SceneData, body, r, value, label, show) -> None:
+def _add_run(data: _SceneBuilder, body, r, value, label, show) -> None:
     """The drawn points and the crossing of one trajectory."""
     if "trajectories" in show:
         ts = np.arange(r.t0, r.t, data.scene.dt)
@@ -368,10 +400,18 @@ def _ranges(scene: Scene, data: SceneData, body) -> tuple:
 
 def compute_scene(scene: Scene) -> SceneData:
     """Compute exactly the data the scene's elements need (no simulation for a scene
-    without trajectories or crossings)."""
+    without trajectories or crossings).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> data = pk.compute_scene(pk.Scene('prolate', 1.5, values=(12.0,), show={'crossings'}))
+    >>> len(data.crossings), round(data.crossings[0].theta, 4)
+    (1, np.float64(0.9774))
+    """
     check_instance("scene", scene, Scene, 'Scene("prolate", 1.5)')
     show = scene.show
-    data = SceneData(scene)
+    data = _SceneBuilder(scene)
     body = scene.make_body()
     if {"trajectories", "crossings"} & show:
         for v in scene.values:
@@ -396,7 +436,7 @@ def compute_scene(scene: Scene) -> SceneData:
         else:  # vertical spins: theta = 0, plotted at the fast-branch limit Omega = C n0 / A
             data.fixed_points = np.array([[body.C * v / body.A, 0.0, v] for v in scene.values])
     data.bounds = _bounds(scene, data, om_rng, th_rng)
-    return data
+    return SceneData(**{f.name: getattr(data, f.name) for f in fields(data)})
 
 
 def _grids(scene, data, body, om_rng, th_rng) -> None:

@@ -17,8 +17,17 @@ import numpy as np
 from .errors import ParameterError, Status
 from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
 from .model import STICK_SLIP
-from .resets import (BOUNCE_STOP, BOUNCE_TAIL, LiftOff, SlipOnset, Stick, SwitchMode, Touchdown, contact_start,
-                     flight_start_state)
+from .resets import (
+    BOUNCE_STOP,
+    BOUNCE_TAIL,
+    LiftOff,
+    SlipOnset,
+    Stick,
+    SwitchMode,
+    Touchdown,
+    contact_start,
+    flight_start_state,
+)
 from .validate import check_choice, check_range
 
 __all__ = ["declare", "STOP_AT", "STIFF_RATE", "GUARD_DELAY"]
@@ -35,7 +44,6 @@ STIFF_RATE = 2000.0
 #: a flight whose gap has not opened by then is a graze and touches down there.
 GUARD_DELAY = 1e-5
 
-CONTACT = frozenset({Mode.SLIDING, Mode.ROLLING})
 
 
 def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=(),
@@ -50,10 +58,11 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     flows = (
         Flow(Mode.SLIDING, "rhs_sliding", monitor=("Rdot", +1)),
         Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1), stiff=stiff),
-        Flow(Mode.FLIGHT, "rhs_flight", monitor=("gap_rate", -1), engine="taylor"),
+        Flow(Mode.FLIGHT, "rhs_flight", monitor=("gap_rate", -1), engine="taylor", contact=False),
     )
     jump_ends = stop_at == "jump"
-    evs = [Event("R", name="lift-off", direction=-1, modes=CONTACT, rate="Rdot", stop=Status.JUMPED,
+    contact = frozenset(f.mode for f in flows if f.contact)
+    evs = [Event("R", name="lift-off", direction=-1, modes=contact, rate="Rdot", stop=Status.JUMPED,
                  reset=None if jump_ends else LiftOff())]
     if law.can_stick:
         to_roll = Stick() if law.has_rolling_mode else SwitchMode(Mode.ROLLING, "stick", "slip < 10 eps (regularised)")
@@ -100,12 +109,9 @@ def _flight_start(model, t, x):
     return Transition(Mode.FLIGHT, t, flight_start_state(model, x))
 
 
-def is_pointwise(engine_name: str) -> bool:
-    return engine_name != "taylor"
-
-
-def watched(system: HybridSystem, mode: Mode, engine_name: str) -> tuple[Event, ...]:
-    """The events ``mode`` watches with this integrator (the stick guard has a Taylor and a
-    pointwise form)."""
-    skip = "stick_guard" if is_pointwise(engine_name) else "stick_guard_sq"
+def watched(system: HybridSystem, mode: Mode, engine) -> tuple[Event, ...]:
+    """The events ``mode`` watches with this engine (:class:`phasekit.engines.Engine`): the
+    stick guard has a form for engines that locate roots of each step's polynomial and a smooth
+    squared one, with a rate, for pointwise engines."""
+    skip = "stick_guard" if engine.pointwise else "stick_guard_sq"
     return tuple(e for e in system.events_of(mode) if e.on != skip)

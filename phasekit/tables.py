@@ -13,8 +13,10 @@ Parquet needs pyarrow, NetCDF xarray with h5netcdf (or netCDF4): ``pip install "
 
 from __future__ import annotations
 
+import contextlib
 import importlib.util
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -22,13 +24,40 @@ import numpy as np
 from .errors import ParameterError, PhasekitError
 from .validate import check_int
 
-__all__ = ["to_xarray", "write_trajectory", "write_table", "read_table", "DATA_EXTRA", "TABLE_SUFFIXES"]
+__all__ = ["to_xarray", "write_trajectory", "write_table", "read_table", "atomic_path", "DATA_EXTRA", "TABLE_SUFFIXES"]
 
 #: the optional packages of each file type
 DATA_EXTRA = {".parquet": ("pyarrow",), ".nc": ("xarray", "h5netcdf", "h5py")}
 TABLE_SUFFIXES = (".csv", ".parquet", ".nc")
 #: the attributes of a trajectory's Dataset (JSON strings)
 ATTRS = ("model", "start", "options", "pose0", "status", "reason", "t_jump", "stop_at", "restitution")
+
+
+@contextlib.contextmanager
+def atomic_path(path):
+    """A temporary path next to ``path`` to write to; renamed onto ``path`` when the block
+    ends without an exception, removed otherwise. A kill at any moment leaves either the old
+    file or the new one, never a torn one.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, phasekit as pk
+    >>> target = pathlib.Path(tempfile.mkdtemp()) / "note.txt"
+    >>> with pk.sweep.atomic_path(target) as tmp:
+    ...     _ = tmp.write_text("whole")
+    >>> target.read_text()
+    'whole'
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    # keep the suffix: writers (matplotlib, VTK) pick the format from it
+    tmp = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
 
 
 def _need(suffix: str) -> None:
@@ -46,8 +75,6 @@ def _times(traj, times, n):
 
 
 def _check_path(path, suffixes) -> Path:
-    import os
-
     if not isinstance(path, (str, os.PathLike)) or Path(path).suffix.lower() not in suffixes:
         raise ParameterError("path", f"must be a file path ending in {', '.join(suffixes)}", path)
     return Path(path)
@@ -74,8 +101,6 @@ def to_xarray(traj, times=None, *, n: int = 2001):
 def write_trajectory(traj, path, times=None, *, n: int = 2001) -> Path:
     """Write the sampled trajectory to ``path``: .nc (NetCDF, the Dataset of :func:`to_xarray`),
     .parquet (the table, the attributes in its metadata) or .csv."""
-    from .viz.output import atomic_path
-
     path = _check_path(path, TABLE_SUFFIXES)
     suffix = path.suffix.lower()
     _need(suffix)
@@ -131,9 +156,15 @@ def _honest(df):
 
 def write_table(df, path) -> Path:
     """Write a study table (a DataFrame) as .csv (missing cells empty), .parquet or .nc, with
-    honest dtypes (:func:`read_table`'s)."""
-    from .viz.output import atomic_path
+    honest dtypes (:func:`read_table`'s).
 
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> import pandas as pd, tempfile, pathlib
+    >>> pk.write_table(pd.DataFrame({'a': [1.5]}), pathlib.Path(tempfile.mkdtemp()) / 't.csv').name
+    't.csv'
+    """
     if not hasattr(df, "columns"):
         raise ParameterError("df", "must be a pandas DataFrame", type(df).__name__)
     path = _check_path(path, TABLE_SUFFIXES)
@@ -150,7 +181,16 @@ def write_table(df, path) -> Path:
 
 def read_table(path):
     """A study table (.csv, .parquet or .nc) as a DataFrame with honest dtypes: booleans as
-    pandas' nullable "boolean", numbers as numbers, text as strings, every missing cell NA."""
+    pandas' nullable "boolean", numbers as numbers, text as strings, every missing cell NA.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> import pandas as pd, tempfile, pathlib
+    >>> path = pk.write_table(pd.DataFrame({'a': [1.5], 'ok': [True]}), pathlib.Path(tempfile.mkdtemp()) / 't.csv')
+    >>> pk.read_table(path).dtypes.astype(str).tolist()
+    ['float64', 'bool']
+    """
     import pandas as pd
 
     path = _check_path(path, TABLE_SUFFIXES)

@@ -39,10 +39,10 @@ from dataclasses import asdict, dataclass, field, replace
 import numpy as np
 
 from .body import Body, Spheroid
-from .errors import ConvergenceError, ParameterError, Status
+from .criteria import horizontal_stability_threshold, vertical_stability_threshold
+from .errors import ConvergenceError, ParameterError, SearchStatus, Status
 from .friction import Coulomb, RegularisedCoulomb, Viscous
 from .hybrid import Event
-from .criteria import horizontal_stability_threshold, vertical_stability_threshold
 from .manifolds import unstable_manifold_start
 from .model import Model
 from .options import RTOL_RANGE
@@ -54,7 +54,7 @@ from .watch import WALL_REASON, check_max_wall, deadline, passed, progress_bar, 
 
 __all__ = ["Definition", "Outcome", "Threshold", "Sensitivity", "ThresholdSearch", "find_threshold", "continue_threshold",
            "run_searches", "evaluate_outcomes", "find_stick_boundary",
-           "threshold_searches", "threshold_result", "stick_search", "DEFAULT_DEFINITIONS", "ENGINES", "as_body"]
+           "threshold_searches", "threshold_result", "stick_search", "DEFAULT_DEFINITIONS", "EVALUATION", "as_body"]
 
 
 #: the settle rule of every built-in definition (see :mod:`phasekit.settle`)
@@ -72,7 +72,17 @@ def as_body(body) -> Body:
 
 @dataclass(frozen=True)
 class Definition:
-    """How a jump threshold is measured (everything except the body and the family parameter)."""
+    """How a jump threshold is measured (everything except the body and the family parameter).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> d = pk.Definition('sliding', 'sliding')
+    >>> d.label
+    'coulomb mu=0.1 exact; seed: sliding branch d=0.01'
+    >>> round(d.lower_bound(1.5), 6)
+    2.347871
+    """
 
     name: str
     seed: str  # "viscous", "sliding" or "literal"
@@ -187,7 +197,7 @@ class Definition:
         model, x0 = self.start(body, value)
         simulate(model, x0, 1e-3, rtol=self.rtol, events=[self.rise_event(body)], track_minima=False, dense=False,
                  progress=False)
-        if check_choice("engine", engine, ENGINES) == "batch":
+        if check_choice("engine", engine, EVALUATION) == "batch":
             from .batch import compile_batch
 
             compile_batch(model, [self.rise_event(body)], rtol=self.rtol, track_minima=False, dense=False)
@@ -199,14 +209,23 @@ class Definition:
         return evaluate_outcomes([(self, body, v) for v in values], engine=engine, stats=stats)
 
 
-ENGINES = ("scalar", "batch")
+#: how a search runs its simulations: one by one, or on the batch integrator
+EVALUATION = ("scalar", "batch")
 
 
 def evaluate_outcomes(jobs, engine: str = "scalar", stats=None) -> list["Outcome"]:
     """Outcomes of (definition, body, value) jobs, in order. ``engine="batch"`` runs the
     jobs of plain Definitions through :func:`phasekit.batch.simulate_batch` (one call per
-    stop event and tolerance); a Definition subclass with its own ``outcome`` is called."""
-    check_choice("engine", engine, ENGINES)
+    stop event and tolerance); a Definition subclass with its own ``outcome`` is called.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> d = pk.Definition('sliding', 'sliding')
+    >>> [o.kind for o in pk.sweep.evaluate_outcomes([(d, 1.5, 12.0), (d, 1.5, 4.0)], engine='batch')]
+    ['jump', 'stuck']
+    """
+    check_choice("engine", engine, EVALUATION)
     out: list[Outcome | None] = [None] * len(jobs)
     groups: dict = {}
     for i, (defn, body, value) in enumerate(jobs):
@@ -236,7 +255,15 @@ class Outcome:
     (``status``: jumped; stopped = the rise completed; completed = reached t_max; settled =
     the body settled in contact (the definition's ``settle`` rule); failed).
     ``theta``: the inclination where it ended (at lift-off for a jump); ``rise_fraction``:
-    how much of the rise from theta0 to the final state (0 prolate, pi/2 oblate) was done."""
+    how much of the rise from theta0 to the final state (0 prolate, pi/2 oblate) was done.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> o = pk.sweep.evaluate_outcomes([(pk.Definition('sliding', 'sliding'), 1.5, 12.0)])[0]
+    >>> isinstance(o, pk.sweep.Outcome), o.kind, o.how
+    (True, 'jump', 'jumped')
+    """
 
     value: float
     jumped: bool | None  # None: the run failed
@@ -276,7 +303,15 @@ class Sensitivity:
     is none); ``slope``: d ln(threshold) / d ln(d), from the two outer points;
     ``shift``: the largest relative change of the threshold over the three; ``bracket``:
     the relative width of the bisection bracket at d; ``dominant``: which of the two is
-    larger ("seed distance" or "bracket")."""
+    larger ("seed distance" or "bracket").
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> th = pk.find_threshold(pk.Definition('sliding', 'sliding'), 1.5, hi=120.0, guess=9.74, tol=1e-2, sensitivity=True, engine='batch')
+    >>> isinstance(th.sensitivity, pk.sweep.Sensitivity), th.sensitivity.amplitudes
+    (True, (0.005, 0.01, 0.02))
+    """
 
     amplitudes: tuple[float, float, float]
     values: tuple[float | None, float | None, float | None]
@@ -319,12 +354,19 @@ class Threshold:
     JUMPS_AT_LOWER_BOUND, or FAILED (no run succeeded). ``n_rounds``: rounds of mutually
     independent simulations the search needed (its critical path). ``sensitivity`` is
     filled when asked (``find_threshold(..., sensitivity=True)``).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> th = pk.find_threshold(pk.Definition('sliding', 'sliding'), 1.5, hi=120.0, guess=9.74, tol=1e-2)
+    >>> isinstance(th, pk.Threshold), th.status.value, round(th.value, 2)
+    (True, 'converged', 9.78)
     """
 
     a: float
     value: float | None
     bracket: tuple[float | None, float | None]
-    status: Status
+    status: SearchStatus
     n_sims: int
     transitions: tuple[tuple[float, float], ...] = ()
     outcomes: tuple[Outcome, ...] = field(default=(), repr=False)
@@ -389,6 +431,13 @@ class ThresholdSearch:
     walks the tree as bisection would: the bracket is the one sequential bisection gives, in
     ceil(steps / m) rounds instead of steps. The coarse scan is one round of ``n_coarse``
     values (more if it has to widen).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> s = pk.sweep.ThresholdSearch(pk.Definition('sliding', 'sliding'), pk.Spheroid(1.5), lo=5.0, hi=20.0, guess=None, n_coarse=4, window=1.5, tol=1e-2)
+    >>> [round(v, 4) for v in s.ask()]
+    [5.0, 7.937, 12.5992, 20.0]
     """
 
     def __init__(self, defn, body, *, lo, hi, guess, n_coarse, window, tol, levels=1, job=None, flag=None):
@@ -487,27 +536,27 @@ class ThresholdSearch:
         a = getattr(self.body, "a", float("nan"))
         outs, n = tuple(self.outcomes), len(self.outcomes)
         if self.stopped is not None and not self.trans:
-            return Threshold(a, None, (None, None), Status.FAILED, n, (), outs, wall_s,
+            return Threshold(a, None, (None, None), SearchStatus.FAILED, n, (), outs, wall_s,
                              f"{self.stopped} before a transition was found", n_rounds=self.n_rounds)
         if self.stopped is not None and any(b.active for b in self.brackets):
             first = next(b for b in self.brackets if b.active)
             return Threshold(a, math.sqrt(first.lo * first.hi) if not first.o_lo.jumped else None, (first.lo, first.hi),
-                             Status.BRACKET_ONLY, n, tuple((b.lo, b.hi) for b in self.brackets), outs, wall_s,
+                             SearchStatus.BRACKET_ONLY, n, tuple((b.lo, b.hi) for b in self.brackets), outs, wall_s,
                              f"{self.stopped}: the bracket is as far as it was narrowed", n_rounds=self.n_rounds)
         if not self.trans:
             valid = [o for o in self.outcomes if o.jumped is not None]
             if not valid:
                 reason = next((o.reason for o in self.outcomes if o.reason), "no run succeeded")
-                return Threshold(a, None, (None, None), Status.FAILED, n, (), outs, wall_s, reason, n_rounds=self.n_rounds)
+                return Threshold(a, None, (None, None), SearchStatus.FAILED, n, (), outs, wall_s, reason, n_rounds=self.n_rounds)
             if all(o.jumped for o in valid):
-                return Threshold(a, None, (None, self.lo), Status.JUMPS_AT_LOWER_BOUND, n, (), outs, wall_s, n_rounds=self.n_rounds)
-            return Threshold(a, None, (self.hi, None), Status.NO_JUMP_IN_RANGE, n, (), outs, wall_s, n_rounds=self.n_rounds)
+                return Threshold(a, None, (None, self.lo), SearchStatus.JUMPS_AT_LOWER_BOUND, n, (), outs, wall_s, n_rounds=self.n_rounds)
+            return Threshold(a, None, (self.hi, None), SearchStatus.NO_JUMP_IN_RANGE, n, (), outs, wall_s, n_rounds=self.n_rounds)
         brackets = [(b.lo, b.hi) for b in self.brackets]
         ok = all(b.good for b in self.brackets)
         # the threshold: the lowest transition from no jump (below) to jump (above)
         ups = [(b.lo, b.hi) for b in self.brackets if not b.o_lo.jumped]
         first = ups[0] if ups else brackets[0]
-        status = Status.BRACKET_ONLY if not ok else (Status.NON_MONOTONE if len(brackets) > 1 else Status.CONVERGED)
+        status = SearchStatus.BRACKET_ONLY if not ok else (SearchStatus.NON_MONOTONE if len(brackets) > 1 else SearchStatus.CONVERGED)
         value = math.sqrt(first[0] * first[1]) if ups else None
         reason = None if ok else next((o.reason for o in self.outcomes if o.jumped is None), None)
         return Threshold(a, value, first, status, n, tuple(brackets), outs, wall_s, reason, n_rounds=self.n_rounds)
@@ -519,7 +568,16 @@ def run_searches(searches, *, engine: str = "scalar", evaluate=None, stats=None,
     ``evaluate(jobs) -> outcomes`` with jobs (definition, body, value), e.g. on a cluster).
     A wall budget in force (:func:`phasekit.watch.wall_deadline`) that has run out ends every
     search between rounds (:meth:`ThresholdSearch.stop`); ``bar`` (tqdm) counts the runs.
-    Returns the number of rounds."""
+    Returns the number of rounds.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> searches = [pk.sweep.ThresholdSearch(pk.Definition('sliding', 'sliding'), pk.Spheroid(a), lo=5.0, hi=20.0, guess=g, n_coarse=4, window=1.5, tol=1e-2) for a, g in ((1.5, 9.74), (1.75, 8.16))]
+    >>> rounds = pk.sweep.run_searches(searches, engine='batch')
+    >>> [round(s.result().value, 2) for s in searches]
+    [9.78, 8.13]
+    """
     rounds = 0
     while True:
         asks = [(s, s.ask()) for s in searches if not s.done]
@@ -608,16 +666,23 @@ def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float
     "failed", and the search returns the bracket it has (status BRACKET_ONLY, or FAILED
     before a transition was found) with a reason naming the budget. ``progress``: a bar of
     the runs with the current bracket (None: on a terminal or in a notebook only).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> th = pk.find_threshold(pk.Definition('sliding', 'sliding'), 1.5, hi=120.0, guess=9.74, tol=1e-2)
+    >>> th.status.value, round(th.value, 2), th.bracket[0] < th.value < th.bracket[1]
+    ('converged', 9.78, True)
     """
     t0 = time.perf_counter()
-    check_choice("engine", engine, ENGINES)
+    check_choice("engine", engine, EVALUATION)
     max_wall = check_max_wall(max_wall)
     searches = threshold_searches(defn, body, lo=lo, hi=hi, guess=guess, n_coarse=n_coarse, window=window, tol=tol,
                                   levels=levels, sensitivity=sensitivity)
     with progress_bar(desc=_bar_label(searches[0]), progress=progress) as bar, wall_deadline(max_wall):
         run_searches(searches, engine=engine, evaluate=evaluate, bar=bar)
     th = threshold_result(searches, time.perf_counter() - t0)
-    if throw and th.status is Status.FAILED:
+    if throw and th.status is SearchStatus.FAILED:
         raise ConvergenceError(f"threshold search failed: {th.reason}", th)
     return th
 
@@ -654,9 +719,16 @@ def find_stick_boundary(defn: Definition, body, value: float, *, lo: float = 1e-
     Returns a :class:`Threshold` over d: ``value`` is d_min (the lowest transition from
     stuck below to not stuck above), its outcomes carry d as ``value`` and "not stuck" as
     ``jumped``. ``max_wall`` and ``progress`` as for :func:`find_threshold`.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> th = pk.find_stick_boundary(pk.Definition('sliding', 'sliding', t_max=300.0), 1.5, 17.7, tol=0.1)
+    >>> th.status.value, 1e-4 < th.value < 0.2
+    ('converged', True)
     """
     t0 = time.perf_counter()
-    check_choice("engine", engine, ENGINES)
+    check_choice("engine", engine, EVALUATION)
     max_wall = check_max_wall(max_wall)
     search = stick_search(defn, body, value, lo=lo, hi=hi, n_coarse=n_coarse, tol=tol, levels=levels)
     with progress_bar(desc="stick boundary", progress=progress) as bar, wall_deadline(max_wall):
@@ -669,7 +741,15 @@ def continue_threshold(defn: Definition, bodies, *, max_wall: float | None = Non
     """Thresholds along a list of bodies (or aspect ratios), each search seeded by the previous
     result (keywords of :func:`find_threshold`). ``max_wall`` bounds the whole continuation: a
     search under way when it runs out returns its bracket, and the bodies after it a FAILED
-    Threshold saying so; ``progress``: a bar over the bodies."""
+    Threshold saying so; ``progress``: a bar over the bodies.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> ths = pk.continue_threshold(pk.Definition('sliding', 'sliding'), [1.75, 1.5], hi=120.0, tol=1e-2)
+    >>> [th.status.value for th in ths]
+    ['converged', 'converged']
+    """
     max_wall = check_max_wall(max_wall)
     bodies = list(bodies)
     out, guess = [], None
@@ -678,7 +758,7 @@ def continue_threshold(defn: Definition, bodies, *, max_wall: float | None = Non
         for b in bodies:
             if passed():
                 why = f"not searched: {WALL_REASON} (max_wall = {max_wall:g} s) ran out"
-                out.append(Threshold(getattr(as_body(b), "a", float("nan")), None, (None, None), Status.FAILED, 0,
+                out.append(Threshold(getattr(as_body(b), "a", float("nan")), None, (None, None), SearchStatus.FAILED, 0,
                                      reason=why))
                 continue
             th = find_threshold(defn, b, guess=guess, progress=False, **kw)

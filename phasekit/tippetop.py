@@ -44,12 +44,13 @@ this module and checked numerically in tests/test_tippetop_theory.py, not quoted
        inverted / noninverted states, agreeing with the criterion for a heteroclinic
        connection; the model follows Or, SIAM J. Appl. Math. 54 (1994) 597-609). Their
        explicit formulas were not seen.
+
 Not consulted at all (cited only because the task brief named them): Hugenholtz (Physica,
 1952), Cohen (Am. J. Phys. 45 (1977) 12-17). Whether their statements use moments about G
 or about O is UNVERIFIED.
 
 The derivation used throughout (derived here, not quoted)
---------------------------------------------------------
+---------------------------------------------------------
 Jellett's integral. With L the angular momentum about G and d = e_Z - alpha k = -r_P,
 lambda = L . d is conserved for ANY friction law acting at P (the torques of the contact
 force are r_P x F, orthogonal to d, and L . d(-alpha k)/dt = -alpha L.(w x k) = 0).
@@ -164,6 +165,12 @@ def inversion_interval(alpha) -> tuple[float, float]:
     For moments about the geometric centre O (A_O = A + alpha^2, C_O = C, parallel-axis
     theorem, m = R = 1) the same condition reads
     C_O (1 - alpha) + alpha^2 < A_O < C_O (1 + alpha) + alpha^2; see ``moments_about_G``.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.tippetop.inversion_interval(0.3)
+    (0.7, 1.3)
     """
     a = check_range("alpha", alpha, 0.0, 1.0, closed="l", label="[0, 1)")
     return (1.0 - a, 1.0 + a)
@@ -172,7 +179,14 @@ def inversion_interval(alpha) -> tuple[float, float]:
 def classical_inversion(alpha, A, C) -> bool:
     """True iff 1 - alpha < A/C < 1 + alpha (moments about G), the condition for the top to
     invert fully when spun fast enough ([RR14] Sec. 1, quoted; see ``inversion_interval``).
-    Equivalent to ``ueda_group_limit(...) == "II"``."""
+    Equivalent to ``ueda_group_limit(...) == "II"``.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.tippetop.classical_inversion(0.3, 0.38, 0.4)
+    True
+    """
     a, A, C = _params(alpha, A, C)
     up, inv = _margins(a, A, C)
     return up > 0 and inv > 0
@@ -181,7 +195,14 @@ def classical_inversion(alpha, A, C) -> bool:
 def moments_about_G(alpha, A_O, C_O) -> tuple[float, float]:
     """Convert moments about the geometric centre O to moments about G (units m R^2):
     A = A_O - alpha^2, C = C_O (parallel-axis theorem; G lies on the axis, so C is unchanged).
-    Elementary, derived here."""
+    Elementary, derived here.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [round(v, 6) for v in pk.theory.tippetop.moments_about_G(0.3, 0.5, 0.4)]
+    [0.41, 0.4]
+    """
     a = check_range("alpha", alpha, 0.0, 1.0, closed="l", label="[0, 1)")
     A_O, C_O = check_positive("A_O", A_O), check_positive("C_O", C_O)
     A = A_O - a * a
@@ -200,6 +221,12 @@ def jellett_of_vertical_start(alpha, A, C, theta0, n0) -> float:
 
     This is phasekit's ``jellett`` output (= -L.r_P = L.(e_Z - alpha k)); derived here.
     At theta0 = 0 it is C n0 (1 - alpha), the Jellett integral of the upright top spinning at n0.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.tippetop.jellett_of_vertical_start(0.3, 0.38, 0.4, 0.1, 15.0), 6)
+    4.206002
     """
     a, A, C = _params(alpha, A, C)
     th = _theta0(theta0)
@@ -209,7 +236,14 @@ def jellett_of_vertical_start(alpha, A, C, theta0, n0) -> float:
 
 def spin_for_jellett(alpha, A, C, jellett, theta0=0.0) -> float:
     """The n0 >= 0 of ``vertical_spin_start(theta0, n0)`` whose Jellett integral has modulus
-    |jellett| (inf if the start's Jellett factor vanishes at this theta0). Derived here."""
+    |jellett| (inf if the start's Jellett factor vanishes at this theta0). Derived here.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.tippetop.spin_for_jellett(0.3, 0.38, 0.4, 6.0, theta0=0.1), 6)
+    21.39799
+    """
     a, A, C = _params(alpha, A, C)
     th = _theta0(theta0)
     lam = check_real("jellett", jellett)
@@ -223,7 +257,14 @@ def effective_potential(alpha, A, C, jellett, theta):
     """V(theta; lambda) = lambda^2 / (2 (A sin^2 theta + C (cos theta - alpha)^2)) + 1 - alpha cos theta,
     the least energy compatible with inclination theta and Jellett integral lambda (derived
     here). Its critical points are the steady spinning states; minima are stable.
-    ``theta`` may be an array."""
+    ``theta`` may be an array.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(float(pk.theory.tippetop.effective_potential(0.3, 0.38, 0.4, 6.0, 1.0)), 6)
+    62.446725
+    """
     a, A, C = _params(alpha, A, C)
     lam = check_finite("jellett", jellett)
     z = np.cos(np.asarray(theta, dtype=float))
@@ -234,7 +275,14 @@ def steady_state_jellett_sq(alpha, A, C, z):
     """g(z) = alpha f(z)^2 / D(z): the squared Jellett integral of the steady state at
     cos(theta) = z (inf where D(z) = (A - C) z + C alpha <= 0, i.e. no intermediate steady
     state at that angle). g(1) and g(-1) are the stability boundaries of the upright and the
-    inverted state. Derived here; ``z`` may be an array."""
+    inverted state. Derived here; ``z`` may be an array.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(float(pk.theory.tippetop.steady_state_jellett_sq(0.3, 0.38, 0.4, 0.5)), 6)
+    0.247094
+    """
     a, A, C = _params(alpha, A, C)
     z = np.asarray(z, dtype=float)
     D = _D(z, a, A, C)
@@ -249,7 +297,14 @@ def steady_precession(alpha, A, C, theta) -> dict:
     sliding, precessing at Omega (> 0 branch) where Omega^2 = alpha / ((A - C) cos theta + C alpha).
     Returns dict(Omega, n, jellett, D) with spin n = w.k = Omega (cos theta - alpha) and
     jellett = Omega (A sin^2 theta + C (cos theta - alpha)^2).
-    Raises ParameterError if no steady state exists at this theta (D <= 0)."""
+    Raises ParameterError if no steady state exists at this theta (D <= 0).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> {k: round(float(v), 6) for k, v in pk.theory.tippetop.steady_precession(0.3, 0.38, 0.4, 1.0).items()}
+    {'Omega': 1.65753, 'n': 0.398308, 'jellett': 0.484274, 'D': 0.109194}
+    """
     a, A, C = _params(alpha, A, C)
     th = check_range("theta", theta, 0.0, math.pi, label="(0, pi)")
     z = math.cos(th)
@@ -263,10 +318,17 @@ def steady_precession(alpha, A, C, theta) -> dict:
 # ------------------------------------------------------- 2/3. critical Jellett and spins
 
 def upright_unstable_jellett(alpha, A, C) -> float:
-    """|lambda| above which the upright spinning state (theta = 0) is unstable:
+    """abs(lambda) above which the upright spinning state (theta = 0) is unstable:
     lambda_up = sqrt(alpha C (1 - alpha)^4 / (gamma - 1 + alpha)) = sqrt(g(1)), inf (always
     stable) if gamma = A/C <= 1 - alpha. Derived here, not quoted (mirror image of [RR14]'s
-    lambda_thres under alpha -> -alpha)."""
+    lambda_thres under alpha -> -alpha).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.tippetop.upright_unstable_jellett(0.3, 0.38, 0.4), 6)
+    0.339482
+    """
     a, A, C = _params(alpha, A, C)
     den = _margins(a, A, C)[0]
     return math.inf if den <= 0 else math.sqrt(a * C * C * (1.0 - a) ** 4 / den)
@@ -284,7 +346,14 @@ def jellett_threshold(alpha, A, C) -> float:
     inverted spinning state is stable (for gamma < 1 + alpha) -- this agreement is what fixes
     the correspondence lambda_[RR14] = phasekit ``jellett`` (up to sign).
     Returns inf if gamma >= 1 + alpha (the inverted state is then never stable).
-    The threshold is in terms of |lambda|; phasekit's ``jellett`` is lambda itself."""
+    The threshold is in terms of abs(lambda); phasekit's ``jellett`` is lambda itself.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.tippetop.jellett_threshold(0.3, 0.38, 0.4), 6)
+    0.989563
+    """
     a, A, C = _params(alpha, A, C)
     den = _margins(a, A, C)[1]  # = C (1 + alpha - gamma)
     return math.inf if den <= 0 else math.sqrt(C * a) * (1.0 + a) ** 2 / math.sqrt(den / C)
@@ -298,7 +367,14 @@ def upright_unstable_spin(alpha, A, C) -> float:
 
     Derived here, not quoted: lambda = C n (1 - alpha) at theta = 0 and lambda^2 > g(1). Checked
     in the tests against the eigenvalues of the linearised full equations (viscous friction),
-    which change sign exactly there, independently of the friction coefficient."""
+    which change sign exactly there, independently of the friction coefficient.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.tippetop.upright_unstable_spin(0.3, 0.38, 0.4), 6)
+    1.212436
+    """
     a, A, C = _params(alpha, A, C)
     den = _margins(a, A, C)[0]
     return math.inf if den <= 0 else (1.0 - a) * math.sqrt(a / den)
@@ -312,7 +388,14 @@ def inverted_stable_spin(alpha, A, C) -> float:
 
     Derived here, not quoted (lambda = -C n (1 + alpha) at theta = pi, lambda^2 > g(-1)); it is
     [RR14]'s lambda_thres divided by C (1 + alpha). Note this is the spin IN the inverted state;
-    the initial spin needed is ``critical_spin_from_jellett`` / ``full_inversion_spin``."""
+    the initial spin needed is ``critical_spin_from_jellett`` / ``full_inversion_spin``.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.tippetop.inverted_stable_spin(0.3, 0.38, 0.4), 6)
+    1.903005
+    """
     a, A, C = _params(alpha, A, C)
     den = _margins(a, A, C)[1]
     return math.inf if den <= 0 else (1.0 + a) * math.sqrt(a / den)
@@ -325,7 +408,14 @@ def ueda_group_limit(alpha, A, C) -> str:
     own boundaries were not seen): "I" (never flips, gamma <= 1 - alpha: the upright state is
     stable at every spin), "II" (inverts completely once spun fast enough,
     1 - alpha < gamma < 1 + alpha, the classical interval) or "III" (gamma >= 1 + alpha: the
-    inverted state is never stable and a fast top settles at theta_f < pi, see ``theta_f_limit``)."""
+    inverted state is never stable and a fast top settles at theta_f < pi, see ``theta_f_limit``).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.tippetop.ueda_group_limit(0.3, 0.38, 0.4)
+    'II'
+    """
     a, A, C = _params(alpha, A, C)
     up, inv = _margins(a, A, C)
     if up <= 0:
@@ -387,10 +477,12 @@ def ueda_group(alpha, A, C, n, *, theta0: float = 0.0) -> str:
     Derived here, not quoted (the finite-spin analogue of [USW05]'s Groups I / II / III, whose
     exact finite-spin statements were not seen). With lambda the start's Jellett integral
     (conserved) and g(z) = ``steady_state_jellett_sq``:
-      * lambda^2 <= g(1) (upright stable; always so if gamma <= 1 - alpha): "never";
-      * otherwise the energy descends from theta = 0 to the first steady state z = cos theta
-        with g(z) >= lambda^2, which is a minimum of V: "partial" if it is interior,
-        "full" if g < lambda^2 on all of [-1, 1] (no interior steady state, inverted state stable).
+
+    * lambda^2 <= g(1) (upright stable; always so if gamma <= 1 - alpha): "never";
+    * otherwise the energy descends from theta = 0 to the first steady state z = cos theta
+      with g(z) >= lambda^2, which is a minimum of V: "partial" if it is interior,
+      "full" if g < lambda^2 on all of [-1, 1] (no interior steady state, inverted state stable).
+
     For gamma in the classical interval and n -> inf this gives "full"; for gamma >= 1 + alpha
     "partial" with theta_f -> ``theta_f_limit``; for gamma <= 1 - alpha always "never".
     Validated in the tests by long simulations with a viscous friction law. Caveat: the rule
@@ -399,7 +491,14 @@ def ueda_group(alpha, A, C, n, *, theta0: float = 0.0) -> str:
     near upright is reported. It also assumes the top keeps sliding: under exact Coulomb
     friction the slip can vanish and the top then rolls, which does no work, so it inverts
     less than predicted (studies/tippe_top.py, mu = 0.3: the prediction holds in 164 of 165
-    viscous runs and 108 of 165 Coulomb runs; every Coulomb exception stuck and rolled)."""
+    viscous runs and 108 of 165 Coulomb runs; every Coulomb exception stuck and rolled).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.tippetop.ueda_group(0.3, 0.38, 0.4, 15.0, theta0=0.1)
+    'full'
+    """
     a, A, C = _params(alpha, A, C)
     lam = jellett_of_vertical_start(a, A, C, theta0, n)
     return _classify(a, A, C, lam * lam)[0]
@@ -410,7 +509,14 @@ def theta_f(alpha, A, C, n, *, theta0: float = 0.0) -> float:
     theta_f = arccos(z_f) for the "partial" outcome, where z_f is the largest root in (-1, 1) of
     the quartic alpha f(z)^2 = lambda^2 ((A - C) z + C alpha) (i.e. g(z_f) = lambda^2 with
     g'(z_f) <= 0), f(z) = A (1 - z^2) + C (z - alpha)^2; 0 for "never", pi for "full".
-    Derived here, not quoted ([USW05]'s theta_f formula was not seen)."""
+    Derived here, not quoted ([USW05]'s theta_f formula was not seen).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.tippetop.theta_f(0.3, 0.38, 0.4, 15.0, theta0=0.1), 6)
+    3.141593
+    """
     a, A, C = _params(alpha, A, C)
     lam = jellett_of_vertical_start(a, A, C, theta0, n)
     return _classify(a, A, C, lam * lam)[1]
@@ -419,7 +525,14 @@ def theta_f(alpha, A, C, n, *, theta0: float = 0.0) -> float:
 def theta_f_limit(alpha, A, C) -> float:
     """Limit of theta_f for n -> inf in group III (gamma > 1 + alpha):
     cos(theta_f) = C alpha / (C - A) = -alpha / (gamma - 1), the angle where D(z) = 0 (the
-    steady precession rate diverges there). nan outside group III. Derived here, not quoted."""
+    steady precession rate diverges there). nan outside group III. Derived here, not quoted.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.tippetop.theta_f_limit(0.3, 0.38, 0.4), 6)
+    nan
+    """
     a, A, C = _params(alpha, A, C)
     if _margins(a, A, C)[1] >= 0:
         return math.nan
@@ -427,13 +540,20 @@ def theta_f_limit(alpha, A, C) -> float:
 
 
 def full_inversion_jellett(alpha, A, C) -> float:
-    """The least |lambda| above which ``ueda_group`` is "full" for every larger lambda:
+    """The least abs(lambda) above which ``ueda_group`` is "full" for every larger lambda:
     sqrt(max over z in [-1, 1] of g(z)) (inf unless gamma is in the classical interval).
     It equals [RR14]'s ``jellett_threshold`` whenever g attains its maximum at z = -1 (e.g.
     always for gamma >= 1, where g is decreasing); it is larger when the upright instability
     (g(1)) or an interior maximum of g is the binding constraint. Derived here.
     g'(z) has the sign of -(4 D^2 + (A - C) f), a convex quadratic, so the interior extrema
-    are the (at most two) roots of 3 (C-A)^2 z^2 - 6 (C-A) C alpha z + 4 C^2 alpha^2 - (C-A)(A + C alpha^2)."""
+    are the (at most two) roots of 3 (C-A)^2 z^2 - 6 (C-A) C alpha z + 4 C^2 alpha^2 - (C-A)(A + C alpha^2).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.tippetop.full_inversion_jellett(0.3, 0.38, 0.4), 6)
+    0.989563
+    """
     a, A, C = _params(alpha, A, C)
     if not classical_inversion(a, A, C):
         return math.inf
@@ -448,7 +568,14 @@ def full_inversion_jellett(alpha, A, C) -> float:
 def full_inversion_spin(alpha, A, C, *, theta0: float = 0.0) -> float:
     """n_c: the initial spin of ``vertical_spin_start(theta0, n)`` above which full inversion
     is predicted (``full_inversion_jellett`` converted with the start's Jellett factor).
-    The analogue of [USW05]'s n_c (their formula not seen; derived here)."""
+    The analogue of [USW05]'s n_c (their formula not seen; derived here).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.tippetop.full_inversion_spin(0.3, 0.38, 0.4, theta0=0.1), 6)
+    3.529109
+    """
     return spin_for_jellett(alpha, A, C, full_inversion_jellett(alpha, A, C), theta0)
 
 
@@ -462,5 +589,12 @@ def critical_spin_from_jellett(alpha, A, C, theta0) -> float:
     (1 + alpha)^2 sqrt(alpha / (C (1 + alpha - gamma))) / (1 - alpha). This is where the inverted
     state becomes stable; full inversion of that start additionally needs the upright state to
     be unstable and no intermediate steady state in the way -- see ``full_inversion_spin``,
-    which equals this value whenever max g = g(-1)."""
+    which equals this value whenever max g = g(-1).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.tippetop.critical_spin_from_jellett(0.3, 0.38, 0.4, 0.1), 6)
+    3.529109
+    """
     return spin_for_jellett(alpha, A, C, jellett_threshold(alpha, A, C), theta0)

@@ -8,6 +8,7 @@ carries its inputs (model, start, options) so that it can be rerun from :meth:`t
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -15,7 +16,7 @@ import numpy as np
 from .charts import FLIGHT, PAPER_NAMES
 from .errors import ParameterError, Status
 from .hybrid import Mode
-from .model import STICK_SLIP, evaluate_function
+from .model import STICK_SLIP, Model, evaluate_function
 from .pose import POSE_COLUMNS, Pose
 from .validate import check_times
 
@@ -32,7 +33,17 @@ SAMPLE_COLUMNS = (*STATE_COLUMNS, *POSE_COLUMNS)
 class EventRecord:
     """A located event: ``name`` (stick, slip, lift-off, touchdown, impact, a stop or a user
     event), its time, the modes before and after, the state (in the model's chart) and a
-    detail."""
+    detail.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> ev = traj.events[0]
+    >>> isinstance(ev, pk.EventRecord), ev.name, ev.mode_before, ev.mode_after
+    (True, 'lift-off', 'sliding', 'end')
+    """
 
     name: str
     t: float
@@ -60,7 +71,17 @@ class Segment:
     """A stretch of one mode: from (t0, x0) to (t1, x1), states in the mode's chart (the
     model's chart in contact, the flight chart in flight). ``end`` names what ended it
     (an event, "time" or "failed"); ``monitored``: the (t, x) where the flow's monitor
-    crossed zero (minima of R; the maximum of the gap in flight)."""
+    crossed zero (minima of R; the maximum of the gap in flight).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> seg = traj.segments[0]
+    >>> isinstance(seg, pk.Segment), seg.mode.value, seg.end
+    (True, 'sliding', 'lift-off')
+    """
 
     mode: Mode
     t0: float
@@ -95,7 +116,17 @@ class Segment:
 class Flight:
     """One flight: from lift-off (t_liftoff) to touchdown (t_touchdown, None if it did not
     end in one). ``gap_max``/``t_gap_max``: the located maximum of the gap; ``W_star`` and
-    ``Omega_star``: vertical velocity of G and precession rate at lift-off."""
+    ``Omega_star``: vertical velocity of G and precession rate at lift-off.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 200.0, stop_at='touchdown')
+    >>> fl = traj.flights[0]
+    >>> isinstance(fl, pk.Flight), fl.status.value, f'{fl.gap_max:.2e}'
+    (True, 'touchdown', '1.57e-07')
+    """
 
     status: Status
     t_liftoff: float
@@ -136,15 +167,16 @@ def observable_table(model, parts):
     return pd.DataFrame({"t": t_all, "mode": modes, **cols})
 
 
+@dataclass(frozen=True, eq=False, repr=False, kw_only=True)
 class Trajectory:
-    """The outcome of :func:`phasekit.simulate`.
+    """The outcome of :func:`phasekit.simulate` (and of :func:`phasekit.simulate_batch`): frozen.
 
     Attributes
     ----------
     status : Status
         ``jumped`` (R reached 0 with dR/dt < 0), ``touchdown`` (stopped at the first
-        re-contact), ``stopped`` (a stop event), ``completed`` (reached ``t_end``) or
-        ``failed`` (see ``reason``).
+        re-contact), ``stopped`` (a stop event), ``completed`` (reached ``t_end``), ``settled``
+        or ``failed`` (see ``reason``).
     segments : tuple of Segment
         The stretches of one mode each, in time order.
     events : tuple of EventRecord
@@ -152,22 +184,53 @@ class Trajectory:
         and the user's events).
     model, x0, t0, options
         The inputs, so that the run can be repeated.
+    ts, ys
+        The states at the requested ``t_eval`` inside the run (None without one).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> traj.status.value, round(traj.t_jump, 6)
+    ('jumped', 45.256004)
     """
 
-    def __init__(self, *, model, x0, t0, t_end, options, status, reason, segments, events, wall_s, stop_at="jump",
-                 restitution=0.0, user_events=(), t_eval=None, x_end=None, mode_end=None, pose0=None):
-        self.model, self.x0, self.t0, self.t_end, self.options = model, np.asarray(x0, float), float(t0), float(t_end), options
-        self.pose0 = Pose.of(pose0)
-        self._pose_track = None
-        self.status, self.reason = status, reason
-        self.segments, self.events = tuple(segments), tuple(events)
-        self.wall_s, self.stop_at, self.restitution, self.user_events = wall_s, stop_at, restitution, tuple(user_events)
-        self._x_end, self._mode_end = x_end, mode_end
-        self.ts = self.ys = None
-        if t_eval is not None and self.segments:
-            te = t_eval[(t_eval >= self.t0) & (t_eval <= self.t)]
-            if te.size:
-                self.ts, self.ys = te, self._chart_states(te)
+    model: Model
+    x0: np.ndarray
+    t0: float
+    t_end: float
+    options: object
+    status: Status
+    reason: str | None
+    segments: tuple[Segment, ...]
+    events: tuple[EventRecord, ...]
+    wall_s: float
+    stop_at: str = "jump"
+    restitution: float = 0.0
+    user_events: tuple = ()
+    pose0: Pose | None = None
+    ts: np.ndarray | None = None
+    ys: np.ndarray | None = None
+    #: where a run that ended without a segment of its own (or as it settled) stopped
+    x_stop: np.ndarray | None = None
+    mode_stop: Mode | None = None
+
+    def __post_init__(self):
+        set_ = object.__setattr__  # frozen: the inputs are normalised once, here
+        set_(self, "x0", np.asarray(self.x0, float))
+        set_(self, "t0", float(self.t0))
+        set_(self, "t_end", float(self.t_end))
+        set_(self, "pose0", Pose.of(self.pose0))
+        set_(self, "segments", tuple(self.segments))
+        set_(self, "events", tuple(self.events))
+        set_(self, "user_events", tuple(self.user_events))
+
+    @functools.cached_property
+    def _pose_track(self):
+        from .pose import PoseTrack
+
+        return PoseTrack(self, self.pose0)
 
     # -- summary ---------------------------------------------------------------------------
     @property
@@ -186,14 +249,14 @@ class Trajectory:
     @property
     def x(self) -> np.ndarray:
         """The final state, in the model's chart."""
-        if self._x_end is not None:
-            return self._x_end
+        if self.x_stop is not None:
+            return self.x_stop
         seg = self.segments[-1]
         return self._to_chart(seg.mode, seg.x1)
 
     @property
     def mode(self) -> str:
-        return (self._mode_end or self.segments[-1].mode).value if (self._mode_end or self.segments) else Mode.SLIDING.value
+        return (self.mode_stop or self.segments[-1].mode).value if (self.mode_stop or self.segments) else Mode.SLIDING.value
 
     @property
     def backend(self) -> str:
@@ -401,10 +464,6 @@ class Trajectory:
         return df
 
     def _pose(self, idx, ts) -> dict:
-        if self._pose_track is None:
-            from .pose import PoseTrack
-
-            self._pose_track = PoseTrack(self, self.pose0)
         return self._pose_track(idx, ts)
 
     def pose(self, times):
@@ -490,7 +549,8 @@ class Trajectory:
             "n_steps": int(self.n_steps),
             "n_rhs": int(self.n_rhs),
             "wall_s": float(self.wall_s),
-            "formulation": chart.name,
+            "chart": chart.name,
+            "formulation": chart.name,  # the old name of "chart", kept for readers of older output
             "backend": self.backend,
             "rtol": self.options.rtol,
         }

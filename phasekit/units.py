@@ -157,6 +157,15 @@ class Scale:
     ----------
     time_unit : Quantity
         sqrt(b/g), phasekit's unit of time.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> sc = pk.Scale('21.5 mm')
+    >>> str(sc.quantity(1.0, 'time').to('ms').round(2))
+    '46.81 millisecond'
+    >>> round(sc.dimensionless('50 rev/s'), 4)
+    14.7074
     """
 
     def __init__(self, b, g=STANDARD_GRAVITY, mass=None):
@@ -264,7 +273,17 @@ def _unit_text(unit: str) -> str:
 
 def egg_of_size(length, breadth, *, w: float = 0.0, mass=None, g=STANDARD_GRAVITY):
     """An :class:`~phasekit.egg.Egg` of the given length and maximum breadth (uniform density)
-    and its :class:`Scale` (b = breadth / 2). ``w`` is the egg's asymmetry (w/L)."""
+    and its :class:`Scale` (b = breadth / 2). ``w`` is the egg's asymmetry (w/L).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> egg, sc = pk.egg_of_size('57 mm', '43 mm', w=0.05)
+    >>> egg
+    Egg(a=1.32558, w=0.05)
+    >>> str(sc.b)
+    '21.5 millimeter'
+    """
     from .egg import Egg
 
     L, B = _of_kind(length, "length", "length", positive=True), _of_kind(breadth, "breadth", "length", positive=True)
@@ -281,7 +300,17 @@ def egg_of_size(length, breadth, *, w: float = 0.0, mass=None, g=STANDARD_GRAVIT
 def tippe_top_of_size(radius, offset, *, A=None, C=None, mass=None, g=STANDARD_GRAVITY):
     """An :class:`~phasekit.body.EccentricSphere` of the given ball radius with its centre of
     mass ``offset`` (a length) below the centre, and its :class:`Scale` (b = radius). ``A``
-    and ``C`` may be numbers (units M b^2) or quantities of a moment of inertia (need ``mass``)."""
+    and ``C`` may be numbers (units M b^2) or quantities of a moment of inertia (need ``mass``).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> top, sc = pk.tippe_top_of_size('15 mm', '4.5 mm')
+    >>> top
+    EccentricSphere(offset=0.3, A=0.31, C=0.4)
+    >>> str(sc.b)
+    '15 millimeter'
+    """
     from .body import EccentricSphere
 
     _of_kind(radius, "radius", "length", positive=True)

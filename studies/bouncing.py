@@ -11,24 +11,16 @@ before its first lift-off (where mu_e = mu by construction). Also printed: the f
 rise spent in flight, and the naive estimate mu_e / mu ~ 1 - (flight fraction) that it would
 suggest. It fails: the tangential impulse of each impact is Coulomb-limited too, and over many
 impacts the normal impulse per unit time equals the weight, so the mean friction stays near
-mu M g however much of the time is spent in flight.
-
-Writes bouncing.png and bouncing.csv to figures/ (figures/quick/ with --quick, or --out DIR).
-
-    python studies/bouncing.py [--quick] [--out DIR]
+mu M g however much of the time is spent in flight. Writes bouncing.png and bouncing.csv.
 """
 
 from __future__ import annotations
 
-import time
-from pathlib import Path
+import phasekit as pk
+from phasekit.viz import pyplot
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
-from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 MU, A_RATIO = 0.1, 1.5
 
 
@@ -36,7 +28,7 @@ def fit_mu(ts, theta, J, theta0):
     """Least-squares mu for theta(t) ~ (3.18) with T = mu t; returns (mu, standard error)."""
     from scipy.optimize import curve_fit
 
-    f = lambda t, mu: pk.gyroscopic_closed(A_RATIO, J, theta0, mu * t)[0]  # noqa: E731
+    f = lambda t, mu: pk.theory.gyroscopic_closed(A_RATIO, J, theta0, mu * t)[0]  # noqa: E731
     p, cov = curve_fit(f, ts, theta, p0=[MU])
     return float(p[0]), float(np.sqrt(cov[0, 0]))
 
@@ -45,7 +37,7 @@ def run(omega0: float, e: float):
     body = pk.Spheroid(A_RATIO)
     model = pk.Model(body, pk.Coulomb(MU))
     y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=omega0)
-    J = float(pk.jellett_constant(body, y0[4], y0[2]))
+    J = float(pk.theory.jellett_constant(body, y0[4], y0[2]))
     dt = 2 * np.pi / omega0  # one sample per fast period: residuals roughly independent
     te = np.arange(0.0, 1000.0, dt)
     rise = pk.Event("theta", 0.05, direction=-1, name="rise-complete")  # the end of the rise
@@ -99,21 +91,18 @@ def draw(plt, rows, control, omegas):
 
 
 def main(argv=None) -> list[dict]:
-    ap = study_parser(__doc__, default_out=FIGURES, quick_help="Omega0 = 11, 20 and e = 0, 0.6 only")
-    args = ap.parse_args(argv)
-    out = output_dir(args)
+    st = pk.sweep.Study(__file__, __doc__, quick_help="Omega0 = 11, 20 and e = 0, 0.6 only")
+    args = st.parse(argv)
     plt = pyplot()
-
-    t0 = time.perf_counter()
     es = (0.0, 0.3, 0.6, 0.9) if not args.quick else (0.0, 0.6)
     omegas = (11.0, 15.0, 20.0, 30.0) if not args.quick else (11.0, 20.0)
     # below the jump threshold last (Omega0 = 9): no flight, the method's calibration
     todo = [(om, e) for om in omegas for e in es] + [(9.0, 0.5)]
-    *rows, control = [run(om, e) for om, e in progress(todo, desc="rises", enabled=not args.no_progress)]
+    *rows, control = [run(om, e) for om, e in st.progress(todo, desc="rises")]
     fig = draw(plt, rows, control, omegas)
-    png = save_figure(fig, out / "bouncing.png")
-    write_csv(out / "bouncing.csv", list(rows[0]), rows + [control])
-    print(f"Figure {png.name}: mu_e / mu from fits of (3.18) over the whole bouncing rise; {time.perf_counter() - t0:.1f} s.")
+    png = st.save(fig, "bouncing.png")
+    st.csv("bouncing.csv", list(rows[0]), rows + [control])
+    print(f"Figure {png.name}: mu_e / mu from fits of (3.18) over the whole bouncing rise; {st.wall:.1f} s.")
     print(f"{'Omega0':>6s} {'e':>4s} {'rise t':>7s} {'lift-offs':>9s} {'impacts':>8s} {'flight %':>8s} {'mu_e/mu':>8s} "
           f"{'+-fit':>7s} {'bias':>7s} {'1-flight':>8s}")
     for r in rows + [control]:
@@ -124,4 +113,4 @@ def main(argv=None) -> list[dict]:
 
 
 if __name__ == "__main__":
-    run_study(main)
+    pk.sweep.run_study(main)

@@ -33,27 +33,23 @@ Friction: exact Coulomb, mu = 0.1 (the paper's value, an assumption for an egg o
    aluminium bodies spun at up to 2500 rpm left the table by a fraction of a millimetre for up
    to a few hundredths of a second, and gaps were seen under hard-boiled eggs at 1800 rpm).
 
-Outputs (figures/ or --out DIR; --quick writes to figures/quick/): egg_which_end.csv/.png,
+Outputs: egg_which_end.csv/.png,
 egg_threshold.csv/.png, egg_real_units.csv, egg_summary.json.
-
-    python studies/egg.py [--quick] [--out DIR] [--no-progress] [--fresh]
 """
 
 from __future__ import annotations
 
 import json
 import math
-import os
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
+import phasekit as pk
+from phasekit.viz import pyplot, save_figure
+
 import numpy as np
 
-from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 A_HEN = 57.0 / 43.0
 MU = 0.1
 RTOL = 1e-9
@@ -96,7 +92,7 @@ class EggDefinition(pk.Definition):
     def start(self, body, value: float):
         if not self.from_horizontal_like or body.flip_symmetric:
             return super().start(body, value)
-        th_h = pk.horizontal_like_angle(body, pk.precession_angles(body, omega0=value))
+        th_h = pk.theory.horizontal_like_angle(body, pk.theory.precession_angles(body, omega0=value))
         y0 = pk.gyroscopic_start(body, th_h - self.amplitude, omega0=value)
         return pk.Model(body, self.friction(), "euler"), y0
 
@@ -104,15 +100,15 @@ class EggDefinition(pk.Definition):
 def which_end(w: float, omega0: float, theta0: float, t_max: float) -> EndRow:
     t0 = time.perf_counter()
     egg = pk.Egg(A_HEN, w)
-    thetas = pk.precession_angles(egg, omega0=omega0)
-    th_h = pk.horizontal_like_angle(egg, thetas) if w > 0 else math.pi / 2
-    th2 = pk.side_equilibrium(egg)[1]
+    thetas = pk.theory.precession_angles(egg, omega0=omega0)
+    th_h = pk.theory.horizontal_like_angle(egg, thetas) if w > 0 else math.pi / 2
+    th2 = pk.theory.side_equilibrium(egg)[1]
     y0 = pk.gyroscopic_start(egg, theta0, omega0=omega0)
     events = [pk.Event("theta", 0.1, direction=-1, name="rise-fat"), pk.Event("theta", math.pi - 0.1, direction=+1, name="rise-thin"),
               pk.Event("slip_speed", FIRST_STICK, direction=-1, name="settled")]
     r = pk.simulate(pk.Model(egg, pk.Coulomb(MU)), y0, t_max, rtol=RTOL, stop_at="none", events=events, track_minima=False,
                     max_wall=120.0)
-    key = f"w={w:g}|omega0={omega0:g}|theta0={theta0:.6f}|t_max={t_max:g}"
+    key = end_key(w, omega0, theta0, t_max)
     if r.status is pk.Status.FAILED:
         how = "failed"
     elif r.status is pk.Status.STOPPED:
@@ -147,7 +143,7 @@ def plot_which_end(rows: list[EndRow], cfg: dict, path: Path, quick: bool) -> No
         th_h = [next(r.theta_h for r in sub if r.w == w) for w in ws]
         ax.plot(ws, np.array(th_h) - math.pi / 2, "k-", lw=1.5, label=r"$\theta_h(\Omega_0)$: horizontal-like state (predicted separatrix)")
         wf = np.linspace(0.0, max(ws), 30)
-        ax.plot(wf, [pk.side_equilibrium(pk.Egg(A_HEN, w))[1] - math.pi / 2 if w > 0 else 0.0 for w in wf], "k:", lw=1,
+        ax.plot(wf, [pk.theory.side_equilibrium(pk.Egg(A_HEN, w))[1] - math.pi / 2 if w > 0 else 0.0 for w in wf], "k:", lw=1,
                 label=r"$\theta_2$: its $\Omega_0\to\infty$ limit")
         ax.axhline(0.0, color="0.7", lw=0.8)
         ax.set_xlabel(r"asymmetry $w$ (shift of the widest section / length)")
@@ -161,12 +157,12 @@ def plot_which_end(rows: list[EndRow], cfg: dict, path: Path, quick: bool) -> No
     save_figure(fig, path)
 
 
-def threshold_rows(cfg: dict, show: bool) -> tuple[list[dict], list[dict]]:
+def threshold_rows(cfg: dict, st) -> tuple[list[dict], list[dict]]:
     out = []
     for start, rel in (("pi/2 - 0.01", False), ("theta_h - 0.01", True)):
         defn = EggDefinition("egg-sliding", "sliding", mu=MU, t_max=cfg["t_max"], from_horizontal_like=rel)
         guess = None
-        for w in progress(cfg["threshold_ws"], desc=f"egg thresholds from {start}", enabled=show):
+        for w in st.progress(cfg["threshold_ws"], desc=f"egg thresholds from {start}"):
             th = pk.find_threshold(defn, pk.Egg(A_HEN, w), hi=40.0, lo=3.0, guess=guess, tol=2e-3)
             out.append({"start": start, "w": w, "threshold": th.value, "bracket_lo": th.bracket[0], "bracket_hi": th.bracket[1],
                         "status": th.status.value, "n_sims": th.n_sims,
@@ -221,64 +217,58 @@ def real_egg(threshold: float | None, w: float) -> list[dict]:
                "status": str(r.status), "t_liftoff_s": None, "theta_liftoff": None, "flight_ms": None, "gap_max_mm": None}
         if fl is not None and fl.t_touchdown is not None:
             row.update(t_liftoff_s=sc.quantity(fl.t_liftoff, "time").to("s").magnitude,
-                       theta_liftoff=float(pk.vector_to_euler(fl.x_liftoff[:8])[4]),
+                       theta_liftoff=float(pk.to_paper("vector", fl.x_liftoff[:8])[4]),
                        flight_ms=sc.quantity(fl.t_touchdown - fl.t_liftoff, "time").to("ms").magnitude,
                        gap_max_mm=sc.quantity(fl.gap_max, "length").to("mm").magnitude)
         rows.append(row)
     return rows
 
 
-def write_json(path: Path, obj) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(json.dumps(obj, indent=1, default=str))
-    os.replace(tmp, path)
+def end_key(w, omega0, theta0, t_max) -> str:
+    return f"w={w:g}|omega0={omega0:g}|theta0={theta0:.6f}|t_max={t_max:g}"
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES)
-    ap.add_argument("--fresh", action="store_true", help="discard stored rows and recompute")
-    args = ap.parse_args(argv)
-    out = output_dir(args)
+    st = pk.sweep.Study(__file__, __doc__, resumable=True)
+    args = st.parse(argv)
     cfg = QUICK if args.quick else FULL
-    t0 = time.perf_counter()
-    meta = pk.provenance({"study": "egg", "a": A_HEN, "mu": MU, "rtol": RTOL, "config": {k: list(v) if isinstance(v, tuple) else v
-                                                                                         for k, v in cfg.items()}})
-    store = pk.ResultStore(out / "egg_which_end.csv", out / "egg_which_end.json", EndRow, meta, fresh=args.fresh)
+    store = st.store(EndRow, {"a": A_HEN, "mu": MU, "rtol": RTOL,
+                              "config": {k: list(v) if isinstance(v, tuple) else v for k, v in cfg.items()}}, name="egg_which_end")
     tasks = []
     for w in cfg["ws"]:
         for om in cfg["omegas"]:
             egg = pk.Egg(A_HEN, w)
-            th_h = pk.horizontal_like_angle(egg, pk.precession_angles(egg, omega0=om)) if w > 0 else math.pi / 2
+            th_h = pk.theory.horizontal_like_angle(egg, pk.theory.precession_angles(egg, omega0=om)) if w > 0 else math.pi / 2
             starts = [(th_h if th_h is not None else math.pi / 2) + d for d in cfg["offsets"]]
             starts += [math.pi / 2 - 0.05, math.pi / 2 + 0.05]  # both sides of the horizontal
             for th in starts:
                 tasks.append((w, om, th))
-    keys = {f"w={w:g}|omega0={om:g}|theta0={th:.6f}|t_max={cfg['t_max']:g}" for w, om, th in tasks}
-    for w, om, th in progress([t for t in tasks if f"w={t[0]:g}|omega0={t[1]:g}|theta0={t[2]:.6f}|t_max={cfg['t_max']:g}"
-                               not in store], desc="which end", enabled=not args.no_progress):
-        store.add(which_end(w, om, th, cfg["t_max"]))
+    keys = [end_key(*t, cfg["t_max"]) for t in tasks]
+    # (some starts coincide: each is run and stored as often as it is listed, as the committed rows were)
+    for t in st.progress([t for t, k in zip(tasks, keys) if k not in store], desc="which end"):
+        store.add(which_end(*t, cfg["t_max"]))
     rows = [r for r in store.rows() if r.key in keys]
-    plot_which_end(rows, cfg, out / "egg_which_end.png", args.quick)
-    thr, checks = threshold_rows(cfg, not args.no_progress)
-    write_csv(out / "egg_threshold.csv", list(thr[0]), [list(r.values()) for r in thr])
+    plot_which_end(rows, cfg, st.path("egg_which_end.png"), args.quick)
+    thr, checks = threshold_rows(cfg, st)
+    st.csv("egg_threshold.csv", list(thr[0]), [list(r.values()) for r in thr])
     sc = pk.Scale("21.5 mm")
-    plot_threshold(thr, sc, out / "egg_threshold.png", args.quick)
+    plot_threshold(thr, sc, st.path("egg_threshold.png"), args.quick)
     real = []
     for w in sorted({0.0, W_HEN} & set(cfg["threshold_ws"])):
         real += real_egg(next(r["threshold"] for r in thr if r["w"] == w and r["start"] == "pi/2 - 0.01"), w)
-    write_csv(out / "egg_real_units.csv", list(real[0]), [list(r.values()) for r in real])
+    st.csv("egg_real_units.csv", list(real[0]), [list(r.values()) for r in real])
     ok = [r for r in rows if risen(r) in ("fat", "thin")]
     summary = {"which_end": {"n": len(rows), "rose": len(ok), "as_predicted": sum(1 for r in ok if r.end == r.predicted),
                              "not_as_predicted": [r.key for r in ok if r.end != r.predicted],
                              "stuck_at_start": [r.key for r in rows if risen(r) == "none"],
                              "failed": [r.key for r in rows if r.end == "failed"],
-                             "theta_2": {f"{w:g}": pk.side_equilibrium(pk.Egg(A_HEN, w))[1] for w in cfg["ws"]}},
+                             "theta_2": {f"{w:g}": pk.theory.side_equilibrium(pk.Egg(A_HEN, w))[1] for w in cfg["ws"]}},
                "threshold": thr, "default_definition_check": checks, "real_units": real, "scale": repr(sc),
-               "wall_s": time.perf_counter() - t0}
-    write_json(out / "egg_summary.json", summary)
+               "wall_s": st.wall}
+    st.json("egg_summary.json", summary)
     print(json.dumps(summary, indent=1, default=str))
     return summary
 
 
 if __name__ == "__main__":
-    run_study(main, resume="the finished rows are kept in egg_which_end.csv (in the output folder); rerunning the command resumes from them")
+    pk.sweep.run_study(main)

@@ -18,31 +18,25 @@ Restitution 0 is the model without rebounds: each touchdown ends in contact unle
 lifts off again by itself. Accuracy: the base case is rerun at rtol 1e-12 (bounce trains are
 sensitive: the largest gap's run-to-run spread is in the summary).
 
-Outputs (figures/ or --out DIR; --quick writes to figures/quick/):
+Outputs:
   egg_jumps.csv      one row per run
   egg_jumps.png      largest gap against longest flight for every lever, with the experiment's range
   egg_jump.gif       the base case around its largest flight (gap drawn larger, printed)
   egg_jump_strip.png film strip of the same flight
   egg_jumps.json     summary
-
-    python studies/egg_jumps.py [--quick] [--out DIR] [--no-progress]
 """
 
 from __future__ import annotations
 
-import json
 import math
-import os
 import time
 from pathlib import Path
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
+import phasekit as pk
+from phasekit.viz import animate, film_strip, plain_log_ticks, pyplot, save_figure
+
 import numpy as np
 
-from phasekit.viz import (animate, film_strip, output_dir, plain_log_ticks, progress, pyplot, run_study, save_figure,
-                          study_parser, write_csv)
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 LENGTH, BREADTH = "57 mm", "43 mm"
 T_END = 200.0  # 9.4 s for b = 21.5 mm
 RTOL = 1e-10
@@ -90,18 +84,18 @@ def measure(lever: str, value, case: dict, rtol: float = RTOL) -> dict:
         big = done[int(np.argmax(gaps))]
         row.update(first_flight_ms=ms(dur[0]), first_gap_mm=mm(gaps[0]), longest_flight_ms=ms(max(dur)),
                    largest_gap_mm=mm(max(gaps)), t_largest_gap_s=ms(big.t_gap_max) / 1e3,
-                   theta_largest_gap=float(pk.vector_to_euler(big.x_liftoff[:8])[4]),
+                   theta_largest_gap=float(pk.to_paper("vector", big.x_liftoff[:8])[4]),
                    **{"n_gap_over_0.05mm": sum(1 for g in gaps if mm(g) > 0.05)})
     return row
 
 
-def first_flights(revs, show: bool) -> list[dict]:
+def first_flights(revs, st) -> list[dict]:
     """The first flight alone (stop at the first touchdown) against the spin: the README's
     'how far above the threshold' numbers. 40.792 rev/s is the upper end of the threshold's
     bisection bracket for w = 0 (figures/egg_threshold.csv: 11.99884 in units sqrt(g/b), 0.07%
     above the threshold 40.76 rev/s), 41.578 rev/s is 1.02 x the threshold."""
     rows = []
-    for rev in progress(revs, desc="first flights", enabled=show):
+    for rev in st.progress(revs, desc="first flights"):
         r, sc = run_case({**BASE, "rev": rev}, rtol=1e-12, stop_at="touchdown")
         fl = r.flights[0] if r.flights else None
         rows.append({"rev": rev, "status": r.status.value,
@@ -144,7 +138,7 @@ def plot(rows: list[dict], path: Path, quick: bool) -> None:
     save_figure(fig, path)
 
 
-def movie(out: Path, quick: bool) -> dict:
+def movie(st) -> dict:
     """The base case around its largest flight, as a GIF and a film strip."""
     r, sc = run_case(BASE)
     done = [f for f in r.flights if f.t_touchdown is not None]
@@ -152,37 +146,32 @@ def movie(out: Path, quick: bool) -> dict:
     span = (big.t_liftoff - 0.05, min(r.t, big.t_touchdown + 0.05))
     gap = float(sc.to_real(big.gap_max, "length").magnitude)
     title = f"57 x 43 mm egg, {BASE['rev']:g} rev/s, mu {BASE['mu']}, e {BASE['e']}: its highest hop ({gap:.2f} mm)"
-    a = animate(r, out / "egg_jump.gif", frames=16 if quick else 40, t_span=span, scale=sc, gap_scale=25.0,
+    a = animate(r, st.path("egg_jump.gif"), frames=16 if st.quick else 40, t_span=span, scale=sc, gap_scale=25.0,
                 window_size=(400, 300), panel="R", title=title, progress=False, fps=12)
-    s = film_strip(r, out / "egg_jump_strip.png", frames=5, t_span=span, scale=sc, gap_scale=25.0,
+    s = film_strip(r, st.path("egg_jump_strip.png"), frames=5, t_span=span, scale=sc, gap_scale=25.0,
                    window_size=(300, 250), title=title + " (gap drawn x25)")
     return {"gif_bytes": a.bytes, "strip": Path(s.path).name, "span": span, "gap_mm": gap,
             "flight_ms": float(sc.to_real(big.t_touchdown - big.t_liftoff, "time").magnitude)}
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES)
-    args = ap.parse_args(argv)
-    out = output_dir(args)
+    st = pk.sweep.Study(__file__, __doc__)
+    args = st.parse(argv)
     cfg = QUICK if args.quick else FULL
-    show = not args.no_progress
-    t0 = time.perf_counter()
     tasks = [(lever, v, {**BASE, key: v}) for lever, (key, vals) in cfg["levers"].items() for v in vals]
-    rows = [measure(lever, v, case) for lever, v, case in progress(tasks, desc="egg runs", enabled=show)]
+    rows = [measure(lever, v, case) for lever, v, case in st.progress(tasks, desc="egg runs")]
     rows.append(measure("base, rtol 1e-12", BASE["rev"], dict(BASE), rtol=1e-12))
-    write_csv(out / "egg_jumps.csv", COLUMNS, rows)
-    plot([r for r in rows if r["rtol"] == RTOL], out / "egg_jumps.png", args.quick)
-    first = first_flights(cfg["first_flight_revs"], show)
+    st.csv("egg_jumps.csv", COLUMNS, rows)
+    plot([r for r in rows if r["rtol"] == RTOL], st.path("egg_jumps.png"), args.quick)
+    first = first_flights(cfg["first_flight_revs"], st)
     base = [r for r in rows if r["lever"] == "restitution" and r["value"] == BASE["e"]]
     fine = rows[-1]
     summary = {"base": base[0] if base else None, "base_rtol_1e-12": fine, "first_flights": first,
-               "movie": movie(out, args.quick), "wall_s": time.perf_counter() - t0,
+               "movie": movie(st), "wall_s": st.wall,
                "in_experiment_range": [(r["lever"], r["value"]) for r in rows if r.get("largest_gap_mm") and
                                        EXPERIMENT["gap_mm"][0] <= r["largest_gap_mm"] and
                                        EXPERIMENT["flight_ms"][0] <= r["longest_flight_ms"]]}
-    tmp = out / f".egg_jumps.json.{os.getpid()}.tmp"
-    tmp.write_text(json.dumps(summary, indent=1, default=float))
-    os.replace(tmp, out / "egg_jumps.json")
+    st.json("egg_jumps.json", summary, default=float)
     for r in rows:
         print(f"{r['lever']:<16s} {r['value']:>8.4g}: {r['n_flights']:5d} flights, first "
               f"{r.get('first_flight_ms') or 0:6.2f} ms / {r.get('first_gap_mm') or 0:.2e} mm, longest "
@@ -195,4 +184,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    run_study(main)
+    pk.sweep.run_study(main)

@@ -10,25 +10,19 @@ the simulated theta, Omega, n with the gyroscopic theta-bar, Omega-bar, n-bar (3
 Means: the average over each fast period (between successive located minima of R), (3.6).
 Errors (RMS and max over the rise up to the jump) of the gyroscopic theta-bar and of Sigma
 against the simulated minima of R, and their trend in Omega0 (10.5, 20, 40) and n0.
-
 Writes envelope_vs_simulation.png and envelope_vs_simulation.csv (columns case, t, theta_bar,
-sigma, r_min_sim, sigma_c_eff, c, c_eff) to figures/ (figures/quick/ with --quick, or --out DIR).
-
-    python studies/envelope_vs_simulation.py [--quick] [--out DIR]
+sigma, r_min_sim, sigma_c_eff, c, c_eff).
 """
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
-from pathlib import Path
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
+import phasekit as pk
+from phasekit.viz import pyplot
+
 import numpy as np
 
-from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 MU = 0.1
 
 
@@ -57,11 +51,11 @@ def run_case(case: Case, t_max: float, dt: float):
     body = pk.Spheroid(case.a)
     y0 = pk.gyroscopic_start(body, case.theta0, omega0=case.omega0, n0=case.n0)
     om_bar0 = float(y0[2])
-    th_p, lam_p, om_p = pk.perturbation_from_c_xi(body, case.theta0, om_bar0, MU, case.c, case.xi)
+    th_p, lam_p, om_p = pk.theory.perturbation_from_c_xi(body, case.theta0, om_bar0, MU, case.c, case.xi)
     y = y0.copy()
     # O(mu) mean state: the drift U = F_y / Omega of (2.7b) and the rise rate mu dtheta/dT of (3.16b);
     # without them the start carries an extra nutation of a few times c.
-    _, dth_dT, vhat, _ = pk.slow_rates(body, case.theta0, om_bar0)
+    _, dth_dT, vhat, _ = pk.theory.slow_rates(body, case.theta0, om_bar0)
     y[0] += -MU * vhat / om_bar0
     y[3] += MU * dth_dT
     y[4] += th_p
@@ -72,15 +66,15 @@ def run_case(case: Case, t_max: float, dt: float):
     rise = (pk.Event("theta", 0.05, direction=-1, name="rise-complete") if case.a > 1 else
             pk.Event("theta", np.pi / 2 - 0.05, direction=+1, name="rise-complete"))
     r = pk.simulate(model, y, t_max, events=[rise])  # dense output (the default), sampled below
-    J = float(pk.jellett_constant(body, case.theta0, om_bar0))
+    J = float(pk.theory.jellett_constant(body, case.theta0, om_bar0))
     ts = np.arange(0.0, r.t, dt)
     ys = r.states(ts)  # the Euler chart: the paper's (U, V, Omega, Lambda, theta, n)
     theta, Omega = ys[:, 4], ys[:, 2]
     tm, Rm = r.minima[:, 0], r.minima[:, 1]
     # fast-period means between successive minima of R
-    t_mid, th_bar = pk.mean_over_periods(ts, theta, tm)
-    _, om_bar = pk.mean_over_periods(ts, Omega, tm)
-    th_gyro, om_gyro = pk.gyroscopic_closed(case.a, J, case.theta0, MU * t_mid)
+    t_mid, th_bar = pk.theory.mean_over_periods(ts, theta, tm)
+    _, om_bar = pk.theory.mean_over_periods(ts, Omega, tm)
+    th_gyro, om_gyro = pk.theory.gyroscopic_closed(case.a, J, case.theta0, MU * t_mid)
     # Sigma at the simulated mean inclination at each minimum of R
     th_at_min = np.interp(tm, t_mid, th_bar) if t_mid.size else np.full_like(tm, np.nan)
     valid = (tm >= t_mid[0]) & (tm <= t_mid[-1]) if t_mid.size else np.zeros_like(tm, bool)
@@ -88,23 +82,19 @@ def run_case(case: Case, t_max: float, dt: float):
     sig_fit = np.full_like(tm, np.nan)
     c_eff = np.nan
     if valid.any():
-        sig[valid] = pk.Sigma(body, J, case.theta0, th_at_min[valid], case.c, form="closed")
+        sig[valid] = pk.theory.Sigma(body, J, case.theta0, th_at_min[valid], case.c, form="closed")
         # effective amplitude of the start: fitted on the first 30% of the minima only, so that
         # the rest of the rise tests the growth law Gamma(theta-bar) out of sample
         idx = np.flatnonzero(valid)
         early = idx[: max(3, int(0.3 * idx.size))]
         th_e = th_at_min[early]
         om_e = J / (body.A * body.h(th_e)[0])
-        scale = np.abs(body.h(th_e)[1] * pk.omega_gyro(body, th_e, om_e) ** 2 * pk.Gamma_closed(body, J, case.theta0, th_e))
-        c_eff = float(np.median((1 - d_rm(Rm, early)) / scale)) * np.sign(case.c)
-        sig_fit[valid] = pk.Sigma(body, J, case.theta0, th_at_min[valid], c_eff, form="closed")
+        scale = np.abs(body.h(th_e)[1] * pk.theory.omega_gyro(body, th_e, om_e) ** 2 * pk.theory.Gamma_closed(body, J, case.theta0, th_e))
+        c_eff = float(np.median((1 - Rm[early]) / scale)) * np.sign(case.c)
+        sig_fit[valid] = pk.theory.Sigma(body, J, case.theta0, th_at_min[valid], c_eff, form="closed")
     return dict(case=case, body=body, res=r, ts=ts, theta=theta, R=model.normal_reaction(ys), tm=tm, Rm=Rm, t_mid=t_mid,
                 th_bar=th_bar, om_bar=om_bar, th_gyro=th_gyro, om_gyro=om_gyro, th_at_min=th_at_min, sigma=sig,
-                sigma_fit=sig_fit, c_eff=c_eff, J=J, omega_fast=float(np.sqrt(pk.omega2(body, case.theta0, om_bar0))), valid=valid)
-
-
-def d_rm(Rm, idx):
-    return Rm[idx]
+                sigma_fit=sig_fit, c_eff=c_eff, J=J, omega_fast=float(np.sqrt(pk.theory.omega2(body, case.theta0, om_bar0))), valid=valid)
 
 
 def errors(d):
@@ -128,7 +118,7 @@ def literal_starts():
         ("(5.2) prolate Omega0=10.5", b15, [7e-5, 2e-6, 10.5, -1e-4, np.pi / 2 - 1e-3, 2e-2], 300.0),
         ("(5.1) oblate n0=10.5", b23, [8e-7, 4e-6, 0.4 * 10.5 / b23.A, 1e-5, 4e-6, 10.5], 300.0),
     ]:
-        chart = pk.choose_formulation(y[4])
+        chart = pk.choose_chart(y[4])
         m = pk.Model(body, pk.Coulomb(MU), chart)
         r = pk.simulate(m, pk.to_chart(chart, y), t_max)
         out.append((label, r))
@@ -177,16 +167,13 @@ def draw(plt, runs):
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES, quick_help="coarser output grid; trend in Omega0 only")
-    args = ap.parse_args(argv)
-    out_dir = output_dir(args)
+    st = pk.sweep.Study(__file__, __doc__, quick_help="coarser output grid; trend in Omega0 only")
+    args = st.parse(argv)
     plt = pyplot()
-
-    t0 = time.perf_counter()
     dt = 0.01 if args.quick else 0.003
     trend_cases = TREND[:3] if args.quick else TREND
     runs, trends = [], []
-    with progress(total=len(PAPER_CASES) + len(trend_cases) + 2, desc="simulations", enabled=not args.no_progress) as bar:
+    with st.progress(total=len(PAPER_CASES) + len(trend_cases) + 2, desc="simulations") as bar:
         for cases, out in ((PAPER_CASES, runs), (trend_cases, trends)):
             for c in cases:
                 out.append(run_case(c, 400.0, dt))
@@ -194,19 +181,14 @@ def main(argv=None) -> dict:
         lits = literal_starts()
         bar.update(2)
 
-    fig = draw(plt, runs)
-    png = save_figure(fig, out_dir / "envelope_vs_simulation.png", dpi=120)
-
-    # --- csv
+    png = st.save(draw(plt, runs), "envelope_vs_simulation.png", dpi=120)
     rows = [[d["case"].label, f"{t:.6f}", f"{th:.8f}", f"{s:.8f}", f"{rm:.8f}", f"{sf:.8f}", d["case"].c, f"{d['c_eff']:.6g}"]
             for d in runs + trends
             for t, th, s, rm, sf, ok in zip(d["tm"], d["th_at_min"], d["sigma"], d["Rm"], d["sigma_fit"], d["valid"]) if ok]
-    path = write_csv(out_dir / "envelope_vs_simulation.csv",
-                     ["case", "t", "theta_bar", "sigma", "r_min_sim", "sigma_c_eff", "c", "c_eff"], rows)
-
-    # --- report
+    path = st.csv("envelope_vs_simulation.csv", ["case", "t", "theta_bar", "sigma", "r_min_sim", "sigma_c_eff", "c", "c_eff"],
+                  rows)
     print(f"Figure {png.name}: R(t), Sigma and the gyroscopic mean state for {len(runs)} cases; table {path.name}; "
-          f"{time.perf_counter() - t0:.1f} s.")
+          f"{st.wall:.1f} s.")
     print("errors over the rise up to the jump: theta = gyroscopic theta-bar - simulated period means;"
           " S(c) = minima of R - Sigma with the nominal c; S(c_eff) = the same with c fitted on the first 30% of the"
           " rise, over the other 70%")
@@ -220,7 +202,7 @@ def main(argv=None) -> dict:
         print(f"{d['case'].label:<28s} {d['res'].status.value:<9s} {tj:>7s} {d['J']:7.3f} {d['c_eff'] / d['case'].c:7.2f} "
               f"{e[0]:9.2e} {e[1]:8.2e} {e[2]:9.2e} {e[3]:8.2e} {e[4]:12.2e} {e[5]:8.2e}")
     print("Jellett constants: the paper quotes J = 4, 4.2 (Fig. 3, oblate; = C n0) and 6.63, 6.83 (Fig. 4, prolate; = A Omega0 h);"
-          " here J = A Omega h (3.17) throughout (NOTES pitfall 4).")
+          " here J = A Omega h (3.17) throughout (docs/physics.md, pitfall 4).")
     for label, r in lits:
         ev = ", ".join(f"{e.name} t={e.t:.4g}" for e in r.events[:3])
         print(f"literal start {label}: {r.status.value}, events: {ev or 'none'}; theta_end = {r.euler_end[4]:.6f}")
@@ -228,4 +210,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    run_study(main)
+    pk.sweep.run_study(main)

@@ -5,22 +5,16 @@ J in {6.20, 6.50, 6.63, 6.70, 6.83, 7.15, 8.45, 13}, Sigma from (3.64) with the 
 (3.47) and (3.58) as in the paper; dashed after Sigma first reaches 0 (the jump, beyond which
 the envelope no longer applies). Also prints, for each J, the inclination of the predicted
 jump with the closed form and with the quadrature form of I (exact I2 instead of its
-dominant part (3.57)). Writes figure2_envelope.png (figures/ by default).
-
-    python studies/figure2_envelope.py [--quick] [--out DIR]
+dominant part (3.57)). Writes figure2_envelope.png.
 """
 
 from __future__ import annotations
 
-import time
-from pathlib import Path
+import phasekit as pk
+from phasekit.viz import pyplot
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
-from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 J_VALUES = (6.20, 6.50, 6.63, 6.70, 6.83, 7.15, 8.45, 13.0)
 A_RATIO, C_AMP, THETA0 = 1.5, -0.00054, np.pi / 2 - 0.0001
 
@@ -37,20 +31,18 @@ def first_zero(theta, sig):
 
 
 def main(argv=None) -> dict:
-    args = study_parser(__doc__, default_out=FIGURES, quick_help="the same run (it is short)").parse_args(argv)
-    out_dir = output_dir(args)
+    st = pk.sweep.Study(__file__, __doc__, quick_help="the same run (it is short)")
+    st.parse(argv)
     plt = pyplot()
-
-    t0 = time.perf_counter()
     body = pk.Spheroid(A_RATIO)
     theta = np.linspace(THETA0, 0.02, 1500)
     coarse = np.linspace(THETA0, 0.02, 120)
     fig, ax = plt.subplots(figsize=(9.2, 4.8))
     out = {}
-    for k, J in enumerate(progress(J_VALUES, desc="Jellett constants", enabled=not args.no_progress)):
-        sig = pk.Sigma(body, J, THETA0, theta, C_AMP, form="closed")
+    for k, J in enumerate(st.progress(J_VALUES, desc="Jellett constants")):
+        sig = pk.theory.Sigma(body, J, THETA0, theta, C_AMP, form="closed")
         z = first_zero(theta, sig)
-        zq = first_zero(coarse, pk.Sigma(body, J, THETA0, coarse, C_AMP, form="gyro"))
+        zq = first_zero(coarse, pk.theory.Sigma(body, J, THETA0, coarse, C_AMP, form="gyro"))
         out[J] = (z, zq)
         thick = J >= 8.0
         col = plt.get_cmap("viridis")(k / (len(J_VALUES) - 1))
@@ -69,8 +61,8 @@ def main(argv=None) -> dict:
     ax.set_title(r"Fig. 2: $a=1.5$, $c=-0.00054$, $\bar\theta_0=\pi/2-10^{-4}$; dashed after $\Sigma=0$ (jump)", fontsize=10)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), title="Jellett constant\n" + r"$J = A\Omega h$", title_fontsize=8)
     fig.tight_layout()
-    path = save_figure(fig, out_dir / "figure2_envelope.png")
-    print(f"Figure {path.name}: Sigma (3.64) against theta-bar, closed forms (3.47), (3.58); {time.perf_counter() - t0:.1f} s.")
+    path = st.save(fig, "figure2_envelope.png")
+    print(f"Figure {path.name}: Sigma (3.64) against theta-bar, closed forms (3.47), (3.58); {st.wall:.1f} s.")
     print(f"{'J':>6s} {'theta-bar at Sigma = 0 (closed form)':>38s} {'(quadrature, exact I2)':>24s}")
     for J, (z, zq) in out.items():
         fmt = lambda v: "no jump" if v is None else f"{v:.4f}"  # noqa: E731
@@ -79,4 +71,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    run_study(main)
+    pk.sweep.run_study(main)

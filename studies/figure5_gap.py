@@ -6,28 +6,18 @@ numerical flight, from the exact solution (4.1)+(4.12), and the series (4.22) wi
 computed Omega* and W*. (d) Delta_max for an ensemble of random perturbations of amplitude
 0.05 (uniform on the unit sphere of (U, V, Omega, Lambda, theta, n), seeded) of the horizontal
 steady precession, for Omega0 from 10 to 40: the exact maximum of the flight and (4.23), with
-the paper's bound (4.65/Omega0)^5; prints how many points exceed it.
-
-Writes figure5_gap.png and figure5_gap.csv (one row per ensemble member) to figures/
-(figures/quick/ with --quick, or --out DIR).
-
-    python studies/figure5_gap.py [--quick] [--seed N] [--out DIR]
+the paper's bound (4.65/Omega0)^5; prints how many points exceed it. Writes figure5_gap.png and
+figure5_gap.csv (one row per ensemble member).
 """
 
 from __future__ import annotations
 
-import time
-from pathlib import Path
+import phasekit as pk
+from phasekit.viz import pyplot
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
-from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 MU, A_RATIO = 0.1, 1.5
-
-
 #: the rise is complete (no jump any more) once theta falls through 0.05
 RISE = pk.Event("theta", 0.05, direction=-1, name="rise-complete")
 
@@ -51,12 +41,12 @@ def flights_abc(axes, model, body) -> list:
         T = fl.t_touchdown - fl.t_liftoff
         te = fl.t_liftoff + np.linspace(0, T, 400)
         # the flight again at rtol 1e-13, its states (with the gap, index 8) from the dense output
-        gaps = pk.fly(model, r.x_jump, r.t_jump, r.t_jump + 2 * T, rtol=1e-13).segments[0].states(te)[:, 8]
-        k = pk.flight_constants(body, r.x_jump, fl.W_star)
+        gaps = pk.theory.fly(model, r.x_jump, r.t_jump, r.t_jump + 2 * T, rtol=1e-13).segments[0].states(te)[:, 8]
+        k = pk.theory.flight_constants(body, r.x_jump, fl.W_star)
         tt = te - fl.t_liftoff
-        exact = pk.gap_exact(body, k, tt)
-        series = pk.gap_series(fl.Omega_star, fl.W_star, tt)
-        gm, tgm = pk.gap_max_series(fl.Omega_star, fl.W_star)
+        exact = pk.theory.gap_exact(body, k, tt)
+        series = pk.theory.gap_series(fl.Omega_star, fl.W_star, tt)
+        gm, tgm = pk.theory.gap_max_series(fl.Omega_star, fl.W_star)
         rel = gm / fl.gap_max - 1
         curve = float(np.max(np.abs(series - exact)) / np.max(exact))
         rows_abc.append((om, rel, curve, fl.W_star * fl.Omega_star))
@@ -73,23 +63,23 @@ def flights_abc(axes, model, body) -> list:
     return rows_abc
 
 
-def ensemble(model, omegas, n_each, seed, show_progress) -> list:
+def ensemble(model, omegas, n_each, seed, st) -> list:
     """(d): first flights from random perturbations of amplitude 0.05 of the horizontal state."""
     rng = np.random.default_rng(seed)
     recs = []
-    with progress(total=len(omegas) * n_each, desc="ensemble", enabled=show_progress) as bar:
+    with st.progress(total=len(omegas) * n_each, desc="ensemble") as bar:
         for om in omegas:
             for j in range(n_each):
                 v = rng.standard_normal(6)
                 v /= np.linalg.norm(v)
-                x0 = pk.horizontal_state(om) + 0.05 * v
+                x0 = pk.theory.horizontal_state(om) + 0.05 * v
                 r = first_flight(model, x0)
                 bar.update()
                 if r.status is not pk.Status.TOUCHDOWN:
                     recs.append((om, j, r.status.value, np.nan, np.nan, np.nan, np.nan, r.stuck))
                     continue
                 fl = r.flights[0]
-                gm, _ = pk.gap_max_series(fl.Omega_star, fl.W_star)
+                gm, _ = pk.theory.gap_max_series(fl.Omega_star, fl.W_star)
                 recs.append((om, j, "touchdown", fl.gap_max, gm, fl.W_star, fl.Omega_star, r.stuck))
     return recs
 
@@ -112,28 +102,25 @@ def draw_ensemble(ax, recs, omegas, seed) -> tuple[int, int, np.ndarray]:
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES, quick_help="Omega0 step 5 instead of 2.5, 5 members each instead of 10")
-    ap.add_argument("--seed", type=ap.integer(min=0), default=2006, help="seed of the ensemble's perturbations (default 2006)")
-    args = ap.parse_args(argv)
-    out_dir = output_dir(args)
+    st = pk.sweep.Study(__file__, __doc__, quick_help="Omega0 step 5 instead of 2.5, 5 members each instead of 10")
+    st.parser.add_argument("--seed", type=st.parser.integer(min=0), default=2006,
+                           help="seed of the ensemble's perturbations (default 2006)")
+    args = st.parse(argv)
     plt = pyplot()
-
-    t0 = time.perf_counter()
     body = pk.Spheroid(A_RATIO)
     model = pk.Model(body, pk.Coulomb(MU))
     fig, axes = plt.subplots(2, 2, figsize=(11, 8))
     rows_abc = flights_abc(axes.flat[:3], model, body)
     omegas = np.arange(10.0, 41.0, 5.0 if args.quick else 2.5)
-    recs = ensemble(model, omegas, 5 if args.quick else 10, args.seed, not args.no_progress)
+    recs = ensemble(model, omegas, 5 if args.quick else 10, args.seed, st)
     over_exact, over_series, ok = draw_ensemble(axes[1, 1], recs, omegas, args.seed)
     fig.suptitle(r"Fig. 5: the gap during the first flight; prolate $a=1.5$, Coulomb $\mu=0.1$" "\n"
                  r"(a-c) from the sliding-branch start $\theta_0=\pi/2-0.01$, flight integrated at rtol $10^{-13}$; "
                  r"(d) from random perturbations of the horizontal steady precession, rtol $10^{-9}$", fontsize=10)
     fig.tight_layout()
-    png = save_figure(fig, out_dir / "figure5_gap.png", dpi=120)
-    write_csv(out_dir / "figure5_gap.csv",
-              ["omega0", "member", "status", "gap_max_exact", "gap_max_4_23", "W_star", "Omega_star", "stuck", "bound"],
-              [[*q, (4.65 / q[0]) ** 5] for q in recs])
+    png = st.save(fig, "figure5_gap.png", dpi=120)
+    st.csv("figure5_gap.csv", ["omega0", "member", "status", "gap_max_exact", "gap_max_4_23", "W_star", "Omega_star", "stuck", "bound"],
+           [[*q, (4.65 / q[0]) ** 5] for q in recs])
     n_stuck = sum(1 for q in recs if q[2] != "touchdown")
     touch = [q for q in recs if q[2] == "touchdown"]
     print(f"\nFigure {png.name}; ensemble of {len(recs)} runs ({n_stuck} without a jump: stuck or rose without losing contact).")
@@ -144,9 +131,9 @@ def main(argv=None) -> dict:
         er = [abs(q[4] / q[3] - 1) for q in touch if q[0] == om]
         if er:
             print(f"  Omega0 = {om:5.1f}: {np.median(er):.3f} ({len(er)} runs)")
-    print(f"{time.perf_counter() - t0:.1f} s")
+    print(f"{st.wall:.1f} s")
     return {"abc": rows_abc, "over_exact": over_exact, "over_series": over_series, "n": int(ok.sum())}
 
 
 if __name__ == "__main__":
-    run_study(main)
+    pk.sweep.run_study(main)

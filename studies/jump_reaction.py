@@ -1,27 +1,21 @@
 """One jump: the normal reaction R(t) of the standard prolate workload up to lift-off.
 
 Prolate uniform spheroid a = 1.5, Coulomb friction mu = 0.1 (exact stick-slip), gyroscopic
-start theta0 = pi/2 - 0.01, Omega0 = 10.5. Writes jump_reaction.png (figures/ by default)
-and prints what was run, the jump time at two tolerances (its error estimate) and the run time.
-
-    python studies/jump_reaction.py [--quick] [--out DIR]
+start theta0 = pi/2 - 0.01, Omega0 = 10.5. Writes jump_reaction.png and prints what was run, the
+jump time at two tolerances (its error estimate) and the run time.
 """
 
 from __future__ import annotations
 
-from pathlib import Path
+import phasekit as pk
+from phasekit.viz import pyplot
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
-
-from phasekit.viz import output_dir, pyplot, run_study, save_figure, study_parser
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 
 
 def main(argv=None) -> dict:
-    args = study_parser(__doc__, default_out=FIGURES, quick_help="the same run (it is short)").parse_args(argv)
-    out = output_dir(args)
+    st = pk.sweep.Study(__file__, __doc__, quick_help="the same run (it is short)")
+    st.parse(argv)
     plt = pyplot()
 
     body = pk.Spheroid(1.5)
@@ -47,7 +41,7 @@ def main(argv=None) -> dict:
     fig.suptitle(r"Prolate $a=1.5$, Coulomb $\mu=0.1$, gyroscopic start $\theta_0=\pi/2-0.01$, $\Omega_0=10.5$"
                  f"\nrtol $10^{{-9}}$; $t_*$ error {abs(run.t_jump - fine.t_jump):.1e} against rtol $10^{{-12}}$", fontsize=10)
     fig.tight_layout()
-    png = save_figure(fig, out / "jump_reaction.png")
+    png = st.save(fig, "jump_reaction.png")
     err = abs(run.t_jump - fine.t_jump)
     print(f"Figure {png.name}: R(t) and theta(t) to the first lift-off, {body!r}, {model.friction.describe()}.")
     print(f"t_jump = {run.t_jump:.9f} (rtol 1e-9, {wall * 1e3:.1f} ms with dense output and the minima of R), "
@@ -56,4 +50,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    run_study(main)
+    pk.sweep.run_study(main)

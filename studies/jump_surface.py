@@ -15,24 +15,18 @@ the error is (A/C) h_tt Lambda*^2 / (Omega* h_theta sin theta* n*), the Lambda^2
 
 Writes jump_surface.png (prolate), jump_surface_oblate.png, jump_surface.csv (the table),
 jump_surface_trend.csv (the fit's crossings), and with --gltf / --html an interactive export
-of the prolate scene, to figures/ (figures/quick/ with --quick, or --out DIR).
-
-    python studies/jump_surface.py [--quick] [--gltf] [--html] [--out DIR]
+of the prolate scene.
 """
 
 from __future__ import annotations
 
 import contextlib
 import sys
-import time
-from pathlib import Path
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
+import phasekit as pk
+
 import numpy as np
 
-from phasekit.viz import atomic_path, output_dir, progress, run_study, study_parser, write_csv
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 ALL = frozenset({"surface", "exact_boundary", "trajectories", "crossings", "fixed_points", "axes", "colorbar"})
 CROSSINGS = frozenset({"crossings"})
 #: starts of the error table: (branch, a, Omega0 or n0 values)
@@ -43,7 +37,7 @@ TREND_D = (0.005, 0.01, 0.02)
 TREND_RANGE = {"prolate": (1.5, 10.0, 40.0), "oblate": (2 / 3, 9.0, 40.0)}
 
 
-def render(scenes, out, args, bar) -> tuple[dict, list]:
+def render(scenes, st, bar) -> tuple[dict, list]:
     """Compute and draw each scene (files renamed into place when whole); the exports asked
     for that could not be written."""
     from phasekit.viz import render_scene  # the only place pyvista is needed
@@ -56,10 +50,10 @@ def render(scenes, out, args, bar) -> tuple[dict, list]:
                  f"Lambda = +-{data.exact_lambda:.3f} (green),\ntrajectories from the {what} = "
                  + ", ".join(f"{v:g}" for v in sc.values) + f" (sliding-branch starts, d = {sc.seed_distance:g}; lines), "
                  "R = 0 crossings (black), fixed points (red)")
-        exports = {"gltf": args.gltf, "html": args.html} if stem == "jump_surface" else {}
+        exports = {"gltf": st.args.gltf, "html": st.args.html} if stem == "jump_surface" else {}
         with contextlib.ExitStack() as stack:  # every file written under a temporary name, then renamed
-            png = stack.enter_context(atomic_path(out / f"{stem}.png"))
-            extra = {k: str(stack.enter_context(atomic_path(out / f"{stem}.{k}"))) for k, on in exports.items() if on}
+            png = stack.enter_context(pk.sweep.atomic_path(st.path(f"{stem}.png")))
+            extra = {k: str(stack.enter_context(pk.sweep.atomic_path(st.path(f"{stem}.{k}")))) for k, on in exports.items() if on}
             info = render_scene(data, png, title=title, **extra)
             missing += [k for k, path in extra.items() if path not in info.exported]
         infos[stem] = (data, info)
@@ -120,13 +114,10 @@ def report(infos, table, fits, starts) -> None:
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES, quick_help="coarser surface, every other start in the error table, 11 starts in the fit")
-    ap.add_argument("--gltf", action="store_true", help="also write jump_surface.gltf (the prolate scene)")
-    ap.add_argument("--html", action="store_true", help="also write jump_surface.html (needs the trame packages)")
-    args = ap.parse_args(argv)
-    out = output_dir(args)
-
-    t0 = time.perf_counter()
+    st = pk.sweep.Study(__file__, __doc__, quick_help="coarser surface, every other start in the error table, 11 starts in the fit")
+    st.parser.add_argument("--gltf", action="store_true", help="also write jump_surface.gltf (the prolate scene)")
+    st.parser.add_argument("--html", action="store_true", help="also write jump_surface.html (needs the trame packages)")
+    args = st.parse(argv)
     res, starts = (60, 11) if args.quick else (140, 41)
     scenes = {
         "jump_surface": pk.Scene("prolate", 1.5, values=(10.0, 12.0, 15.0, 20.0, 30.0), show=ALL, resolution=res),
@@ -134,17 +125,16 @@ def main(argv=None) -> dict:
     }
     table_starts = [(branch, a, vals[::2] if args.quick else vals) for branch, a, vals in TABLE]
     n_runs = len(scenes) + sum(len(v) for *_, v in table_starts) + starts * len(TREND_RANGE) * len(TREND_D)
-    with progress(total=n_runs, desc="scenes and crossings", enabled=not args.no_progress) as bar:
-        infos, missing = render(scenes, out, args, bar)
+    with st.progress(total=n_runs, desc="scenes and crossings") as bar:
+        infos, missing = render(scenes, st, bar)
         table = [(branch, a, c.value, c.t, c.Omega, c.theta, c.n, c.Lambda, c.n_surface, c.rel_error)
                  for branch, a, vals in table_starts for c in crossings(branch, a, vals, 0.01, bar)]
         trend_rows, fits = trend(starts, bar)
-    write_csv(out / "jump_surface.csv", ["branch", "a", "start", "t_cross", "Omega", "theta", "n", "Lambda", "n_63", "rel_error_n"],
-              table)
-    write_csv(out / "jump_surface_trend.csv", ["branch", "a", "d", "start", "t_cross", "Omega", "theta", "n", "Lambda", "rel_error_n"],
-              trend_rows)
+    st.csv("jump_surface.csv", ["branch", "a", "start", "t_cross", "Omega", "theta", "n", "Lambda", "n_63", "rel_error_n"], table)
+    st.csv("jump_surface_trend.csv", ["branch", "a", "d", "start", "t_cross", "Omega", "theta", "n", "Lambda", "rel_error_n"],
+           trend_rows)
     report(infos, table, fits, starts)
-    print(f"{time.perf_counter() - t0:.1f} s")
+    print(f"{st.wall:.1f} s")
     if missing:  # asked for, not written: say so and fail (after everything else was written)
         sys.stderr.write(f"error: the {' and '.join(missing)} export could not be written (--html needs the trame packages)\n")
         raise SystemExit(1)
@@ -152,4 +142,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    run_study(main)
+    pk.sweep.run_study(main)

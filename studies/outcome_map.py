@@ -20,25 +20,21 @@ outcome_map_boundaries.csv), and a 3-D scene of the jump region over (a, Omega0 
 Every start runs on heyoka's SIMD batch integrator (starts that stick are followed through
 the rolling mode in batch too; see phasekit.batch). Dask LocalCluster (or --scheduler),
 resumable: finished rows are appended to the CSV files at once and skipped on a rerun.
-
-    python studies/outcome_map.py [--quick] [--out DIR] [--serial] [--scheduler ADDRESS] [--fresh]
 """
 
 from __future__ import annotations
 
 import json
 import math
-import time
 from dataclasses import asdict, replace
 from functools import partial
 from pathlib import Path
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
+import phasekit as pk
+from phasekit.viz import plain_log_ticks, pyplot, save_figure
+
 import numpy as np
 
-from phasekit.viz import output_dir, plain_log_ticks, pyplot, run_study, save_figure, study_parser
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "outcome_map"
 BASE = pk.Definition("sliding", "sliding")
 THRESHOLD_SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5, levels=3)
@@ -98,54 +94,29 @@ def _specs(points, g: dict, engine: str):
     jobs, costs = [], []
     for kind, a, x in sorted(points):
         if kind == "threshold":
-            jobs.append(pk.search_job(asdict(replace(BASE, amplitude=x)), a, THRESHOLD_SEARCH))
+            jobs.append(pk.sweep.search_job(asdict(replace(BASE, amplitude=x)), a, THRESHOLD_SEARCH))
             costs.append(1.0 + 0.3 / abs(a - 1))
         else:
-            jobs.append(pk.search_job(asdict(BASE), a, STICK_SEARCH, kind="stick", value=x))
+            jobs.append(pk.sweep.search_job(asdict(BASE), a, STICK_SEARCH, kind="stick", value=x))
             costs.append(3.0)
-    return pk.group_search_tasks(jobs, costs, per_task=g["per_task"], study=STEM, engine=engine)
+    return pk.sweep.group_search_tasks(jobs, costs, per_task=g["per_task"], study=STEM, engine=engine)
 
 
-def grid_specs(g: dict, engine: str) -> tuple[list[pk.TaskSpec], dict]:
+def grid_specs(g: dict, engine: str) -> tuple[list, dict]:
     """Tasks of ``chunk`` sampled starts each; returns them and each task's point keys."""
-    task = partial(pk.outcome_task, study=STEM, engine=engine)
+    task = partial(pk.sweep.outcome_task, study=STEM, engine=engine)
     specs, keys = [], {}
     for a in g["maps"]:
-        pts = grid_points(a, g)
-        for i in range(0, len(pts), g["chunk"]):
-            chunk = pts[i:i + g["chunk"]]
-            key = f"grid|{BASE.key()}|a={a:.10g}|{i}|{len(pts)}"
-            specs.append(pk.TaskSpec(key, task, (asdict(BASE), chunk), cost=3.0))
-            keys[key] = [pk.outcome_key(replace(BASE, amplitude=d), aa, v) for aa, d, v in chunk]
+        s, k = pk.sweep.chunked(grid_points(a, g), lambda aa, d, v: pk.sweep.outcome_key(replace(BASE, amplitude=d), aa, v),
+                                task, size=g["chunk"], args=(asdict(BASE),), prefix=f"grid|a={a:.10g}", cost=3.0)
+        specs += s
+        keys.update(k)
     return specs, keys
 
 
 def warm_up() -> None:
     for a in (1.5, 2 / 3):
         BASE.prepare(a, engine="batch")
-
-
-def run(specs, members, grid_keys, stores, args) -> str:
-    out_store, search_store = stores
-    get_search, add_searches = pk.store_groups(search_store, members)
-
-    def stored(key):
-        if key in grid_keys:
-            rows = [out_store.get(k) for k in grid_keys[key]]
-            return rows if all(r is not None for r in rows) else None
-        return get_search(key)
-
-    def on_result(spec, result):
-        if spec.key in grid_keys:
-            for r in result:
-                if r.key not in out_store:
-                    out_store.add(r)
-        else:
-            add_searches(spec, result)
-
-    return str(pk.run_pending(specs, store_get=stored, on_result=on_result, warm_up=warm_up, serial=args.serial,
-                              scheduler=args.scheduler, workers=args.workers, progress=not args.no_progress,
-                              desc="outcome map"))
 
 
 # -- the 2-D maps ---------------------------------------------------------------------------------
@@ -356,26 +327,20 @@ def _disagreements(pts, searches, margin: float = 0.03) -> dict:
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES)
-    ap.add_argument("--serial", action="store_true", help="run in this process, without Dask")
-    ap.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a running Dask scheduler (host:port)")
-    ap.add_argument("--workers", type=ap.integer(min=1), default=None, metavar="N", help="LocalCluster workers (default: one per core)")
-    ap.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
-    ap.add_argument("--no-scene", action="store_true", help="skip the 3-D scene")
-    args = ap.parse_args(argv)
-    out = output_dir(args)
-    t0 = time.perf_counter()
+    st = pk.sweep.Study(__file__, __doc__, dask=True)
+    st.parser.add_argument("--no-scene", action="store_true", help="skip the 3-D scene")
+    args = st.parse(argv)
     g = QUICK if args.quick else FULL
-    meta = pk.provenance({"study": STEM, "definition": asdict(BASE), "threshold_search": THRESHOLD_SEARCH,
-                          "stick_search": STICK_SEARCH, "d_range": D_RANGE, "value_span": VALUE_SPAN, "grid": g,
-                          "classes": {"stuck": "stuck and not risen by t_max", "rise": "rise completed in contact",
-                                      "jump": "R = 0 before the rise completed"}})
-    out_store = pk.ResultStore(out / f"{STEM}.csv", out / f"{STEM}.json", pk.OutcomeRow, meta, fresh=args.fresh)
-    search_store = pk.ResultStore(out / f"{STEM}_boundaries.csv", out / f"{STEM}_boundaries.json", pk.SearchRow, meta,
-                                  fresh=args.fresh)
+    meta = {"definition": asdict(BASE), "threshold_search": THRESHOLD_SEARCH, "stick_search": STICK_SEARCH, "d_range": D_RANGE,
+            "value_span": VALUE_SPAN, "grid": g, "classes": {"stuck": "stuck and not risen by t_max",
+                                                             "rise": "rise completed in contact",
+                                                             "jump": "R = 0 before the rise completed"}}
+    out_store = st.store(pk.sweep.OutcomeRow, meta)
+    search_store = st.store(pk.sweep.SearchRow, meta, name=f"{STEM}_boundaries")
     gspecs, grid_keys = grid_specs(g, "batch")
     sspecs, members = search_specs(g, "batch")
-    how = run(gspecs + sspecs, members, grid_keys, (out_store, search_store), args)
+    how = str(st.run(gspecs + sspecs, out_store, search_store, members={**grid_keys, **members}, warm_up=warm_up,
+                     desc="outcome map"))
     point_keys = {k for ks in grid_keys.values() for k in ks}
     points = [r for r in out_store.rows() if r.key in point_keys]
 
@@ -390,12 +355,13 @@ def main(argv=None) -> dict:
             break
         rspecs, rmembers = _specs(extra, g, "batch")
         members.update(rmembers)
-        how += f"; corners of d_min, level {level + 1}: " + run(rspecs, members, {}, (out_store, search_store), args)
+        how += f"; corners of d_min, level {level + 1}: " + str(st.run(rspecs, out_store, search_store, members=members,
+                                                                       warm_up=warm_up, desc="outcome map"))
         searches = traced()
-    plot_maps(points, searches, g, out / f"{STEM}.png", args.quick)
-    counts = {} if args.no_scene else render_region(points, searches, g, out / "jump_region.png", args.quick)
+    plot_maps(points, searches, g, st.path(f"{STEM}.png"), args.quick)
+    counts = {} if args.no_scene else render_region(points, searches, g, st.path("jump_region.png"), args.quick)
     summary = summarise(points, searches, g)
-    wall = time.perf_counter() - t0
+    wall = st.wall
     n_sims = sum(s.n_sims for s in searches) + len(points)
     print(f"\n{STEM}: {len(points)} sampled starts, {len(searches)} traced boundary points; {how}; {wall:.1f} s wall")
     for k, v in summary.items():
@@ -409,4 +375,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    run_study(main, resume=f"the finished rows are kept in {STEM}.csv and {STEM}_boundaries.csv (in the output folder); rerunning the command resumes from them")
+    pk.sweep.run_study(main)

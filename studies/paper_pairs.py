@@ -10,10 +10,8 @@ exact Coulomb, in both charts; each run to t = 600 or until the rise completes (
 0.1 rad of its final value) or R = 0.
 
 "As printed": the first value's rise completes without a jump, and the second value jumps
-with t* within 15% of the printed t*. Writes figures/paper_pairs.csv (one row per run,
-resumable) and prints the table.
-
-    python studies/paper_pairs.py [--quick] [--out DIR]
+with t* within 15% of the printed t*. Writes paper_pairs.csv (one row per run, resumable) and
+paper_pairs.png, and prints the table.
 """
 
 from __future__ import annotations
@@ -24,11 +22,9 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-
 import phasekit as pk
-from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser
+from phasekit.viz import pyplot, save_figure
 
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "paper_pairs"
 T_END = 600.0
 T_TOLERANCE = 0.15  # "t* ~ 91": the printed jump times are read off the figures
@@ -65,7 +61,7 @@ def row_key(label: str, value: float, eps, chart: str) -> str:
 
 
 def run_one(label: str, role: str, value: float, eps, chart: str) -> PairRow:
-    case = pk.PAPER_CASES[label]
+    case = pk.theory.PAPER_CASES[label]
     law = pk.Coulomb(0.1) if eps is None else pk.RegularisedCoulomb(0.1, eps)
     model, x0 = pk.paper_start(label, friction=law, **{case.parameter: value})
     m = model.with_chart(chart)
@@ -102,7 +98,7 @@ def table(rows, eps_list) -> list[dict]:
     """Per (pair, chart, eps): the two outcomes and whether the pair is as printed."""
     out = []
     by = {(r.label, r.role, r.eps, r.chart): r for r in rows}
-    for label, case in pk.PAPER_CASES.items():
+    for label, case in pk.theory.PAPER_CASES.items():
         for chart in CHARTS:
             for eps in list(eps_list) + [None]:
                 e = "exact" if eps is None else repr(eps)  # as the summary and report spell it
@@ -118,7 +114,7 @@ def plot(rows, tab, png: Path, quick: bool) -> None:
     plt = pyplot()
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.4))
     top = {"rise": 1.12 * T_END, "stuck": 1.22 * T_END, "slow": 1.22 * T_END, "failed": 1.3 * T_END}
-    for ax, (label, case) in zip(axes, pk.PAPER_CASES.items()):
+    for ax, (label, case) in zip(axes, pk.theory.PAPER_CASES.items()):
         for chart, ls, dy in zip(CHARTS, ("-", "--"), (1.0, 1.03)):
             for role, colour in (("no_jump", "C0"), ("jump", "C3")):
                 value = case.no_jump if role == "no_jump" else case.jump
@@ -155,26 +151,21 @@ def plot(rows, tab, png: Path, quick: bool) -> None:
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES)
-    ap.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
-    args = ap.parse_args(argv)
-    out = output_dir(args)
-    t0 = time.perf_counter()
+    st = pk.sweep.Study(__file__, __doc__, resumable=True)
+    args = st.parse(argv)
     eps_list = EPS_QUICK if args.quick else EPS_FULL
-    meta = pk.provenance({"study": STEM, "t_end": T_END, "eps": eps_list, "charts": CHARTS, "t_tolerance": T_TOLERANCE,
-                          "max_wall": MAX_WALL, "rtol": pk.SolverOptions().rtol})
-    store = pk.ResultStore(out / f"{STEM}.csv", out / f"{STEM}.json", PairRow, meta, fresh=args.fresh)
-    runs = [(label, role, value, eps, chart) for label, case in pk.PAPER_CASES.items()
+    store = st.store(PairRow, {"t_end": T_END, "eps": eps_list, "charts": CHARTS, "t_tolerance": T_TOLERANCE,
+                               "max_wall": MAX_WALL, "rtol": pk.SolverOptions().rtol})
+    runs = [(label, role, value, eps, chart) for label, case in pk.theory.PAPER_CASES.items()
             for role, value in (("no_jump", case.no_jump), ("jump", case.jump))
             for eps in list(eps_list) + [None] for chart in CHARTS]
-    todo = [r for r in runs if row_key(r[0], r[2], r[3], r[4]) not in store]
-    for r in progress(todo, desc="paper pairs", enabled=not args.no_progress):
-        store.add(run_one(*r))
-    keys = {row_key(r[0], r[2], r[3], r[4]) for r in runs}
+    specs = pk.sweep.each(runs, lambda label, role, value, eps, chart: row_key(label, value, eps, chart), run_one)
+    ran = st.run(specs, store, desc="paper pairs")
+    keys = {s.key for s in specs}
     rows = [r for r in store.rows() if r.key in keys]
     tab = table(rows, eps_list)
-    plot(rows, tab, out / f"{STEM}.png", args.quick)
-    print(f"\n{STEM}: {len(rows)} runs ({len(todo)} now), {time.perf_counter() - t0:.1f} s")
+    plot(rows, tab, st.path(f"{STEM}.png"), args.quick)
+    print(f"\n{STEM}: {len(rows)} runs ({ran.computed} now), {st.wall:.1f} s")
     for t in tab:
         nj = "-" if t["no_jump"] is None else f"{t['no_jump'][0]} (t = {t['no_jump'][1]:.1f})"
         j = "-" if t["jump"] is None else f"{t['jump'][0]} (t = {t['jump'][1]:.2f})"
@@ -189,4 +180,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    run_study(main, resume=f"the finished rows are kept in {STEM}.csv (in the output folder); rerunning the command resumes from them")
+    pk.sweep.run_study(main)

@@ -19,8 +19,6 @@ sequence of ends. This study
 Grids are offset by half a cell so that no point lies on the measure-zero boundary A = C.
 Runs on the sweep engine (Dask LocalCluster, or --serial / --scheduler), resumable: finished
 rows are appended to steady_structure_atlas.csv and _boundaries.csv at once.
-
-    python studies/steady_structure.py [--quick] [--out DIR] [--serial] [--scheduler ADDRESS] [--fresh]
 """
 
 from __future__ import annotations
@@ -28,16 +26,14 @@ from __future__ import annotations
 import itertools
 import json
 import math
-import time
 from dataclasses import dataclass
 from pathlib import Path
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
+import phasekit as pk
+from phasekit.viz import pyplot, render_structure, save_figure
+
 import numpy as np
 
-from phasekit.viz import output_dir, pyplot, render_structure, run_study, save_figure, study_parser
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "steady_structure"
 LAW = pk.Viscous(0.1)  # stability of the representatives (the signature does not depend on the law)
 C_SCALE = 0.05  # C of the free-moment bodies, times min(1, a)^2: small enough for every A/C <= 4
@@ -166,27 +162,6 @@ def boundary_edges(rows) -> list[tuple]:
                     if (x, y) in sig and q in sig and sig[x, y] != sig[q]:
                         edges.append((panel, (x, y), q, span))
     return edges
-
-
-def run_chunks(items, key_of, task, extra, store, args, desc, chunk) -> str:
-    """``items`` in chunks as tasks on the sweep engine, skipping chunks whose every item is
-    stored; each finished row is appended to ``store`` at once."""
-    specs, done = [], set()
-    for i in range(0, len(items), chunk):
-        part = items[i:i + chunk]
-        key = f"{desc}|{i}|{key_of(*part[0])}"
-        specs.append(pk.TaskSpec(key, task, (part, *extra), cost=float(len(part))))
-        if all(key_of(*it) in store for it in part):
-            done.add(key)
-
-    def on_result(spec, rows):
-        for row in rows:
-            if row.key not in store:
-                store.add(row)
-
-    return str(pk.run_pending(specs, store_get=lambda k: True if k in done else None, on_result=on_result,
-                              warm_up=lambda: None, serial=args.serial, scheduler=args.scheduler, workers=args.workers,
-                              progress=not args.no_progress, desc=desc))
 
 
 # -- classes ------------------------------------------------------------------------------------
@@ -392,7 +367,7 @@ def egg_rise_end(png: Path) -> dict:
         late = r.sample(np.linspace(0.5 * r.t, r.t, 6000))
         th, om, n = (float(late[c].mean()) for c in ("theta", "Omega", "n"))
         branch_om, branch_n = (float(v[0]) for v in s.precession(np.array([th])))
-        roll = pk.rolling_motion(egg, th, om)
+        roll = pk.theory.rolling_motion(egg, th, om)
         path = r.sample(np.linspace(0.0, r.t, 3000))
         ax1.plot(path["theta"], path["Omega"], color=colour, lw=0.7, alpha=0.7, label=f"egg, $\\Omega_0$ = {om0:g}")
         ax2.plot(path["theta"], path["n"], color=colour, lw=0.7, alpha=0.7)
@@ -428,42 +403,37 @@ def colours_for(signatures_) -> dict:
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES, quick_help="coarse grids")
-    ap.add_argument("--serial", action="store_true", help="run in this process, without Dask")
-    ap.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a running Dask scheduler (host:port)")
-    ap.add_argument("--workers", type=ap.integer(min=1), default=None, metavar="N", help="LocalCluster workers (default: one per core)")
-    ap.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
-    ap.add_argument("--no-scene", action="store_true", help="skip the 3-D scene and the egg")
-    args = ap.parse_args(argv)
-    out = output_dir(args)
-    t0 = time.perf_counter()
+    st = pk.sweep.Study(__file__, __doc__, quick_help="coarse grids", dask=True)
+    st.parser.add_argument("--no-scene", action="store_true", help="skip the 3-D scene and the egg")
+    args = st.parse(argv)
     g = QUICK if args.quick else FULL
-    meta = pk.provenance({"study": STEM, "panels": {k: list(v[:5]) for k, v in PANELS.items()}, "grid": g,
-                          "law_for_stability": repr(LAW), "moments": "tippe top: C = 0.4, A = (A/C) C; spheroid-default: "
-                          "A = (1 + a^2)/5 - offset^2, C = 2/5; others: C = 0.05 min(1, a)^2, A = (A/C) C"})
-    atlas = pk.ResultStore(out / f"{STEM}_atlas.csv", out / f"{STEM}_atlas.json", AtlasRow, meta, fresh=args.fresh)
-    borders = pk.ResultStore(out / f"{STEM}_boundaries.csv", out / f"{STEM}_boundaries.json", BoundaryRow, meta,
-                             fresh=args.fresh)
+    meta = {"panels": {k: list(v[:5]) for k, v in PANELS.items()}, "grid": g, "law_for_stability": repr(LAW),
+            "moments": "tippe top: C = 0.4, A = (A/C) C; spheroid-default: A = (1 + a^2)/5 - offset^2, C = 2/5; "
+                       "others: C = 0.05 min(1, a)^2, A = (A/C) C"}
+    atlas = st.store(AtlasRow, meta, name=f"{STEM}_atlas")
+    borders = st.store(BoundaryRow, meta, name=f"{STEM}_boundaries")
     points = grid_points(g)
-    how = run_chunks(points, point_key, signatures, (), atlas, args, "atlas", g["chunk"])
+    specs, members = pk.sweep.chunked(points, point_key, signatures, size=g["chunk"], prefix="atlas")
+    how = str(st.run(specs, atlas, members=members, desc="atlas"))
     keys = {point_key(*p) for p in points}
     rows = [r for r in atlas.rows() if r.key in keys]
     edges = boundary_edges(rows)
-    how += "; boundaries: " + run_chunks(edges, edge_key, trace, (g["xtol"],), borders, args, "boundaries", 40)
+    specs, members = pk.sweep.chunked(edges, edge_key, trace, size=40, args=(g["xtol"],), prefix="boundaries")
+    how += "; boundaries: " + str(st.run(specs, borders, members=members, desc="boundaries"))
     ekeys = {edge_key(*e) for e in edges}
     bounds = [b for b in borders.rows() if b.key in ekeys]
     counts = class_counts(rows)
     colours = colours_for({r.signature for r in rows})
     note = (f"{len(rows)} bodies ({g['n']}x{g['n']} per panel, {'x'.join(map(str, g['cube']))} on the 3-D grid), "
             f"{len(bounds)} boundary points bisected to {g['xtol']:g} of the span" + (" (quick run)" if args.quick else ""))
-    plot_atlas(rows, bounds, colours, out / f"{STEM}_atlas.png", g["n"], note)
+    plot_atlas(rows, bounds, colours, st.path(f"{STEM}_atlas.png"), g["n"], note)
     reps = representatives(rows, sorted(set(counts["spheroid"]) | set(counts["tippe_top"])))
-    rep_info = plot_classes(reps, colours, out / f"{STEM}_classes.png",
+    rep_info = plot_classes(reps, colours, st.path(f"{STEM}_classes.png"),
                             f"representatives of the {len(reps)} classes found; stability: exact Jacobian, bounded eigenvalues")
     extra = {}
     if not args.no_scene:
-        extra["scene"] = scene(out / f"{STEM}_scene.png", args.quick)
-        extra["egg"] = egg_rise_end(out / f"{STEM}_egg.png")
+        extra["scene"] = scene(st.path(f"{STEM}_scene.png"), args.quick)
+        extra["egg"] = egg_rise_end(st.path(f"{STEM}_egg.png"))
     names = {}
     for b in bounds:
         names.setdefault(b.bifurcation, set()).add(tuple(sorted((b.below, b.above))))
@@ -474,7 +444,7 @@ def main(argv=None) -> dict:
                "bifurcations": {k: sorted(" <-> ".join(p) for p in v) for k, v in sorted(names.items())},
                "boundary_width_max": max((b.width for b in bounds), default=None), "representatives": rep_info, **extra}
     atlas.annotate(summary=summary)
-    wall = time.perf_counter() - t0
+    wall = st.wall
     print(f"\n{STEM}: {len(rows)} bodies, {len(bounds)} traced boundary points; {how}; {wall:.1f} s wall")
     print(f"  tippe top: {len(counts['tippe_top'])} classes (part III: 3): {', '.join(counts['tippe_top'])}")
     print(f"  displaced spheroid: {len(counts['spheroid'])} classes (part III: 9): {', '.join(counts['spheroid'])}")
@@ -495,5 +465,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    run_study(main, resume=f"the finished rows are kept in {STEM}_atlas.csv and {STEM}_boundaries.csv (in the output "
-                           "folder); rerunning the command resumes from them")
+    pk.sweep.run_study(main)

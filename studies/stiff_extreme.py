@@ -7,11 +7,7 @@ regularisation eps from 1e-3 down to 1e-12; horizons long enough for the rise to
 or the end inclination, the invariant drift (mu = 0: relative change of energy and L_Z, which
 must stay ~0; mu > 0: the largest energy increase between samples, which must be <= 0), steps
 and wall time. A case the integrator cannot do ends with status "failed" and its reason.
-
-Writes stiff_extreme.csv (figures/ by default; figures/quick/ with --quick, or --out DIR) and
-prints the table.
-
-    python studies/stiff_extreme.py [--quick] [--out DIR]
+Writes stiff_extreme.csv and prints the table.
 """
 
 from __future__ import annotations
@@ -19,14 +15,11 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from pathlib import Path
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
+import phasekit as pk
+
 import numpy as np
 
-from phasekit.viz import output_dir, progress, run_study, study_parser, write_csv
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 P2 = math.pi / 2
 
 
@@ -107,7 +100,7 @@ def run_case(c: Case) -> dict:
             y0 = np.array(c.start["state"], dtype=float)
         else:
             y0 = pk.gyroscopic_start(body, c.start["theta0"], omega0=c.start.get("omega0"), n0=c.start.get("n0"))
-        chart = pk.choose_formulation(float(y0[4]))
+        chart = pk.choose_chart(float(y0[4]))
         model = pk.Model(body, c.law, chart)
         x0 = pk.to_chart(chart, y0)
         te = np.linspace(0.0, c.t_end, 201)
@@ -136,16 +129,13 @@ def run_case(c: Case) -> dict:
 
 
 def main(argv=None) -> list[dict]:
-    ap = study_parser(__doc__, default_out=FIGURES, quick_help="horizons up to t = 2000, no eps = 1e-12")
-    args = ap.parse_args(argv)
-    out = output_dir(args)
-    t0 = time.perf_counter()
-    todo = cases(args.quick)
-    rows = [run_case(c) for c in progress(todo, desc="cases", enabled=not args.no_progress)]
+    st = pk.sweep.Study(__file__, __doc__, quick_help="horizons up to t = 2000, no eps = 1e-12")
+    args = st.parse(argv)
+    rows = [run_case(c) for c in st.progress(cases(args.quick), desc="cases")]
     fields = ["case", "a", "law", "t_end", "rtol", "status", "reason", "t_jump", "t_reached", "theta_end", "stuck",
               "n_events", "invariant_drift", "steps", "backend", "chart", "finite", "wall_s"]
-    write_csv(out / "stiff_extreme.csv", fields, rows)
-    print(f"{len(rows)} cases; table stiff_extreme.csv; {time.perf_counter() - t0:.1f} s")
+    st.csv("stiff_extreme.csv", fields, rows)
+    print(f"{len(rows)} cases; table stiff_extreme.csv; {st.wall:.1f} s")
     print(f"{'case':<46s} {'status':<10s} {'t_jump':>9s} {'theta_end':>9s} {'drift':>9s} {'steps':>8s} {'backend':>13s} {'wall s':>7s}  note")
     for r in rows:
         tj = f"{r['t_jump']:.3f}" if r.get("t_jump") is not None else "-"
@@ -160,4 +150,4 @@ def main(argv=None) -> list[dict]:
 
 
 if __name__ == "__main__":
-    run_study(main)
+    pk.sweep.run_study(main)

@@ -18,27 +18,20 @@ the compiled model shipped to each worker once. --engine batch --levels 3 runs e
 simulations on heyoka's batch integrator, 7 bisection midpoints at once (k-section): the
 same 146 brackets, bit for bit, in fewer rounds but with 43% more simulations (measured:
 3217 against 2257), which for these continuation chains costs more than it saves, so
-one-by-one bisection is the default. Every finished point is appended to
-figures/threshold_vs_aspect.csv (manifest: figures/threshold_vs_aspect.json) at once, and
-a rerun skips finished points, so a killed sweep resumes. Writes
-figures/threshold_vs_aspect.png.
-
-    python studies/threshold_vs_aspect.py [--quick] [--out DIR] [--serial] [--scheduler ADDRESS] [--fresh] [--engine E] [--levels L]
+one-by-one bisection is the default. Resumable: every finished point is appended to
+threshold_vs_aspect.csv at once (manifest .json). Writes threshold_vs_aspect.png.
 """
 
 from __future__ import annotations
 
-import time
 from dataclasses import asdict, replace
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.viz import output_dir, pyplot, run_study, save_figure, study_parser
-from phasekit import DEFAULT_DEFINITIONS, Definition, ResultStore, TaskSpec, provenance, run_pending
+from phasekit import DEFAULT_DEFINITIONS, Definition
+from phasekit.viz import pyplot, save_figure
 
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "threshold_vs_aspect"
-
 SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5)
 PROLATE = [3.0, 2.5, 2.0, 1.75, 1.5, 1.4, 1.3, 1.2, 1.15, 1.1, 1.075, 1.05]
 OBLATE = [0.3, 0.4, 0.5, 0.6, 2 / 3, 0.7, 0.75, 0.8, 0.85, 0.9, 0.925, 0.95]
@@ -49,7 +42,6 @@ DEFAULT_NAME = "sliding"
 # viscous eigenvector with delta ~ 0.02): Omega0 = 10.2 no jump, 10.5 jump. Fig. 3 (a = 2/3,
 # start (5.1), delta ~ 1e-5): n0 = 10 no jump, 10.5 jump.
 PAPER_BRACKETS = {1.5: (10.2, 10.5), 2 / 3: (10.0, 10.5)}
-
 
 
 def sensitivity_definitions(quick: bool) -> list[Definition]:
@@ -67,28 +59,29 @@ def sensitivity_definitions(quick: bool) -> list[Definition]:
 
 
 def row_key(defn: Definition, a: float) -> str:
-    return pk.threshold_key(defn, a, SEARCH)
+    return pk.sweep.threshold_key(defn, a, SEARCH)
 
 
-def build_tasks(quick: bool, sensitivity: bool, engine: str = "scalar", levels: int = 1) -> list[TaskSpec]:
+def build_tasks(quick: bool, sensitivity: bool, engine: str = "scalar", levels: int = 1) -> list:
     prolate, oblate = (QUICK_PROLATE, QUICK_OBLATE) if quick else (PROLATE, OBLATE)
-    specs: list[TaskSpec] = []
+    specs = []
     main_keys = {}
     for defn in DEFAULT_DEFINITIONS:
         for a_list in (prolate, oblate):
             prev = None
             for a in a_list:  # ordered from far to near a = 1: thresholds grow along the chain
                 key = row_key(defn, a)
-                specs.append(TaskSpec(key, pk.threshold_task, (asdict(defn), a, "main", defn.name == DEFAULT_NAME, SEARCH, engine, levels),
-                                      after=prev))
+                specs.append(pk.sweep.TaskSpec(key, pk.sweep.threshold_task, (asdict(defn), a, "main", defn.name == DEFAULT_NAME,
+                                                                              SEARCH, engine, levels), after=prev))
                 main_keys[defn.name, a] = key
                 prev = key
     if sensitivity:
         for defn in sensitivity_definitions(quick):
             parent = "literal-eps1e-4" if defn.seed == "literal" else DEFAULT_NAME
             for a in (1.5, 2 / 3):
-                specs.append(TaskSpec(row_key(defn, a), pk.threshold_task,
-                                      (asdict(defn), a, "sensitivity", False, SEARCH, engine, levels), after=main_keys.get((parent, a))))
+                specs.append(pk.sweep.TaskSpec(row_key(defn, a), pk.sweep.threshold_task,
+                                               (asdict(defn), a, "sensitivity", False, SEARCH, engine, levels),
+                                               after=main_keys.get((parent, a))))
     return specs
 
 
@@ -178,35 +171,26 @@ def report(rows: list, wall: float, n_new: int, mode: str) -> dict:
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES, quick_help="3 aspect ratios per branch, reduced sensitivity")
-    ap.add_argument("--serial", action="store_true", help="run in this process, without Dask")
-    ap.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a running Dask scheduler (host:port)")
-    ap.add_argument("--workers", type=ap.integer(min=1), default=None, metavar="N", help="LocalCluster workers (default: one per core)")
-    ap.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
-    ap.add_argument("--no-sensitivity", action="store_true", help="skip the sensitivity runs at a = 1.5 and 2/3 (other d, delta, eps, rtol)")
-    ap.add_argument("--engine", default="scalar", choices=("batch", "scalar"),
-                    help="simulations one by one (default) or on heyoka's batch integrator; the same brackets")
-    ap.add_argument("--levels", type=ap.integer(min=1, max=8), default=1,
-                    help="bisection steps per round (k-section, 2^L - 1 values; 1 to 8, default 1)")
-    args = ap.parse_args(argv)
-    out = output_dir(args)
-    csv_path, manifest_path, png = out / f"{STEM}.csv", out / f"{STEM}.json", out / f"{STEM}.png"
-    t0 = time.perf_counter()
+    st = pk.sweep.Study(__file__, __doc__, quick_help="3 aspect ratios per branch, reduced sensitivity", dask=True)
+    st.parser.add_argument("--no-sensitivity", action="store_true",
+                           help="skip the sensitivity runs at a = 1.5 and 2/3 (other d, delta, eps, rtol)")
+    st.parser.add_argument("--engine", default="scalar", choices=("batch", "scalar"),
+                           help="simulations one by one (default) or on heyoka's batch integrator; the same brackets")
+    st.parser.add_argument("--levels", type=st.parser.integer(min=1, max=8), default=1,
+                           help="bisection steps per round (k-section, 2^L - 1 values; 1 to 8, default 1)")
+    args = st.parse(argv)
     specs = build_tasks(args.quick, not args.no_sensitivity, args.engine, args.levels)
-    meta = provenance({"study": "threshold_vs_aspect", "search": SEARCH,
-                       "definitions": {d.name: asdict(d) for d in list(DEFAULT_DEFINITIONS) + sensitivity_definitions(args.quick)},
-                       "default_definition": DEFAULT_NAME, "jump": "R reaches 0 with dR/dt < 0 before the rise completes",
-                       "rise_complete": "theta within rise_margin of the final state (0 prolate, pi/2 oblate), or t_max reached"})
-    store = ResultStore(csv_path, manifest_path, pk.ThresholdRow, meta, fresh=args.fresh)
-    ran = run_pending(specs, store_get=store.get, on_result=lambda s, r: store.add(r), warm_up=warm_up, serial=args.serial,
-                      scheduler=args.scheduler, workers=args.workers, progress=not args.no_progress, desc="thresholds")
+    store = st.store(pk.sweep.ThresholdRow, {
+        "search": SEARCH, "definitions": {d.name: asdict(d) for d in list(DEFAULT_DEFINITIONS) + sensitivity_definitions(args.quick)},
+        "default_definition": DEFAULT_NAME, "jump": "R reaches 0 with dR/dt < 0 before the rise completes",
+        "rise_complete": "theta within rise_margin of the final state (0 prolate, pi/2 oblate), or t_max reached"})
+    ran = st.run(specs, store, warm_up=warm_up, desc="thresholds")
     keys = {s.key for s in specs}
     rows = [r for r in store.rows() if r.key in keys]
-    plot(rows, args.quick, png)
-    wall = time.perf_counter() - t0
-    stats = report(rows, wall, ran.computed, ran.mode)
-    return {"rows": rows, "wall_s": wall, "n_computed": ran.computed, **stats}
+    plot(rows, args.quick, st.path(f"{STEM}.png"))
+    stats = report(rows, st.wall, ran.computed, ran.mode)
+    return {"rows": rows, "wall_s": st.wall, "n_computed": ran.computed, **stats}
 
 
 if __name__ == "__main__":
-    run_study(main, resume=f"the finished rows are kept in {STEM}.csv (in the output folder); rerunning the command resumes from them")
+    pk.sweep.run_study(main)

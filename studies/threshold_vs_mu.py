@@ -12,27 +12,22 @@ threshold(a) onto the mu = 0.1 one? f is fitted (geometric mean over a) and the 
 that remains is reported.
 
 Runs on Dask (LocalCluster with one worker per core, or --scheduler ADDRESS), the compiled
-models shipped once; every finished search is appended to figures/threshold_vs_mu.csv at
-once (manifest .json) and a rerun skips it, so a killed run resumes. Writes
-figures/threshold_vs_mu.png.
-
-    python studies/threshold_vs_mu.py [--quick] [--out DIR] [--serial] [--scheduler ADDRESS] [--fresh]
+models shipped once; resumable: every finished search is appended to threshold_vs_mu.csv at
+once (manifest .json). Writes threshold_vs_mu.png.
 """
 
 from __future__ import annotations
 
 import json
 import math
-import time
 from dataclasses import asdict, replace
 from pathlib import Path
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
+import phasekit as pk
+from phasekit.viz import plain_log_ticks, pyplot, save_figure
+
 import numpy as np
 
-from phasekit.viz import output_dir, plain_log_ticks, pyplot, run_study, save_figure, study_parser
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 STEM = "threshold_vs_mu"
 SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5, levels=3)
 MU = [float(0.1 * 5.0 ** (k / 3)) for k in range(-3, 4)]  # 0.02 ... 0.5, log-spaced, with 0.1
@@ -70,27 +65,20 @@ def build_tasks(quick: bool, engine: str, per_task: int | None = None):
     for defn, a in definitions(quick):
         # at the paper's mu the threshold's sensitivity to d (d/2 and 2d) is measured too
         sens = defn.mu == MU_REF and defn.amplitude == BASE.amplitude
-        jobs.append(pk.search_job(asdict(defn), a, SEARCH, sensitivity=sens))
+        jobs.append(pk.sweep.search_job(asdict(defn), a, SEARCH, sensitivity=sens))
         # measured: the slow rise at small mu and the stick-slip chatter near the end of the
         # rise at large mu are the costly searches, and scans near a = 1 are long
         costs.append(((MU_REF / defn.mu) ** 0.5 + defn.mu / MU_REF) * (1.0 + 0.2 / abs(a - 1.0)) * (3 if sens else 1))
     # One search per task by default: a few chattering searches cost as much as all the others
     # (measured: one group of 10 took 36% of the map), so lock-step groups unbalance the workers.
     per_task = per_task or 1
-    return pk.group_search_tasks(jobs, costs, per_task=per_task, study=STEM, engine=engine)
+    return pk.sweep.group_search_tasks(jobs, costs, per_task=per_task, study=STEM, engine=engine)
 
 
 def warm_up() -> None:
     """Compile (or load) every integrator the sweep uses, so the pack carries them."""
     for a in (1.5, 2 / 3):
         BASE.prepare(a, engine="batch")
-
-
-def run(specs, members, store, args, desc: str) -> str:
-    """Run the pending tasks on Dask (or serially) into ``store``; returns how it ran."""
-    get, on_result = pk.store_groups(store, members)
-    return str(pk.run_pending(specs, store_get=get, on_result=on_result, warm_up=warm_up, serial=args.serial,
-                              scheduler=args.scheduler, workers=args.workers, progress=not args.no_progress, desc=desc))
 
 
 def collapse(rows, mus) -> dict:
@@ -232,30 +220,24 @@ def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES)
-    ap.add_argument("--serial", action="store_true", help="run in this process, without Dask")
-    ap.add_argument("--scheduler", default=None, metavar="ADDRESS", help="address of a running Dask scheduler (host:port)")
-    ap.add_argument("--workers", type=ap.integer(min=1), default=None, metavar="N", help="LocalCluster workers (default: one per core)")
-    ap.add_argument("--engine", default="batch", choices=("batch", "scalar"), help="simulations in batch (default) or one by one")
-    ap.add_argument("--per-task", type=ap.integer(min=1), default=None, help="searches per Dask task, traced in lock-step (default 1)")
-    ap.add_argument("--fresh", action="store_true", help="discard stored results and recompute everything")
-    args = ap.parse_args(argv)
-    out = output_dir(args)
-    t0 = time.perf_counter()
+    st = pk.sweep.Study(__file__, __doc__, dask=True)
+    st.parser.add_argument("--engine", default="batch", choices=("batch", "scalar"), help="simulations in batch (default) or one by one")
+    st.parser.add_argument("--per-task", type=st.parser.integer(min=1), default=None,
+                           help="searches per Dask task, traced in lock-step (default 1)")
+    args = st.parse(argv)
     g = grid(args.quick)
     specs, members = build_tasks(args.quick, args.engine, args.per_task)
-    meta = pk.provenance({"study": STEM, "search": SEARCH, "definition": asdict(BASE), "mu": g["mu"], "a": g["a"],
-                          "d_lines": g["d_lines"], "d_mu": g["d_mu"], "engine": args.engine,
-                          "jump": "R reaches 0 with dR/dt < 0 before the rise completes (theta within 0.1 of its end)"})
-    store = pk.ResultStore(out / f"{STEM}.csv", out / f"{STEM}.json", pk.SearchRow, meta, fresh=args.fresh)
+    store = st.store(pk.sweep.SearchRow, {
+        "search": SEARCH, "definition": asdict(BASE), "mu": g["mu"], "a": g["a"], "d_lines": g["d_lines"], "d_mu": g["d_mu"],
+        "engine": args.engine, "jump": "R reaches 0 with dR/dt < 0 before the rise completes (theta within 0.1 of its end)"})
     keys = {k for ks in members.values() for k in ks}
     n_new = sum(k not in store for k in keys)
-    mode = run(specs, members, store, args, "thresholds (a, mu)")
+    mode = str(st.run(specs, store, members=members, warm_up=warm_up, desc="thresholds (a, mu)"))
     rows = [r for r in store.rows() if r.key in keys]
     coll = collapse([r for r in rows if r.d == BASE.amplitude], g["mu"])
     dl = d_limit(rows, g["d_lines"]["a"], g["d_mu"])
-    plot(rows, g, coll, out / f"{STEM}.png", args.quick)
-    wall = time.perf_counter() - t0
+    plot(rows, g, coll, st.path(f"{STEM}.png"), args.quick)
+    wall = st.wall
     stats = report(rows, g, coll, dl, wall, mode, n_new)
     summary = {"collapse": {b: {f"{mu:.4g}": v for mu, v in coll[b].items()} for b in ("prolate", "oblate")},
                "max_spread": coll["max_spread"], "max_raw_spread": coll["max_raw_spread"], "d_lines": dl, **stats}
@@ -265,4 +247,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    run_study(main, resume=f"the finished rows are kept in {STEM}.csv (in the output folder); rerunning the command resumes from them")
+    pk.sweep.run_study(main)

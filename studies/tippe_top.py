@@ -20,32 +20,28 @@ never / full / partial at theta_f), which assumes that the top keeps sliding and
 slow energy descent at fixed Jellett integral. Accuracy: Jellett's integral is checked at the
 end of every run (its drift is in the CSV), and a subset is rerun at rtol 1e-12.
 
-Outputs (figures/ or --out DIR; --quick writes to figures/quick/):
+Outputs:
   tippe_top_map.csv/.json   one row per run (resumable: rows are appended as they finish)
   tippe_top_map.png         outcome maps, measured vs predicted
   tippe_top_hopping.png     theta, R and the gap for a top that hops while inverting
   tippe_top_scene.png       3-D view of one inversion (PyVista, off-screen)
   tippe_top_convergence.csv t_stop of the README example over rtol and eps
   tippe_top_summary.json    agreement with the predictions, hopping, accuracy checks
-
-    python studies/tippe_top.py [--quick] [--out DIR] [--no-progress] [--fresh]
 """
 
 from __future__ import annotations
 
 import json
 import math
-import os
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
+import phasekit as pk
+from phasekit.viz import pyplot, save_figure
+
 import numpy as np
 
-from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 C = 0.4
 THETA0 = 0.1
 THETA_FULL = math.pi - 0.05
@@ -118,7 +114,7 @@ def simulate_top(alpha, A, n0, law, t_end, rtol, dense=True, restitution=0.0, ma
 def run_point(law_name: str, mu: float, alpha: float, gamma: float, n0: float, t_end: float, rtol: float) -> MapRow:
     t0 = time.perf_counter()
     A = gamma * C
-    tt = pk.tippetop
+    tt = pk.theory.tippetop
     pred = dict(classical=tt.classical_inversion(alpha, A, C), group=tt.ueda_group_limit(alpha, A, C),
                 predicted=tt.ueda_group(alpha, A, C, n0, theta0=THETA0), theta_f_predicted=tt.theta_f(alpha, A, C, n0, theta0=THETA0),
                 n_full_predicted=tt.full_inversion_spin(alpha, A, C, theta0=THETA0))
@@ -162,7 +158,7 @@ def plot_map(rows: list[MapRow], cfg: dict, path: Path, quick: bool) -> None:
     for i, (law, mu) in enumerate(laws):
         for j, n0 in enumerate(spins):
             ax = axes[i, j]
-            pred = np.vectorize(lambda a, g: code[pk.tippetop.ueda_group(a, g * C, C, n0, theta0=THETA0)])(ag, gg)
+            pred = np.vectorize(lambda a, g: code[pk.theory.tippetop.ueda_group(a, g * C, C, n0, theta0=THETA0)])(ag, gg)
             ax.contourf(ag, gg, pred, levels=[-0.5, 0.5, 1.5, 2.5], cmap=cmap, alpha=0.8)
             ax.plot(al, 1 - al, "k--", lw=1)
             ax.plot(al, 1 + al, "k--", lw=1)
@@ -265,10 +261,10 @@ def render_inversion(r, path: Path, alpha: float) -> dict:
                         show_points=False)
     picks = np.linspace(0, len(ts) - 1, n_snap).astype(int)
     for j, i in enumerate(picks):
-        O = np.array([j * dx, 0.0, zG[i]]) + alpha * k[i] * np.array([0.0, 0.0, 1.0])
-        G = O - alpha * k[i]
-        pl.add_mesh(pv.Sphere(radius=1.0, center=O, theta_resolution=48, phi_resolution=48), color="#fdae6b", opacity=0.45)
-        pl.add_mesh(pv.Cylinder(center=O + 1.12 * k[i], direction=k[i], radius=0.13, height=0.3), color="#8c2d04")
+        ball = np.array([j * dx, 0.0, zG[i]]) + alpha * k[i] * np.array([0.0, 0.0, 1.0])  # the ball's centre O
+        G = ball - alpha * k[i]
+        pl.add_mesh(pv.Sphere(radius=1.0, center=ball, theta_resolution=48, phi_resolution=48), color="#fdae6b", opacity=0.45)
+        pl.add_mesh(pv.Cylinder(center=ball + 1.12 * k[i], direction=k[i], radius=0.13, height=0.3), color="#8c2d04")
         pl.add_mesh(pv.Sphere(radius=0.08, center=G), color="k")
         pl.add_point_labels([np.array([j * dx, 0.0, 2.75])], [f"t={ts[i]:.1f}, theta={df['theta'].iloc[i]:.2f}"], font_size=14,
                             text_color="k", shape=None, show_points=False)
@@ -284,7 +280,7 @@ def render_inversion(r, path: Path, alpha: float) -> dict:
 
 
 # -- the README example: convergence in rtol and eps -----------------------------------------------
-def convergence(out: Path) -> list[dict]:
+def convergence(st) -> list[dict]:
     top = pk.EccentricSphere(0.3, A=0.38, C=C)
     rows = []
     for eps in (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, None):
@@ -297,7 +293,7 @@ def convergence(out: Path) -> list[dict]:
     ref = next(r["t_stop"] for r in rows if r["eps"] is None and r["rtol"] == 1e-12)
     for r in rows:
         r["diff_vs_exact_rtol1e-12"] = r["t_stop"] - ref
-    write_csv(out / "tippe_top_convergence.csv", list(rows[0]), [list(r.values()) for r in rows])
+    st.csv("tippe_top_convergence.csv", list(rows[0]), [list(r.values()) for r in rows])
     print("README example: t_stop (theta reaches 0.4) of the tippe top alpha=0.3, A=0.38, C=0.4, mu=0.3, theta0=0.1, n0=15")
     print(f"{'eps':>8s} " + " ".join(f"{'rtol ' + format(rt, 'g'):>20s}" for rt in (1e-8, 1e-9, 1e-10, 1e-11, 1e-12)))
     for eps in (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, None):
@@ -338,43 +334,31 @@ def check_rtol(cfg: dict, rows: list[MapRow], n: int) -> list[dict]:
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES)
-    ap.add_argument("--fresh", action="store_true", help="discard stored rows and recompute")
-    args = ap.parse_args(argv)
-    out = output_dir(args)
+    st = pk.sweep.Study(__file__, __doc__, resumable=True)
+    args = st.parse(argv)
     cfg = QUICK if args.quick else FULL
-    t0 = time.perf_counter()
-    conv = convergence(out)
-    meta = pk.provenance({"study": "tippe_top", "config": {k: list(v) if isinstance(v, tuple) else v for k, v in cfg.items()},
-                          "rtol": RTOL, "theta0": THETA0, "C": C})
-    store = pk.ResultStore(out / "tippe_top_map.csv", out / "tippe_top_map.json", MapRow, meta, fresh=args.fresh)
+    conv = convergence(st)
+    store = st.store(MapRow, {"config": {k: list(v) if isinstance(v, tuple) else v for k, v in cfg.items()},
+                              "rtol": RTOL, "theta0": THETA0, "C": C}, name="tippe_top_map")
     tasks = [(law, mu, a, g, n0) for (law, mu) in cfg["laws"] for n0 in cfg["spins"] for a in cfg["alphas"] for g in cfg["gammas"]
              if g * C >= 0.5 * C]  # C <= 2A
-    todo = [t for t in tasks if row_key(*t, cfg["t_end"], RTOL) not in store]
-    for t in progress(todo, desc="tippe-top map", enabled=not args.no_progress):
-        store.add(run_point(*t, cfg["t_end"], RTOL))
-    keys = {row_key(*t, cfg["t_end"], RTOL) for t in tasks}
+    specs = pk.sweep.each(tasks, lambda *t: row_key(*t, cfg["t_end"], RTOL), lambda *t: run_point(*t, cfg["t_end"], RTOL))
+    st.run(specs, store, desc="tippe-top map")
+    keys = {s.key for s in specs}
     rows = [r for r in store.rows() if r.key in keys]
-    plot_map(rows, cfg, out / "tippe_top_map.png", args.quick)
+    plot_map(rows, cfg, st.path("tippe_top_map.png"), args.quick)
     summary = summarise(rows)
     summary["rtol_check"] = check_rtol(cfg, rows, 3 if args.quick else 8)
     ex = EXAMPLE
     r = simulate_top(ex["alpha"], ex["A"], ex["n0"], pk.Coulomb(ex["mu"]), 200.0, RTOL)
-    summary["hopping_example"] = plot_hopping(r, out / "tippe_top_hopping.png")
-    summary["scene"] = render_inversion(r, out / "tippe_top_scene.png", ex["alpha"])
+    summary["hopping_example"] = plot_hopping(r, st.path("tippe_top_hopping.png"))
+    summary["scene"] = render_inversion(r, st.path("tippe_top_scene.png"), ex["alpha"])
     summary["convergence_t_stop_spread"] = max(c["diff_vs_exact_rtol1e-12"] for c in conv) - min(c["diff_vs_exact_rtol1e-12"] for c in conv)
-    summary["wall_s"] = time.perf_counter() - t0
-    write_json(out / "tippe_top_summary.json", summary)
+    summary["wall_s"] = st.wall
+    st.json("tippe_top_summary.json", summary)
     print(json.dumps(summary, indent=1, default=str))
     return summary
 
 
-def write_json(path: Path, obj) -> None:
-    """Written to a temporary file, then renamed (a kill leaves the old file or the new one)."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(json.dumps(obj, indent=1, default=str))
-    os.replace(tmp, path)
-
-
 if __name__ == "__main__":
-    run_study(main, resume="the finished rows are kept in tippe_top_map.csv (in the output folder); rerunning the command resumes from them")
+    pk.sweep.run_study(main)

@@ -19,28 +19,20 @@ Also: (c) t_jump against the regularisation eps on a sliding start (converges) a
 paper's start (5.2) (sticks: does not); (d) cost against simulated time and against Omega0.
 
 Writes work_precision.png and work_precision.csv (columns workload, method, rtol, error,
-state_error, wall_s, n_rhs, default, status) to figures/ (figures/quick/ with --quick, or --out DIR).
-
-    python studies/work_precision.py [--quick] [--out DIR]
+state_error, wall_s, n_rhs, default, status).
 """
 
 from __future__ import annotations
 
 import statistics
 import time
-from pathlib import Path
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
+import phasekit as pk
+from phasekit.viz import pyplot
+
 import numpy as np
 
-from phasekit.viz import output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
-
-FIGURES = Path(__file__).resolve().parents[1] / "figures"
 MU = 0.1
-
-
-class _Capped(Exception):
-    pass
 
 
 def workloads():
@@ -66,49 +58,9 @@ def run_phasekit(body, y0, rtol, backend, cap, options=SWEEP_PATH):
 
 
 def run_scipy(body, y0, rtol, method, cap, *, casadi_rhs=False):
-    from scipy.integrate import solve_ivp
-
-    a, A, C = body.a, body.A, body.C
-    t_start = time.perf_counter()
-    calls = [0]
-    if casadi_rhs:
-        m = pk.Model(body, pk.Coulomb(MU))
-        f, jf, Rf, p = m.function("rhs_sliding"), m.function("rhs_jac_sliding"), m.function("R_sliding"), m.p
-
-        def fun(t, y):
-            calls[0] += 1
-            if calls[0] % 200 == 0 and time.perf_counter() - t_start > cap:
-                raise _Capped
-            return np.asarray(f(y, p)).ravel()
-
-        def jac(t, y):
-            return np.asarray(jf(y, p))
-
-        def event(t, y):
-            return float(Rf(y, p))
-    else:
-        jac = None
-
-        def fun(t, y):
-            calls[0] += 1
-            if calls[0] % 200 == 0 and time.perf_counter() - t_start > cap:
-                raise _Capped
-            return pk.numpy_rhs(t, y, a, A, C, MU)
-
-        def event(t, y):
-            return pk.numpy_normal_reaction(y, a, A, C, MU)
-
-    event.terminal, event.direction = True, -1
-    kw = {"jac": jac} if (jac is not None and method in ("BDF", "Radau", "LSODA")) else {}
-    try:
-        sol = solve_ivp(fun, (0.0, 200.0), np.asarray(y0, float), method=method, rtol=rtol, atol=rtol * 1e-2,
-                        events=event, **kw)
-    except _Capped:
-        return None, None, time.perf_counter() - t_start, calls[0], "capped"
-    wall = time.perf_counter() - t_start
-    if not sol.t_events[0].size:
-        return None, None, wall, int(sol.nfev), f"no jump ({sol.message})"
-    return float(sol.t_events[0][0]), sol.y_events[0][0], wall, int(sol.nfev), "ok"
+    r = pk.baseline.solve_ivp_to_jump(y0, 200.0, a=body.a, A=body.A, C=body.C, mu=MU, method=method, rtol=rtol,
+                                      rhs="casadi" if casadi_rhs else "numpy", max_wall=cap)
+    return r.t_jump, r.y if r.t_jump is not None else None, r.wall_s, r.n_rhs, r.status
 
 
 METHODS = {
@@ -306,29 +258,26 @@ def report(rows, refs, eps_rows, by_T, by_om, cap, repeats, png) -> None:
 
 
 def main(argv=None) -> dict:
-    ap = study_parser(__doc__, default_out=FIGURES, quick_help="4 tolerances, 1 repeat, 5 s cap")
-    args = ap.parse_args(argv)
-    out = output_dir(args)
+    st = pk.sweep.Study(__file__, __doc__, quick_help="4 tolerances, 1 repeat, 5 s cap")
+    args = st.parse(argv)
     plt = pyplot()
-
-    t_all = time.perf_counter()
     rtols = [1e-4, 1e-6, 1e-8, 1e-10] if args.quick else [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12]
     cap = 5.0 if args.quick else 30.0
     repeats = 1 if args.quick else 3
     wls = workloads()
-    with progress(total=len(wls) * (1 + len(METHODS) * len(rtols)) + 2, desc="runs", enabled=not args.no_progress) as bar:
+    with st.progress(total=len(wls) * (1 + len(METHODS) * len(rtols)) + 2, desc="runs") as bar:
         rows, refs = measure(wls, rtols, cap, repeats, bar)
         eps_rows = eps_convergence(args.quick)
         bar.update()
         by_T, by_om = cost_growth(args.quick)
         bar.update()
-    png = save_figure(draw(plt, rows, refs, eps_rows, by_T, by_om, cap, args.quick), out / "work_precision.png", dpi=120)
-    write_csv(out / "work_precision.csv", ["workload", "method", "rtol", "error", "state_error", "wall_s", "n_rhs", "default", "status"],
-              rows)
+    png = st.save(draw(plt, rows, refs, eps_rows, by_T, by_om, cap, args.quick), "work_precision.png", dpi=120)
+    st.csv("work_precision.csv", ["workload", "method", "rtol", "error", "state_error", "wall_s", "n_rhs", "default", "status"],
+           rows)
     report(rows, refs, eps_rows, by_T, by_om, cap, repeats, png)
-    print(f"{time.perf_counter() - t_all:.1f} s")
+    print(f"{st.wall:.1f} s")
     return {"rows": rows, "refs": refs, "eps": eps_rows}
 
 
 if __name__ == "__main__":
-    run_study(main)
+    pk.sweep.run_study(main)

@@ -4,11 +4,11 @@ import contextlib
 import io
 import json
 
-import casadi as ca
-import numpy as np
-
 import phasekit as pk
 from phasekit import cli
+
+import casadi as ca
+import numpy as np
 
 
 def central_jacobian(f, x, h=1e-6):

@@ -9,4 +9,4 @@ PAPER_START_5_1 = dict(U=8e-7, V=4e-6, Lambda=1e-5, theta=4e-6)
 
 # docs/physics.md (zero slip, pitfall 1): from (5.2) with Omega0 = 10.5 and the slip regularised as
 # sqrt(|u|^2 + eps^2): eps = 1e-3 jumps at t ~ 52, eps = 1e-4 at t ~ 157, eps <= 1e-6 sticks.
-NOTES_5_2_JUMP_T = {1e-3: 52.0, 1e-4: 157.0}
+PITFALL_5_2_JUMP_T = {1e-3: 52.0, 1e-4: 157.0}

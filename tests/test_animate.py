@@ -1,11 +1,12 @@
 """The moving body: GIF, MP4 and film strip from a run, through the API and the CLI."""
 
+import phasekit as pk
+from phasekit import pose
+from phasekit.viz.animate import BODY_COLORS
+
 import numpy as np
 import pytest
 from PIL import Image
-
-import phasekit as pk
-from phasekit.viz.animate import BODY_COLORS
 
 from .helpers import run_cli, strict_json
 
@@ -95,7 +96,7 @@ def test_body_mesh_is_the_support_function_surface():
     for body in (pk.Spheroid(1.5), pk.Egg(1.3, 0.05), pk.EccentricSphere(0.3)):
         pts = pk.viz.body_mesh(body, n_theta=181, n_azimuth=180).points
         for th in (0.0, 0.7, np.pi / 2, 2.5):
-            R = pk.rotation_matrix(0.0, th, 0.0)
+            R = pose.rotation_matrix(0.0, th, 0.0)
             low = -(pts @ R.T)[:, 2].max(), -(pts @ R.T)[:, 2].min()
             assert abs(low[1] - body.h(th)[0]) < 2e-4 * body.h(th)[0]
 

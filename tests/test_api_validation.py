@@ -5,12 +5,13 @@ still give the known values (closed forms, not values recorded from the code).""
 import math
 import os
 
-import numpy as np
-import pytest
-
 import phasekit as pk
+from phasekit import units
 from phasekit.impact import collision_matrix, contact_point
 from phasekit.surface import Scene, compute_scene
+
+import numpy as np
+import pytest
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 NAN, INF = float("nan"), float("inf")
@@ -53,18 +54,18 @@ def _closed_form_6_3(a, Om, th):
     ("Omega", (1e-320, 1.0)),  # overflows
 ])
 def test_surface_n_rejects(name, args):
-    _raises(name, lambda: pk.surface_n(B, *args))
+    _raises(name, lambda: pk.theory.surface_n(B, *args))
 
 
 def test_surface_n_rejects_a_non_body_and_a_sphere():
-    _raises("body", lambda: pk.surface_n("spheroid", 12.0, 1.0))
-    _raises("theta", lambda: pk.surface_n(pk.Spheroid(1.0), 12.0, 1.0))  # h_theta = 0 everywhere
+    _raises("body", lambda: pk.theory.surface_n("spheroid", 12.0, 1.0))
+    _raises("theta", lambda: pk.theory.surface_n(pk.Spheroid(1.0), 12.0, 1.0))  # h_theta = 0 everywhere
 
 
 def test_surface_n_valid_matches_closed_form():
     OM, TH = np.meshgrid([8.0, 12.0, 20.0], [0.4, 0.9, 1.3])
-    np.testing.assert_allclose(pk.surface_n(B, OM, TH), _closed_form_6_3(1.5, OM, TH), rtol=1e-13)
-    assert float(pk.surface_n(B, 12.0, 1.0)) == pytest.approx(float(_closed_form_6_3(1.5, 12.0, 1.0)), rel=1e-13)
+    np.testing.assert_allclose(pk.theory.surface_n(B, OM, TH), _closed_form_6_3(1.5, OM, TH), rtol=1e-13)
+    assert float(pk.theory.surface_n(B, 12.0, 1.0)) == pytest.approx(float(_closed_form_6_3(1.5, 12.0, 1.0)), rel=1e-13)
 
 
 @pytest.mark.parametrize("name, kwargs", [
@@ -80,13 +81,13 @@ def test_surface_n_valid_matches_closed_form():
 ])
 def test_exact_boundary_rejects(name, kwargs):
     args = dict(body=B, mu=0.1, Omega=12.0, theta=1.0, Lambda=0.0) | kwargs
-    _raises(name, lambda: pk.exact_boundary(args.pop("body"), args.pop("mu"), args.pop("Omega"), args.pop("theta"),
+    _raises(name, lambda: pk.theory.exact_boundary(args.pop("body"), args.pop("mu"), args.pop("Omega"), args.pop("theta"),
                                             **args))
 
 
 def test_exact_boundary_valid_is_6_3_at_lambda_zero():
     th = np.array([0.5, 1.0, 1.3])
-    np.testing.assert_allclose(pk.exact_boundary(B, 0.1, 12.0, th), _closed_form_6_3(1.5, 12.0, th), rtol=1e-10)
+    np.testing.assert_allclose(pk.theory.exact_boundary(B, 0.1, 12.0, th), _closed_form_6_3(1.5, 12.0, th), rtol=1e-10)
 
 
 @pytest.mark.parametrize("name, kwargs", [
@@ -141,7 +142,7 @@ GOOD_IMPACT = dict(k=[0.0, 0.0, 1.0], w=[0.0, 0.0, 0.0], v=[0.0, 0.0, -1.0], e=0
 ])
 def test_impact_rejects(name, bad):
     args = dict(GOOD_IMPACT, body=B) | {name: bad}
-    _raises(name, lambda: pk.impact(args["body"], args["k"], args["w"], args["v"], e=args["e"], mu=args["mu"]))
+    _raises(name, lambda: pk.theory.impact(args["body"], args["k"], args["w"], args["v"], e=args["e"], mu=args["mu"]))
 
 
 @pytest.mark.parametrize("fn", [contact_point, collision_matrix])
@@ -154,7 +155,7 @@ def test_impact_geometry_rejects(fn):
 def test_impact_valid_upright_drop():
     """Upright (k = e_Z) and falling straight: the impulse passes through G, so it only reverses
     the fall by Newton's law and spins nothing: v = (0, 0, e), w = 0, P = (0, 0, 1 + e)."""
-    r = pk.impact(B, **GOOD_IMPACT)
+    r = pk.theory.impact(B, **GOOD_IMPACT)
     np.testing.assert_allclose(r.v, [0.0, 0.0, 0.5], atol=1e-15)
     np.testing.assert_allclose(r.w, [0.0, 0.0, 0.0], atol=1e-15)
     np.testing.assert_allclose(r.impulse, [0.0, 0.0, 1.5], atol=1e-15)
@@ -198,9 +199,9 @@ def test_impact_valid_upright_drop():
     ("value", lambda: pk.Scale("21.5 mm").dimensionless("30 Hz")),
     ("value", lambda: pk.Scale("21.5 mm").quantity(NAN, "rate")),
     ("value", lambda: pk.Scale("21.5 mm").quantity("x", "rate")),
-    ("default_unit", lambda: pk.as_quantity(3, "x", "foo")),
-    ("x", lambda: pk.as_quantity("3j mm", "x")),
-    ("name", lambda: pk.as_quantity("3 mm", 5)),
+    ("default_unit", lambda: units.as_quantity(3, "x", "foo")),
+    ("x", lambda: units.as_quantity("3j mm", "x")),
+    ("name", lambda: units.as_quantity("3 mm", 5)),
 ])
 def test_units_reject(name, call):
     _raises(name, call)
@@ -232,7 +233,7 @@ def test_units_valid_by_hand():
     ("n0", lambda: pk.paper_start("5.2", n0=10.0)),
     ("n0", lambda: pk.paper_start("5.1", n0="10")),
     ("friction", lambda: pk.paper_start("5.1", friction="coulomb")),
-    ("value", lambda: pk.PAPER_CASES["5.2"].state(NAN)),
+    ("value", lambda: pk.theory.PAPER_CASES["5.2"].state(NAN)),
 ])
 def test_paper_start_rejects(name, call):
     err = _raises(name, call)

@@ -1,10 +1,11 @@
 """Integrators: the on-disk cache round trip, guards ~0 at located events, located minima."""
 
-import numpy as np
-
 import phasekit as pk
-from phasekit.backends import Budget, TaylorEngine
+from phasekit import engines
+from phasekit.engines import Budget, TaylorEngine
 from phasekit.system import declare, watched
+
+import numpy as np
 
 
 def test_taylor_cache_reload_keeps_the_monitor(tmp_path, monkeypatch, prolate, standard_start):
@@ -14,11 +15,11 @@ def test_taylor_cache_reload_keeps_the_monitor(tmp_path, monkeypatch, prolate, s
     model = pk.Model(prolate, pk.Coulomb(0.1))
     system = declare(model)
     flow = system.flow(pk.Mode.SLIDING)
-    events = watched(system, pk.Mode.SLIDING, "taylor")
+    events = watched(system, pk.Mode.SLIDING, TaylorEngine)
     cflow = model.compile_flow(flow, events)
     counts = []
     for _ in range(2):
-        TaylorEngine._memory.clear()  # force a (re)load from the disk cache
+        engines.forget()  # force a (re)load from the disk cache
         prop = TaylorEngine(3e-9).propagate(cflow, standard_start, 0.0, 30.0, model.p, [e.level for e in events],
                                             budget=Budget(10**6, float("inf")))
         counts.append(len(prop.monitored))

@@ -7,12 +7,13 @@ import math
 import subprocess
 import sys
 
+import phasekit as pk
+from phasekit import friction, starts
+from phasekit.cli import main
+
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
-import phasekit as pk
-from phasekit.cli import main
 
 NAN, INF = float("nan"), float("inf")
 VALID = dict(a=1.5, mu=0.1, friction="coulomb", slip_eps=None, A=None, C=None, theta0=1.0, omega0=8.0, t_end=5.0, rtol=1e-9)
@@ -38,7 +39,7 @@ FLAGS = {"a": "--a", "mu": "--mu", "slip_eps": "--slip-eps", "theta0": "--theta0
 
 def api_call(params):
     body = pk.Spheroid(params["a"], A=params["A"], C=params["C"])
-    law = pk.friction_law(params["friction"], params["mu"], params["slip_eps"])
+    law = friction.friction_law(params["friction"], params["mu"], params["slip_eps"])
     y0 = pk.gyroscopic_start(body, params["theta0"], omega0=params["omega0"])
     return pk.simulate(pk.Model(body, law), y0, params["t_end"], rtol=params["rtol"])
 
@@ -95,7 +96,7 @@ def test_cli_rejects_bad_parameter_in_one_line(bad):
         (lambda m: pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1), "polar"), "chart"),
         (lambda m: pk.gyroscopic_start(pk.Spheroid(0.6), 1.0, n0=-0.0), "n0"),
         (lambda m: pk.gyroscopic_start(pk.Spheroid(0.6), 1.8, n0=10.0), "theta0"),
-        (lambda m: pk.raw_start([0, 0, 1, 0, 0.0, 1]), "theta"),
+        (lambda m: starts.raw_start([0, 0, 1, 0, 0.0, 1]), "theta"),
     ],
 )
 def test_public_api_errors_name_the_parameter(call, name):

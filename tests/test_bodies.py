@@ -4,15 +4,15 @@ and a user's CustomBody works for simulation, fixed points, thresholds and scene
 
 import math
 
-import casadi as ca
-import numpy as np
-import pytest
-
 import phasekit as pk
 from phasekit.body import TIPPE_TOP_OFFSET_MAX, uniform_mass_properties
 from phasekit.egg import Egg
 from phasekit.fixedpoints import fixed_points, horizontal_state, vertical_state
 from phasekit.threshold import Definition, find_threshold
+
+import casadi as ca
+import numpy as np
+import pytest
 
 #: Regression values of the previous version (phasekit before the general-body rework, measured
 #: with its own code on the standard workload: a = 1.5, mu = 0.1, exact Coulomb, gyroscopic start
@@ -78,7 +78,9 @@ def test_general_path_spheroid_eigenvalues(law):
         assert [p.kind for p in ps] == [p.kind for p in pc]
         for p, q in zip(ps, pc):
             np.testing.assert_allclose(q.x, p.x, rtol=0, atol=1e-12)
-            key = lambda z: (round(z.real, 8), round(z.imag, 8))
+            def key(z):
+                return round(z.real, 8), round(z.imag, 8)
+
             np.testing.assert_allclose(sorted(q.eigenvalues, key=key), sorted(p.eigenvalues, key=key), rtol=0, atol=1e-12)
         x = horizontal_state(10.0) if "omega0" in kw else vertical_state(kw["n0"])
         m_s, m_c = pk.Model(sph, law, chart), pk.Model(cus, law, chart)
@@ -197,7 +199,7 @@ def test_custom_body_threshold_equals_the_spheroid_threshold(prolate, custom15):
     d = Definition("sliding", "sliding")
     th_s = find_threshold(d, prolate, hi=60.0, guess=9.5)
     th_c = find_threshold(d, custom15, hi=60.0, guess=9.5)
-    assert th_c.status is pk.Status.CONVERGED and th_c.n_sims == th_s.n_sims
+    assert th_c.status is pk.SearchStatus.CONVERGED and th_c.n_sims == th_s.n_sims
     assert th_c.value == pytest.approx(th_s.value, rel=1e-12)
     assert th_c.bracket == pytest.approx(th_s.bracket, rel=1e-12)
 

@@ -1,9 +1,9 @@
 """Body geometry: (2.10) and its derivatives, moments, validation."""
 
+import phasekit as pk
+
 import numpy as np
 import pytest
-
-import phasekit as pk
 
 
 @pytest.mark.parametrize("a", [0.2, 2 / 3, 1.0, 1.5, 5.0])

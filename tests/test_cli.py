@@ -4,10 +4,10 @@ import contextlib
 import io
 import json
 
+from phasekit.cli import main
+
 import numpy as np
 import pytest
-
-from phasekit.cli import main
 
 
 def run_json(args):

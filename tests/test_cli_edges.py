@@ -8,11 +8,11 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
-import pytest
-
 import phasekit as pk
 from phasekit import cli
+
+import numpy as np
+import pytest
 
 from .helpers import run_cli, strict_json
 
@@ -98,17 +98,17 @@ def test_an_end_time_beyond_the_wall_budget_is_said_at_once():
 
 
 @pytest.mark.parametrize("call, name", [
-    (lambda b: pk.impact(b, [np.sin(1.0), 0, np.cos(1.0)], [0, 0, 1e308], [0, 0, -1e308], e=0.5, mu=0.1), "w"),
-    (lambda b: pk.flight_constants(b, [0, 0, 1e200, 0, 1.0, 1.0], 1e200), "euler_state"),
-    (lambda b: pk.c_xi(b, 1.0, 1e300, 0.1, 0.01, 0.0), "Omega_bar0"),
-    (lambda b: pk.omega2(b, 1.0, 1e300), "Omega"),
-    (lambda b: pk.I_quadrature(b, 1e300, 1.0, 0.5), "J"),
-    (lambda b: pk.Sigma(b, 1e300, 1.0, 0.5, 0.01), "J"),
-    (lambda b: pk.omega2(b, 0.0, 10.0), "theta"),
-    (lambda b: pk.omega2(b, float("nan"), 10.0), "theta"),
-    (lambda b: pk.I_quadrature(b, 0.0, 1.0, 0.5), "J"),
-    (lambda b: pk.c_xi(b, 1.0, 10.0, 0.1, float("nan"), 0.0), "dtheta0"),
-    (lambda b: pk.flight_constants(b, [0, 0, 10.0, 0, 1.0, 1.0], float("nan")), "W"),
+    (lambda b: pk.theory.impact(b, [np.sin(1.0), 0, np.cos(1.0)], [0, 0, 1e308], [0, 0, -1e308], e=0.5, mu=0.1), "w"),
+    (lambda b: pk.theory.flight_constants(b, [0, 0, 1e200, 0, 1.0, 1.0], 1e200), "euler_state"),
+    (lambda b: pk.theory.c_xi(b, 1.0, 1e300, 0.1, 0.01, 0.0), "Omega_bar0"),
+    (lambda b: pk.theory.omega2(b, 1.0, 1e300), "Omega"),
+    (lambda b: pk.theory.I_quadrature(b, 1e300, 1.0, 0.5), "J"),
+    (lambda b: pk.theory.Sigma(b, 1e300, 1.0, 0.5, 0.01), "J"),
+    (lambda b: pk.theory.omega2(b, 0.0, 10.0), "theta"),
+    (lambda b: pk.theory.omega2(b, float("nan"), 10.0), "theta"),
+    (lambda b: pk.theory.I_quadrature(b, 0.0, 1.0, 0.5), "J"),
+    (lambda b: pk.theory.c_xi(b, 1.0, 10.0, 0.1, float("nan"), 0.0), "dtheta0"),
+    (lambda b: pk.theory.flight_constants(b, [0, 0, 10.0, 0, 1.0, 1.0], float("nan")), "W"),
 ])
 def test_the_theory_helpers_take_no_nan_and_give_none(call, name):
     with pytest.raises(pk.ParameterError) as info:
@@ -155,12 +155,12 @@ def test_ctrl_c_at_any_moment_of_the_start_is_one_line_and_130(which, tmp_path):
 
 def test_a_bad_scheduler_is_refused_when_no_work_is_left():
     pytest.importorskip("dask.distributed")
-    specs = [pk.TaskSpec("k0", lambda prev: 0)]
+    specs = [pk.sweep.TaskSpec("k0", lambda prev: 0)]
     with pytest.raises(pk.ParameterError) as info:
-        pk.run_pending(specs, store_get=lambda key: 0, on_result=lambda s, r: None, warm_up=lambda: None,
+        pk.sweep.run_pending(specs, store_get=lambda key: 0, on_result=lambda s, r: None, warm_up=lambda: None,
                        scheduler="tcp://127.0.0.1:1")
     assert info.value.param == "scheduler"
-    ran = pk.run_pending(specs, store_get=lambda key: 0, on_result=lambda s, r: None, warm_up=lambda: None)
+    ran = pk.sweep.run_pending(specs, store_get=lambda key: 0, on_result=lambda s, r: None, warm_up=lambda: None)
     assert ran.computed == 0 and ran.mode == "all stored"
 
 
@@ -170,7 +170,7 @@ def test_version_flag_help_says_json():
 
 @pytest.mark.parametrize("argv, flag", [(["--quick", "--quick"], "--quick"), (["--out", "a", "--out=b"], "--out")])
 def test_a_study_refuses_a_repeated_flag_too(argv, flag, capsys):
-    from phasekit.viz import study_parser
+    from phasekit.study import study_parser
 
     ap = study_parser("a study", default_out=ROOT / "figures")
     with pytest.raises(SystemExit) as info:
@@ -182,7 +182,7 @@ def test_a_study_refuses_a_repeated_flag_too(argv, flag, capsys):
 def test_an_interrupt_that_compiled_code_turns_into_another_error_ends_a_study_as_interrupted(capsys):
     """CasADi's argument dispatch turns a KeyboardInterrupt into NotImplementedError ("Wrong
     number or type of arguments"), which propagated as a traceback (found at 1.2 s into a study)."""
-    from phasekit.viz import run_study
+    from phasekit.study import run_study
 
     if signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
         pytest.skip("SIGINT is handled by something else in this process")

@@ -5,9 +5,9 @@ import math
 import subprocess
 import sys
 
-import pytest
-
 from phasekit import cli
+
+import pytest
 
 from .helpers import run_cli, strict_json
 

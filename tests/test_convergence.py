@@ -1,8 +1,8 @@
 """The standard prolate workload jumps, and its jump time converges in eps and rtol."""
 
-import pytest
-
 import phasekit as pk
+
+import pytest
 
 
 @pytest.fixture(scope="module")

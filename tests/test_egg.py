@@ -5,15 +5,15 @@ parametrisation, so that the two can disagree."""
 
 import time
 
+from phasekit.body import Spheroid
+from phasekit.egg import W_GUARANTEED, Egg, clenshaw, mass_properties
+from phasekit.errors import ParameterError
+
 import casadi as ca
 import numpy as np
 import pytest
 from numpy.polynomial import chebyshev
 from scipy.special import roots_legendre
-
-from phasekit.body import Spheroid
-from phasekit.egg import W_GUARANTEED, Egg, clenshaw, mass_properties
-from phasekit.errors import ParameterError
 
 # (a, w/L) covering the documented range, and one beyond W_GUARANTEED that a near 1.3 allows
 EGGS = [(1.3, 0.1), (0.3, 0.08), (0.5, 0.05), (2.5, 0.08), (3.0, 0.03), (1.0, 0.2), (1.3, 0.25)]
@@ -270,7 +270,7 @@ def test_the_horizontal_like_state_separates_the_two_ends():
     import phasekit as pk
 
     egg = Egg(57 / 43, 0.05)
-    th_h = pk.horizontal_like_angle(egg, pk.precession_angles(egg, omega0=6.0))
+    th_h = pk.theory.horizontal_like_angle(egg, pk.theory.precession_angles(egg, omega0=6.0))
     assert th_h - np.pi / 2 > 0.15
     ends = {}
     for d in (-0.02, 0.02):

@@ -1,9 +1,11 @@
 """Issue 4: fixed points, exact linearisation, stability, unstable-manifold seeds."""
 
-import numpy as np
-import pytest
-
 import phasekit as pk
+from phasekit.criteria import (
+    horizontal_stability_threshold,
+    vertical_is_stable,
+    vertical_stability_threshold,
+)
 from phasekit.fixedpoints import (
     continue_family,
     find_fixed_point,
@@ -14,11 +16,9 @@ from phasekit.fixedpoints import (
     vertical_state,
 )
 from phasekit.manifolds import unstable_manifold_start, unstable_seeds
-from phasekit.criteria import (
-    horizontal_stability_threshold,
-    vertical_is_stable,
-    vertical_stability_threshold,
-)
+
+import numpy as np
+import pytest
 
 from .helpers import central_jacobian
 from .reference_values import PAPER_START_5_2

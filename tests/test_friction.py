@@ -1,9 +1,10 @@
 """Friction-law conformance: odd in the slip, dissipative, and the documented forms."""
 
+import phasekit as pk
+from phasekit import friction
+
 import numpy as np
 import pytest
-
-import phasekit as pk
 
 LAWS = [pk.Coulomb(0.3), pk.RegularisedCoulomb(0.3, 1e-3), pk.Viscous(0.3)]
 
@@ -18,7 +19,7 @@ def check_friction_law(law, rng):
         assert np.linalg.norm(F) <= max(law.mu * R, law.mu * np.linalg.norm(u)) * (1 + 1e-12)
 
 
-@pytest.mark.parametrize("law", LAWS, ids=lambda l: l.name)
+@pytest.mark.parametrize("law", LAWS, ids=lambda law: law.name)
 def test_friction_law_conformance(law):
     check_friction_law(law, np.random.default_rng(3))
 
@@ -34,4 +35,4 @@ def test_forms():
 @pytest.mark.parametrize("name, mu, eps, what", [("coulomb", -0.1, None, "mu"), ("coulomb", 0.1, 0.0, "eps"), ("wet", 0.1, None, "friction")])
 def test_bad_law(name, mu, eps, what):
     with pytest.raises(ValueError, match=f"`{what}`"):
-        pk.friction_law(name, mu, eps)
+        friction.friction_law(name, mu, eps)

@@ -29,13 +29,13 @@ import sys
 import time
 import warnings
 
+import phasekit as pk
+from phasekit import charts, cli, friction
+
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-
-import phasekit as pk
-from phasekit import cli
 
 from .helpers import strict_json
 
@@ -406,7 +406,7 @@ SIM_NAMES = {"model", "x0", "t_end", "t0", "stop_at", "restitution", "events", "
 }), real_or_wrong(1.0, 5.0, 0.3))
 def test_api_simulate(model, x0, kw, t_end):
     if model.chart.name == "vector" and isinstance(x0, list) and len(x0) == 6:
-        x0 = list(pk.euler_to_vector(np.asarray(x0, float))) if np.all(np.isfinite(x0)) else x0 + [0.0, 0.0]
+        x0 = list(charts.euler_to_vector(np.asarray(x0, float))) if np.all(np.isfinite(x0)) else x0 + [0.0, 0.0]
     outcome, r = classify_api(SIM_NAMES, lambda: pk.simulate(model, x0, t_end, max_wall=2.0, **kw))
     if outcome == "valid":
         outcome = check_trajectory(r)
@@ -495,7 +495,7 @@ def test_api_find_threshold(defn_kw, search_kw, body):
     if outcome == "valid":
         assert th.value is None or math.isfinite(th.value)
         assert all(b is None or math.isfinite(b) for b in th.bracket)
-        outcome = "failed" if th.status is pk.Status.FAILED else "valid"
+        outcome = "failed" if th.status is pk.SearchStatus.FAILED else "valid"
         if outcome == "failed":
             assert th.reason
     record("api find_threshold", outcome)
@@ -528,7 +528,7 @@ def test_api_friction_laws(kind, mu, eps, name):
         if kind == "RegularisedCoulomb":
             return pk.RegularisedCoulomb(mu, eps)
         if kind == "friction_law":
-            return pk.friction_law(name, mu, eps)
+            return friction.friction_law(name, mu, eps)
         return getattr(pk, kind)(mu)
 
     outcome, law = classify_api({"mu", "eps", "friction", "name"}, make)

@@ -15,16 +15,27 @@ import json
 import math
 import os
 
+import phasekit as pk
+from phasekit import cli
+
 import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-import phasekit as pk
-from phasekit import cli
-
-from .test_fuzz import (BODIES, LAWS, SIM_NAMES, check_trajectory, classify_api, finite_everywhere, fuzz_settings, mostly,
-                        real_or_wrong, reals, wrong)
+from .test_fuzz import (
+    BODIES,
+    LAWS,
+    SIM_NAMES,
+    check_trajectory,
+    classify_api,
+    finite_everywhere,
+    fuzz_settings,
+    mostly,
+    real_or_wrong,
+    reals,
+    wrong,
+)
 
 COUNTS: dict[str, collections.Counter] = collections.defaultdict(collections.Counter)
 NULLABLE = {"reason", "t_jump"}  # ensemble columns that may be missing (None -> NaN in pandas)
@@ -115,17 +126,17 @@ DEF_KW = st.fixed_dictionaries({"seed": st.sampled_from(["sliding", "sliding", "
 
 
 def _threshold_checks(th) -> str:
-    assert isinstance(th, pk.Threshold) and th.status in pk.Status
+    assert isinstance(th, pk.Threshold) and th.status in pk.SearchStatus
     assert th.value is None or math.isfinite(th.value)
     assert all(b is None or math.isfinite(b) for b in th.bracket)
-    if th.status is pk.Status.CONVERGED:
+    if th.status is pk.SearchStatus.CONVERGED:
         lo, hi = th.bracket
         assert lo < th.value < hi
         at = {o.value: o for o in th.outcomes}
         assert at[lo].jumped is False and at[hi].jumped is True  # the bracket its own runs give
-    if th.status in (pk.Status.FAILED, pk.Status.BRACKET_ONLY):
+    if th.status in (pk.SearchStatus.FAILED, pk.SearchStatus.BRACKET_ONLY):
         assert th.reason
-    return "failed" if th.status is pk.Status.FAILED else "valid"
+    return "failed" if th.status is pk.SearchStatus.FAILED else "valid"
 
 
 @fuzz_settings(120)

@@ -8,11 +8,11 @@ accumulation point reached) with a bounded effect on the state after it.
 
 import json
 
-import numpy as np
-import pytest
-
 import phasekit as pk
 from phasekit.resets import BOUNCE_STOP, flight_state
+
+import numpy as np
+import pytest
 
 A, MU, E = 1.5, 0.1, 0.5
 

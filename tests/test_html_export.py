@@ -5,10 +5,10 @@ import os
 import shutil
 import subprocess
 
+import phasekit as pk
+
 import numpy as np
 import pytest
-
-import phasekit as pk
 
 pytestmark = pytest.mark.render
 #: Chromium with no network, no GPU, a fresh profile (the CI machine's flags)

@@ -1,9 +1,9 @@
 """Invariants: mu = 0 conserves energy, spin and L_Z; friction never adds energy."""
 
+import phasekit as pk
+
 import numpy as np
 import pytest
-
-import phasekit as pk
 
 
 @pytest.mark.parametrize("a", [1.5, 0.6])

@@ -6,14 +6,14 @@ and the default threshold definition uses that rule, so that an egg that settles
 longer stick-slips to t_max.
 """
 
+import importlib
 import time
+
+import phasekit as pk
+from phasekit.watch import show_progress
 
 import numpy as np
 import pytest
-
-import phasekit as pk
-import importlib
-from phasekit.watch import show_progress
 
 HANG_GUARD = 120.0  # s
 
@@ -28,7 +28,7 @@ def test_the_issues_egg_search_ends_with_a_threshold(egg):
     t0 = time.monotonic()
     th = pk.find_threshold(pk.Definition("sliding", "sliding", mu=0.1), egg, guess=11.0, window=1.2, n_coarse=4, tol=2e-3)
     assert time.monotonic() - t0 < HANG_GUARD
-    assert th.status is pk.Status.CONVERGED and th.bracket[1] / th.bracket[0] - 1 < 2e-3
+    assert th.status is pk.SearchStatus.CONVERGED and th.bracket[1] / th.bracket[0] - 1 < 2e-3
     lo, hi = th.bracket
     below = [o for o in th.outcomes if o.value <= lo]
     assert all(not o.jumped for o in below) and all(o.jumped for o in th.outcomes if o.value >= hi)
@@ -82,18 +82,18 @@ def test_a_search_with_a_wall_budget_returns_at_once_saying_so(prolate):
     t0 = time.monotonic()
     th = pk.find_threshold(pk.Definition("sliding", "sliding"), prolate, max_wall=0.05, progress=False)
     assert time.monotonic() - t0 < HANG_GUARD
-    assert th.status in (pk.Status.FAILED, pk.Status.BRACKET_ONLY) and "max_wall = 0.05 s" in th.reason
+    assert th.status in (pk.SearchStatus.FAILED, pk.SearchStatus.BRACKET_ONLY) and "max_wall = 0.05 s" in th.reason
 
 
 def test_a_continuation_with_a_wall_budget_marks_the_bodies_it_did_not_reach():
     defn = pk.Definition("sliding", "sliding")
     out = pk.continue_threshold(defn, [1.5, 1.75, 2.0], max_wall=0.05, progress=False)
-    assert len(out) == 3 and out[-1].status is pk.Status.FAILED and out[-1].reason.startswith("not searched")
+    assert len(out) == 3 and out[-1].status is pk.SearchStatus.FAILED and out[-1].reason.startswith("not searched")
 
 
 def test_a_stick_boundary_search_takes_a_wall_budget(prolate):
     th = pk.find_stick_boundary(pk.Definition("sliding", "sliding"), prolate, 10.0, max_wall=0.01, progress=False)
-    assert th.status in (pk.Status.FAILED, pk.Status.BRACKET_ONLY) and "max_wall" in th.reason
+    assert th.status in (pk.SearchStatus.FAILED, pk.SearchStatus.BRACKET_ONLY) and "max_wall" in th.reason
 
 
 def test_progress_is_shown_where_asked_and_only_there(capsys, prolate):
@@ -124,10 +124,10 @@ def test_a_map_with_a_wall_budget_leaves_the_rest_for_a_rerun():
         time.sleep(0.05)
         return k
 
-    specs = [pk.TaskSpec(f"k{k}", slow, (k,)) for k in range(40)]
-    res = pk.run_tasks(specs, store_get=lambda key: None, on_result=lambda s, r: done.append(s.key), progress=False,
+    specs = [pk.sweep.TaskSpec(f"k{k}", slow, (k,)) for k in range(40)]
+    res = pk.sweep.run_tasks(specs, store_get=lambda key: None, on_result=lambda s, r: done.append(s.key), progress=False,
                        max_wall=0.3)
     assert 0 < len(res) == len(done) < 40
     stored = dict.fromkeys(done, 0)
-    again = pk.run_tasks(specs, store_get=stored.get, on_result=lambda s, r: done.append(s.key), progress=False)
+    again = pk.sweep.run_tasks(specs, store_get=stored.get, on_result=lambda s, r: done.append(s.key), progress=False)
     assert len(again) == 40 and len(done) == 40

@@ -1,10 +1,10 @@
 """The compiled model: (6.1), R against (2.8) on a computed trajectory, exact Jacobians."""
 
-import numpy as np
-import pytest
-
 import phasekit as pk
 from phasekit.resets import project_no_slip
+
+import numpy as np
+import pytest
 
 from .helpers import central_jacobian
 

@@ -17,10 +17,10 @@ import threading
 import time
 from pathlib import Path
 
+import phasekit as pk
+
 import numpy as np
 import pytest
-
-import phasekit as pk
 
 ROOT = Path(__file__).resolve().parents[1]
 HANG_GUARD = 120  # s: a call that has not returned by then hangs (it takes ~2 s)
@@ -170,7 +170,7 @@ def test_an_ensemble_wall_budget_ends_the_call_with_the_rows_it_had():
 
 DASK_SCRIPT = textwrap.dedent("""\
     import phasekit as pk
-    client, cluster = pk.make_client(workers=2)
+    client, cluster = pk.sweep.make_client(workers=2)
     print(client.submit(sum, [1, 2, 3]).result(), len(client.scheduler_info()["workers"]))
     client.close(); cluster.close()
 """)

@@ -10,12 +10,13 @@ integration; the angles are read off the rotation matrix afterwards.
 
 import math
 
+import phasekit as pk
+from phasekit import pose
+from phasekit.pose import rotation_matrix
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-
-import phasekit as pk
-from phasekit.pose import rotation_matrix
 
 A_RATIO, MU, EPS = 1.5, 0.1, 1e-3
 INERTIA = np.array([(1 + A_RATIO**2) / 5, (1 + A_RATIO**2) / 5, 0.4])
@@ -129,11 +130,11 @@ def test_pose_is_the_same_in_both_charts_and_with_cvodes(prolate_run):
     vec = pk.simulate(pk.Model(body, pk.RegularisedCoulomb(MU, EPS), chart="vector"), pk.to_chart("vector", y0), 41.0,
                       rtol=1e-12)
     got = vec.pose(ts)
-    for name in pk.POSE_COLUMNS:
+    for name in pose.POSE_COLUMNS:
         np.testing.assert_allclose(got[name], ref[name], rtol=1e-8, atol=1e-9, err_msg=name)
     cv = pk.simulate(traj.model, y0, 41.0, rtol=1e-10, backend="cvodes")
     got = cv.pose(ts)
-    for name in pk.POSE_COLUMNS:
+    for name in pose.POSE_COLUMNS:
         np.testing.assert_allclose(got[name], ref[name], rtol=1e-4, atol=1e-5, err_msg=name)
 
 
@@ -171,7 +172,7 @@ def test_pose_through_flights_and_impacts():
         if not traj.t0 + d < e.t < traj.t - d:
             continue
         a, b = traj.sample([e.t - d, e.t + d]).iloc[0], traj.sample([e.t - d, e.t + d]).iloc[1]
-        for col in pk.POSE_COLUMNS:
+        for col in pose.POSE_COLUMNS:
             assert abs(b[col] - a[col]) < 50 * d, (e.name, col)
 
 

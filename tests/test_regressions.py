@@ -7,14 +7,14 @@ import re
 import subprocess
 import sys
 
-import numpy as np
-import pytest
-
 import phasekit as pk
-from phasekit import cli
+from phasekit import cli, fixedpoints
 from phasekit.hybrid import Mode
 from phasekit.resets import project_no_slip, sliding_direction
 from phasekit.sweep import ResultStore
+
+import numpy as np
+import pytest
 
 from .helpers import run_cli, strict_json
 
@@ -164,7 +164,7 @@ def test_newton_absolute_residual_missed_fixed_points_at_large_scales(args):
 def test_intermediate_states_found_by_newton_satisfy_the_closed_form_balance():
     body = pk.Spheroid(0.3)
     [inter] = [p for p in pk.fixed_points(pk.Model(body, pk.Viscous(0.1)), omega0=3.0) if p.kind == "intermediate"]
-    assert pk.intermediate_omega(body, inter.y[4]) == pytest.approx(3.0, rel=1e-12)
+    assert pk.theory.intermediate_omega(body, inter.y[4]) == pytest.approx(3.0, rel=1e-12)
     assert inter.residual < 1e-14
 
 
@@ -176,7 +176,7 @@ def test_mu_beyond_the_cap_is_a_clear_error_not_a_convergence_error():
 
 def test_convergence_error_states_the_tolerance_and_reads_an_intermediate():
     model = pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1))
-    guess = pk.intermediate_state(model.body, 0.8)  # Omega* ~ 2.0 here; ask for Omega = 1: no such state
+    guess = pk.theory.intermediate_state(model.body, 0.8)  # Omega* ~ 2.0 here; ask for Omega = 1: no such state
     with pytest.raises(pk.ConvergenceError) as info:
         pk.find_fixed_point(model, guess, kind="intermediate", value=1.0)
     msg = str(info.value)
@@ -247,7 +247,7 @@ def test_long_stop_at_none_run_ends_failed_at_its_budget(budget, reason):
 
 def test_gyroscopic_numeric_with_no_times_is_refused_instead_of_hanging():
     with pytest.raises(pk.ParameterError, match="^`T` "):
-        pk.gyroscopic_numeric(pk.Spheroid(1.5), 1.0, 10.0, None)
+        pk.theory.gyroscopic_numeric(pk.Spheroid(1.5), 1.0, 10.0, None)
 
 
 # -- 5. result files survive a kill -------------------------------------------------------------
@@ -292,25 +292,25 @@ Y = [0.0, 0.0, 10.0, 0.0, 1.5, 0.0]
     (lambda: pk.simulate(M, Y, 1.0, events=pk.Event("theta", 0.4)), "events"),
     (lambda: pk.simulate(M, Y, 1.0, throw="yes"), "throw"),
     (lambda: pk.find_fixed_point(M, [1.0, 2.0, 3.0], kind="horizontal", value=10.0), "guess"),
-    (lambda: pk.find_fixed_point(M, pk.horizontal_state(10.0), kind="xyz", value=10.0), "kind"),
-    (lambda: pk.find_fixed_point(M, pk.horizontal_state(10.0), kind="horizontal", value=10.0, fixed="q"), "fixed"),
-    (lambda: pk.find_fixed_point(M.with_chart("vector"), pk.vertical_state(10.0), kind="horizontal", value=10.0),
+    (lambda: pk.find_fixed_point(M, pk.theory.horizontal_state(10.0), kind="xyz", value=10.0), "kind"),
+    (lambda: pk.find_fixed_point(M, pk.theory.horizontal_state(10.0), kind="horizontal", value=10.0, fixed="q"), "fixed"),
+    (lambda: pk.find_fixed_point(M.with_chart("vector"), pk.theory.vertical_state(10.0), kind="horizontal", value=10.0),
      "kind"),  # the vector chart's Newton system is the vertical family's
     (lambda: pk.linearise(M, [np.nan] * 6), "x"),
     (lambda: pk.linearise(M, [0, 0, 1e308, 0, 1, 1e308]), "x"),  # finite, but the Jacobian overflows
     (lambda: pk.linearise(None, Y), "model"),
-    (lambda: pk.gyroscopic_solution(pk.Spheroid(1.5), 1.5, omega0=10.0, T=[]), "T"),
-    (lambda: pk.gyroscopic_solution(pk.Spheroid(1.5), 1.5, omega0=10.0, T=[np.nan]), "T"),
-    (lambda: pk.gyroscopic_closed(1.5, 0.0, 1.0, [0.0, 1.0]), "J"),
-    (lambda: pk.rise_time(1.0, 1.0, 1.0), "a"),
-    (lambda: pk.continue_family(M, "horizontal", []), "values"),
-    (lambda: pk.continue_family(M, "intermediate", [2.0, 2.1]), "start"),
+    (lambda: pk.theory.gyroscopic_solution(pk.Spheroid(1.5), 1.5, omega0=10.0, T=[]), "T"),
+    (lambda: pk.theory.gyroscopic_solution(pk.Spheroid(1.5), 1.5, omega0=10.0, T=[np.nan]), "T"),
+    (lambda: pk.theory.gyroscopic_closed(1.5, 0.0, 1.0, [0.0, 1.0]), "J"),
+    (lambda: pk.theory.rise_time(1.0, 1.0, 1.0), "a"),
+    (lambda: fixedpoints.continue_family(M, "horizontal", []), "values"),
+    (lambda: fixedpoints.continue_family(M, "intermediate", [2.0, 2.1]), "start"),
     (lambda: pk.Definition("x", "viscous", rtol=0), "rtol"),
     (lambda: pk.to_chart("xyz", Y), "chart"),
     (lambda: pk.unstable_manifold_start(pk.Spheroid(1.5), pk.Coulomb(0.1), state="horizontal", delta=0.01), "omega0"),
     (lambda: pk.unstable_manifold_start(pk.Spheroid(1.5), pk.Coulomb(0.1), state="horizontal", delta=0.01,
                                         omega0=10.0, branch="x"), "branch"),
-    (lambda: pk.horizontal_stability_threshold(-1.0, 0.4, 1.5), "A"),
+    (lambda: pk.theory.horizontal_stability_threshold(-1.0, 0.4, 1.5), "A"),
 ])
 def test_public_api_raises_parameter_error_naming_the_argument(call, name):
     with pytest.raises(pk.ParameterError) as info:
@@ -378,9 +378,10 @@ def test_help_says_for_which_law_each_stability_statement_holds():
 
 
 def _library_messages():
-    """String pieces of every raise and warnings.warn in the library outside the CLI."""
+    """String pieces of every raise and warnings.warn in the library outside the CLI and the
+    scaffold of study scripts (both speak to a command line)."""
     for path in sorted((ROOT / "phasekit").glob("*.py")):
-        if path.name == "cli.py":
+        if path.name in ("cli.py", "study.py"):
             continue
         for node in ast.walk(ast.parse(path.read_text())):
             is_warn = isinstance(node, ast.Call) and getattr(node.func, "attr", None) == "warn"
@@ -460,7 +461,7 @@ def test_solver_failure_is_one_line_with_exit_1(monkeypatch):
 def test_a_diverging_integration_ends_failed_at_its_last_finite_state(monkeypatch):
     """A run whose integrator returns a non-finite time or state used to keep a NaN segment
     (t = nan in the result); it now ends "failed" where the state was last finite."""
-    from phasekit.backends import TaylorEngine
+    from phasekit.engines import TaylorEngine
 
     real = TaylorEngine.propagate
 

@@ -3,10 +3,10 @@ never hands one run's events to another."""
 
 from __future__ import annotations
 
+import phasekit as pk
+
 import numpy as np
 import pytest
-
-import phasekit as pk
 
 
 @pytest.fixture(scope="module")

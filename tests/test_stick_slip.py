@@ -1,11 +1,11 @@
 """Exact Coulomb stick-slip: the sphere's analytic rolling onset, and the paper's start (5.2) sticking."""
 
+import phasekit as pk
+
 import numpy as np
 import pytest
 
-import phasekit as pk
-
-from .reference_values import NOTES_5_2_JUMP_T, PAPER_START_5_2
+from .reference_values import PAPER_START_5_2, PITFALL_5_2_JUMP_T
 
 
 @pytest.mark.parametrize("mu", [0.1, 0.5])
@@ -40,9 +40,9 @@ def test_paper_start_5_2_sticks_under_exact_coulomb(prolate):
 
 
 def test_paper_start_5_2_depends_on_regularisation(prolate):
-    """NOTES pitfall 1, reproduced: the answer from (5.2) moves with eps, i.e. with numerics."""
+    """docs/physics.md, pitfall 1, reproduced: the answer from (5.2) moves with eps, i.e. with numerics."""
     results = {eps: pk.simulate(pk.Model(prolate, pk.RegularisedCoulomb(0.1, eps)), paper_start(), 300.0) for eps in (1e-3, 1e-4, 1e-6)}
-    for eps, t_expected in NOTES_5_2_JUMP_T.items():
+    for eps, t_expected in PITFALL_5_2_JUMP_T.items():
         assert results[eps].status is pk.Status.JUMPED
         assert results[eps].t_jump == pytest.approx(t_expected, abs=1.0)
     assert results[1e-6].status is pk.Status.COMPLETED and results[1e-6].stuck

@@ -4,14 +4,14 @@ pole criterion, closed-form statics, and the pointwise fixed points."""
 
 import json
 
-import numpy as np
-import pytest
-
 import phasekit as pk
-from phasekit import tippetop
+from phasekit import charts, tippetop
 from phasekit.hybrid import Mode
 from phasekit.structure import linearise_precession, precession_on_branch, steady_structure
 from tests.helpers import run_cli
+
+import numpy as np
+import pytest
 
 ROT = np.zeros((8, 8))  # generator of rotations about the vertical on (k, w, v)
 for i in (0, 3):
@@ -23,7 +23,7 @@ def vector_residual(body, theta, om, n):
     """|f(x) - Omega G x| / scale in the vector chart (Newton-Euler in fixed axes, derived
     independently of (2.7)): zero exactly for a steady precession (a relative equilibrium)."""
     model = pk.Model(body, pk.Viscous(1.0), "vector")
-    x = pk.euler_to_vector([0.0, 0.0, om, 0.0, theta, n])
+    x = charts.euler_to_vector([0.0, 0.0, om, 0.0, theta, n])
     r = model.rhs(x, Mode.SLIDING) - om * ROT @ x
     return float(np.max(np.abs(r))) / max(1.0, om * om, n * n)
 
@@ -35,7 +35,7 @@ def vector_precession(body, theta, guess):
     model = pk.Model(body, pk.Viscous(1.0), "vector")
 
     def res(p):
-        x = pk.euler_to_vector([0.0, 0.0, p[0], 0.0, theta, p[1]])
+        x = charts.euler_to_vector([0.0, 0.0, p[0], 0.0, theta, p[1]])
         return (model.rhs(x, Mode.SLIDING) - p[0] * ROT @ x)[[3, 4, 5]]
 
     sol = least_squares(res, guess, xtol=1e-15, ftol=1e-15, gtol=1e-15)
@@ -104,7 +104,7 @@ def test_ends_are_zeros_of_the_closed_forms_and_poles_meet_the_pole_criterion(bo
             if e.kind == "static":  # h_theta = 0: (a^2 - 1) c / sqrt(1 + (a^2 - 1) c^2) = offset
                 assert abs(np.cos(e.theta)) == pytest.approx(c_static, abs=1e-12)
             elif e.kind == "pole":  # the pole criterion, from h and h_tt at the pole
-                crit = pk.pole_stability_threshold(body, "upright" if e.pole == "0" else "inverted")
+                crit = pk.theory.pole_stability_threshold(body, "upright" if e.pole == "0" else "inverted")
                 assert abs(e.n) == pytest.approx(crit.threshold, rel=1e-11)
         # Omega tends to 0 at a static end and diverges at an infinite-spin end
         if lo.kind == "static":
@@ -145,9 +145,9 @@ def test_flip_symmetric_spheroid_reproduces_part_one_and_the_fixed_points(a):
     [b] = s.branches
     assert b.crossings == (np.pi / 2,)
     [fam] = [f for f in s.families if f.kind == "precession"]
-    assert fam.critical == pytest.approx(pk.horizontal_stability_threshold(body.A, body.C, a), rel=1e-9)
+    assert fam.critical == pytest.approx(pk.theory.horizontal_stability_threshold(body.A, body.C, a), rel=1e-9)
     for e in b.ends:
-        assert abs(e.n) == pytest.approx(pk.vertical_stability_threshold(body.A, body.C, a), rel=1e-12)
+        assert abs(e.n) == pytest.approx(pk.theory.vertical_stability_threshold(body.A, body.C, a), rel=1e-12)
     # uniform spheroids: Omega^2 = 5 / h along the whole branch
     assert b.Omega**2 == pytest.approx(5 / body.h(b.theta)[0], rel=1e-12)
     model = pk.Model(body, law)

@@ -15,10 +15,10 @@ import sys
 import time
 from pathlib import Path
 
-import pytest
-
 import phasekit as pk
-from phasekit.viz import run_study, study_parser
+from phasekit.study import run_study, study_parser
+
+import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 STUDIES = sorted(p.name for p in (ROOT / "studies").glob("*.py"))
@@ -113,9 +113,10 @@ def test_a_malformed_scheduler_address_is_one_line(refusals):
 
 def test_every_study_ends_through_run_study():
     for s in STUDIES:
-        tail = (ROOT / "studies" / s).read_text().split('if __name__ == "__main__":')[-1]
-        assert "run_study(main" in tail, s
-        assert ("resume=" in tail) == (s in RESUMABLE), s
+        text = (ROOT / "studies" / s).read_text()
+        assert "run_study(main" in text.split('if __name__ == "__main__":')[-1], s
+        # Ctrl-C names the result stores a study opened: the resumable ones open theirs
+        assert ("st.store(" in text) == (s in RESUMABLE), s
 
 
 # -- the shared helpers, in this process ------------------------------------------------------
@@ -124,11 +125,11 @@ def test_every_study_ends_through_run_study():
 def test_an_unreachable_scheduler_fails_fast():
     t0 = time.perf_counter()
     with pytest.raises(pk.ParameterError) as exc:
-        pk.make_client("tcp://127.0.0.1:1", timeout=1.0)
+        pk.sweep.make_client("tcp://127.0.0.1:1", timeout=1.0)
     assert exc.value.param == "scheduler" and "no scheduler answered there within 1 s" in str(exc.value)
     assert time.perf_counter() - t0 < 10
     with pytest.raises(pk.ParameterError) as exc:
-        pk.make_client(workers=0)
+        pk.sweep.make_client(workers=0)
     assert exc.value.param == "workers"
 
 

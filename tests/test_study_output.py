@@ -1,15 +1,17 @@
-"""The studies' shared output helpers (phasekit.viz.output) and the rule that studies and
+"""The studies' shared output helpers (phasekit.study) and the rule that studies and
 benchmarks use the public API only (issue 14, item 3; issue 17, item 9)."""
 
 from __future__ import annotations
 
 import ast
 import csv
+import re
 from pathlib import Path
 
-import pytest
+import phasekit as pk
+from phasekit.study import atomic_path, output_dir, run_study, save_figure, study_parser, write_csv
 
-from phasekit.viz import atomic_path, output_dir, run_study, save_figure, study_parser, write_csv
+import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -89,5 +91,13 @@ def _phasekit_imports(path: Path) -> list[str]:
 @pytest.mark.parametrize("path", sorted((ROOT / "studies").glob("*.py")) + sorted((ROOT / "benchmarks").glob("*.py")),
                          ids=lambda p: f"{p.parent.name}/{p.name}")
 def test_studies_and_benchmarks_import_only_the_public_api(path):
-    internal = [n for n in _phasekit_imports(path) if n not in ("phasekit", "phasekit.viz")]
+    public = ("phasekit", *(f"phasekit.{ns}" for ns in pk.SUBMODULES))
+    internal = [n for n in _phasekit_imports(path) if n not in public]
     assert internal == []
+    # and of the namespaces, only their public names
+    text = path.read_text()
+    names = {ns: set(getattr(pk, ns).__all__) for ns in pk.SUBMODULES}
+    used = re.findall(r"\bpk\.(\w+)(?:\.(\w+))?", text)
+    bad = [f"pk.{a}" + (f".{b}" if b else "") for a, b in used
+           if a not in pk.__all__ and a not in names or (a in names and b and b not in names[a])]
+    assert bad == []

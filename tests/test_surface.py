@@ -5,11 +5,11 @@ import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
-import pytest
-
 import phasekit as pk
 from phasekit.surface import Scene, compute_scene, exact_boundary, surface_n
+
+import numpy as np
+import pytest
 
 from .helpers import UserSpheroid
 
@@ -147,9 +147,9 @@ print(info.n_points["trajectories"], info.n_points["crossings"], traj.t_jump is 
 
 @pytest.mark.render
 def test_render_without_a_path_returns_the_plotter_and_exports_fail_early(tmp_path):
-    import pyvista as pv
-
     from phasekit.viz import render_scene
+
+    import pyvista as pv
 
     d = compute_scene(Scene("prolate", 1.5, show=frozenset({"surface", "axes"}), resolution=15))
     pl = render_scene(d, off_screen=True, window_size=(300, 200))

@@ -1,4 +1,4 @@
-"""Issue 16: the sweep engine - k-section, independent searches and their critical path, batch
+"""Issue 16: the sweep engine - k-section, independent searches run in lock-step, batch
 propagation against the scalar path, sensitivity of a threshold to its definition, and
 resumable stores of the new row types."""
 
@@ -7,13 +7,13 @@ import json
 import math
 from dataclasses import asdict, dataclass, replace
 
-import numpy as np
-import pytest
-
 import phasekit as pk
 from phasekit.batch import BatchStats, simulate_batch
-from phasekit.sweep import ResultStore, SearchRow, TaskSpec, critical_path, run_tasks
+from phasekit.sweep import ResultStore, SearchRow, TaskSpec, run_tasks
 from phasekit.threshold import Definition, Outcome, ThresholdSearch, find_stick_boundary, find_threshold, run_searches
+
+import numpy as np
+import pytest
 
 
 @dataclass(frozen=True)
@@ -54,7 +54,7 @@ def test_k_section_gives_the_bisection_bracket_in_fewer_rounds(levels):
     bis = find_threshold(defn, 1.5, hi=60.0, tol=1e-6)
     ks = find_threshold(defn, 1.5, hi=60.0, tol=1e-6, levels=levels)
     assert bis.bracket[0] < truth <= bis.bracket[1]
-    assert ks.bracket == bis.bracket and ks.value == bis.value and ks.status is pk.Status.CONVERGED
+    assert ks.bracket == bis.bracket and ks.value == bis.value and ks.status is pk.SearchStatus.CONVERGED
     # the scan is one round; its transition interval then needs `steps` halvings
     scan = np.geomspace(2.0, 60.0, 8)
     j = np.searchsorted(scan, truth)
@@ -70,7 +70,7 @@ def test_k_section_follows_every_transition_of_a_non_monotone_answer():
     defn = synthetic(((5.0, 7.0), (20.0, math.inf)))
     bis = find_threshold(defn, 1.5, hi=60.0)
     ks = find_threshold(defn, 1.5, hi=60.0, levels=3)
-    assert ks.status is pk.Status.NON_MONOTONE and ks.transitions == bis.transitions and len(ks.transitions) == 3
+    assert ks.status is pk.SearchStatus.NON_MONOTONE and ks.transitions == bis.transitions and len(ks.transitions) == 3
 
 
 def test_independent_searches_run_in_lock_step_with_the_critical_path_of_the_longest():
@@ -84,14 +84,6 @@ def test_independent_searches_run_in_lock_step_with_the_critical_path_of_the_lon
     rounds = run_searches(searches)
     assert rounds == max(alone) and [s.n_rounds for s in searches] == alone
     assert len(set(alone)) > 1  # the searches do differ in depth
-
-
-def test_critical_path_of_a_task_decomposition():
-    chain = [TaskSpec("a", None), TaskSpec("b", None, after="a"), TaskSpec("c", None, after="b")]
-    free = [TaskSpec("x", None), TaskSpec("y", None)]
-    rounds = {"a": 5, "b": 4, "c": 6, "x": 9, "y": 3}
-    assert critical_path(chain + free, rounds) == 15  # the chain: 5 + 4 + 6
-    assert critical_path(free, rounds) == 9  # independent tasks: the deepest one
 
 
 def test_sensitivity_reports_the_slope_and_which_uncertainty_dominates():
@@ -110,7 +102,7 @@ def test_stick_boundary_by_bisection_in_d():
     defn = power_law(amplitude=0.05)
     for value in (8.0, 20.0):
         th = find_stick_boundary(defn, 1.5, value, tol=1e-4)
-        assert th.status is pk.Status.CONVERGED
+        assert th.status is pk.SearchStatus.CONVERGED
         assert th.bracket[0] < defn.k / value**2 <= th.bracket[1] and th.bracket[1] / th.bracket[0] - 1 <= 1e-4
 
 
@@ -225,17 +217,17 @@ def test_dask_k_section_round_and_grouped_searches_equal_the_serial_ones(tmp_pat
     """One search's k-section rounds spread over 2 workers, and grouped search tasks on the
     cluster, give the serial brackets."""
     defn = Definition("sliding", "sliding")
-    pack = pk.ModelPack.build(lambda: defn.prepare(1.5, engine="batch"))
-    client, cluster = pk.make_client(workers=2)
+    pack = pk.sweep.ModelPack.build(lambda: defn.prepare(1.5, engine="batch"))
+    client, cluster = pk.sweep.make_client(workers=2)
     try:
-        ev = pk.client_evaluator(client, pack=pack)
+        ev = pk.sweep.client_evaluator(client, pack=pack)
         far = find_threshold(defn, 1.5, hi=120.0, levels=3, evaluate=ev)
         near = find_threshold(defn, 1.5, hi=120.0, levels=3, engine="batch")
         assert far.bracket == near.bracket and far.n_rounds == near.n_rounds
-        jobs = [pk.search_job(asdict(replace(defn, amplitude=d)), 1.5, dict(hi=120.0, levels=3)) for d in (0.01, 0.02, 0.04)]
-        specs, members = pk.group_search_tasks(jobs, [1.0, 2.0, 3.0], per_task=2)
+        jobs = [pk.sweep.search_job(asdict(replace(defn, amplitude=d)), 1.5, dict(hi=120.0, levels=3)) for d in (0.01, 0.02, 0.04)]
+        specs, members = pk.sweep.group_search_tasks(jobs, [1.0, 2.0, 3.0], per_task=2)
         store = ResultStore(tmp_path / "g.csv", tmp_path / "g.json", SearchRow, {})
-        get, add = pk.store_groups(store, members)
+        get, add = pk.sweep.stored_rows([store], members)
         run_tasks(specs, store_get=get, on_result=add, client=client, pack=pack, progress=False)
     finally:
         client.close()

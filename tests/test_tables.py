@@ -7,11 +7,11 @@ import os
 import subprocess
 from pathlib import Path
 
+import phasekit as pk
+
 import numpy as np
 import pandas as pd
 import pytest
-
-import phasekit as pk
 
 ROOT = Path(__file__).resolve().parents[1]
 #: the commit before the study CSVs' eps columns lost the word "exact" (format only)

@@ -5,9 +5,6 @@ import contextlib
 import io
 import json
 
-import numpy as np
-import pytest
-
 import phasekit as pk
 from phasekit.cli import main
 from phasekit.gyroscopic import gyroscopic_closed, gyroscopic_numeric, jellett_constant, mean_slip, rise_time
@@ -23,6 +20,9 @@ from phasekit.multiscale import (
     omega_gyro,
     perturbation_from_c_xi,
 )
+
+import numpy as np
+import pytest
 
 
 @pytest.mark.parametrize("a, theta0, omega0", [(1.5, np.pi / 2 - 0.01, 10.5), (2 / 3, 0.05, 14.0), (3.0, 1.0, 5.0), (0.3, 0.8, 8.0)])

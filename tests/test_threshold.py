@@ -5,11 +5,11 @@ import json
 import math
 from dataclasses import dataclass
 
-import pytest
-
 import phasekit as pk
 from phasekit.sweep import ModelPack, ResultStore, TaskSpec, run_tasks
 from phasekit.threshold import Definition, Outcome, find_threshold
+
+import pytest
 
 
 @dataclass(frozen=True)
@@ -32,7 +32,7 @@ def synthetic(intervals):
 
 def test_bisection_converges_to_known_threshold():
     th = find_threshold(synthetic(((9.3, math.inf),)), 1.5, hi=60.0, tol=1e-4)
-    assert th.status is pk.Status.CONVERGED
+    assert th.status is pk.SearchStatus.CONVERGED
     assert th.bracket[0] < 9.3 <= th.bracket[1] and th.bracket[1] / th.bracket[0] - 1 <= 1e-4
     assert abs(th.value / 9.3 - 1) < 1e-4
     assert th.n_sims == len(th.outcomes) < 30
@@ -45,19 +45,19 @@ def test_continuation_guess_saves_simulations_and_widens_when_needed():
     far = find_threshold(d, 1.5, hi=60.0, guess=3.0)  # the window must widen upward to find it
     assert warm.n_sims <= cold.n_sims
     for th in (cold, warm, far):
-        assert th.status is pk.Status.CONVERGED and abs(th.value / 9.3 - 1) < 1e-3
+        assert th.status is pk.SearchStatus.CONVERGED and abs(th.value / 9.3 - 1) < 1e-3
 
 
 def test_non_monotone_answer_reports_every_transition():
     th = find_threshold(synthetic(((5.0, 7.0), (20.0, math.inf))), 1.5, hi=60.0)
-    assert th.status is pk.Status.NON_MONOTONE
+    assert th.status is pk.SearchStatus.NON_MONOTONE
     assert len(th.transitions) == 3
     for x in (5.0, 7.0, 20.0):
         assert any(lo <= x <= hi for lo, hi in th.transitions)
     assert abs(th.value / 5.0 - 1) < 1e-3  # the smallest value that jumps
 
 
-@pytest.mark.parametrize("intervals, status", [((), pk.Status.NO_JUMP_IN_RANGE), (((0.0, math.inf),), pk.Status.JUMPS_AT_LOWER_BOUND)])
+@pytest.mark.parametrize("intervals, status", [((), pk.SearchStatus.NO_JUMP_IN_RANGE), (((0.0, math.inf),), pk.SearchStatus.JUMPS_AT_LOWER_BOUND)])
 def test_no_transition(intervals, status):
     th = find_threshold(synthetic(intervals), 1.5, hi=60.0, guess=10.0)
     assert th.status is status and th.value is None
@@ -66,7 +66,7 @@ def test_no_transition(intervals, status):
 def test_default_definition_threshold_at_a_1_5_and_its_self_consistency():
     d = Definition("sliding", "sliding")
     th = find_threshold(d, 1.5, hi=60.0, guess=9.5)
-    assert th.status is pk.Status.CONVERGED and 9.6 < th.value < 9.9
+    assert th.status is pk.SearchStatus.CONVERGED and 9.6 < th.value < 9.9
     assert d.outcome(1.5, 1.02 * th.value).jumped is True
     assert d.outcome(1.5, 0.98 * th.value).jumped is False
 

@@ -8,13 +8,13 @@ import math
 import subprocess
 import sys
 
-import numpy as np
-import pytest
-from scipy.integrate import solve_ivp
-
 import phasekit as pk
 from phasekit import tippetop as tt
 from phasekit.fixedpoints import fixed_points, inverted_state, linearise, vertical_state
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
 
 from .test_tippetop_theory import jellett_of_state
 from .test_tippetop_theory import rhs as reference_rhs
@@ -134,7 +134,7 @@ def max_growth(fp) -> float:
     return float(np.max(lam.real))
 
 
-@pytest.mark.parametrize("law", [pk.Viscous(0.05), pk.Viscous(3.0), pk.RegularisedCoulomb(MU, 1e-3)], ids=lambda l: f"{l.name}")
+@pytest.mark.parametrize("law", [pk.Viscous(0.05), pk.Viscous(3.0), pk.RegularisedCoulomb(MU, 1e-3)], ids=lambda law: f"{law.name}")
 @pytest.mark.parametrize("A_", [0.31, 0.38])
 def test_pole_criteria_of_tippetop_against_linearisation(law, A_):
     """tippetop.upright_unstable_spin and inverted_stable_spin (derived there from the energy

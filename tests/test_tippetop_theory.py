@@ -10,12 +10,12 @@ classification by integrating it.
 
 import math
 
+from phasekit import tippetop as tt
+from phasekit.errors import ParameterError
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-
-from phasekit import tippetop as tt
-from phasekit.errors import ParameterError
 
 EZ = np.array([0.0, 0.0, 1.0])
 CASES = [(0.3, 0.38, 0.4), (0.3, 0.31, 0.4), (0.1, 0.37, 0.4), (0.5, 0.5, 0.4)]

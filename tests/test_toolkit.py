@@ -2,12 +2,13 @@
 
 import json
 
+import phasekit as pk
+from phasekit import trajectory
+from phasekit.errors import ParameterError
+
 import casadi as ca
 import numpy as np
 import pytest
-
-import phasekit as pk
-from phasekit.errors import ParameterError
 
 from .helpers import UserSpheroid
 
@@ -59,12 +60,12 @@ def test_sampled_R_is_one_plus_vertical_acceleration_in_the_mode_in_force(which,
 
 
 def test_sampled_R_matches_the_numpy_transcription_while_sliding(model, prolate, standard_start):
-    """The sampled R against (6.1) written independently in NumPy (pk.numpy_normal_reaction),
+    """The sampled R against (6.1) written independently in NumPy (pk.baseline.numpy_normal_reaction),
     at the sampled states."""
     traj = pk.simulate(model, standard_start, 100.0)
     df = traj.sample(np.linspace(0.0, traj.t, 400))
     Y = df[list(pk.PAPER_NAMES)].to_numpy()
-    R_np = np.array([pk.numpy_normal_reaction(y, 1.5, prolate.A, prolate.C, 0.1) for y in Y])
+    R_np = np.array([pk.baseline.numpy_normal_reaction(y, 1.5, prolate.A, prolate.C, 0.1) for y in Y])
     np.testing.assert_allclose(df["R"], R_np, rtol=1e-11, atol=1e-12)
 
 
@@ -132,7 +133,7 @@ def test_poincare_matches_an_independent_integration_refined_by_brent(prolate, s
 
     model = pk.Model(prolate, pk.Coulomb(0.1))
     df = pk.poincare(model, standard_start, 40.0, on="Lambda", value=0.0, direction=+1, rtol=1e-13)
-    sol = solve_ivp(pk.numpy_rhs, (0.0, 40.0), standard_start, method="DOP853", rtol=1e-12, atol=1e-14,
+    sol = solve_ivp(pk.baseline.numpy_rhs, (0.0, 40.0), standard_start, method="DOP853", rtol=1e-12, atol=1e-14,
                     args=(1.5, prolate.A, prolate.C, 0.1), dense_output=True)
     grid = np.linspace(0.0, 40.0, 40001)
     L = sol.sol(grid)[3]
@@ -144,7 +145,7 @@ def test_poincare_matches_an_independent_integration_refined_by_brent(prolate, s
     np.testing.assert_allclose(crossings["t"], t_ref, rtol=0, atol=1e-8)
     np.testing.assert_allclose(crossings["theta"], sol.sol(t_ref)[4], atol=1e-8)
     assert np.max(np.abs(df["Lambda"])) < 1e-12
-    assert list(df.columns) == ["t", "mode", *pk.SAMPLE_COLUMNS]
+    assert list(df.columns) == ["t", "mode", *trajectory.SAMPLE_COLUMNS]
 
 
 def test_poincare_on_any_observable_and_direction(model, standard_start):
@@ -243,7 +244,7 @@ def test_user_body_agrees_with_the_built_in_spheroid_everywhere(standard_start):
     np.testing.assert_allclose(fp[0].eigenvalues, fp_ref[0].eigenvalues, rtol=1e-9)
     defn = pk.Definition("sliding", "sliding")
     th, th_ref = (pk.find_threshold(defn, b, lo=9.0, hi=11.0, n_coarse=3, tol=1e-2) for b in (body, built_in))
-    assert th.status is pk.Status.CONVERGED and th.bracket == th_ref.bracket
+    assert th.status is pk.SearchStatus.CONVERGED and th.bracket == th_ref.bracket
 
 
 def test_user_friction_law_runs_and_keeps_its_name(prolate, standard_start):

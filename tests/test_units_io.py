@@ -2,11 +2,11 @@
 
 import math
 
+import phasekit as pk
+
 import numpy as np
 import pandas as pd
 import pytest
-
-import phasekit as pk
 
 from .helpers import run_cli, strict_json
 

@@ -1,11 +1,12 @@
-"""Drawing and study output. Nothing here imports a plotting library at import time:
-matplotlib is imported by the functions that draw, pyvista only when a 3-D scene is drawn."""
+"""Drawing (``phasekit.viz``). Nothing here imports a plotting library at import time:
+matplotlib is imported by the functions that draw, pyvista only when a 3-D scene is drawn.
+A study's own output (flags, folders, tables, Ctrl-C) is :mod:`phasekit.sweep`'s."""
 
-from .mpl import LABELS, label, plain_log_ticks, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
-from .output import atomic_path, output_dir, progress, pyplot, run_study, save_figure, study_parser, write_csv
-from .pv import RenderInfo, render_scene
-from .branches import render_structure
 from .animate import AnimationInfo, animate, body_mesh, film_strip, render_body
+from .branches import render_structure
+from .mpl import LABELS, label, plain_log_ticks, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
+from .output import pyplot, save_figure
+from .pv import RenderInfo, render_scene
 
 __all__ = [
     "animate",
@@ -24,12 +25,6 @@ __all__ = [
     "plain_log_ticks",
     "label",
     "LABELS",
-    "study_parser",
-    "output_dir",
     "pyplot",
     "save_figure",
-    "write_csv",
-    "atomic_path",
-    "progress",
-    "run_study",
 ]

@@ -39,7 +39,18 @@ TIMINGS = ("body", "real")
 @dataclass(frozen=True)
 class AnimationInfo:
     """What was written: the file, the frame count and times (body units), the frame size in
-    pixels, the frames per second and, with a scale, the playback speed relative to real time."""
+    pixels, the frames per second and, with a scale, the playback speed relative to real time.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> import tempfile, pathlib
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> info = pk.viz.render_body(traj, 40.0, pathlib.Path(tempfile.mkdtemp()) / 'body.png', window_size=(160, 120))
+    >>> isinstance(info, pk.viz.AnimationInfo), info.times
+    (True, array([40.]))
+    """
 
     path: str
     n_frames: int
@@ -277,7 +288,7 @@ class _Panel:
 
 def _frames(traj, times, style: _Style, span, progress: bool):
     """Render one image per time (the 3-D view, with the side panel to its right)."""
-    from .output import progress as bar
+    from ..study import progress as bar
 
     rows = traj.sample(times)
     stage = _Stage(traj, style, span)
@@ -309,7 +320,7 @@ def _even(img: np.ndarray, block: int = 16) -> np.ndarray:
 
 
 def _write(frames, path: Path, fps: float) -> None:
-    from .output import atomic_path
+    from ..study import atomic_path
 
     suffix = path.suffix.lower()
     with atomic_path(path) as tmp:
@@ -399,6 +410,16 @@ def animate(traj, path, frames: int = 96, *, fps: float = 24.0, t_span=None, tim
     Returns
     -------
     AnimationInfo
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> import tempfile, pathlib
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 200.0, stop_at='touchdown')
+    >>> info = pk.viz.animate(traj, pathlib.Path(tempfile.mkdtemp()) / 'spin.gif', frames=4, window_size=(160, 120), progress=False)
+    >>> info.n_frames, info.frame_size
+    (4, (160, 120))
     """
     _check_traj(traj)
     path = _check_path(path)
@@ -428,6 +449,16 @@ def film_strip(traj, path, frames: int = 6, *, t_span=None, times=None, columns:
 
     ``times`` (inside the run) or ``frames`` instants uniform over ``t_span``; ``columns``
     per row (default all in one row). Returns an :class:`AnimationInfo`.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> import tempfile, pathlib
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 200.0, stop_at='touchdown')
+    >>> info = pk.viz.film_strip(traj, pathlib.Path(tempfile.mkdtemp()) / 'strip.png', frames=3, window_size=(120, 100))
+    >>> info.n_frames
+    3
     """
     _check_traj(traj)
     path = _check_path(path, (".png",))
@@ -455,9 +486,7 @@ def film_strip(traj, path, frames: int = 6, *, t_span=None, times=None, columns:
 
 def _with_title(img: np.ndarray, title: str) -> np.ndarray:
     """A white band with ``title`` above ``img`` (PIL's default font)."""
-    from PIL import Image, ImageDraw
-
-    from PIL import ImageFont
+    from PIL import Image, ImageDraw, ImageFont
 
     try:
         font = ImageFont.load_default(size=18)
@@ -470,7 +499,17 @@ def _with_title(img: np.ndarray, title: str) -> np.ndarray:
 
 def render_body(traj, t: float, path, *, scale=None, gap_scale: float = 1.0, window_size=(640, 480), title=None):
     """A PNG of the body at time ``t`` of ``traj`` (placed by its pose), with the path traced
-    up to then. Returns an :class:`AnimationInfo` with one frame."""
+    up to then. Returns an :class:`AnimationInfo` with one frame.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> import tempfile, pathlib
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> pk.viz.render_body(traj, 40.0, pathlib.Path(tempfile.mkdtemp()) / 'body.png', window_size=(160, 120)).n_frames
+    1
+    """
     _check_traj(traj)
     t = check_finite("t", t)
     if not traj.t0 <= t <= traj.t:

@@ -69,6 +69,15 @@ def render_structure(structure, path, *, trajectories=(), surface: bool = False,
     Returns
     -------
     RenderInfo
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> import tempfile, pathlib
+    >>> s = pk.steady_structure(pk.Spheroid(1.5, offset=0.2), pk.Viscous(0.1))
+    >>> info = pk.viz.render_structure(s, pathlib.Path(tempfile.mkdtemp()) / 's.png', window_size=(200, 150))
+    >>> info.image_shape
+    (150, 200, 3)
     """
     from ..structure import SteadyStructure
 
@@ -106,14 +115,7 @@ def render_structure(structure, path, *, trajectories=(), surface: bool = False,
         pl.show_bounds(bounds=[0, ASPECT[0], 0, ASPECT[1], 0, ASPECT[2]], axes_ranges=list(bounds),
                        xtitle="Omega [sqrt(g/b)]", ytitle="theta [rad]", ztitle="n [sqrt(g/b)]", color="k", font_size=16,
                        location="outer", grid="back", ticks="outside")
-        legend = [["stable branch state", STABLE], ["unstable branch state", UNSTABLE], ["end of a branch", "black"],
-                  ["change of stability", "#fdae61"], ["families (thin; same colours)", "0.4"]]
-        if trs:
-            legend.append(["trajectory", TRAJECTORY_COLORS[0]])
-        pl.add_legend(legend, bcolor="white", face="rectangle", size=(0.22, 0.15), loc="lower left")
-        if title:
-            actor = pl.add_text(title, position=(16, window_size[1] - 14), font_size=11, color="k")
-            actor.GetTextProperty().SetVerticalJustificationToTop()
+        _legend_and_title(pl, bool(trs), title, window_size)
         pl.camera_position = camera or [(3.4, -2.3, 1.8), (0.7, 0.5, 0.45), (0.0, 0.0, 1.0)]
         img = pl.screenshot(str(path), return_img=True)
         pl.close()
@@ -153,9 +155,20 @@ def _add_special_points(pl, pv, f, structure, bounds) -> int:
         side = [fam.stable_on[int(np.searchsorted(fam.criticals, abs(v)))] for v in vals]
         known = all(v is not None for v in side)
         for run, st in _segments_by_stability(P, np.array([bool(v) for v in side])):
-            color = STABLE if known and st else UNSTABLE if known else "0.5"
+            color = STABLE if known and st else UNSTABLE if known else (0.5, 0.5, 0.5)
             pl.add_mesh(pv.lines_from_points(f(run)), color=color, line_width=2, opacity=0.7)
     return count
+
+
+def _legend_and_title(pl, trajectories: bool, title, window_size) -> None:
+    legend = [["stable branch state", STABLE], ["unstable branch state", UNSTABLE], ["end of a branch", "black"],
+              ["change of stability", "#fdae61"], ["families (thin; same colours)", (0.4, 0.4, 0.4)]]
+    if trajectories:
+        legend.append(["trajectory", TRAJECTORY_COLORS[0]])
+    pl.add_legend(legend, bcolor="white", face="rectangle", size=(0.22, 0.15), loc="lower left")
+    if title:
+        actor = pl.add_text(title, position=(16, window_size[1] - 14), font_size=11, color="k")
+        actor.GetTextProperty().SetVerticalJustificationToTop()
 
 
 def _add_surface(pl, pv, f, body, bounds) -> int:

@@ -17,7 +17,15 @@ BODY_COLORS = ("#e6550d", "#fdd0a2")
 
 def body_mesh(body, *, n_theta: int = 64, n_azimuth: int = 48):
     """The body's surface in body axes (G at the origin, axis k = e_z) as a PyVista PolyData
-    with a ``sector`` scalar (0/1 in four azimuthal sectors)."""
+    with a ``sector`` scalar (0/1 in four azimuthal sectors).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> mesh = pk.viz.body_mesh(pk.Spheroid(1.5), n_theta=8, n_azimuth=6)
+    >>> mesh.n_points > 0
+    True
+    """
     import pyvista as pv
 
     th = np.linspace(0.0, np.pi, n_theta)

@@ -48,7 +48,14 @@ EVENT_COLORS = {"lift-off": "C3", "touchdown": "C2", "impact": "C2", "stick": "C
 
 
 def label(name: str) -> str:
-    """The axis label of a column (the name itself when it has none)."""
+    """The axis label of a column (the name itself when it has none).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.viz.label('theta'), pk.viz.label('something')
+    ('theta [rad]', 'something')
+    """
     if not isinstance(name, str):
         raise ParameterError("name", "must be a column name (a string), e.g. one of " + ", ".join(LABELS), name)
     return LABELS.get(name, name)
@@ -142,6 +149,15 @@ def plot_timeseries(ax, traj, names, *, times=None, n: int = 4000, set_labels: b
     -------
     list of matplotlib.lines.Line2D
         One line per name, labelled with the name.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> fig, ax = pk.viz.pyplot().subplots()
+    >>> len(pk.viz.plot_timeseries(ax, traj, ['theta', 'R'], n=200))
+    2
     """
     _check_ax(ax)
     _check_traj(traj)
@@ -163,6 +179,15 @@ def plot_events(ax, traj, names=None, *, text: bool = True, **style) -> list:
 
     Returns the artists: one line per event, and one text label per event name (at its
     first occurrence) when ``text`` is True.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> fig, ax = pk.viz.pyplot().subplots()
+    >>> len(pk.viz.plot_events(ax, traj))
+    2
     """
     _check_ax(ax)
     _check_traj(traj, dense=False)
@@ -193,6 +218,16 @@ def plot_section(ax, df, x: str, y: str, *, c: str | None = None, set_labels: bo
 
     Returns the PathCollection (and adds a colour bar label to nothing: pass the returned
     artist to ``fig.colorbar`` if you want one).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> m = pk.Model(body, pk.Coulomb(0.1))
+    >>> sec = pk.poincare(m, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 30.0, on='Lambda', value=0.0, direction=+1)
+    >>> fig, ax = pk.viz.pyplot().subplots()
+    >>> type(pk.viz.plot_section(ax, sec, 'theta', 'Omega')).__name__
+    'PathCollection'
     """
     import pandas as pd
 
@@ -215,7 +250,17 @@ def plot_section(ax, df, x: str, y: str, *, c: str | None = None, set_labels: bo
 
 
 def plot_phase(ax, traj, x: str, y: str, *, times=None, n: int = 4000, set_labels: bool = True, **style) -> list:
-    """The trajectory as a curve in the plane of two columns (e.g. theta and Lambda)."""
+    """The trajectory as a curve in the plane of two columns (e.g. theta and Lambda).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> fig, ax = pk.viz.pyplot().subplots()
+    >>> len(pk.viz.plot_phase(ax, traj, 'theta', 'Omega', n=200))
+    1
+    """
     _check_ax(ax)
     _check_traj(traj)
     x, y = _check_column("x", x, _columns()), _check_column("y", y, _columns())
@@ -229,7 +274,17 @@ def plot_phase(ax, traj, x: str, y: str, *, times=None, n: int = 4000, set_label
 
 
 def plot_minima(ax, traj, **style):
-    """The located local minima of R, (t, R_min), as points; returns the PathCollection."""
+    """The located local minima of R, (t, R_min), as points; returns the PathCollection.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> fig, ax = pk.viz.pyplot().subplots()
+    >>> type(pk.viz.plot_minima(ax, traj)).__name__
+    'PathCollection'
+    """
     _check_ax(ax)
     _check_traj(traj, dense=False)
     m = traj.minima
@@ -240,7 +295,17 @@ def plot_minima(ax, traj, **style):
 def plain_log_ticks(ax, axis: str = "both", subs=(2, 3, 5)):
     """Label a log axis with plain numbers (6, 20, 0.002) instead of 6x10^0, at the
     decades and at the minor ticks with mantissa in ``subs``, so that values on a
-    log scale that spans less than a decade can still be read off. Returns ``ax``."""
+    log scale that spans less than a decade can still be read off. Returns ``ax``.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> fig, ax = pk.viz.pyplot().subplots()
+    >>> ax.set_xscale('log'); ax.set_xlim(1, 100)
+    (1, 100)
+    >>> pk.viz.plain_log_ticks(ax, 'x')
+    <Axes: >
+    """
     from matplotlib import ticker
 
     _check_ax(ax)

@@ -36,7 +36,17 @@ COLORS = ("#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6
 @dataclass(frozen=True)
 class RenderInfo:
     """What was drawn: the image path, point counts per element, data bounds, image statistics
-    and the files exported."""
+    and the files exported.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> import tempfile, pathlib
+    >>> data = pk.compute_scene(pk.Scene('prolate', 1.5, values=(12.0,), resolution=20))
+    >>> info = pk.viz.render_scene(data, pathlib.Path(tempfile.mkdtemp()) / 'scene.png', window_size=(200, 150))
+    >>> isinstance(info, pk.viz.RenderInfo), pathlib.Path(info.path).name
+    (True, 'scene.png')
+    """
 
     path: str
     n_points: dict
@@ -104,8 +114,11 @@ def _quiet_vtk():
 
 
 def _headless() -> None:
-    """Without a display, pick VTK's EGL window before the first one is made (VTK otherwise
-    tries X first and prints 'bad X server connection')."""
+    """Before the first 3-D drawing: pyvista must be installed (it is the optional extra [viz]:
+    VTK is ~580 MB), and without a display VTK's EGL window is picked before the first one is
+    made (VTK otherwise tries X first and prints 'bad X server connection')."""
+    if importlib.util.find_spec("pyvista") is None:
+        raise PhasekitError('3-D drawing needs pyvista: pip install "phasekit[viz]"')
     if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
         os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
 
@@ -263,8 +276,43 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
         is one too; that one is also a PhasekitError.
     PhasekitError
         When the HTML export's optional packages are missing: before anything is drawn.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> import tempfile, pathlib
+    >>> data = pk.compute_scene(pk.Scene('prolate', 1.5, values=(12.0,), resolution=20))
+    >>> info = pk.viz.render_scene(data, pathlib.Path(tempfile.mkdtemp()) / 'scene.png', window_size=(200, 150))
+    >>> info.image_shape
+    (150, 200, 3)
     """
-    from ..surface import Scene, SceneData, compute_scene
+    from ..surface import Scene, compute_scene
+
+    path, window_size, camera = _checked_render(data, path, window_size, html, gltf, title, camera, off_screen)
+    if isinstance(data, Scene):
+        data = compute_scene(data)
+    if data.bounds is None:
+        raise ParameterError("data", "must be a Scene or what compute_scene returned", data)
+    _headless()
+    import pyvista as pv
+
+    off = (path is not None) if off_screen is None else bool(off_screen)
+    with _quiet_vtk():
+        pl = pv.Plotter(off_screen=off, window_size=list(window_size))
+        counts = _draw(pl, data, title, window_size)
+        pl.camera_position = camera or CAMERAS[data.scene.branch]
+        if path is None:
+            return pl
+        img = pl.screenshot(str(path), return_img=True)
+        exported = _export(pl, data, html, gltf, title)
+        pl.close()
+    return RenderInfo(str(path), counts, tuple(float(b) for b in data.bounds), tuple(img.shape), float(img.std()),
+                      tuple(exported))
+
+
+def _checked_render(data, path, window_size, html, gltf, title, camera, off_screen):
+    """render_scene's arguments checked before anything is computed or drawn: (path, window_size, camera)."""
+    from ..surface import Scene, SceneData
 
     if not isinstance(data, (Scene, SceneData)):
         raise ParameterError("data", "must be a Scene or what compute_scene returned", data)
@@ -285,25 +333,7 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
     for name, target in (("path", path), ("html", html), ("gltf", gltf)):
         if target is not None:
             _probe(name, Path(target))
-    if isinstance(data, Scene):
-        data = compute_scene(data)
-    if data.bounds is None:
-        raise ParameterError("data", "must be a Scene or what compute_scene returned", data)
-    _headless()
-    import pyvista as pv
-
-    off = (path is not None) if off_screen is None else bool(off_screen)
-    with _quiet_vtk():
-        pl = pv.Plotter(off_screen=off, window_size=list(window_size))
-        counts = _draw(pl, data, title, window_size)
-        pl.camera_position = camera or CAMERAS[data.scene.branch]
-        if path is None:
-            return pl
-        img = pl.screenshot(str(path), return_img=True)
-        exported = _export(pl, data, html, gltf, title)
-        pl.close()
-    return RenderInfo(str(path), counts, tuple(float(b) for b in data.bounds), tuple(img.shape), float(img.std()),
-                      tuple(exported))
+    return path, window_size, camera
 
 
 #: camera (position, focal point, up) in the unit-box coordinates, per branch: the prolate

@@ -1,4 +1,12 @@
-"""Integrators: propagate one smooth flow until a time or the first located event.
+"""Engines: integrators that propagate one smooth flow until a time or its first located event.
+
+Every engine follows one protocol (:class:`Engine`): a ``name`` (what a segment records), whether
+it is ``pointwise`` (it sees the guards only at output points, so the stick guard is watched in
+its smooth squared form with a rate) and ``propagate(flow, x0, t0, t_end, p, levels, *, budget,
+dense, resume) -> Propagation``. :data:`ENGINES` maps the names that ``SolverOptions.backend``
+accepts to them; :func:`register_engine` adds one (nothing else needs editing). The compiled
+integrators of every engine come from one build path and one cache (:func:`compiled`: in memory,
+and on disk for heyoka's, whose LLVM compilation costs seconds to minutes).
 
 ``taylor`` (default)
     heyoka's adaptive Taylor method on the CasADi model translated to heyoka
@@ -13,14 +21,20 @@
     the last grid point. This is the backend for stiff fields (a regularised Coulomb law
     once the slip is below ~eps). Dense output is cubic Hermite on that grid.
 
-Both take a :class:`phasekit.hybrid.CompiledFlow` and return a :class:`Propagation`.
-Work is bounded by a step budget and a wall-clock deadline; running out of either, or a
-non-finite state, gives outcome "failed" with the reason, never an exception.
+``taylor-batch`` (:class:`TaylorBatchEngine`, used by :func:`phasekit.simulate_batch`)
+    the same Taylor integrator on heyoka's SIMD batch mode: ``lanes`` starts at once, each
+    propagated to a time or its own first event. Built from the same expressions, with the same
+    compact mode and event cooldown, so a lane takes the steps a scalar run takes.
+
+Each takes a :class:`phasekit.hybrid.CompiledFlow` and returns a :class:`Propagation` (a batch:
+one per lane). Work is bounded by a step budget and a wall-clock deadline; running out of
+either, or a non-finite state, ends with :attr:`End.FAILED` and the reason, never an exception.
 """
 
 from __future__ import annotations
 
 import contextlib
+import enum
 import hashlib
 import io
 import os
@@ -28,14 +42,19 @@ import pickle
 import re
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
+from typing import Protocol
 
 import numpy as np
 
+from .errors import ParameterError
 from .hybrid import CompiledFlow
 
-__all__ = ["Propagation", "Budget", "TaylorEngine", "CvodesEngine", "engine_for", "HermiteDense"]
+__all__ = ["Engine", "End", "Propagation", "Budget", "TaylorEngine", "TaylorBatchEngine", "CvodesEngine", "ENGINES",
+           "engine_for", "register_engine", "engine_names"]
 
 #: bump when the layout of the pickled cache entries changes
 CACHE_FORMAT = 4
@@ -54,9 +73,34 @@ STEP_CHUNK = 20_000
 COMPACT_ABOVE = 3000
 
 
+class End(str, enum.Enum):
+    """How one propagation ended: at the requested time, at an event, or failed (see the reason).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [str(e) for e in pk.engines.End]
+    ['time', 'event', 'failed']
+    """
+
+    TIME = "time"
+    EVENT = "event"
+    FAILED = "failed"
+
+    def __str__(self) -> str:
+        return self.value
+
+
 @dataclass
 class Budget:
-    """What is left of a run's work allowance: steps and a wall-clock deadline."""
+    """What is left of a run's work allowance: steps and a wall-clock deadline.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.engines.Budget(steps=10, deadline=float('inf')).wall_exceeded()
+    False
+    """
 
     steps: int
     deadline: float  # time.perf_counter() value
@@ -68,17 +112,51 @@ class Budget:
 
 @dataclass
 class Propagation:
-    """What one call of an integrator produced."""
+    """What one call of an engine produced (filled in by the engine as it runs).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> prop = pk.engines.Propagation(t=1.0, x=[0.0], outcome=pk.engines.End.TIME)
+    >>> prop.outcome.value, prop.n_steps
+    ('time', 0)
+    """
 
     t: float
     x: np.ndarray
-    outcome: str  # "time", "event" or "failed"
+    outcome: End
     event: int | None = None  # index into the flow's guards
     reason: str | None = None
     n_steps: int = 0
     n_rhs: int = 0
     monitored: list = field(default_factory=list)  # [(t, x)] where the monitor crossed zero
     dense: list = field(default_factory=list)  # callables t -> states, in time order, with their spans
+
+
+class Engine(Protocol):
+    """An integrator of one smooth flow, to a time or the flow's first event.
+
+    ``name`` is what the segments it integrates record; ``pointwise`` says it sees the guards
+    only at output points (the stick guard is then watched in its smooth form with a rate, see
+    :func:`phasekit.system.watched`). The batch engine (:class:`TaylorBatchEngine`) has the same
+    name and pointwise flag, and its ``propagate`` takes every lane of an integrator at once.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> engine = pk.engines.engine_for('cvodes', 1e-9)
+    >>> engine.name, engine.pointwise
+    ('cvodes', True)
+    """
+
+    name: str
+    pointwise: bool
+
+    def propagate(self, flow: CompiledFlow, x0, t0: float, t_end: float, p, levels, *, budget: Budget,
+                  dense: bool = False, resume: bool = False) -> Propagation: ...
+
+
+# -- one cache for every engine's compiled integrators ----------------------------------------------
 
 
 def _cache_dir() -> Path | None:
@@ -91,6 +169,71 @@ def _cache_dir() -> Path | None:
     except OSError:
         return None
     return path
+
+
+_LOCK = threading.Lock()
+_MEMORY: dict = {}  # key -> compiled entry (what ``build`` returned)
+_PERSISTENT: set = set()  # the keys whose entries are picklable (heyoka's), for snapshot()
+_RECORDERS: dict = {}  # id(integrator) -> the monitor recorder inside it (looked up once)
+
+
+def compiled(key: tuple, build: Callable[[], object], *, disk: str | None = None):
+    """The compiled entry ``key`` of an engine: from memory, else (``disk`` names the file kind)
+    from the on-disk cache, else ``build()`` (then stored in both). Disk files are written under
+    a temporary name and renamed, so processes sharing the cache never read a torn one."""
+    with _LOCK:
+        entry = _MEMORY.get(key)
+    if entry is not None:
+        return entry
+    path = None
+    if disk is not None:
+        hy = _heyoka()
+        digest = hashlib.sha256(repr((CACHE_FORMAT, key, hy.__version__)).encode()).hexdigest()[:24]
+        cache = _cache_dir()
+        path = cache / f"{disk}-{digest}.pkl" if cache else None
+    if path is not None and path.exists():
+        try:
+            with open(path, "rb") as fh:
+                entry = pickle.load(fh)
+        except Exception:  # a stale or partial file: rebuild it
+            entry = None
+    if entry is None:
+        entry = build()
+        if path is not None:
+            try:
+                tmp = path.with_suffix(f".{os.getpid()}.tmp")
+                with open(tmp, "wb") as fh:
+                    pickle.dump(entry, fh)
+                os.replace(tmp, path)
+            except Exception:
+                pass
+    with _LOCK:
+        entry = _MEMORY.setdefault(key, entry)
+        if disk is not None:
+            _PERSISTENT.add(key)
+    return entry
+
+
+def snapshot() -> dict:
+    """The picklable compiled integrators of this process (for :class:`phasekit.sweep.ModelPack`)."""
+    with _LOCK:
+        return {k: _MEMORY[k] for k in _PERSISTENT}
+
+
+def install(entries: dict) -> None:
+    """Add a :func:`snapshot` of another process to this one's cache (entries already here are kept)."""
+    with _LOCK:
+        for k, v in entries.items():
+            _MEMORY.setdefault(k, v)
+            _PERSISTENT.add(k)
+
+
+def forget() -> None:
+    """Empty the in-memory cache (the next use reloads from disk; tests of the disk cache)."""
+    with _LOCK:
+        _MEMORY.clear()
+        _PERSISTENT.clear()
+        _RECORDERS.clear()
 
 
 class _MonitorRecorder:
@@ -187,73 +330,84 @@ def _heyoka():
     return hy
 
 
+def _build_taylor(flow: CompiledFlow, n_params: int, rtol: float, lanes: int | None):
+    """heyoka's integrator of ``flow`` (``lanes`` None: scalar; else a batch of that many lanes):
+    the field and guards translated from CasADi, every guard a terminal event with the cooldown
+    EVENT_COOLDOWN, the monitor a non-terminal one (scalar only), compact mode for big flows.
+    Returns (integrator, number of parameters it reads)."""
+    from ._translate import to_heyoka
+
+    hy = _heyoka()
+    batch = lanes is not None
+    xs = hy.make_vars(*[f"x{i}" for i in range(flow.n_states)])
+    ps = [hy.par[i] for i in range(n_params)]
+    rhs = to_heyoka(flow.field, [list(xs), ps])[0]
+    direction = {-1: hy.event_direction.negative, 1: hy.event_direction.positive, 0: hy.event_direction.any}
+    t_event = hy.t_event_batch if batch else hy.t_event
+    t_events = [t_event(to_heyoka(g.function, [list(xs), ps, [hy.par[n_params + i]]])[0][0], direction=direction[g.direction],
+                        cooldown=EVENT_COOLDOWN) for i, g in enumerate(flow.guards)]
+    nt_events = []
+    if flow.monitor is not None:
+        if batch:
+            raise ValueError("a batch integrator records no monitor: compile its flow without one")
+        m = flow.monitor
+        nt_events = [hy.nt_event(to_heyoka(m.function, [list(xs), ps, [hy.expression(0.0)]])[0][0],
+                                 callback=_MonitorRecorder(), direction=direction[m.direction])]
+    used = hy.get_params(list(rhs) + [e.expression for e in t_events] + [e.expression for e in nt_events])
+    npar = 1 + max((int(str(q)[1:]) for q in used), default=-1)
+    size = flow.field.n_instructions() + sum(g.function.n_instructions() for g in flow.guards)
+    size += flow.monitor.function.n_instructions() if flow.monitor else 0
+    if batch:
+        ta = hy.taylor_adaptive_batch(list(zip(xs, rhs)), np.zeros((flow.n_states, lanes)), pars=np.zeros((npar, lanes)),
+                                      tol=rtol, t_events=t_events, compact_mode=size > COMPACT_ABOVE)
+    else:
+        ta = hy.taylor_adaptive(list(zip(xs, rhs)), [0.0] * flow.n_states, pars=[0.0] * npar, tol=rtol,
+                                t_events=t_events, nt_events=nt_events, compact_mode=size > COMPACT_ABOVE)
+    return ta, npar
+
+
+def taylor_end(hy, outcome) -> tuple[End | None, int | None]:
+    """heyoka's outcome of a propagate call as (End, event index); (None, None) while it is under
+    way (a step limit, or a batch lane stopped by another lane's event); (End.FAILED, None) for
+    anything else (the caller words the reason)."""
+    code = int(outcome.value)
+    if outcome in (hy.taylor_outcome.step_limit, hy.taylor_outcome.success):
+        return None, None
+    if outcome == hy.taylor_outcome.time_limit:
+        return End.TIME, None
+    if -(2**31) < code < 0:  # terminal event i triggered: outcome -(i+1)
+        return End.EVENT, -code - 1
+    return End.FAILED, None
+
+
 class TaylorEngine:
-    """heyoka Taylor integrator; ``rtol`` is heyoka's (mixed absolute/relative) tolerance."""
+    """heyoka Taylor integrator; ``rtol`` is heyoka's (mixed absolute/relative) tolerance.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> e = pk.engines.TaylorEngine(1e-9)
+    >>> e.name, e.pointwise, e.rtol
+    ('taylor', False, 1e-09)
+    """
 
     name = "taylor"
-    _lock = threading.Lock()
-    _memory: dict = {}
+    pointwise = False
 
     def __init__(self, rtol: float, atol: float | None = None):
         self.rtol = float(rtol)
 
-    def _integrator(self, flow: CompiledFlow, n_params: int):
-        key = (flow.signature, self.rtol)
-        with self._lock:
-            entry = self._memory.get(key)
-        if entry is None:
-            entry = self._load_or_build(flow, n_params, key)
-            with self._lock:
-                self._memory[key] = entry
-        return entry
-
-    def _load_or_build(self, flow: CompiledFlow, n_params: int, key):
-        hy = _heyoka()
-        digest = hashlib.sha256(repr((CACHE_FORMAT, key, hy.__version__)).encode()).hexdigest()[:24]
-        cache = _cache_dir()
-        path = cache / f"taylor-{digest}.pkl" if cache else None
-        if path is not None and path.exists():
-            try:
-                with open(path, "rb") as fh:
-                    ta, npar = pickle.load(fh)
-                # the recorder is pickled inside the integrator: take that one
-                return ta, (ta.nt_events[0].callback if flow.monitor else None), npar
-            except Exception:  # a stale or partial file: rebuild it
-                pass
-        from ._translate import to_heyoka
-
-        xs = hy.make_vars(*[f"x{i}" for i in range(flow.n_states)])
-        ps = [hy.par[i] for i in range(n_params)]
-        ins = [list(xs), ps]
-        rhs = to_heyoka(flow.field, ins)[0]
-        direction = {-1: hy.event_direction.negative, 1: hy.event_direction.positive, 0: hy.event_direction.any}
-        t_events = [
-            hy.t_event(to_heyoka(g.function, [list(xs), ps, [hy.par[n_params + i]]])[0][0], direction=direction[g.direction],
-                       cooldown=EVENT_COOLDOWN)
-            for i, g in enumerate(flow.guards)
-        ]
-        nt_events, recorder = [], None
-        if flow.monitor is not None:
-            recorder = _MonitorRecorder()
-            m = flow.monitor
-            nt_events = [hy.nt_event(to_heyoka(m.function, [list(xs), ps, [hy.expression(0.0)]])[0][0], callback=recorder,
-                                     direction=direction[m.direction])]
-        used = hy.get_params(list(rhs) + [e.expression for e in t_events] + [e.expression for e in nt_events])
-        npar = 1 + max((int(str(q)[1:]) for q in used), default=-1)
-        size = flow.field.n_instructions() + sum(g.function.n_instructions() for g in flow.guards)
-        size += flow.monitor.function.n_instructions() if flow.monitor else 0
-        ta = hy.taylor_adaptive(list(zip(xs, rhs)), [0.0] * flow.n_states, pars=[0.0] * npar, tol=self.rtol,
-                                t_events=t_events, nt_events=nt_events, compact_mode=size > COMPACT_ABOVE)
-        if nt_events:  # the recorder inside the integrator is the one we keep
-            recorder = ta.nt_events[0].callback
-        if path is not None:
-            try:
-                tmp = path.with_suffix(f".{os.getpid()}.tmp")
-                with open(tmp, "wb") as fh:
-                    pickle.dump((ta, npar), fh)
-                os.replace(tmp, path)
-            except Exception:
-                pass
+    def integrator(self, flow: CompiledFlow, n_params: int):
+        """(heyoka integrator, monitor recorder or None, number of parameters), compiled once."""
+        ta, npar = compiled((flow.signature, self.rtol), partial(_build_taylor, flow, n_params, self.rtol, None),
+                            disk="taylor")
+        if flow.monitor is None:
+            return ta, None, npar
+        # the recorder inside the integrator is the one that records (heyoka copied ours, and
+        # one loaded from disk or a snapshot is a new object): look it up in the integrator
+        recorder = _RECORDERS.get(id(ta))
+        if recorder is None:
+            recorder = _RECORDERS.setdefault(id(ta), ta.nt_events[0].callback)
         return ta, recorder, npar
 
     def propagate(self, flow: CompiledFlow, x0, t0, t_end, p, levels, *, budget: Budget, dense: bool = False,
@@ -265,7 +419,7 @@ class TaylorEngine:
         that the event just located does not fire again.
         """
         hy = _heyoka()
-        ta, recorder, npar = self._integrator(flow, len(p))
+        ta, recorder, npar = self.integrator(flow, len(p))
         if not resume:
             ta.time = float(t0)
             ta.state[:] = np.asarray(x0, dtype=float)
@@ -273,46 +427,84 @@ class TaylorEngine:
             ta.reset_cooldowns()
         if recorder is not None:
             recorder.points = []
-        prop = Propagation(t=float(ta.time), x=np.array(ta.state), outcome="time")
+        prop = Propagation(t=float(ta.time), x=np.array(ta.state), outcome=End.TIME)
         while True:
-            t_start = float(ta.time)
-            record = _TaylorSteps(t_start) if dense else None
+            record = _TaylorSteps(float(ta.time)) if dense else None
             try:
                 res = ta.propagate_until(float(t_end), max_steps=int(max(1, min(budget.steps - prop.n_steps, STEP_CHUNK))),
                                          write_tc=dense, callback=record)
             except Exception as exc:  # heyoka raises on e.g. a non-finite state in an event
-                prop.outcome, prop.reason = "failed", f"taylor: {exc}"
+                prop.outcome, prop.reason = End.FAILED, f"taylor: {exc}"
                 break
-            outcome, steps = res[0], int(res[3])
+            steps = int(res[3])
             prop.n_steps += steps
             if record is not None and steps > 0:
                 record.finish(ta)
                 prop.dense.append(record.span())
-            if outcome == hy.taylor_outcome.step_limit:
+            end, event = taylor_end(hy, res[0])
+            if end is None:  # the step chunk ran out
                 if prop.n_steps >= budget.steps:
-                    prop.outcome, prop.reason = "failed", f"step limit ({prop.n_steps} steps) reached at t = {ta.time:.6g}"
+                    prop.outcome, prop.reason = End.FAILED, f"step limit ({prop.n_steps} steps) reached at t = {ta.time:.6g}"
                     break
                 if budget.wall_exceeded():
-                    prop.outcome, prop.reason = "failed", f"wall-time limit reached at t = {ta.time:.6g}"
+                    prop.outcome, prop.reason = End.FAILED, f"wall-time limit reached at t = {ta.time:.6g}"
                     break
                 if budget.tick is not None:
                     budget.tick(float(ta.time))
                 continue
-            code = int(outcome.value)
-            if outcome == hy.taylor_outcome.time_limit:
-                prop.outcome = "time"
-            elif code < 0 and code > -(2**31):  # terminal event i triggered: outcome -(i+1)
-                prop.outcome, prop.event = "event", -code - 1
-            elif outcome == hy.taylor_outcome.err_nf_state:
-                prop.outcome, prop.reason = "failed", f"non-finite state at t = {ta.time:.6g}"
-            else:
-                prop.outcome, prop.reason = "failed", f"taylor integrator stopped: {outcome}"
+            prop.outcome, prop.event = end, event
+            if end is End.FAILED:
+                prop.reason = (f"non-finite state at t = {ta.time:.6g}" if res[0] == hy.taylor_outcome.err_nf_state
+                               else f"taylor integrator stopped: {res[0]}")
             break
         prop.t, prop.x = float(ta.time), np.array(ta.state, copy=True)
         prop.n_rhs = prop.n_steps * (ta.order + 1)
         if recorder is not None:
             prop.monitored = list(recorder.points)
         return prop
+
+
+class TaylorBatchEngine:
+    """The Taylor integrator on heyoka's batch mode: ``lanes`` starts of one flow (different states,
+    parameters and times) propagated at once, each to its time limit or its own first event.
+
+    Built by the same code as :class:`TaylorEngine` (same expressions, tolerance, compact mode and
+    event cooldown); segments it integrates record the name "taylor", as they are the same steps.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> e = pk.engines.TaylorBatchEngine(1e-9, lanes=8)
+    >>> e.name, e.pointwise, e.lanes
+    ('taylor', False, 8)
+    """
+
+    name = "taylor"
+    pointwise = False
+
+    def __init__(self, rtol: float, lanes: int):
+        self.rtol, self.lanes = float(rtol), int(lanes)
+
+    def integrator(self, flow: CompiledFlow, n_params: int):
+        """(heyoka batch integrator, number of parameters), compiled once."""
+        return compiled(("batch", flow.signature, self.rtol, self.lanes),
+                        partial(_build_taylor, flow, n_params, self.rtol, self.lanes), disk="taylor-batch")
+
+    def propagate(self, ta, limits, max_steps: int) -> list[tuple[End | None, int | None, int, str]]:
+        """One call of heyoka's propagate on every lane (to ``limits``, at most ``max_steps``
+        steps): per lane (End or None while under way, event index, steps taken, heyoka's
+        outcome in words). A terminal event in one lane stops the call for every lane; the
+        others end their current step and are under way (heyoka's batch-mode documentation,
+        and measured here)."""
+        hy = _heyoka()
+        ta.propagate_until(limits, max_steps=max_steps)
+        out = []
+        for k, res in enumerate(ta.propagate_res):
+            end, event = taylor_end(hy, res[0])
+            if end is None and float(ta.time[k]) >= limits[k]:
+                end = End.TIME  # the call ended on the lane's last step
+            out.append((end, event, int(res[3]), str(res[0])))
+        return out
 
 
 class HermiteDense:
@@ -353,11 +545,17 @@ class HermiteDense:
 
 
 class CvodesEngine:
-    """CVODES (BDF or Adams) or IDAS through CasADi, with grid-bracketed, Brent-refined events."""
+    """CVODES (BDF or Adams) or IDAS through CasADi, with grid-bracketed, Brent-refined events.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [pk.engines.engine_for(n, 1e-9).name for n in ('cvodes', 'cvodes-adams', 'idas')]
+    ['cvodes', 'cvodes-adams', 'idas']
+    """
 
     name = "cvodes"
-    _lock = threading.Lock()
-    _memory: dict = {}
+    pointwise = True
     #: output points per chunk (the chunk length adapts to the rotation rate). Measured: 100
     #: is 2x faster than 40 (fewer restarts of CVODES) and no slower than 200.
     n_grid = 100
@@ -374,12 +572,13 @@ class CvodesEngine:
         self.name = {("cvodes", "bdf"): "cvodes", ("cvodes", "adams"): "cvodes-adams"}.get((plugin, method), plugin)
 
     def _functions(self, flow: CompiledFlow, n_params: int):
+        # CasADi builds these in milliseconds: kept in memory only
+        key = ("cvodes", flow.signature, self.rtol, self.atol, self.method, self.plugin, self.n_grid)
+        return compiled(key, partial(self._build, flow, n_params))
+
+    def _build(self, flow: CompiledFlow, n_params: int):
         import casadi as ca
 
-        key = (flow.signature, self.rtol, self.atol, self.method, self.plugin, self.n_grid)
-        with self._lock:
-            if key in self._memory:
-                return self._memory[key]
         x = ca.SX.sym("x", flow.n_states)
         p = ca.SX.sym("p", n_params)
         T = ca.SX.sym("T")
@@ -400,10 +599,7 @@ class CvodesEngine:
         outs += [g.rate(x, p) if g.rate is not None else ca.SX(0) for g in flow.guards]
         outs += [flow.monitor.function(x, p, 0.0) if flow.monitor else ca.SX(0)]
         monitor = ca.Function("monitor", [x, p, lv], [ca.vertcat(*outs)]).map(self.n_grid + 1)
-        out = (chunk, single, monitor)
-        with self._lock:
-            self._memory[key] = out
-        return out
+        return chunk, single, monitor
 
     def propagate(self, flow: CompiledFlow, x0, t0, t_end, p, levels, *, budget: Budget, dense: bool = False,
                   resume: bool = False) -> Propagation:
@@ -417,7 +613,7 @@ class CvodesEngine:
         P = np.tile(p[:, None], (1, ng + 1))
         L = np.tile(levels[:, None], (1, ng + 1)) if ne else np.zeros((0, ng + 1))
         t, x = float(t0), np.asarray(x0, dtype=float).copy()
-        prop = Propagation(t=t, x=x, outcome="time")
+        prop = Propagation(t=t, x=x, outcome=End.TIME)
         grid_t, grid_x = [t], [x.copy()]
         cool = 1e-9 * max(1.0, abs(t0)) if resume else 0.0
 
@@ -425,13 +621,13 @@ class CvodesEngine:
             return np.asarray(single(x0=xa, p=np.concatenate([p, [T]]))["xf"]).ravel() if T > 0 else xa
 
         with _library_output_dropped():  # SUNDIALS' own error lines: the reason carries them
-            while t < t_end and prop.outcome == "time":
+            while t < t_end and prop.outcome is End.TIME:
                 # 20 grid points per period of the fastest rotation resolve the oscillation of R.
                 dt = min(2 * np.pi / 20 / flow.rate_hint(x) * ng, t_end - t)
                 try:
                     r = chunk(x0=x, p=np.concatenate([p, [dt]]))
                 except RuntimeError as exc:
-                    prop.outcome, prop.reason = "failed", f"{self.plugin}: {sundials_message(exc)} (chunk from t = {t:.6g})"
+                    prop.outcome, prop.reason = End.FAILED, f"{self.plugin}: {sundials_message(exc)} (chunk from t = {t:.6g})"
                     break
                 st = chunk.stats()
                 prop.n_steps += int(st.get("nsteps", 0))
@@ -439,13 +635,13 @@ class CvodesEngine:
                 X = np.vstack([x[None, :], np.asarray(r["xf"]).T])  # (ng + 1, nx), row 0 = start
                 tk = t + dt * np.arange(ng + 1) / ng
                 if not np.all(np.isfinite(X)):
-                    prop.outcome, prop.reason = "failed", f"non-finite state near t = {t:.6g}"
+                    prop.outcome, prop.reason = End.FAILED, f"non-finite state near t = {t:.6g}"
                     break
                 M = np.asarray(monitor(X.T, P, L)) if ne or flow.monitor else np.zeros((1, ng + 1))
                 hit, last = self._first_event(flow, run, p, levels, X, tk, M, dt / ng, ne, cool, t0)
                 if hit is not None:
                     t, x = hit[0], hit[1]
-                    prop.outcome, prop.event = "event", hit[2]
+                    prop.outcome, prop.event = End.EVENT, hit[2]
                 if flow.monitor is not None:
                     Ms = M[2 * ne]
                     for j in np.flatnonzero(np.sign(Ms[:-1]) * flow.monitor.direction < 0):
@@ -460,9 +656,9 @@ class CvodesEngine:
                 else:
                     t, x = float(tk[-1]), X[-1].copy()
                 if prop.n_steps >= budget.steps:
-                    prop.outcome, prop.reason = "failed", f"step limit ({prop.n_steps} steps) reached at t = {t:.6g}"
-                elif budget.wall_exceeded() and prop.outcome == "time" and t < t_end:
-                    prop.outcome, prop.reason = "failed", f"wall-time limit reached at t = {t:.6g}"
+                    prop.outcome, prop.reason = End.FAILED, f"step limit ({prop.n_steps} steps) reached at t = {t:.6g}"
+                elif budget.wall_exceeded() and prop.outcome is End.TIME and t < t_end:
+                    prop.outcome, prop.reason = End.FAILED, f"wall-time limit reached at t = {t:.6g}"
                 elif budget.tick is not None:
                     budget.tick(t)
         prop.t, prop.x = t, x
@@ -560,12 +756,60 @@ def _hermite_dips(h, g0, g1, d0, d1) -> np.ndarray:
     return v.min(axis=0) < 0
 
 
-def engine_for(name: str, rtol: float, atol: float | None = None):
-    """An integrator by name: taylor, cvodes, cvodes-adams or idas."""
-    if name == "taylor":
-        return TaylorEngine(rtol)
-    if name == "cvodes-adams":
-        return CvodesEngine(rtol, atol, method="adams")
-    if name == "idas":
-        return CvodesEngine(rtol, atol, plugin="idas")
-    return CvodesEngine(rtol, atol)
+#: the engines ``SolverOptions.backend`` may name ("auto" besides): name -> factory(rtol, atol)
+ENGINES: dict[str, Callable[..., Engine]] = {
+    "taylor": TaylorEngine,
+    "cvodes": CvodesEngine,
+    "cvodes-adams": partial(CvodesEngine, method="adams"),
+    "idas": partial(CvodesEngine, plugin="idas"),
+}
+
+
+def engine_names() -> tuple[str, ...]:
+    """What ``SolverOptions.backend`` accepts: "auto" and every registered engine.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.engines.engine_names()
+    ('auto', 'taylor', 'cvodes', 'cvodes-adams', 'idas')
+    """
+    return ("auto", *ENGINES)
+
+
+def register_engine(name: str, factory: Callable[..., Engine]) -> None:
+    """Make an integrator available as ``SolverOptions(backend=name)``: ``factory(rtol, atol)``
+    returns an :class:`Engine`. Nothing else needs editing: simulate asks the engine whether it
+    is pointwise, and the options accept every registered name.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.engines.register_engine('cvodes-loose', lambda rtol, atol=None: pk.engines.CvodesEngine(rtol, 1e-6))
+    >>> pk.SolverOptions(backend='cvodes-loose').backend
+    'cvodes-loose'
+    >>> del pk.engines.ENGINES['cvodes-loose']
+    """
+    if not isinstance(name, str) or not name or name == "auto" or name in ENGINES:
+        raise ParameterError("name", "must be a new engine name (not 'auto' or one of "
+                                     f"{', '.join(ENGINES)})", name)
+    ENGINES[name] = factory
+
+
+def engine_for(name: str, rtol: float, atol: float | None = None) -> Engine:
+    """The engine called ``name`` (see :data:`ENGINES`) at these tolerances; an unknown name is an
+    error naming the choices.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.engines.engine_for('taylor', 1e-9).name
+    'taylor'
+    >>> pk.engines.engine_for('rk4', 1e-9)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    phasekit.errors.ParameterError: `backend` must be one of taylor, cvodes, cvodes-adams, idas, got 'rk4'.
+    """
+    if name not in ENGINES:
+        raise ParameterError("backend", f"must be one of {', '.join(ENGINES)}", name)
+    return ENGINES[name](rtol, atol)
