@@ -17,7 +17,6 @@ import math
 import phasekit as pk
 from phasekit.viz import animate, film_strip
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
 

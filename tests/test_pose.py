@@ -12,6 +12,7 @@ import math
 
 import phasekit as pk
 from phasekit import pose
+from phasekit.charts import euler_to_vector
 from phasekit.pose import rotation_matrix
 
 import numpy as np
@@ -188,7 +189,7 @@ def test_pose_needs_dense_output():
 def test_rotation_matrix_is_zyz(prolate_run):
     """R = Rz(psi) Ry(theta) Rz(phi): its third column is the axis k of the paper's section 2,
     and along a run dR/dt R^T is the body's angular velocity w = Omega e_Z + Lambda e_Y +
-    (n - Omega cos theta) k (phasekit.euler_to_vector, turned by psi), which fixes the signs
+    (n - Omega cos theta) k (phasekit.charts.euler_to_vector, turned by psi), which fixes the signs
     and the conventions of all three angles."""
     R = rotation_matrix(0.4, 1.1, -2.0)
     np.testing.assert_allclose(R[:, 2], [math.sin(1.1) * math.cos(0.4), math.sin(1.1) * math.sin(0.4), math.cos(1.1)],
@@ -204,4 +205,4 @@ def test_rotation_matrix_is_zyz(prolate_run):
         y = df.iloc[1][list(pk.PAPER_NAMES)].to_numpy(float)
         psi = df.psi.iloc[1]
         Rz = np.array([[math.cos(psi), -math.sin(psi), 0], [math.sin(psi), math.cos(psi), 0], [0, 0, 1]])
-        np.testing.assert_allclose(w, Rz @ pk.euler_to_vector(y)[3:6], atol=1e-6 * max(1.0, np.abs(w).max()))
+        np.testing.assert_allclose(w, Rz @ euler_to_vector(y)[3:6], atol=1e-6 * max(1.0, np.abs(w).max()))

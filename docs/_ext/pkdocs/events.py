@@ -72,12 +72,13 @@ def declared_events():
 
 def _integrators(sys_, ev) -> set[str]:
     """Which integrators watch ``ev`` (``system.watched``: the Taylor method or pointwise ones)."""
-    from phasekit import system
+    from phasekit import engines, system
 
     found = set()
-    for engine, label in (("taylor", "Taylor"), ("cvodes", "pointwise (CVODES, IDAS)")):
+    for engine, cls, label in (("taylor", engines.TaylorEngine, "Taylor"),
+                               ("cvodes", engines.CvodesEngine, "pointwise (CVODES, IDAS)")):
         for f in sys_.flows:  # a flow that names its integrator (flight: Taylor) is run by it alone
-            if getattr(f, "engine", None) in (None, engine) and ev in system.watched(sys_, f.mode, engine):
+            if getattr(f, "engine", None) in (None, engine) and ev in system.watched(sys_, f.mode, cls):
                 found.add(label)
     return found
 
