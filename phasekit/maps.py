@@ -10,6 +10,8 @@ module: the task runner is :mod:`phasekit.tasks`).
 * What the studies read off the stored rows: :func:`outcome_map_summary` (an outcome map's
   classes and traced boundaries, checked against each other), :func:`threshold_collapse` and
   :func:`threshold_against_d` (thresholds over (a, mu) and against the seed distance).
+* The stored rows as text tables (the studies' reports): :func:`threshold_table`,
+  :func:`definition_sensitivity_table`, :func:`threshold_grid_table`, :func:`seed_sensitivity_table`.
 * :func:`threshold_chain`: the tasks of one threshold curve, each seeded by its neighbour's.
 * :func:`stability_grid`: part I's linear-stability map of the steady states over (a, rate).
 """
@@ -39,7 +41,8 @@ from .threshold import (
 
 __all__ = ["ThresholdRow", "threshold_task", "threshold_key", "threshold_chain", "SearchRow", "search_job",
            "search_group_task", "group_search_tasks", "OutcomeRow", "outcome_task", "outcome_key", "OUTCOME_KINDS",
-           "outcome_map_summary", "threshold_collapse", "threshold_against_d", "stability_grid"]
+           "outcome_map_summary", "threshold_collapse", "threshold_against_d", "stability_grid", "threshold_table",
+           "definition_sensitivity_table", "threshold_grid_table", "seed_sensitivity_table"]
 
 #: the classes of an :class:`OutcomeRow`, in the order the studies count and draw them
 OUTCOME_KINDS = ("stuck", "rise", "jump", "slow", "failed")
@@ -541,3 +544,105 @@ def stability_grid(kind: str, a_values, rates, *, mu: float, progress=None) -> n
         if progress is not None:
             progress.update(len(rates))
     return out
+
+
+# -- the stored rows as text tables (the studies' reports) -------------------------------------------
+
+
+def threshold_table(rows, *, first: str) -> str:
+    """The main rows of a threshold sweep (:class:`ThresholdRow` of group "main") as a text
+    table, the definition named ``first`` first: definition, branch, a, threshold, status,
+    simulations and the self-consistency check (1.02 x jumps, 0.98 x does not); then how many
+    of the checked points pass it.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from types import SimpleNamespace as Row
+    >>> r = Row(group="main", name="sliding", definition="sliding", branch="prolate", a=1.5, threshold=9.75,
+    ...         status="converged", n_sims=30, consistent=True)
+    >>> print(pk.sweep.threshold_table([r], first="sliding").splitlines()[-1])
+    self-consistency (1.02 x jumps, 0.98 x does not): 1 of 1 points pass
+    """
+    main = [r for r in rows if r.group == "main"]
+    lines = [f"{'definition':<58s} {'branch':<8s} {'a':>6s} {'threshold':>10s} {'status':<17s} {'sims':>4s} {'check':>5s}"]
+    for r in sorted(main, key=lambda r: (r.name != first, r.name, r.branch, r.a)):
+        check = "ok" if r.consistent else "FAIL" if r.consistent is False else "-"
+        th = f"{r.threshold:.4f}" if r.threshold else "-"
+        lines.append(f"{r.definition[:58]:<58s} {r.branch:<8s} {r.a:6.3f} {th:>10s} {r.status:<17s} {r.n_sims:>4d} {check:>5s}")
+    bad = [r for r in main if r.consistent is False]
+    checked = [r for r in main if r.consistent is not None]
+    lines.append(f"self-consistency (1.02 x jumps, 0.98 x does not): {len(checked) - len(bad)} of {len(checked)} points pass")
+    return "\n".join(lines)
+
+
+def definition_sensitivity_table(rows, *, parent) -> str:
+    """The sensitivity rows of a threshold sweep (:class:`ThresholdRow` of group "sensitivity")
+    against the main row of their parent definition at the same a (``parent(row)``: its name):
+    the threshold (or the status), its relative change, and whether the search stuck near it.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from types import SimpleNamespace as Row
+    >>> rows = [Row(group="main", name="sliding", a=1.5, threshold=10.0),
+    ...         Row(group="sensitivity", name="sliding-d0.02", a=1.5, threshold=10.1, status="converged", stuck_near=False)]
+    >>> print(pk.sweep.definition_sensitivity_table(rows, parent=lambda r: "sliding"))
+      sliding-d0.02                  a=1.5000 threshold=10.1000            vs sliding: +1.00e-02  stuck near threshold: False
+    """
+    ref = {(r.name, r.a): r.threshold for r in rows if r.group == "main"}
+    lines = []
+    for r in sorted((r for r in rows if r.group == "sensitivity"), key=lambda r: (r.name, r.a)):
+        base = ref.get((parent(r), r.a))
+        rel = f"{(r.threshold / base - 1):+.2e}" if r.threshold and base else "-"
+        th = f"{r.threshold:.4f}" if r.threshold else r.status
+        lines.append(f"  {r.name:<30s} a={r.a:.4f} threshold={th:<18s} vs {parent(r)}: {rel}  stuck near threshold: {r.stuck_near}")
+    return "\n".join(lines)
+
+
+def threshold_grid_table(rows, mus) -> str:
+    """Thresholds over (a, mu) (:class:`SearchRow` at one seed distance) as a text table: a row
+    per branch and aspect ratio, a column per mu in ``mus`` (the status where there is no
+    threshold, "-" where there is no row).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from types import SimpleNamespace as Row
+    >>> print(pk.sweep.threshold_grid_table([Row(branch="prolate", a=1.5, mu=0.1, threshold=9.75, status="converged")], [0.1, 0.5]))
+    branch        a     mu=0.1     mu=0.5
+    prolate   1.500     9.7500          -
+    """
+    lines = [f"{'branch':<8s} {'a':>6s} " + " ".join(f"{'mu=' + format(mu, '.3g'):>10s}" for mu in mus)]
+    for branch in ("prolate", "oblate"):
+        for a in sorted({r.a for r in rows if r.branch == branch}):
+            cells = []
+            for mu in mus:
+                r = next((r for r in rows if r.a == a and r.mu == mu), None)
+                cells.append(f"{r.threshold:10.4f}" if r and r.threshold else f"{(r.status if r else '-'):>10s}")
+            lines.append(f"{branch:<8s} {a:6.3f} " + " ".join(cells))
+    return "\n".join(lines)
+
+
+def seed_sensitivity_table(rows) -> str:
+    """The searches that measured their sensitivity to the seed distance (:class:`SearchRow`
+    with ``sens_*``) as text lines, by branch and a: the threshold T*, T* at d/2 and 2d, the
+    slope d ln T*/d ln d, the largest shift, the bracket's relative width, and what dominates.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from types import SimpleNamespace as Row
+    >>> r = Row(branch="prolate", a=1.5, threshold=10.0, bracket_lo=9.995, bracket_hi=10.005, sens_half=10.2, sens_double=9.8,
+    ...         sens_slope=-0.03, sens_shift=0.02, sens_dominant="seed distance")
+    >>> print(pk.sweep.seed_sensitivity_table([r]))  # doctest: +NORMALIZE_WHITESPACE
+      prolate  a= 1.500 T*= 10.0000 T*(d/2)= 10.2000 T*(2d)=  9.8000 slope=-0.030 max shift=2.000% bracket=1.0e-03
+      -> seed distance
+    """
+    lines = []
+    for r in sorted((r for r in rows if r.sens_dominant), key=lambda r: (r.branch, r.a)):
+        width = r.bracket_hi / r.bracket_lo - 1
+        lines.append(f"  {r.branch:<8s} a={r.a:6.3f} T*={r.threshold:8.4f} T*(d/2)={r.sens_half or float('nan'):8.4f} "
+                     f"T*(2d)={r.sens_double or float('nan'):8.4f} slope={r.sens_slope if r.sens_slope is not None else float('nan'):+.3f} "
+                     f"max shift={r.sens_shift if r.sens_shift is not None else float('nan'):.3%} bracket={width:.1e} -> {r.sens_dominant}")
+    return "\n".join(lines)

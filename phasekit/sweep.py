@@ -35,16 +35,20 @@ from .maps import (
     OutcomeRow,
     SearchRow,
     ThresholdRow,
+    definition_sensitivity_table,
     group_search_tasks,
     outcome_key,
     outcome_map_summary,
     outcome_task,
     search_job,
+    seed_sensitivity_table,
     stability_grid,
     threshold_against_d,
     threshold_chain,
     threshold_collapse,
+    threshold_grid_table,
     threshold_key,
+    threshold_table,
     threshold_task,
 )
 from .study import Study, atomic_path, run_study, save_figure, write_csv, write_json
@@ -72,7 +76,8 @@ __all__ = [
     "ThresholdRow", "threshold_task", "threshold_key", "SearchRow", "search_job", "group_search_tasks", "OutcomeRow",
     "outcome_task", "outcome_key", "OUTCOME_KINDS", "threshold_chain",
     # what the studies read off the stored rows
-    "outcome_map_summary", "threshold_collapse", "threshold_against_d", "stability_grid",
+    "outcome_map_summary", "threshold_collapse", "threshold_against_d", "stability_grid", "threshold_table",
+    "definition_sensitivity_table", "threshold_grid_table", "seed_sensitivity_table",
     # atlases of steady-state structure
     "AtlasPanel", "AtlasRow", "BoundaryRow", "axis_values", "atlas_edges", "trace_boundary", "is_class", "atlas_representatives",
     # searches in lock-step, and their simulations in batch

@@ -29,7 +29,7 @@ import math
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.viz import plot_atlas, plot_classes, pyplot, render_structure, save_figure
+from phasekit.viz import plot_atlas, plot_branch_planes, plot_classes, render_structure, save_figure
 
 import numpy as np
 
@@ -154,13 +154,7 @@ def egg_rise_end(png: Path) -> dict:
     law = pk.Coulomb(EGG["mu"])
     s = pk.steady_structure(egg, law)
     out = {"egg": repr(egg), "signature": s.signature, "runs": []}
-    plt = pyplot()
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(13, 5))
-    for b in s.branches:
-        keep = b.Omega < 14
-        for ax, y in ((ax1, b.Omega), (ax2, b.n)):
-            ax.plot(b.theta[keep], y[keep], color="0.2", lw=2,
-                    label="branch (G at rest)" if b is s.branches[0] and ax is ax1 else None)
+    drawn = []
     for om0, colour in zip(EGG["omegas"], ("#4575b4", "#d73027")):
         r = pk.simulate(pk.Model(egg, law), pk.gyroscopic_start(egg, EGG["theta0"], omega0=om0), EGG["t_end"],
                         stop_at="none", track_minima=False)
@@ -168,11 +162,8 @@ def egg_rise_end(png: Path) -> dict:
         th, om, n = (float(late[c].mean()) for c in ("theta", "Omega", "n"))
         branch_om, branch_n = (float(v[0]) for v in s.precession(np.array([th])))
         roll = pk.theory.rolling_motion(egg, th, om)
-        path = r.sample(np.linspace(0.0, r.t, 3000))
-        ax1.plot(path["theta"], path["Omega"], color=colour, lw=0.7, alpha=0.7, label=f"egg, $\\Omega_0$ = {om0:g}")
-        ax2.plot(path["theta"], path["n"], color=colour, lw=0.7, alpha=0.7)
-        ax1.plot(th, om, "*", color=colour, ms=13, mec="k")
-        ax2.plot(th, roll.n, "*", color=colour, ms=13, mec="k")
+        drawn.append(dict(path=r.sample(np.linspace(0.0, r.t, 3000)), colour=colour, label=f"egg, $\\Omega_0$ = {om0:g}",
+                          star=(th, om, roll.n)))
         out["runs"].append({
             "omega0": om0, "status": r.status.value, "t_end": r.t, "n_events": len(r.events),
             "stick_slip_cycles": sum(e.name == "slip" for e in r.events),
@@ -181,16 +172,9 @@ def egg_rise_end(png: Path) -> dict:
             "branch_at_theta": {"Omega": branch_om, "n": branch_n},
             "rolling_motion": {"n": roll.n, "V": roll.V, "radius": roll.radius, "needs_mu": roll.needs_mu,
                                "n_rel_difference": abs(roll.n - n) / abs(n)}})
-    for ax, yl in ((ax1, r"$\Omega$ ($\sqrt{g/b}$)"), (ax2, r"$n$ ($\sqrt{g/b}$)")):
-        ax.set(xlabel=r"$\theta$ (rad)", ylabel=yl, xlim=(0, math.pi))
-        ax.grid(alpha=0.3)
-    ax1.set_ylim(0, 14)
-    ax1.legend(fontsize=8)
-    ax2.set_title("stars: the late mean state; its n is that of the steady rolling motion (G on a circle)", fontsize=9)
-    fig.suptitle(f"Where the rise of {egg!r} ends (exact Coulomb mu = {EGG['mu']:g}, start theta0 = pi/2 - 0.05, "
-                 "gyroscopic)", fontsize=10)
-    fig.tight_layout()
-    save_figure(fig, png)
+    save_figure(plot_branch_planes(s, drawn, omega_max=14, caption="stars: the late mean state; its n is that of the steady "
+                                   "rolling motion (G on a circle)", title=f"Where the rise of {egg!r} ends (exact Coulomb mu = "
+                                   f"{EGG['mu']:g}, start theta0 = pi/2 - 0.05, gyroscopic)"), png)
     return out
 
 

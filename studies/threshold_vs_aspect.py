@@ -60,6 +60,11 @@ def sensitivity_definitions(quick: bool) -> list[Definition]:
     return out
 
 
+def parent_name(defn) -> str:
+    """The main definition a sensitivity run varies (a definition or its row)."""
+    return "literal-eps1e-4" if defn.seed == "literal" else DEFAULT_NAME
+
+
 def build_tasks(quick: bool, sensitivity: bool, engine: str = "scalar", levels: int = 1) -> list:
     """One chain per definition and branch, ordered from far to near a = 1 (thresholds grow along
     it); the sensitivity runs at a = 1.5 and 2/3 each seeded by its parent definition's point."""
@@ -67,7 +72,7 @@ def build_tasks(quick: bool, sensitivity: bool, engine: str = "scalar", levels: 
     specs = [s for defn in DEFAULT_DEFINITIONS for a_list in (prolate, oblate) for s in pk.sweep.threshold_chain(
         defn, a_list, SEARCH, is_default=defn.name == DEFAULT_NAME, engine=engine, levels=levels)]
     for defn in sensitivity_definitions(quick) if sensitivity else ():
-        parent = next(d for d in DEFAULT_DEFINITIONS if d.name == ("literal-eps1e-4" if defn.seed == "literal" else DEFAULT_NAME))
+        parent = next(d for d in DEFAULT_DEFINITIONS if d.name == parent_name(defn))
         specs += [s for a in (1.5, 2 / 3) for s in pk.sweep.threshold_chain(
             defn, [a], SEARCH, group="sensitivity", engine=engine, levels=levels, after=pk.sweep.threshold_key(parent, a, SEARCH))]
     return specs
@@ -85,26 +90,11 @@ def warm_up() -> None:
 
 
 def report(rows: list, wall: float, n_new: int, mode: str) -> dict:
-    main = [r for r in rows if r.group == "main"]
     print(f"\nFigure {STEM}.png: jump thresholds against aspect ratio, mu = 0.1, 5 definitions; table {STEM}.csv.")
-    print(f"{'definition':<58s} {'branch':<8s} {'a':>6s} {'threshold':>10s} {'status':<17s} {'sims':>4s} {'check':>5s}")
-    for r in sorted(main, key=lambda r: (r.name != DEFAULT_NAME, r.name, r.branch, r.a)):
-        check = "ok" if r.consistent else "FAIL" if r.consistent is False else "-"
-        th = f"{r.threshold:.4f}" if r.threshold else "-"
-        print(f"{r.definition[:58]:<58s} {r.branch:<8s} {r.a:6.3f} {th:>10s} {r.status:<17s} {r.n_sims:>4d} {check:>5s}")
-    bad = [r for r in main if r.consistent is False]
-    checked = [r for r in main if r.consistent is not None]
-    print(f"self-consistency (1.02 x jumps, 0.98 x does not): {len(checked) - len(bad)} of {len(checked)} points pass")
-    sens = [r for r in rows if r.group == "sensitivity"]
-    if sens:
+    print(pk.sweep.threshold_table(rows, first=DEFAULT_NAME))
+    if any(r.group == "sensitivity" for r in rows):
         print("\nSensitivity at a = 1.5 (Omega0) and a = 2/3 (n0):")
-        ref = {(r.name, r.a): r.threshold for r in main}
-        for r in sorted(sens, key=lambda r: (r.name, r.a)):
-            parent = "literal-eps1e-4" if r.seed == "literal" else DEFAULT_NAME
-            base = ref.get((parent, r.a))
-            rel = f"{(r.threshold / base - 1):+.2e}" if r.threshold and base else "-"
-            th = f"{r.threshold:.4f}" if r.threshold else r.status
-            print(f"  {r.name:<30s} a={r.a:.4f} threshold={th:<18s} vs {parent}: {rel}  stuck near threshold: {r.stuck_near}")
+        print(pk.sweep.definition_sensitivity_table(rows, parent=parent_name))
     n_sims = sum(r.n_sims + r.n_check_sims for r in rows)
     sim_wall = sum(r.wall_s for r in rows)
     print(f"\n{len(rows)} points ({n_new} computed now, {mode}); {n_sims} simulations, {sim_wall:.1f} s of task time, "

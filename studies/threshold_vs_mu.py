@@ -80,14 +80,7 @@ def warm_up() -> None:
 def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
     main = [r for r in rows if r.d == BASE.amplitude]
     print(f"\n{STEM}: {len(rows)} searches ({n_new} computed now, {mode}), {wall:.1f} s wall")
-    print(f"{'branch':<8s} {'a':>6s} " + " ".join(f"{'mu=' + format(mu, '.3g'):>10s}" for mu in g["mu"]))
-    for branch in ("prolate", "oblate"):
-        for a in sorted({r.a for r in main if r.branch == branch}):
-            cells = []
-            for mu in g["mu"]:
-                r = next((r for r in main if r.a == a and r.mu == mu), None)
-                cells.append(f"{r.threshold:10.4f}" if r and r.threshold else f"{(r.status if r else '-'):>10s}")
-            print(f"{branch:<8s} {a:6.3f} " + " ".join(cells))
+    print(pk.sweep.threshold_grid_table(main, g["mu"]))
     bad = [r for r in rows if r.status not in ("converged",)]
     print(f"not converged: {len(bad)} " + ", ".join(f"(a={r.a:.3g}, mu={r.mu:.3g}, d={r.d:g}: {r.status})" for r in bad[:10]))
     print("collapse test, f(mu) and remaining spread (max |ln T/(f T_ref)|):")
@@ -99,14 +92,9 @@ def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
         th = ", ".join(f"{t:.4f}" if t else s for t, s in zip(v["threshold"], v["status"]))
         ch = ", ".join(f"{c:+.3f}" if c is not None else "-" for c in v["change_per_halving"])
         print(f"  {k}: d = {v['d']}: {th}; change per halving: {ch}")
-    sens = sorted((r for r in main if r.sens_dominant), key=lambda r: (r.branch, r.a))
-    if sens:
+    if any(r.sens_dominant for r in main):
         print(f"sensitivity to the seed distance at mu = {MU_REF:g} (thresholds at d/2 and 2d; slope = d ln T*/d ln d):")
-        for r in sens:
-            width = r.bracket_hi / r.bracket_lo - 1
-            print(f"  {r.branch:<8s} a={r.a:6.3f} T*={r.threshold:8.4f} T*(d/2)={r.sens_half or float('nan'):8.4f} "
-                  f"T*(2d)={r.sens_double or float('nan'):8.4f} slope={r.sens_slope if r.sens_slope is not None else float('nan'):+.3f} "
-                  f"max shift={r.sens_shift if r.sens_shift is not None else float('nan'):.3%} bracket={width:.1e} -> {r.sens_dominant}")
+        print(pk.sweep.seed_sensitivity_table(main))
     n_sims = sum(r.n_sims for r in rows)
     return {"n_sims": n_sims, "task_s": sum(r.wall_s for r in rows), "critical_path": max((r.n_rounds for r in rows), default=0)}
 

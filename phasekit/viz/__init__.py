@@ -4,7 +4,7 @@ A study's own output (flags, folders, tables, Ctrl-C) is :mod:`phasekit.sweep`'s
 
 from .animate import AnimationInfo, animate, body_mesh, film_strip, render_body
 from .atlas import plot_atlas, plot_classes, signature_colours
-from .branches import render_structure
+from .branches import plot_branch_planes, render_structure
 from .maps import (
     OUTCOME_COLOURS,
     plot_flights,
@@ -29,6 +29,7 @@ __all__ = [
     "AnimationInfo",
     "render_scene",
     "render_structure",
+    "plot_branch_planes",
     "RenderInfo",
     "plot_outcome_map",
     "render_jump_region",
