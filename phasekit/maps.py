@@ -40,12 +40,32 @@ from .threshold import (
 )
 
 __all__ = ["ThresholdRow", "threshold_task", "threshold_key", "threshold_chain", "SearchRow", "search_job",
-           "search_group_task", "group_search_tasks", "OutcomeRow", "outcome_task", "outcome_key", "OUTCOME_KINDS",
+           "search_group_task", "group_search_tasks", "OutcomeRow", "outcome_task", "outcome_key", "OUTCOME_KINDS", "outcome_class",
            "outcome_map_summary", "threshold_collapse", "threshold_against_d", "stability_grid", "threshold_table",
            "definition_sensitivity_table", "threshold_grid_table", "seed_sensitivity_table"]
 
 #: the classes of an :class:`OutcomeRow`, in the order the studies count and draw them
 OUTCOME_KINDS = ("stuck", "rise", "jump", "slow", "failed")
+
+
+def outcome_class(status: Status, stuck: bool) -> str:
+    """The class (:data:`OUTCOME_KINDS`) of a run that stops at a jump or at the end of the rise
+    (an event that stops it): "jump" (it lost contact), "rise" (stopped: the rise completed),
+    "failed", else "stuck" or "slow" by whether it stuck on the way.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.sweep.outcome_class(pk.Status.STOPPED, False), pk.sweep.outcome_class(pk.Status.COMPLETED, True)
+    ('rise', 'stuck')
+    """
+    if status is Status.JUMPED:
+        return "jump"
+    if status is Status.STOPPED:
+        return "rise"
+    if status is Status.FAILED:
+        return "failed"
+    return "stuck" if stuck else "slow"
 
 
 # -- threshold rows --------------------------------------------------------------------------

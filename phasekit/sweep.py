@@ -37,6 +37,7 @@ from .maps import (
     ThresholdRow,
     definition_sensitivity_table,
     group_search_tasks,
+    outcome_class,
     outcome_key,
     outcome_map_summary,
     outcome_task,
@@ -74,7 +75,7 @@ __all__ = [
     "make_client", "client_evaluator", "provenance",
     # the rows of the threshold and map studies
     "ThresholdRow", "threshold_task", "threshold_key", "SearchRow", "search_job", "group_search_tasks", "OutcomeRow",
-    "outcome_task", "outcome_key", "OUTCOME_KINDS", "threshold_chain",
+    "outcome_task", "outcome_key", "OUTCOME_KINDS", "outcome_class", "threshold_chain",
     # what the studies read off the stored rows
     "outcome_map_summary", "threshold_collapse", "threshold_against_d", "stability_grid", "threshold_table",
     "definition_sensitivity_table", "threshold_grid_table", "seed_sensitivity_table",

@@ -20,6 +20,7 @@ import json
 import math
 import time
 from dataclasses import dataclass
+from functools import partial
 
 import phasekit as pk
 from phasekit.viz import plot_pair_scan
@@ -67,25 +68,15 @@ def run_one(label: str, role: str, value: float, eps, chart: str) -> PairRow:
     x = pk.to_chart(chart, model.chart.to_paper(x0))
     prolate = m.body.is_prolate
     ev = pk.Event("theta", 0.1 if prolate else math.pi / 2 - 0.1, direction=-1 if prolate else +1, name="rise-complete")
+    row = partial(PairRow, row_key(label, value, eps, chart), case.figure, label, role, value, eps, chart)
     t0 = time.perf_counter()
     try:
         r = pk.simulate(m, x, T_END, events=[ev], track_minima=False, dense=False, max_wall=MAX_WALL)
     except pk.PhasekitError as exc:  # e.g. a start the Euler chart cannot take
-        return PairRow(row_key(label, value, eps, chart), case.figure, label, role, value,
-                       eps, chart, "failed", 0.0, None, False, 0, None, "failed",
-                       time.perf_counter() - t0, str(exc))
+        return row("failed", 0.0, None, False, 0, None, "failed", time.perf_counter() - t0, str(exc))
     y = r.euler_end if r.status is not pk.Status.FAILED else None
-    if r.status is pk.Status.JUMPED:
-        outcome = "jump"
-    elif r.status is pk.Status.STOPPED:
-        outcome = "rise"
-    elif r.status is pk.Status.FAILED:
-        outcome = "failed"
-    else:
-        outcome = "stuck" if r.stuck else "slow"
-    return PairRow(row_key(label, value, eps, chart), case.figure, label, role, value, eps,
-                   chart, outcome, float(r.t), r.t_jump, r.stuck, len(r.events_named("stick")),
-                   None if y is None else float(y[4]), r.status.value, time.perf_counter() - t0, r.reason or "")
+    return row(pk.sweep.outcome_class(r.status, r.stuck), float(r.t), r.t_jump, r.stuck, len(r.events_named("stick")),
+               None if y is None else float(y[4]), r.status.value, time.perf_counter() - t0, r.reason or "")
 
 
 def as_printed(no_jump: PairRow | None, jump: PairRow | None, t_printed: float) -> bool:
