@@ -7,15 +7,25 @@ module: the task runner is :mod:`phasekit.tasks`).
   boundary points (jump thresholds, sticking boundaries), several searches per task in lock-step
   so that the batch integrator's lanes fill across them (studies/threshold_vs_mu.py, outcome_map.py).
 * :class:`OutcomeRow` and :func:`outcome_task`: classified starts of an outcome map.
+* What the studies read off the stored rows: :func:`outcome_map_summary` (an outcome map's
+  classes and traced boundaries, checked against each other), :func:`threshold_collapse` and
+  :func:`threshold_against_d` (thresholds over (a, mu) and against the seed distance).
+* The stored rows as text tables (the studies' reports): :func:`threshold_table`,
+  :func:`definition_sensitivity_table`, :func:`threshold_grid_table`, :func:`seed_sensitivity_table`.
+* :func:`threshold_chain`: the tasks of one threshold curve, each seeded by its neighbour's.
+* :func:`stability_grid`: part I's linear-stability map of the steady states over (a, rate).
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
+import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import asdict, dataclass, replace
 from functools import partial
+
+import numpy as np
 
 from .errors import SearchStatus, Status
 from .tasks import TaskSpec
@@ -29,8 +39,33 @@ from .threshold import (
     threshold_searches,
 )
 
-__all__ = ["ThresholdRow", "threshold_task", "threshold_key", "SearchRow", "search_job", "search_group_task",
-           "group_search_tasks", "OutcomeRow", "outcome_task", "outcome_key"]
+__all__ = ["ThresholdRow", "threshold_task", "threshold_key", "threshold_chain", "SearchRow", "search_job",
+           "search_group_task", "group_search_tasks", "OutcomeRow", "outcome_task", "outcome_key", "OUTCOME_KINDS", "outcome_class",
+           "outcome_map_summary", "threshold_collapse", "threshold_against_d", "stability_grid", "threshold_table",
+           "definition_sensitivity_table", "threshold_grid_table", "seed_sensitivity_table"]
+
+#: the classes of an :class:`OutcomeRow`, in the order the studies count and draw them
+OUTCOME_KINDS = ("stuck", "rise", "jump", "slow", "failed")
+
+
+def outcome_class(status: Status, stuck: bool) -> str:
+    """The class (:data:`OUTCOME_KINDS`) of a run that stops at a jump or at the end of the rise
+    (an event that stops it): "jump" (it lost contact), "rise" (stopped: the rise completed),
+    "failed", else "stuck" or "slow" by whether it stuck on the way.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.sweep.outcome_class(pk.Status.STOPPED, False), pk.sweep.outcome_class(pk.Status.COMPLETED, True)
+    ('rise', 'stuck')
+    """
+    if status is Status.JUMPED:
+        return "jump"
+    if status is Status.STOPPED:
+        return "rise"
+    if status is Status.FAILED:
+        return "failed"
+    return "stuck" if stuck else "slow"
 
 
 # -- threshold rows --------------------------------------------------------------------------
@@ -360,3 +395,274 @@ def outcome_task(prev, points: list, defn_fields: dict, *, study: str = "", engi
                                t_jump=o.t if o.jumped else None, t_end=o.t, theta_end=o.theta, rise_fraction=o.rise_fraction,
                                stuck=o.stuck, status=o.status.value, wall_s=o.wall_s, reason=o.reason or ""))
     return rows
+
+
+def threshold_chain(defn, a_values, search: dict, *, group: str = "main", is_default: bool = False,
+                    engine: str = "scalar", levels: int = 1, after: str | None = None) -> list[TaskSpec]:
+    """The tasks of one threshold curve (:func:`threshold_task`): one per aspect ratio, in the
+    order of ``a_values`` (from far to near a = 1, where thresholds grow), each search seeded by
+    the threshold before it (the first by the task ``after``, if given). Keys: :func:`threshold_key`.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> specs = pk.sweep.threshold_chain(pk.Definition('sliding', 'sliding'), [2.0, 1.5], {'tol': 1e-3})
+    >>> [s.after is None for s in specs]
+    [True, False]
+    """
+    specs, prev = [], after
+    for a in a_values:
+        key = threshold_key(defn, a, search)
+        specs.append(TaskSpec(key, threshold_task, (asdict(defn), a, group, is_default, search, engine, levels), after=prev))
+        prev = key
+    return specs
+
+
+# -- what the studies read off the stored rows ----------------------------------------------------
+
+
+def outcome_map_summary(points, searches, a: float) -> dict:
+    """An outcome map at aspect ratio ``a`` from its rows (``points``: :class:`OutcomeRow`,
+    ``searches``: :class:`SearchRow`; other aspect ratios are left out): the count of each
+    class, the traced jump threshold against d and d_min against the family parameter (value,
+    boundary, status), the ranges of t* and of the share of the rise done at the jump, and
+    ``grid_disagreements``: the sampled starts against the traced threshold (interpolated
+    log-log between its d-lines) with a 3% margin: how many were checked (inside the traced d
+    range), contradict it (jump more than 3% below it, or do not jump more than 3% above),
+    or lie within the margin.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from dataclasses import asdict
+    >>> rows = pk.sweep.outcome_task(None, [(1.5, 0.01, 12.0), (1.5, 0.01, 4.0)], asdict(pk.Definition("sliding", "sliding")))
+    >>> s = pk.sweep.outcome_map_summary(rows, [], 1.5)
+    >>> s["counts"]["jump"], s["counts"]["stuck"], s["grid_disagreements"]["checked"]
+    (1, 1, 0)
+    """
+    pts = [p for p in points if abs(p.a - a) < 1e-12]
+    mine = [s for s in searches if abs(s.a - a) < 1e-12]
+    jp = [p for p in pts if p.outcome == "jump"]
+    return {"counts": {k: sum(p.outcome == k for p in pts) for k in OUTCOME_KINDS},
+            "threshold_vs_d": sorted((s.d, s.threshold, s.status) for s in mine if s.kind == "threshold"),
+            "d_min_vs_value": sorted((s.value, s.threshold, s.status) for s in mine if s.kind == "stick"),
+            "t_jump_range": [min((p.t_jump for p in jp), default=None), max((p.t_jump for p in jp), default=None)],
+            "rise_fraction_range": [min((p.rise_fraction for p in jp), default=None),
+                                    max((p.rise_fraction for p in jp), default=None)],
+            "grid_disagreements": _disagreements(pts, mine)}
+
+
+def _disagreements(pts, searches, margin: float = 0.03) -> dict:
+    th = sorted((s.d, s.threshold) for s in searches if s.kind == "threshold" and s.status == "converged")
+    if len(th) < 2:
+        return {"checked": 0, "contradicting": 0, "within_margin": 0}
+    ld, lt = np.log([d for d, _ in th]), np.log([t for _, t in th])
+    checked = bad = close = 0
+    for p in pts:
+        if p.outcome == "failed" or not ld[0] <= math.log(p.d) <= ld[-1]:
+            continue
+        t = math.exp(np.interp(math.log(p.d), ld, lt))
+        checked += 1
+        if abs(p.value / t - 1) <= margin:
+            close += 1
+        elif (p.value < t and p.outcome == "jump") or (p.value > t and p.outcome != "jump"):
+            bad += 1
+    return {"checked": checked, "contradicting": bad, "within_margin": close}
+
+
+def threshold_collapse(rows, mus, ref_mu: float) -> dict:
+    """The collapse test of thresholds over (a, mu) (``rows``: :class:`SearchRow` at one seed
+    distance): are the thresholds at every mu one factor f(mu) times those at ``ref_mu``? Per
+    branch and mu: f, the geometric mean over a of T(a, mu)/T(a, ref_mu); ``spread``, the
+    largest |ln(T / (f T_ref))| that remains; ``raw_spread``, the same with f = 1; ``n``, the
+    aspect ratios compared. Also the largest of each over everything (``max_spread``,
+    ``max_raw_spread``; None without two aspect ratios to compare).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from types import SimpleNamespace as Row
+    >>> rows = [Row(branch='prolate', a=a, mu=mu, threshold=t * (2 if mu == 0.5 else 1)) for a, t in ((1.5, 10.0), (2.0, 8.0))
+    ...         for mu in (0.1, 0.5)]
+    >>> c = pk.sweep.threshold_collapse(rows, [0.1, 0.5], 0.1)
+    >>> round(c['prolate'][0.5]['f'], 6), round(c['max_spread'], 6)
+    (2.0, 0.0)
+    """
+    out = {}
+    for branch in ("prolate", "oblate"):
+        ref = {r.a: r.threshold for r in rows if r.branch == branch and r.mu == ref_mu and r.threshold}
+        per_mu = {}
+        for mu in mus:
+            ratios = [math.log(r.threshold / ref[r.a]) for r in rows
+                      if r.branch == branch and r.mu == mu and r.threshold and r.a in ref]
+            if len(ratios) < 2:
+                continue
+            lnf = float(np.mean(ratios))
+            per_mu[mu] = {"f": math.exp(lnf), "spread": float(max(abs(x - lnf) for x in ratios)),
+                          "raw_spread": float(max(abs(x) for x in ratios)), "n": len(ratios)}
+        out[branch] = per_mu
+    spreads = [v["spread"] for b in out.values() for v in b.values()]
+    raw = [v["raw_spread"] for b in out.values() for v in b.values()]
+    out["max_spread"] = max(spreads) if spreads else None
+    out["max_raw_spread"] = max(raw) if raw else None
+    return out
+
+
+def threshold_against_d(rows, a_values, mus) -> dict:
+    """Thresholds against the seed distance d (``rows``: :class:`SearchRow`), per aspect ratio
+    in ``a_values`` and mu in ``mus`` with at least two d: the d, thresholds and statuses in the
+    order of d, and the relative change per halving of d (None where a threshold is missing:
+    a start that sticks has none). Keyed ``"a=1.5 mu=0.1"``.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from types import SimpleNamespace as Row
+    >>> rows = [Row(a=1.5, mu=0.1, d=d, threshold=t, status='converged') for d, t in ((0.01, 10.0), (0.02, 8.0))]
+    >>> pk.sweep.threshold_against_d(rows, [1.5], [0.1])['a=1.5 mu=0.1']['change_per_halving']
+    [0.25]
+    """
+    out = {}
+    for a in a_values:
+        for mu in mus:
+            pts = sorted(((r.d, r) for r in rows if abs(r.a - a) < 1e-12 and r.mu == mu and r.d is not None),
+                         key=lambda q: q[0])
+            if len(pts) < 2:
+                continue
+            ds = [d for d, _ in pts]
+            th = [r.threshold for _, r in pts]
+            steps = [(th[i] / th[i + 1] - 1) if th[i] and th[i + 1] else None for i in range(len(th) - 1)]
+            out[f"a={a:.4g} mu={mu:.4g}"] = {"d": ds, "threshold": th, "status": [r.status for _, r in pts],
+                                            "change_per_halving": steps}
+    return out
+
+
+def stability_grid(kind: str, a_values, rates, *, mu: float, progress=None) -> np.ndarray:
+    """Part I's stability map of uniform spheroids under viscous friction ``mu``: the dimension
+    of the unstable subspace (exact linearisation, :func:`phasekit.linearise`) of the
+    horizontal steady precession at Omega0 (``kind="horizontal"``) or of the vertical spin at n0
+    (``kind="vertical"``), for every rate in ``rates`` (rows) and aspect ratio in ``a_values``
+    (columns). ``progress``: a bar advanced by one column at a time.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.sweep.stability_grid("vertical", [0.5, 2.0], [1.0, 12.0], mu=0.1).tolist()
+    [[2, 2], [2, 0]]
+    """
+    from .body import Spheroid
+    from .fixedpoints import horizontal_state, linearise, vertical_state
+    from .friction import Viscous
+    from .model import Model
+
+    out = np.zeros((len(rates), len(a_values)), dtype=int)
+    for j, a in enumerate(a_values):
+        m = Model(Spheroid(a), Viscous(mu), "euler" if kind == "horizontal" else "vector")
+        for i, s in enumerate(rates):
+            x = horizontal_state(s) if kind == "horizontal" else vertical_state(s)
+            out[i, j] = linearise(m, x, kind=kind).n_unstable
+        if progress is not None:
+            progress.update(len(rates))
+    return out
+
+
+# -- the stored rows as text tables (the studies' reports) -------------------------------------------
+
+
+def threshold_table(rows, *, first: str) -> str:
+    """The main rows of a threshold sweep (:class:`ThresholdRow` of group "main") as a text
+    table, the definition named ``first`` first: definition, branch, a, threshold, status,
+    simulations and the self-consistency check (1.02 x jumps, 0.98 x does not); then how many
+    of the checked points pass it.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from types import SimpleNamespace as Row
+    >>> r = Row(group="main", name="sliding", definition="sliding", branch="prolate", a=1.5, threshold=9.75,
+    ...         status="converged", n_sims=30, consistent=True)
+    >>> print(pk.sweep.threshold_table([r], first="sliding").splitlines()[-1])
+    self-consistency (1.02 x jumps, 0.98 x does not): 1 of 1 points pass
+    """
+    main = [r for r in rows if r.group == "main"]
+    lines = [f"{'definition':<58s} {'branch':<8s} {'a':>6s} {'threshold':>10s} {'status':<17s} {'sims':>4s} {'check':>5s}"]
+    for r in sorted(main, key=lambda r: (r.name != first, r.name, r.branch, r.a)):
+        check = "ok" if r.consistent else "FAIL" if r.consistent is False else "-"
+        th = f"{r.threshold:.4f}" if r.threshold else "-"
+        lines.append(f"{r.definition[:58]:<58s} {r.branch:<8s} {r.a:6.3f} {th:>10s} {r.status:<17s} {r.n_sims:>4d} {check:>5s}")
+    bad = [r for r in main if r.consistent is False]
+    checked = [r for r in main if r.consistent is not None]
+    lines.append(f"self-consistency (1.02 x jumps, 0.98 x does not): {len(checked) - len(bad)} of {len(checked)} points pass")
+    return "\n".join(lines)
+
+
+def definition_sensitivity_table(rows, *, parent) -> str:
+    """The sensitivity rows of a threshold sweep (:class:`ThresholdRow` of group "sensitivity")
+    against the main row of their parent definition at the same a (``parent(row)``: its name):
+    the threshold (or the status), its relative change, and whether the search stuck near it.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from types import SimpleNamespace as Row
+    >>> rows = [Row(group="main", name="sliding", a=1.5, threshold=10.0),
+    ...         Row(group="sensitivity", name="sliding-d0.02", a=1.5, threshold=10.1, status="converged", stuck_near=False)]
+    >>> print(pk.sweep.definition_sensitivity_table(rows, parent=lambda r: "sliding"))
+      sliding-d0.02                  a=1.5000 threshold=10.1000            vs sliding: +1.00e-02  stuck near threshold: False
+    """
+    ref = {(r.name, r.a): r.threshold for r in rows if r.group == "main"}
+    lines = []
+    for r in sorted((r for r in rows if r.group == "sensitivity"), key=lambda r: (r.name, r.a)):
+        base = ref.get((parent(r), r.a))
+        rel = f"{(r.threshold / base - 1):+.2e}" if r.threshold and base else "-"
+        th = f"{r.threshold:.4f}" if r.threshold else r.status
+        lines.append(f"  {r.name:<30s} a={r.a:.4f} threshold={th:<18s} vs {parent(r)}: {rel}  stuck near threshold: {r.stuck_near}")
+    return "\n".join(lines)
+
+
+def threshold_grid_table(rows, mus) -> str:
+    """Thresholds over (a, mu) (:class:`SearchRow` at one seed distance) as a text table: a row
+    per branch and aspect ratio, a column per mu in ``mus`` (the status where there is no
+    threshold, "-" where there is no row).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from types import SimpleNamespace as Row
+    >>> print(pk.sweep.threshold_grid_table([Row(branch="prolate", a=1.5, mu=0.1, threshold=9.75, status="converged")], [0.1, 0.5]))
+    branch        a     mu=0.1     mu=0.5
+    prolate   1.500     9.7500          -
+    """
+    lines = [f"{'branch':<8s} {'a':>6s} " + " ".join(f"{'mu=' + format(mu, '.3g'):>10s}" for mu in mus)]
+    for branch in ("prolate", "oblate"):
+        for a in sorted({r.a for r in rows if r.branch == branch}):
+            cells = []
+            for mu in mus:
+                r = next((r for r in rows if r.a == a and r.mu == mu), None)
+                cells.append(f"{r.threshold:10.4f}" if r and r.threshold else f"{(r.status if r else '-'):>10s}")
+            lines.append(f"{branch:<8s} {a:6.3f} " + " ".join(cells))
+    return "\n".join(lines)
+
+
+def seed_sensitivity_table(rows) -> str:
+    """The searches that measured their sensitivity to the seed distance (:class:`SearchRow`
+    with ``sens_*``) as text lines, by branch and a: the threshold T*, T* at d/2 and 2d, the
+    slope d ln T*/d ln d, the largest shift, the bracket's relative width, and what dominates.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> from types import SimpleNamespace as Row
+    >>> r = Row(branch="prolate", a=1.5, threshold=10.0, bracket_lo=9.995, bracket_hi=10.005, sens_half=10.2, sens_double=9.8,
+    ...         sens_slope=-0.03, sens_shift=0.02, sens_dominant="seed distance")
+    >>> print(pk.sweep.seed_sensitivity_table([r]))  # doctest: +NORMALIZE_WHITESPACE
+      prolate  a= 1.500 T*= 10.0000 T*(d/2)= 10.2000 T*(2d)=  9.8000 slope=-0.030 max shift=2.000% bracket=1.0e-03
+      -> seed distance
+    """
+    lines = []
+    for r in sorted((r for r in rows if r.sens_dominant), key=lambda r: (r.branch, r.a)):
+        width = r.bracket_hi / r.bracket_lo - 1
+        lines.append(f"  {r.branch:<8s} a={r.a:6.3f} T*={r.threshold:8.4f} T*(d/2)={r.sens_half or float('nan'):8.4f} "
+                     f"T*(2d)={r.sens_double or float('nan'):8.4f} slope={r.sens_slope if r.sens_slope is not None else float('nan'):+.3f} "
+                     f"max shift={r.sens_shift if r.sens_shift is not None else float('nan'):.3%} bracket={width:.1e} -> {r.sens_dominant}")
+    return "\n".join(lines)

@@ -381,6 +381,14 @@ class Study:
                            serial=getattr(a, "serial", True), scheduler=getattr(a, "scheduler", None),
                            workers=getattr(a, "workers", None), progress=self.show, desc=desc)
 
+    def sweep(self, specs, store, *, members: dict | None = None, warm_up=None, desc: str = "tasks"):
+        """Run the tasks (:meth:`run`) and return the rows they produce, as ``store`` holds them
+        (in the order stored; a store may hold other runs' rows too), and the
+        :class:`phasekit.sweep.PendingRun`."""
+        ran = self.run(specs, store, members=members, warm_up=warm_up, desc=desc)
+        keys = [k for ks in members.values() for k in ks] if members else [s.key for s in specs]
+        return store.rows(keys), ran
+
     def progress(self, iterable=None, *, total=None, desc: str = ""):
         """A progress bar on stderr, unless ``--no-progress``."""
         return progress(iterable, total=total, desc=desc, enabled=self.show)

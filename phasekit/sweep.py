@@ -4,7 +4,9 @@ studies, the searches behind them, batch compilation, and the scaffold of a stud
 * Tasks (:mod:`phasekit.tasks`): :class:`TaskSpec`, :func:`run_tasks`, :func:`run_pending`,
   :class:`ResultStore`, :class:`ModelPack`, :func:`make_client`, :func:`provenance`, ...
 * Rows and their tasks (:mod:`phasekit.maps`): :class:`ThresholdRow`, :class:`SearchRow`,
-  :class:`OutcomeRow`, :func:`search_job`, :func:`group_search_tasks`, ...
+  :class:`OutcomeRow`, :func:`search_job`, :func:`group_search_tasks`, ..., and what the studies
+  read off them: :func:`outcome_map_summary`, :func:`threshold_collapse`, ...
+* Atlases of steady-state structure (:mod:`phasekit.atlas`): :class:`AtlasRow`, :func:`trace_boundary`, ...
 * Searches in lock-step (:mod:`phasekit.threshold`): :class:`ThresholdSearch`, :func:`run_searches`,
   :func:`evaluate_outcomes`, :class:`Outcome`, :class:`Sensitivity`.
 * The scaffold (:mod:`phasekit.study`): :class:`Study`, :func:`run_study`, and the atomic
@@ -17,16 +19,37 @@ Examples
 'k'
 """
 
+from .atlas import (
+    AtlasPanel,
+    AtlasRow,
+    BoundaryRow,
+    atlas_edges,
+    atlas_representatives,
+    axis_values,
+    is_class,
+    trace_boundary,
+)
 from .batch import BatchStats, compile_batch
 from .maps import (
+    OUTCOME_KINDS,
     OutcomeRow,
     SearchRow,
     ThresholdRow,
+    definition_sensitivity_table,
     group_search_tasks,
+    outcome_class,
     outcome_key,
+    outcome_map_summary,
     outcome_task,
     search_job,
+    seed_sensitivity_table,
+    stability_grid,
+    threshold_against_d,
+    threshold_chain,
+    threshold_collapse,
+    threshold_grid_table,
     threshold_key,
+    threshold_table,
     threshold_task,
 )
 from .study import Study, atomic_path, run_study, save_figure, write_csv, write_json
@@ -52,7 +75,12 @@ __all__ = [
     "make_client", "client_evaluator", "provenance",
     # the rows of the threshold and map studies
     "ThresholdRow", "threshold_task", "threshold_key", "SearchRow", "search_job", "group_search_tasks", "OutcomeRow",
-    "outcome_task", "outcome_key",
+    "outcome_task", "outcome_key", "OUTCOME_KINDS", "outcome_class", "threshold_chain",
+    # what the studies read off the stored rows
+    "outcome_map_summary", "threshold_collapse", "threshold_against_d", "stability_grid", "threshold_table",
+    "definition_sensitivity_table", "threshold_grid_table", "seed_sensitivity_table",
+    # atlases of steady-state structure
+    "AtlasPanel", "AtlasRow", "BoundaryRow", "axis_values", "atlas_edges", "trace_boundary", "is_class", "atlas_representatives",
     # searches in lock-step, and their simulations in batch
     "ThresholdSearch", "run_searches", "evaluate_outcomes", "Outcome", "Sensitivity", "BatchStats", "compile_batch",
     # the scaffold of a study script

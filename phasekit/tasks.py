@@ -247,8 +247,13 @@ class ResultStore:
     def get(self, key: str):
         return self._rows.get(key)
 
-    def rows(self) -> list:
-        return list(self._rows.values())
+    def rows(self, keys=None) -> list:
+        """The stored rows in the order they were stored; with ``keys``, only those whose key is
+        among them (e.g. the rows of this run's tasks, out of a store that holds more)."""
+        if keys is None:
+            return list(self._rows.values())
+        keys = set(keys)
+        return [r for r in self._rows.values() if r.key in keys]
 
     def _line(self, row) -> str:
         buf = io.StringIO()

@@ -43,12 +43,9 @@ import json
 import math
 import time
 from dataclasses import dataclass
-from pathlib import Path
 
 import phasekit as pk
-from phasekit.viz import pyplot, save_figure
-
-import numpy as np
+from phasekit.viz import plot_threshold_against, plot_which_end
 
 A_HEN = 57.0 / 43.0
 MU = 0.1
@@ -130,33 +127,6 @@ def risen(r: EndRow) -> str:
     return r.end
 
 
-def plot_which_end(rows: list[EndRow], cfg: dict, path: Path, quick: bool) -> None:
-    plt = pyplot()
-    fig, axes = plt.subplots(1, len(cfg["omegas"]), figsize=(6.2 * len(cfg["omegas"]), 5.0), squeeze=False)
-    for ax, om in zip(axes[0], cfg["omegas"]):
-        sub = [r for r in rows if r.omega0 == om]
-        for r in sub:
-            end = risen(r)
-            c = {"fat": "#2166ac", "thin": "#b2182b", "none": "0.6", "failed": "k"}[end]
-            ax.scatter(r.w, r.theta0 - math.pi / 2, c=c, marker="o" if end in (r.predicted, "none") else "X", s=50, zorder=3)
-        ws = sorted({r.w for r in sub})
-        th_h = [next(r.theta_h for r in sub if r.w == w) for w in ws]
-        ax.plot(ws, np.array(th_h) - math.pi / 2, "k-", lw=1.5, label=r"$\theta_h(\Omega_0)$: horizontal-like state (predicted separatrix)")
-        wf = np.linspace(0.0, max(ws), 30)
-        ax.plot(wf, [pk.theory.side_equilibrium(pk.Egg(A_HEN, w))[1] - math.pi / 2 if w > 0 else 0.0 for w in wf], "k:", lw=1,
-                label=r"$\theta_2$: its $\Omega_0\to\infty$ limit")
-        ax.axhline(0.0, color="0.7", lw=0.8)
-        ax.set_xlabel(r"asymmetry $w$ (shift of the widest section / length)")
-        ax.set_ylabel(r"$\theta_0 - \pi/2$ (rad; > 0: thin end lower)")
-        ax.set_title(rf"$\Omega_0$ = {om:g}: blue = rises onto the fat end, red = thin end, grey = stuck at once"
-                     "\n(X: not as predicted)", fontsize=9)
-        ax.legend(fontsize=8, loc="lower right")
-    fig.suptitle(f"Egg a = L/B = {A_HEN:.4f} (57 x 43 mm), uniform, Coulomb mu = {MU}: which end it rises onto"
-                 f"{' [quick run]' if quick else ''}", fontsize=10)
-    fig.tight_layout()
-    save_figure(fig, path)
-
-
 def threshold_rows(cfg: dict, st) -> tuple[list[dict], list[dict]]:
     out = []
     for start, rel in (("pi/2 - 0.01", False), ("theta_h - 0.01", True)):
@@ -179,26 +149,6 @@ def threshold_rows(cfg: dict, st) -> tuple[list[dict], list[dict]]:
         checks.append({"w": w, "default_definition": th.value, "status": th.status.value, "egg_definition": ref["threshold"],
                        "wall_s": th.wall_s, "n_t_max": sum(1 for o in th.outcomes if o.status is pk.Status.COMPLETED)})
     return out, checks
-
-
-def plot_threshold(rows: list[dict], sc, path: Path, quick: bool) -> None:
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7.2, 4.8))
-    labels = {"pi/2 - 0.01": r"start $\theta_0 = \pi/2 - 0.01$", "theta_h - 0.01": r"start $\theta_0 = \theta_h(\Omega_0) - 0.01$"}
-    for start, style in (("pi/2 - 0.01", "ko-"), ("theta_h - 0.01", "C1s--")):
-        pts = [(r["w"], r["threshold"]) for r in rows if r["threshold"] is not None and r["start"] == start]
-        ax.plot(*zip(*pts), style, label=labels[start] + " (bisected to relative width 2e-3)")
-    ax.set_xlabel(r"asymmetry $w$ (shift of the widest section / length)")
-    ax.set_ylabel(r"threshold precession rate $\Omega_0$ (units $\sqrt{g/b}$)")
-    per_rev = sc.dimensionless("1 rev/s")  # Omega0 of one revolution per second
-    sec = ax.secondary_yaxis("right", functions=(lambda x: x / per_rev, lambda y: y * per_rev))
-    sec.set_ylabel("rev/s for the 57 x 43 mm egg")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    ax.set_title(f"Jump threshold of the egg family, a = {A_HEN:.4f}, Coulomb mu = {MU}, sliding-branch starts"
-                 f"{' [quick]' if quick else ''}", fontsize=9)
-    fig.tight_layout()
-    save_figure(fig, path)
 
 
 def real_egg(threshold: float | None, w: float) -> list[dict]:
@@ -248,11 +198,18 @@ def main(argv=None) -> dict:
     for t in st.progress([t for t, k in zip(tasks, keys) if k not in store], desc="which end"):
         store.add(which_end(*t, cfg["t_max"]))
     rows = [r for r in store.rows() if r.key in keys]
-    plot_which_end(rows, cfg, st.path("egg_which_end.png"), args.quick)
+    st.save(plot_which_end(rows, cfg["omegas"], risen=risen, theta_2=lambda w: pk.theory.side_equilibrium(pk.Egg(A_HEN, w))[1],
+                           title=f"Egg a = L/B = {A_HEN:.4f} (57 x 43 mm), uniform, Coulomb mu = {MU}: which end it rises "
+                                 f"onto{' [quick run]' if args.quick else ''}"), "egg_which_end.png")
     thr, checks = threshold_rows(cfg, st)
     st.csv("egg_threshold.csv", list(thr[0]), [list(r.values()) for r in thr])
     sc = pk.Scale("21.5 mm")
-    plot_threshold(thr, sc, st.path("egg_threshold.png"), args.quick)
+    st.save(plot_threshold_against(thr, "w", {
+        "pi/2 - 0.01": ("ko-", r"start $\theta_0 = \pi/2 - 0.01$ (bisected to relative width 2e-3)"),
+        "theta_h - 0.01": ("C1s--", r"start $\theta_0 = \theta_h(\Omega_0) - 0.01$ (bisected to relative width 2e-3)")},
+        xlabel=r"asymmetry $w$ (shift of the widest section / length)", rev_scale=sc, rev_label="rev/s for the 57 x 43 mm egg",
+        title=f"Jump threshold of the egg family, a = {A_HEN:.4f}, Coulomb mu = {MU}, sliding-branch starts"
+              f"{' [quick]' if args.quick else ''}"), "egg_threshold.png")
     real = []
     for w in sorted({0.0, W_HEN} & set(cfg["threshold_ws"])):
         real += real_egg(next(r["threshold"] for r in thr if r["w"] == w and r["start"] == "pi/2 - 0.01"), w)

@@ -33,7 +33,7 @@ import time
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.viz import animate, film_strip, plain_log_ticks, pyplot, save_figure
+from phasekit.viz import animate, film_strip, plot_flights
 
 import numpy as np
 
@@ -106,38 +106,6 @@ def first_flights(revs, st) -> list[dict]:
     return rows
 
 
-def plot(rows: list[dict], path: Path, quick: bool) -> None:
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(8.6, 6.0))
-    g, f = EXPERIMENT["gap_mm"], EXPERIMENT["flight_ms"]
-    ax.fill_between(f, g[0], g[1], color="#fdd0a2", alpha=0.6, label="Mitsui et al. 2006 (reported range)")
-    markers = dict(zip(sorted({r["lever"] for r in rows}), "osD^vP*X"))
-    for r in rows:
-        if r.get("largest_gap_mm") is None:
-            continue
-        m = markers[r["lever"]]
-        ax.scatter(r["first_flight_ms"], r["first_gap_mm"], marker=m, s=30, facecolors="none", edgecolors="grey")
-        ax.scatter(r["longest_flight_ms"], r["largest_gap_mm"], marker=m, s=40, color="k" if r["e"] == 0 else "C0",
-                   zorder=3)
-        ax.annotate(f"{r['value']:.3g}", (r["longest_flight_ms"], r["largest_gap_mm"]), fontsize=7,
-                    xytext=(3, 3), textcoords="offset points")
-    for lever, m in markers.items():
-        ax.scatter([], [], marker=m, color="C0", label=f"{lever}: longest flight, largest gap of the run")
-    ax.scatter([], [], marker="o", facecolors="none", edgecolors="grey", label="the first flight alone (hollow)")
-    ax.scatter([], [], marker="s", color="k", label="restitution 0 (no rebound)")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    plain_log_ticks(ax)
-    ax.set_xlabel("flight duration (ms)")
-    ax.set_ylabel("gap (mm)")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7, loc="upper left")
-    ax.set_title(f"Egg 57 x 43 mm, exact Coulomb; one lever at a time around {BASE['rev']:g} rev/s, mu {BASE['mu']}, "
-                 f"w {BASE['w']}, e {BASE['e']}{' [quick]' if quick else ''}", fontsize=9)
-    fig.tight_layout()
-    save_figure(fig, path)
-
-
 def movie(st) -> dict:
     """The base case around its largest flight, as a GIF and a film strip."""
     r, sc = run_case(BASE)
@@ -162,7 +130,9 @@ def main(argv=None) -> dict:
     rows = [measure(lever, v, case) for lever, v, case in st.progress(tasks, desc="egg runs")]
     rows.append(measure("base, rtol 1e-12", BASE["rev"], dict(BASE), rtol=1e-12))
     st.csv("egg_jumps.csv", COLUMNS, rows)
-    plot([r for r in rows if r["rtol"] == RTOL], st.path("egg_jumps.png"), args.quick)
+    st.save(plot_flights([r for r in rows if r["rtol"] == RTOL], experiment=EXPERIMENT, title=(
+        f"Egg 57 x 43 mm, exact Coulomb; one lever at a time around {BASE['rev']:g} rev/s, mu {BASE['mu']}, "
+        f"w {BASE['w']}, e {BASE['e']}{' [quick]' if args.quick else ''}")), "egg_jumps.png")
     first = first_flights(cfg["first_flight_revs"], st)
     base = [r for r in rows if r["lever"] == "restitution" and r["value"] == BASE["e"]]
     fine = rows[-1]

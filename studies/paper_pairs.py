@@ -20,10 +20,10 @@ import json
 import math
 import time
 from dataclasses import dataclass
-from pathlib import Path
+from functools import partial
 
 import phasekit as pk
-from phasekit.viz import pyplot, save_figure
+from phasekit.viz import plot_pair_scan
 
 STEM = "paper_pairs"
 T_END = 600.0
@@ -68,25 +68,15 @@ def run_one(label: str, role: str, value: float, eps, chart: str) -> PairRow:
     x = pk.to_chart(chart, model.chart.to_paper(x0))
     prolate = m.body.is_prolate
     ev = pk.Event("theta", 0.1 if prolate else math.pi / 2 - 0.1, direction=-1 if prolate else +1, name="rise-complete")
+    row = partial(PairRow, row_key(label, value, eps, chart), case.figure, label, role, value, eps, chart)
     t0 = time.perf_counter()
     try:
         r = pk.simulate(m, x, T_END, events=[ev], track_minima=False, dense=False, max_wall=MAX_WALL)
     except pk.PhasekitError as exc:  # e.g. a start the Euler chart cannot take
-        return PairRow(row_key(label, value, eps, chart), case.figure, label, role, value,
-                       eps, chart, "failed", 0.0, None, False, 0, None, "failed",
-                       time.perf_counter() - t0, str(exc))
+        return row("failed", 0.0, None, False, 0, None, "failed", time.perf_counter() - t0, str(exc))
     y = r.euler_end if r.status is not pk.Status.FAILED else None
-    if r.status is pk.Status.JUMPED:
-        outcome = "jump"
-    elif r.status is pk.Status.STOPPED:
-        outcome = "rise"
-    elif r.status is pk.Status.FAILED:
-        outcome = "failed"
-    else:
-        outcome = "stuck" if r.stuck else "slow"
-    return PairRow(row_key(label, value, eps, chart), case.figure, label, role, value, eps,
-                   chart, outcome, float(r.t), r.t_jump, r.stuck, len(r.events_named("stick")),
-                   None if y is None else float(y[4]), r.status.value, time.perf_counter() - t0, r.reason or "")
+    return row(pk.sweep.outcome_class(r.status, r.stuck), float(r.t), r.t_jump, r.stuck, len(r.events_named("stick")),
+               None if y is None else float(y[4]), r.status.value, time.perf_counter() - t0, r.reason or "")
 
 
 def as_printed(no_jump: PairRow | None, jump: PairRow | None, t_printed: float) -> bool:
@@ -110,46 +100,6 @@ def table(rows, eps_list) -> list[dict]:
     return out
 
 
-def plot(rows, tab, png: Path, quick: bool) -> None:
-    plt = pyplot()
-    fig, axes = plt.subplots(1, 2, figsize=(13, 5.4))
-    top = {"rise": 1.12 * T_END, "stuck": 1.22 * T_END, "slow": 1.22 * T_END, "failed": 1.3 * T_END}
-    for ax, (label, case) in zip(axes, pk.theory.PAPER_CASES.items()):
-        for chart, ls, dy in zip(CHARTS, ("-", "--"), (1.0, 1.03)):
-            for role, colour in (("no_jump", "C0"), ("jump", "C3")):
-                value = case.no_jump if role == "no_jump" else case.jump
-                pts = sorted(((r.eps, r) for r in rows if r.label == label and r.role == role and r.chart == chart
-                              and r.eps is not None), key=lambda q: q[0])
-                jumped = [(e, r.t_jump) for e, r in pts if r.outcome == "jump"]
-                if jumped:
-                    ax.plot(*zip(*jumped), marker="o", ls=ls, color=colour, ms=4,
-                            label=f"{case.parameter} = {value:g} jumps at t* ({chart})")
-                for kind, marker in (("rise", "o"), ("stuck", "x")):
-                    sel = [e for e, r in pts if r.outcome == kind]
-                    if sel:
-                        y = top[kind] * dy + (0.0 if role == "no_jump" else 0.07 * T_END)
-                        ax.plot(sel, [y] * len(sel), ls="none", marker=marker, mfc="none", color=colour, ms=6,
-                                label=f"{case.parameter} = {value:g}: {'rises, no jump' if kind == 'rise' else 'sticks, no rise'}"
-                                      f" by t = {T_END:g} ({chart})")
-        for t in tab:
-            if t["label"] == label and t["as_printed"] and t["chart"] == "euler":
-                ax.axvline(float(t["eps"]), color="g", lw=1.5, alpha=0.6, label="as printed (both charts)")
-        ax.axhspan(case.t_jump * (1 - T_TOLERANCE), case.t_jump * (1 + T_TOLERANCE), color="m", alpha=0.15,
-                   label=f"printed t* ~ {case.t_jump:g} (+-{T_TOLERANCE:.0%})")
-        ax.set_xscale("log")
-        ax.set_ylim(0, 1.45 * T_END)
-        ax.set_xlabel(r"regularisation $\epsilon$ of $|u_P|$ (units $\sqrt{gb}$); exact Coulomb: sticks in both")
-        ax.set_ylabel(r"jump time $t^*$ (units $\sqrt{b/g}$)")
-        ax.set_title(f"{case.figure}: start ({label}), a = {case.a:.4g}: {case.parameter} = {case.no_jump:g} and {case.jump:g}",
-                     fontsize=10)
-        ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=6.5, loc="center left")
-    fig.suptitle(r"The paper's trajectory pairs under regularised Coulomb friction ($\mu$ = 0.1, rtol $10^{-9}$; "
-                 r"markers above the axis: no jump)" + (" (quick run)" if quick else ""), fontsize=11)
-    fig.tight_layout(rect=(0, 0, 1, 0.95))
-    save_figure(fig, png)
-
-
 def main(argv=None) -> dict:
     st = pk.sweep.Study(__file__, __doc__, resumable=True)
     args = st.parse(argv)
@@ -160,11 +110,11 @@ def main(argv=None) -> dict:
             for role, value in (("no_jump", case.no_jump), ("jump", case.jump))
             for eps in list(eps_list) + [None] for chart in CHARTS]
     specs = pk.sweep.each(runs, lambda label, role, value, eps, chart: row_key(label, value, eps, chart), run_one)
-    ran = st.run(specs, store, desc="paper pairs")
-    keys = {s.key for s in specs}
-    rows = [r for r in store.rows() if r.key in keys]
+    rows, ran = st.sweep(specs, store, desc="paper pairs")
     tab = table(rows, eps_list)
-    plot(rows, tab, st.path(f"{STEM}.png"), args.quick)
+    st.save(plot_pair_scan(rows, tab, pk.theory.PAPER_CASES, charts=CHARTS, t_end=T_END, t_tolerance=T_TOLERANCE, title=(
+        r"The paper's trajectory pairs under regularised Coulomb friction ($\mu$ = 0.1, rtol $10^{-9}$; "
+        r"markers above the axis: no jump)" + (" (quick run)" if args.quick else ""))), f"{STEM}.png")
     print(f"\n{STEM}: {len(rows)} runs ({ran.computed} now), {st.wall:.1f} s")
     for t in tab:
         nj = "-" if t["no_jump"] is None else f"{t['no_jump'][0]} (t = {t['no_jump'][1]:.1f})"

@@ -25,11 +25,10 @@ threshold_vs_aspect.csv at once (manifest .json). Writes threshold_vs_aspect.png
 from __future__ import annotations
 
 from dataclasses import asdict, replace
-from pathlib import Path
 
 import phasekit as pk
 from phasekit import DEFAULT_DEFINITIONS, Definition
-from phasekit.viz import pyplot, save_figure
+from phasekit.viz import plot_threshold_curves
 
 STEM = "threshold_vs_aspect"
 SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5)
@@ -42,6 +41,9 @@ DEFAULT_NAME = "sliding"
 # viscous eigenvector with delta ~ 0.02): Omega0 = 10.2 no jump, 10.5 jump. Fig. 3 (a = 2/3,
 # start (5.1), delta ~ 1e-5): n0 = 10 no jump, 10.5 jump.
 PAPER_BRACKETS = {1.5: (10.2, 10.5), 2 / 3: (10.0, 10.5)}
+STYLES = {"sliding": dict(color="k", lw=2.2, marker="o", ms=4, zorder=5), "literal-eps1e-3": dict(color="C0", lw=1, marker="s", ms=3),
+          "literal-eps1e-4": dict(color="C1", lw=1, marker="^", ms=3), "literal-exact": dict(color="C3", lw=1, marker="v", ms=3),
+          "viscous": dict(color="C2", lw=1, marker="x", ms=3)}
 
 
 def sensitivity_definitions(quick: bool) -> list[Definition]:
@@ -58,30 +60,21 @@ def sensitivity_definitions(quick: bool) -> list[Definition]:
     return out
 
 
-def row_key(defn: Definition, a: float) -> str:
-    return pk.sweep.threshold_key(defn, a, SEARCH)
+def parent_name(defn) -> str:
+    """The main definition a sensitivity run varies (a definition or its row)."""
+    return "literal-eps1e-4" if defn.seed == "literal" else DEFAULT_NAME
 
 
 def build_tasks(quick: bool, sensitivity: bool, engine: str = "scalar", levels: int = 1) -> list:
+    """One chain per definition and branch, ordered from far to near a = 1 (thresholds grow along
+    it); the sensitivity runs at a = 1.5 and 2/3 each seeded by its parent definition's point."""
     prolate, oblate = (QUICK_PROLATE, QUICK_OBLATE) if quick else (PROLATE, OBLATE)
-    specs = []
-    main_keys = {}
-    for defn in DEFAULT_DEFINITIONS:
-        for a_list in (prolate, oblate):
-            prev = None
-            for a in a_list:  # ordered from far to near a = 1: thresholds grow along the chain
-                key = row_key(defn, a)
-                specs.append(pk.sweep.TaskSpec(key, pk.sweep.threshold_task, (asdict(defn), a, "main", defn.name == DEFAULT_NAME,
-                                                                              SEARCH, engine, levels), after=prev))
-                main_keys[defn.name, a] = key
-                prev = key
-    if sensitivity:
-        for defn in sensitivity_definitions(quick):
-            parent = "literal-eps1e-4" if defn.seed == "literal" else DEFAULT_NAME
-            for a in (1.5, 2 / 3):
-                specs.append(pk.sweep.TaskSpec(row_key(defn, a), pk.sweep.threshold_task,
-                                               (asdict(defn), a, "sensitivity", False, SEARCH, engine, levels),
-                                               after=main_keys.get((parent, a))))
+    specs = [s for defn in DEFAULT_DEFINITIONS for a_list in (prolate, oblate) for s in pk.sweep.threshold_chain(
+        defn, a_list, SEARCH, is_default=defn.name == DEFAULT_NAME, engine=engine, levels=levels)]
+    for defn in sensitivity_definitions(quick) if sensitivity else ():
+        parent = next(d for d in DEFAULT_DEFINITIONS if d.name == parent_name(defn))
+        specs += [s for a in (1.5, 2 / 3) for s in pk.sweep.threshold_chain(
+            defn, [a], SEARCH, group="sensitivity", engine=engine, levels=levels, after=pk.sweep.threshold_key(parent, a, SEARCH))]
     return specs
 
 
@@ -96,73 +89,12 @@ def warm_up() -> None:
                 pass
 
 
-def plot(rows: list[dict], quick: bool, png: Path) -> None:
-    plt = pyplot()
-    fig, axes = plt.subplots(1, 2, figsize=(12, 5.6))
-    styles = {"sliding": dict(color="k", lw=2.2, marker="o", ms=4, zorder=5),
-              "literal-eps1e-3": dict(color="C0", lw=1, marker="s", ms=3),
-              "literal-eps1e-4": dict(color="C1", lw=1, marker="^", ms=3),
-              "literal-exact": dict(color="C3", lw=1, marker="v", ms=3),
-              "viscous": dict(color="C2", lw=1, marker="x", ms=3)}
-    main = [r for r in rows if r.group == "main"]
-    for ax, branch in zip(axes, ("prolate", "oblate")):
-        for defn in DEFAULT_DEFINITIONS:
-            pts = sorted(((r.a, r) for r in main if r.name == defn.name and r.branch == branch), key=lambda q: q[0])
-            if not pts:
-                continue
-            ok = [(a, r.threshold) for a, r in pts if r.threshold is not None]
-            label = defn.label + (" [default]" if defn.name == DEFAULT_NAME else "")
-            none = [a for a, r in pts if r.status == "no_jump_in_range"]
-            if ok:
-                ax.plot(*zip(*ok), label=label, **styles.get(defn.name, {}))
-            if none:
-                ax.plot(none, [SEARCH["hi"]] * len(none), ls="none", marker=r"$\uparrow$", ms=10, color=styles[defn.name]["color"],
-                        label=(label + f": no jump up to {SEARCH['hi']:g}") if not ok else None)
-        for a, (lo, hi) in PAPER_BRACKETS.items():
-            if (a > 1) == (branch == "prolate"):
-                ax.errorbar([a], [0.5 * (lo + hi)], yerr=[[0.5 * (hi - lo)]], fmt="D", color="m", ms=5, capsize=3,
-                            label="paper Fig. %s: bracket from two runs" % ("4" if a > 1 else "3"))
-        ax.set_yscale("log")
-        ax.axvline(1.0, color="0.7", ls=":")
-        ax.set_xlabel(r"aspect ratio $a$")
-        ax.grid(alpha=0.3, which="both")
-    axes[0].set_ylabel(r"threshold precession rate $\Omega_0$ (units $\sqrt{g/b}$)")
-    axes[1].set_ylabel(r"threshold spin $n_0$ (units $\sqrt{g/b}$)")
-    axes[0].set_title(r"prolate, from the horizontal precession (cf. Fig. 6b)", fontsize=10)
-    axes[1].set_title(r"oblate, from the vertical spin (cf. Fig. 6c)", fontsize=10)
-    for ax in axes:
-        ax.set_ylim(4.0, 1.6 * SEARCH["hi"])
-    handles = {}
-    for ax in axes:
-        for h, lab in zip(*ax.get_legend_handles_labels()):
-            handles.setdefault(lab, h)
-    fig.legend(list(handles.values()), list(handles.keys()), loc="lower center", ncol=2, fontsize=8, frameon=False)
-    fig.suptitle(r"Smallest $\Omega_0$ / $n_0$ that leads to loss of contact, $\mu=0.1$" + (" (quick run)" if quick else ""), fontsize=11)
-    fig.tight_layout(rect=(0, 0.17, 1, 1))
-    save_figure(fig, png)
-
-
 def report(rows: list, wall: float, n_new: int, mode: str) -> dict:
-    main = [r for r in rows if r.group == "main"]
     print(f"\nFigure {STEM}.png: jump thresholds against aspect ratio, mu = 0.1, 5 definitions; table {STEM}.csv.")
-    print(f"{'definition':<58s} {'branch':<8s} {'a':>6s} {'threshold':>10s} {'status':<17s} {'sims':>4s} {'check':>5s}")
-    for r in sorted(main, key=lambda r: (r.name != DEFAULT_NAME, r.name, r.branch, r.a)):
-        check = "ok" if r.consistent else "FAIL" if r.consistent is False else "-"
-        th = f"{r.threshold:.4f}" if r.threshold else "-"
-        print(f"{r.definition[:58]:<58s} {r.branch:<8s} {r.a:6.3f} {th:>10s} {r.status:<17s} {r.n_sims:>4d} {check:>5s}")
-    bad = [r for r in main if r.consistent is False]
-    checked = [r for r in main if r.consistent is not None]
-    print(f"self-consistency (1.02 x jumps, 0.98 x does not): {len(checked) - len(bad)} of {len(checked)} points pass")
-    sens = [r for r in rows if r.group == "sensitivity"]
-    if sens:
+    print(pk.sweep.threshold_table(rows, first=DEFAULT_NAME))
+    if any(r.group == "sensitivity" for r in rows):
         print("\nSensitivity at a = 1.5 (Omega0) and a = 2/3 (n0):")
-        ref = {(r.name, r.a): r.threshold for r in main}
-        for r in sorted(sens, key=lambda r: (r.name, r.a)):
-            parent = "literal-eps1e-4" if r.seed == "literal" else DEFAULT_NAME
-            base = ref.get((parent, r.a))
-            rel = f"{(r.threshold / base - 1):+.2e}" if r.threshold and base else "-"
-            th = f"{r.threshold:.4f}" if r.threshold else r.status
-            print(f"  {r.name:<30s} a={r.a:.4f} threshold={th:<18s} vs {parent}: {rel}  stuck near threshold: {r.stuck_near}")
+        print(pk.sweep.definition_sensitivity_table(rows, parent=parent_name))
     n_sims = sum(r.n_sims + r.n_check_sims for r in rows)
     sim_wall = sum(r.wall_s for r in rows)
     print(f"\n{len(rows)} points ({n_new} computed now, {mode}); {n_sims} simulations, {sim_wall:.1f} s of task time, "
@@ -185,9 +117,10 @@ def main(argv=None) -> dict:
         "default_definition": DEFAULT_NAME, "jump": "R reaches 0 with dR/dt < 0 before the rise completes",
         "rise_complete": "theta within rise_margin of the final state (0 prolate, pi/2 oblate), or t_max reached"})
     ran = st.run(specs, store, warm_up=warm_up, desc="thresholds")
-    keys = {s.key for s in specs}
-    rows = [r for r in store.rows() if r.key in keys]
-    plot(rows, args.quick, st.path(f"{STEM}.png"))
+    rows = store.rows(s.key for s in specs)
+    st.save(plot_threshold_curves(rows, DEFAULT_DEFINITIONS, default=DEFAULT_NAME, styles=STYLES, hi=SEARCH["hi"],
+                                  brackets=PAPER_BRACKETS, title=r"Smallest $\Omega_0$ / $n_0$ that leads to loss of contact, "
+                                  r"$\mu=0.1$" + (" (quick run)" if args.quick else "")), f"{STEM}.png")
     stats = report(rows, st.wall, ran.computed, ran.mode)
     return {"rows": rows, "wall_s": st.wall, "n_computed": ran.computed, **stats}
 

@@ -19,14 +19,10 @@ once (manifest .json). Writes threshold_vs_mu.png.
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import asdict, replace
-from pathlib import Path
 
 import phasekit as pk
-from phasekit.viz import plain_log_ticks, pyplot, save_figure
-
-import numpy as np
+from phasekit.viz import plot_threshold_map
 
 STEM = "threshold_vs_mu"
 SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5, levels=3)
@@ -81,121 +77,10 @@ def warm_up() -> None:
         BASE.prepare(a, engine="batch")
 
 
-def collapse(rows, mus) -> dict:
-    """Test whether thresholds at every mu are one factor f(mu) times those at mu = 0.1:
-    f(mu) is the geometric mean over a of T(a, mu)/T(a, 0.1) (per branch), and the spread
-    is the largest |ln(T / (f T_ref))| that remains."""
-    out = {}
-    for branch in ("prolate", "oblate"):
-        ref = {r.a: r.threshold for r in rows if r.branch == branch and r.mu == MU_REF and r.threshold}
-        per_mu = {}
-        for mu in mus:
-            ratios = [math.log(r.threshold / ref[r.a]) for r in rows
-                      if r.branch == branch and r.mu == mu and r.threshold and r.a in ref]
-            if len(ratios) < 2:
-                continue
-            lnf = float(np.mean(ratios))
-            per_mu[mu] = {"f": math.exp(lnf), "spread": float(max(abs(x - lnf) for x in ratios)),
-                          "raw_spread": float(max(abs(x) for x in ratios)), "n": len(ratios)}
-        out[branch] = per_mu
-    spreads = [v["spread"] for b in out.values() for v in b.values()]
-    raw = [v["raw_spread"] for b in out.values() for v in b.values()]
-    out["max_spread"] = max(spreads) if spreads else None
-    out["max_raw_spread"] = max(raw) if raw else None
-    return out
-
-
-def d_limit(rows, a_list, mus) -> dict:
-    """For each (a, mu) d-line: the thresholds against d, the relative change per halving of
-    d, and whether the smallest d still slides (a stuck start has no threshold)."""
-    out = {}
-    for a in a_list:
-        for mu in mus:
-            pts = sorted((r.d, r) for r in rows if abs(r.a - a) < 1e-12 and r.mu == mu and r.d is not None)
-            if len(pts) < 2:
-                continue
-            ds = [d for d, _ in pts]
-            th = [r.threshold for _, r in pts]
-            steps = [(th[i] / th[i + 1] - 1) if th[i] and th[i + 1] else None for i in range(len(th) - 1)]
-            out[f"a={a:.4g} mu={mu:.4g}"] = {"d": ds, "threshold": th, "status": [r.status for _, r in pts],
-                                            "change_per_halving": steps}
-    return out
-
-
-def plot(rows, g, coll, png: Path, quick: bool) -> None:
-    plt = pyplot()
-    fig, axes = plt.subplots(2, 2, figsize=(13, 10))
-    cmap = plt.get_cmap("viridis")
-    mus = g["mu"]
-    colour = {mu: cmap(i / max(1, len(mus) - 1)) for i, mu in enumerate(mus)}
-    main = [r for r in rows if r.d == BASE.amplitude]
-    for ax, branch in zip(axes[0], ("prolate", "oblate")):
-        for mu in mus:
-            pts = sorted((r.a, r.threshold) for r in main if r.branch == branch and r.mu == mu and r.threshold)
-            if pts:
-                ax.plot(*zip(*pts), "o-", color=colour[mu], ms=4, label=fr"$\mu$ = {mu:.3g}")
-        ax.set_yscale("log")
-        plain_log_ticks(ax, "y", subs=(2, 3, 4, 5, 6, 7, 8))
-        ax.set_xlabel(r"aspect ratio $a$")
-        ax.grid(alpha=0.3, which="both")
-    axes[0, 0].set_ylabel(r"threshold $\Omega_0^*$ (units $\sqrt{g/b}$)")
-    axes[0, 1].set_ylabel(r"threshold $n_0^*$ (units $\sqrt{g/b}$)")
-    axes[0, 0].set_title(r"prolate, from the horizontal precession ($\mu \leq 0.1$: curves nearly coincide)", fontsize=10)
-    axes[0, 1].set_title("oblate, from the vertical spin", fontsize=10)
-    axes[0, 0].legend(fontsize=8, ncol=2)
-    ax = axes[1, 0]
-    for branch, marker in (("prolate", "o"), ("oblate", "s")):
-        for mu in mus:
-            f = coll.get(branch, {}).get(mu, {}).get("f")
-            if f is None:
-                continue
-            pts = sorted((r.a, r.threshold / f) for r in main if r.branch == branch and r.mu == mu and r.threshold)
-            ax.plot(*zip(*pts), marker=marker, ls="-", color=colour[mu], ms=3, lw=0.8)
-    ax.set_yscale("log")
-    plain_log_ticks(ax, "y", subs=(2, 3, 4, 5, 6, 7, 8))
-    ax.set_xlabel(r"aspect ratio $a$")
-    ax.set_ylabel(r"threshold / $f(\mu)$ (units $\sqrt{g/b}$)")
-    spread = coll.get("max_spread")
-    ax.set_title(r"collapse test: threshold / $f(\mu)$, $f$ fitted per $\mu$ and branch" + "\n"
-                 + (f"remaining spread max |ln| = {spread:.3f} (raw, f = 1: {coll['max_raw_spread']:.3f})" if spread else ""),
-                 fontsize=9)
-    ax.grid(alpha=0.3, which="both")
-    ax = axes[1, 1]
-    for a, ls in zip(g["d_lines"]["a"], ("-", "--")):
-        for mu in g["d_mu"]:
-            pts = sorted((r.d, r.threshold) for r in rows if abs(r.a - a) < 1e-12 and r.mu == mu and r.threshold)
-            if len(pts) > 1:
-                ax.plot(*zip(*pts), marker="o", ls=ls, color=colour.get(mu, "k"), ms=4)
-        ax.plot([], [], ls=ls, color="0.3", label=f"a = {a:.3g}")  # line style only: colours are mu, as above
-    ds = np.array([2.5e-3, 1e-2])
-    ax.plot(ds, 30.0 * (ds / ds[0]) ** -0.5, "k:", lw=1, label=r"slope $-1/2$ ($d\,\Omega_0^2$ = const: the sticking boundary)")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    plain_log_ticks(ax, "y", subs=(2, 3, 4, 5, 6, 7, 8))
-    plain_log_ticks(ax, "x", subs=())
-    ax.set_xticks(g["d_lines"]["d"], [f"{d:g}" for d in g["d_lines"]["d"]])
-    ax.set_xlabel(r"seed distance $d$ from the fixed point (rad)")
-    ax.set_ylabel(r"threshold $\Omega_0^*$ or $n_0^*$ (units $\sqrt{g/b}$)")
-    ax.set_title(r"threshold against $d$ (one colour per $\mu$; solid a = 1.5, dashed a = 2/3)", fontsize=9)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
-    fig.suptitle(r"Jump thresholds over $(a, \mu)$: exact Coulomb friction, sliding-branch starts at $d$ = 0.01 "
-                 r"(bottom right: $d$ varies), bisection to $10^{-3}$, rtol $10^{-9}$" + (" (quick run)" if quick else ""), fontsize=11)
-    fig.tight_layout(rect=(0, 0, 1, 0.97))
-    save_figure(fig, png)
-
-
 def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
     main = [r for r in rows if r.d == BASE.amplitude]
     print(f"\n{STEM}: {len(rows)} searches ({n_new} computed now, {mode}), {wall:.1f} s wall")
-    print(f"{'branch':<8s} {'a':>6s} " + " ".join(f"{'mu=' + format(mu, '.3g'):>10s}" for mu in g["mu"]))
-    for branch in ("prolate", "oblate"):
-        for a in sorted({r.a for r in main if r.branch == branch}):
-            cells = []
-            for mu in g["mu"]:
-                r = next((r for r in main if r.a == a and r.mu == mu), None)
-                cells.append(f"{r.threshold:10.4f}" if r and r.threshold else f"{(r.status if r else '-'):>10s}")
-            print(f"{branch:<8s} {a:6.3f} " + " ".join(cells))
+    print(pk.sweep.threshold_grid_table(main, g["mu"]))
     bad = [r for r in rows if r.status not in ("converged",)]
     print(f"not converged: {len(bad)} " + ", ".join(f"(a={r.a:.3g}, mu={r.mu:.3g}, d={r.d:g}: {r.status})" for r in bad[:10]))
     print("collapse test, f(mu) and remaining spread (max |ln T/(f T_ref)|):")
@@ -207,14 +92,9 @@ def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
         th = ", ".join(f"{t:.4f}" if t else s for t, s in zip(v["threshold"], v["status"]))
         ch = ", ".join(f"{c:+.3f}" if c is not None else "-" for c in v["change_per_halving"])
         print(f"  {k}: d = {v['d']}: {th}; change per halving: {ch}")
-    sens = sorted((r for r in main if r.sens_dominant), key=lambda r: (r.branch, r.a))
-    if sens:
+    if any(r.sens_dominant for r in main):
         print(f"sensitivity to the seed distance at mu = {MU_REF:g} (thresholds at d/2 and 2d; slope = d ln T*/d ln d):")
-        for r in sens:
-            width = r.bracket_hi / r.bracket_lo - 1
-            print(f"  {r.branch:<8s} a={r.a:6.3f} T*={r.threshold:8.4f} T*(d/2)={r.sens_half or float('nan'):8.4f} "
-                  f"T*(2d)={r.sens_double or float('nan'):8.4f} slope={r.sens_slope if r.sens_slope is not None else float('nan'):+.3f} "
-                  f"max shift={r.sens_shift if r.sens_shift is not None else float('nan'):.3%} bracket={width:.1e} -> {r.sens_dominant}")
+        print(pk.sweep.seed_sensitivity_table(main))
     n_sims = sum(r.n_sims for r in rows)
     return {"n_sims": n_sims, "task_s": sum(r.wall_s for r in rows), "critical_path": max((r.n_rounds for r in rows), default=0)}
 
@@ -233,10 +113,13 @@ def main(argv=None) -> dict:
     keys = {k for ks in members.values() for k in ks}
     n_new = sum(k not in store for k in keys)
     mode = str(st.run(specs, store, members=members, warm_up=warm_up, desc="thresholds (a, mu)"))
-    rows = [r for r in store.rows() if r.key in keys]
-    coll = collapse([r for r in rows if r.d == BASE.amplitude], g["mu"])
-    dl = d_limit(rows, g["d_lines"]["a"], g["d_mu"])
-    plot(rows, g, coll, st.path(f"{STEM}.png"), args.quick)
+    rows = store.rows(keys)
+    coll = pk.sweep.threshold_collapse([r for r in rows if r.d == BASE.amplitude], g["mu"], MU_REF)
+    dl = pk.sweep.threshold_against_d(rows, g["d_lines"]["a"], g["d_mu"])
+    st.save(plot_threshold_map(rows, g["mu"], coll, d0=BASE.amplitude, d_lines=g["d_lines"], d_mu=g["d_mu"], title=(
+        r"Jump thresholds over $(a, \mu)$: exact Coulomb friction, sliding-branch starts at $d$ = 0.01 "
+        r"(bottom right: $d$ varies), bisection to $10^{-3}$, rtol $10^{-9}$" + (" (quick run)" if args.quick else ""))),
+        f"{STEM}.png")
     wall = st.wall
     stats = report(rows, g, coll, dl, wall, mode, n_new)
     summary = {"collapse": {b: {f"{mu:.4g}": v for mu, v in coll[b].items()} for b in ("prolate", "oblate")},

@@ -224,6 +224,19 @@ def test_displaced_spheroid_breaks_part_ones_degenerate_structure():
     assert [f.kind for f in at_boundary.families] == ["pole", "pole", "precession", "rolling"]
 
 
+def test_the_atlas_bisection_finds_the_boundary_a_equals_c_and_names_its_bifurcation():
+    """pk.sweep.trace_boundary (studies/steady_structure.py's atlases) across A = C of the displaced
+    spheroid (offset 0.5 at a = 1.5): the traced point brackets it, and the bifurcation is the one
+    pk.bifurcation_between names for the structures on either side of the bracket."""
+    def at(panel, x, y):  # x: offset / a
+        return steady_structure(pk.Spheroid(1.5, offset=1.5 * x), pk.Viscous(0.1), stability=False)
+
+    b = pk.sweep.trace_boundary(at, "demo", (0.3, 0.0), (0.36, 0.0), 0.06, xtol=1e-3, key="k")
+    assert abs(b.x - 1 / 3) <= b.width / 2 + 1e-12 and b.width <= 0.06 * 1e-3
+    lo, hi = at("demo", b.x - b.width / 2, 0.0), at("demo", b.x + b.width / 2, 0.0)
+    assert (b.below, b.above) == (lo.signature, hi.signature) and b.bifurcation == pk.bifurcation_between(lo, hi)
+
+
 @pytest.mark.parametrize("a", [1.5, 2 / 3])
 def test_part_one_four_classes_with_their_stability(a):
     """Part I's four classes of the flip-symmetric spheroid: the spin about the vertical, the

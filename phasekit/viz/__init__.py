@@ -3,7 +3,20 @@ matplotlib is imported by the functions that draw, pyvista only when a 3-D scene
 A study's own output (flags, folders, tables, Ctrl-C) is :mod:`phasekit.sweep`'s."""
 
 from .animate import AnimationInfo, animate, body_mesh, film_strip, render_body
-from .branches import render_structure
+from .atlas import plot_atlas, plot_classes, signature_colours
+from .branches import plot_branch_planes, render_structure
+from .maps import (
+    OUTCOME_COLOURS,
+    plot_flights,
+    plot_outcome_map,
+    plot_pair_scan,
+    plot_stability_map,
+    plot_threshold_against,
+    plot_threshold_curves,
+    plot_threshold_map,
+    plot_which_end,
+    render_jump_region,
+)
 from .mpl import LABELS, label, plain_log_ticks, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
 from .output import pyplot, save_figure
 from .pv import RenderInfo, render_scene
@@ -16,7 +29,21 @@ __all__ = [
     "AnimationInfo",
     "render_scene",
     "render_structure",
+    "plot_branch_planes",
     "RenderInfo",
+    "plot_outcome_map",
+    "render_jump_region",
+    "OUTCOME_COLOURS",
+    "plot_threshold_curves",
+    "plot_threshold_map",
+    "plot_stability_map",
+    "plot_pair_scan",
+    "plot_which_end",
+    "plot_threshold_against",
+    "plot_flights",
+    "plot_atlas",
+    "plot_classes",
+    "signature_colours",
     "plot_timeseries",
     "plot_events",
     "plot_section",

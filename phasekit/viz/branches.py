@@ -6,6 +6,9 @@ the unstable manifold of a branch state) and, for a body that jumps, the surface
 Omega diverges at an infinite-spin end: the box stops at ``omega_max`` and the branches are cut
 at its faces, like the trajectories of :func:`phasekit.viz.render_scene`. PyVista is imported
 when a scene is drawn, never at import.
+
+In the planes (:func:`plot_branch_planes`, matplotlib): the branches in (theta, Omega) and
+(theta, n) with trajectories over them and marked states, e.g. where a rise settles.
 """
 
 from __future__ import annotations
@@ -15,7 +18,7 @@ import numpy as np
 from ..errors import ParameterError
 from .pv import ASPECT, RenderInfo, _box, _check_file, _check_window_size, _headless, _inside_runs, _quiet_vtk
 
-__all__ = ["render_structure"]
+__all__ = ["render_structure", "plot_branch_planes"]
 
 STABLE, UNSTABLE = "#1a9850", "#d73027"
 TRAJECTORY_COLORS = ("#4575b4", "#7b3294", "#e08214", "#01665e")
@@ -192,3 +195,45 @@ def _add_surface(pl, pv, f, body, bounds) -> int:
     if grid.n_points:
         pl.add_mesh(grid, color="#9ecae1", opacity=0.35, smooth_shading=True, label="jump surface (6.3)")
     return int(grid.n_points)
+
+
+def plot_branch_planes(structure, runs, *, omega_max: float, title: str, caption: str = ""):
+    """The branches of ``structure`` (a :class:`phasekit.SteadyStructure`, G at rest) in the
+    (theta, Omega) plane (left, cut at ``omega_max``) and the (theta, n) plane (right), with
+    ``runs`` over them: each a dict with ``path`` (columns theta, Omega, n, e.g. a sampled
+    trajectory), ``colour``, ``label`` and ``star`` (theta, Omega, n): a state marked in both
+    planes. ``caption``: the right panel's title. Returns the figure.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> s = pk.steady_structure(pk.Spheroid(1.5, offset=0.2), pk.Viscous(0.1))
+    >>> path = {"theta": [1.0, 1.2], "Omega": [3.0, 3.5], "n": [2.0, 2.5]}
+    >>> fig = pk.viz.plot_branch_planes(s, [dict(path=path, colour="C0", label="a run", star=(1.2, 3.5, 2.5))],
+    ...                                 omega_max=14.0, title="demo")
+    >>> len(fig.axes)
+    2
+    """
+    from .output import pyplot
+
+    fig, (ax1, ax2) = pyplot().subplots(1, 2, figsize=(13, 5))
+    for b in structure.branches:
+        keep = b.Omega < omega_max
+        for ax, y in ((ax1, b.Omega), (ax2, b.n)):
+            ax.plot(b.theta[keep], y[keep], color="0.2", lw=2,
+                    label="branch (G at rest)" if b is structure.branches[0] and ax is ax1 else None)
+    for run in runs:
+        path, colour, (th, om, n) = run["path"], run["colour"], run["star"]
+        ax1.plot(path["theta"], path["Omega"], color=colour, lw=0.7, alpha=0.7, label=run["label"])
+        ax2.plot(path["theta"], path["n"], color=colour, lw=0.7, alpha=0.7)
+        ax1.plot(th, om, "*", color=colour, ms=13, mec="k")
+        ax2.plot(th, n, "*", color=colour, ms=13, mec="k")
+    for ax, yl in ((ax1, r"$\Omega$ ($\sqrt{g/b}$)"), (ax2, r"$n$ ($\sqrt{g/b}$)")):
+        ax.set(xlabel=r"$\theta$ (rad)", ylabel=yl, xlim=(0, np.pi))
+        ax.grid(alpha=0.3)
+    ax1.set_ylim(0, omega_max)
+    ax1.legend(fontsize=8)
+    ax2.set_title(caption, fontsize=9)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    return fig
