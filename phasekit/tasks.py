@@ -460,7 +460,10 @@ def _run_here(todo, results, on_result, pack, bar, end) -> None:
 def _run_on(client, todo, results, on_result, pack, bar, end) -> None:
     from dask.distributed import as_completed
 
-    pack_f = client.scatter(pack, broadcast=True) if pack is not None else None
+    # hash=False: a key of its own per scatter. With the default content hash, scattering the same
+    # pack again just after the previous run released it races with that release and the new
+    # tasks fail with "lost dependencies" (dask/distributed#8576; seen in a benchmark's second run).
+    pack_f = client.scatter(pack, broadcast=True, hash=False) if pack is not None else None
     futures, by_future = {}, {}
     for s in todo:
         prev = futures.get(s.after, results.get(s.after)) if s.after else None
@@ -642,7 +645,7 @@ def client_evaluator(client, *, engine: str = "batch", pack: ModelPack | None = 
     ['client', 'engine', 'pack', 'parts']
     """
     n = parts or max(1, len(client.scheduler_info()["workers"]))
-    pack_f = client.scatter(pack, broadcast=True) if pack is not None else None
+    pack_f = client.scatter(pack, broadcast=True, hash=False) if pack is not None else None  # see _run_on
 
     def evaluate(jobs):
         chunks = [list(range(i, len(jobs), n)) for i in range(n)]

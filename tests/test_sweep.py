@@ -235,3 +235,26 @@ def test_dask_k_section_round_and_grouped_searches_equal_the_serial_ones(tmp_pat
     rows = {r.d: r for r in store.rows()}
     assert len(specs) == 2 and rows[0.01].threshold == near.value
     assert rows[0.04].threshold < rows[0.02].threshold < rows[0.01].threshold  # README: the threshold falls as d grows
+
+
+def _pack_size(prev, i):
+    return i
+
+
+def test_runs_one_after_another_on_one_client_share_the_pack_without_losing_it():
+    """The same model pack scattered run after run (a study's searches then its grid; a
+    benchmark's serial and Dask passes): each run gets its own copy, so the release of the last
+    one cannot take the next run's with it (with content-hashed keys it did: "lost dependencies",
+    dask/distributed#8576)."""
+    pack = pk.sweep.ModelPack.build(lambda: pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)))
+    client, cluster = pk.sweep.make_client(workers=1)
+    try:
+        for run in range(12):
+            specs = [TaskSpec(f"r{run}-{i}", _pack_size, (i,)) for i in range(3)]
+            got = {}
+            run_tasks(specs, store_get=lambda k: None, on_result=lambda s, r: got.__setitem__(s.key, r), client=client,
+                      pack=pack, progress=False)
+            assert got == {f"r{run}-{i}": i for i in range(3)}
+    finally:
+        client.close()
+        cluster.close()
