@@ -474,7 +474,7 @@ def threshold_collapse(rows, mus, ref_mu: float) -> dict:
     """The collapse test of thresholds over (a, mu) (``rows``: :class:`SearchRow` at one seed
     distance): are the thresholds at every mu one factor f(mu) times those at ``ref_mu``? Per
     branch and mu: f, the geometric mean over a of T(a, mu)/T(a, ref_mu); ``spread``, the
-    largest |ln(T / (f T_ref))| that remains; ``raw_spread``, the same with f = 1; ``n``, the
+    largest ``|ln(T / (f T_ref))|`` that remains; ``raw_spread``, the same with f = 1; ``n``, the
     aspect ratios compared. Also the largest of each over everything (``max_spread``,
     ``max_raw_spread``; None without two aspect ratios to compare).
 
