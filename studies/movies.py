@@ -14,10 +14,9 @@ from __future__ import annotations
 
 import math
 
-import phasekit as pk
+import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 from phasekit.viz import animate, film_strip
 
-import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 import numpy as np
 
 
