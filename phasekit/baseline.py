@@ -202,7 +202,9 @@ def jump_time(method: str, body, y0, mu: float, rtol: float, cap: float | None =
     >>> run.status, round(run.t_jump, 3)
     ('ok', 45.256)
     """
-    kind, how, options = _JUMP_RUNS[method]
+    from .validate import check_choice
+
+    kind, how, options = _JUMP_RUNS[check_choice("method", method, JUMP_METHODS)]
     if kind == "scipy":
         r = solve_ivp_to_jump(y0, t_end, a=body.a, A=body.A, C=body.C, mu=mu, method=how, rtol=rtol, rhs=options,
                               max_wall=cap)

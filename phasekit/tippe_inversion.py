@@ -33,6 +33,7 @@ from .tippetop import (
     ueda_group,
     ueda_group_limit,
 )
+from .validate import check_choice
 
 __all__ = ["simulate_inversion", "InversionRun", "inversion_run", "inversion_summary"]
 
@@ -45,6 +46,8 @@ THETA_NEVER = 0.3
 #: cycle measured). A map run is cut after this many mode switches or this wall time and
 #: classified from the span computed so far (its status and reason are kept).
 MAP_MAX_SWITCHES, MAP_MAX_WALL = 400, 45.0
+#: the friction laws of a map run: viscous friction and exact Coulomb friction
+LAWS = ("viscous", "coulomb")
 
 
 def simulate_inversion(top, law, n0: float, t_end: float, *, theta0: float = 0.1, rtol: float = 1e-10, dense: bool = True,
@@ -81,7 +84,7 @@ class InversionRun:
     Examples
     --------
     >>> import phasekit as pk
-    >>> row = pk.theory.inversion_run("k", "viscous", 0.3, 0.3, 0.95, 8.0, 150.0, C=0.4)
+    >>> row = pk.theory.inversion_run("viscous", 0.3, 0.3, 0.95, 8.0, 150.0, C=0.4)
     >>> row.outcome, row.predicted, row.jellett_drift < 1e-9
     ('full', 'full', True)
     """
@@ -113,19 +116,21 @@ class InversionRun:
     wall_s: float
 
 
-def inversion_run(key: str, law: str, mu: float, alpha: float, gamma: float, n0: float, t_end: float, rtol: float = 1e-10, *,
-                  C: float, theta0: float = 0.1) -> InversionRun:
+def inversion_run(law: str, mu: float, alpha: float, gamma: float, n0: float, t_end: float, rtol: float = 1e-10, *,
+                  C: float, theta0: float = 0.1, key: str = "") -> InversionRun:
     """Simulate the tippe top ``alpha``, A = ``gamma`` C, C under ``law`` ("viscous":
     :class:`phasekit.Viscous`, "coulomb": exact :class:`phasekit.Coulomb`) with coefficient
     ``mu``, spun at ``n0`` from ``theta0`` (:func:`simulate_inversion`, cut after 400 mode
-    switches or 45 s of wall time), and classify it: an :class:`InversionRun` named ``key``.
+    switches or 45 s of wall time), and classify it: an :class:`InversionRun` named ``key``
+    (the row's key in a store).
 
     Examples
     --------
     >>> import phasekit as pk
-    >>> pk.theory.inversion_run("k", "viscous", 0.3, 0.2, 1.25, 8.0, 150.0, C=0.4).outcome
+    >>> pk.theory.inversion_run("viscous", 0.3, 0.2, 1.25, 8.0, 150.0, C=0.4).outcome
     'partial'
     """
+    law = check_choice("law", law, LAWS)
     t0 = time.perf_counter()
     A = gamma * C
     pred = dict(classical=classical_inversion(alpha, A, C), group=ueda_group_limit(alpha, A, C),
@@ -160,7 +165,7 @@ def inversion_summary(rows) -> dict:
     Examples
     --------
     >>> import phasekit as pk
-    >>> row = pk.theory.inversion_run("k", "viscous", 0.3, 0.3, 0.95, 8.0, 150.0, C=0.4)
+    >>> row = pk.theory.inversion_run("viscous", 0.3, 0.3, 0.95, 8.0, 150.0, C=0.4)
     >>> pk.theory.inversion_summary([row])["viscous"]["agree"]
     1
     """

@@ -37,9 +37,7 @@ class Case:
 
 
 def cases(quick: bool) -> list[Case]:
-    C = pk.Coulomb
-    R = pk.RegularisedCoulomb
-    V = pk.Viscous
+    C, R, V = pk.Coulomb, pk.RegularisedCoulomb, pk.Viscous
     pro = dict(theta0=P2 - 0.01, omega0=10.5)
     obl = dict(theta0=0.05, n0=10.5)
     out = [

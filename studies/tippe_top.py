@@ -55,22 +55,19 @@ def row_key(law: str, mu: float, alpha: float, gamma: float, n0: float, t_end: f
 
 def run_point(law: str, mu: float, alpha: float, gamma: float, n0: float, t_end: float, rtol: float) -> pk.theory.InversionRun:
     """One point of the map: the top (alpha, gamma C, C) spun at n0 under the law, classified."""
-    return pk.theory.inversion_run(row_key(law, mu, alpha, gamma, n0, t_end, rtol), law, mu, alpha, gamma, n0, t_end, rtol,
-                                   C=C, theta0=THETA0)
+    return pk.theory.inversion_run(law, mu, alpha, gamma, n0, t_end, rtol, C=C, theta0=THETA0,
+                                   key=row_key(law, mu, alpha, gamma, n0, t_end, rtol))
 
 
 def hopping(r, st) -> dict:
     """theta, R and the gap of the README's top through its hops (figure), and its hops."""
-    lifts = r.events_named("lift-off")
+    lifts, hops = r.events_named("lift-off"), r.hops
     a, A, n0, mu = EXAMPLE["alpha"], EXAMPLE["A"], EXAMPLE["n0"], EXAMPLE["mu"]
     st.save(plot_hopping(r, title=f"Tippe top alpha={a}, A={A}, C={C}, exact Coulomb mu={mu}, n0={n0}: {len(lifts)} "
                          "lift-offs (red), restitution 0"), "tippe_top_hopping.png")
-    fl = r.flights
-    return {"n_liftoff": len(lifts), "first_liftoff": lifts[0].t if lifts else None,
-            "theta_first_liftoff": float(lifts[0].y[4]) if lifts else None,
-            "max_gap": max((f.gap_max or 0.0) for f in fl) if fl else 0.0,
-            "longest_flight": max(((f.t_touchdown or r.t) - f.t_liftoff) for f in fl) if fl else 0.0,
-            "t_inverted": r.t if r.status is pk.Status.STOPPED else None}
+    return {"n_liftoff": hops["n_liftoffs"], "first_liftoff": lifts[0].t if lifts else None,
+            "theta_first_liftoff": float(lifts[0].y[4]) if lifts else None, "max_gap": hops["gap_max"],
+            "longest_flight": hops["longest_flight"], "t_inverted": r.t if r.status is pk.Status.STOPPED else None}
 
 
 # -- the README example: convergence in rtol and eps -----------------------------------------------

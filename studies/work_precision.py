@@ -92,8 +92,9 @@ def draw(plt, rows, refs, eps_rows, by_T, by_om, cap, quick):
     legend_ax = fig.add_subplot(gs[1, :])
     legend_ax.axis("off")
     legend_ax.legend(*top[0].get_legend_handles_labels(), loc="center", ncol=4, fontsize=8, frameon=False)
-    plot_regularisation(fig.add_subplot(gs[2, 0]), eps_rows, t_max=400.0)
-    plot_cost_growth(fig.add_subplot(gs[2, 1]), by_T, by_om)
+    plot_regularisation(fig.add_subplot(gs[2, 0]), eps_rows, t_max=400.0, title=r"(c) $t_*$ against $\epsilon$: converges on "
+                        "the sliding start, not on the sticking one; 'stick': the slip fell below 10 eps")
+    plot_cost_growth(fig.add_subplot(gs[2, 1]), by_T, by_om, title=r"(d) cost growth, $\mu = 0$ (no rise, no jump), rtol $10^{-9}$")
     fig.suptitle(r"Work-precision on the jump time, Coulomb $\mu=0.1$, error against Taylor at rtol $10^{-15}$"
                  + (" (quick)" if quick else ""), fontsize=11)
     fig.tight_layout()

@@ -6,6 +6,8 @@ the spin. Each returns the artists it drew.
 
 from __future__ import annotations
 
+import math
+
 __all__ = ["plot_work_precision", "plot_regularisation", "plot_cost_growth"]
 
 #: the runs drawn at the bottom of a work-precision panel when they hit the wall-time cap
@@ -59,18 +61,18 @@ def plot_work_precision(axes, rows, refs: dict, cap: float) -> list:
     return lines
 
 
-def plot_regularisation(ax, runs: dict, *, t_max: float, exact_at: float = 1e-10) -> list:
+def plot_regularisation(ax, runs: dict, *, t_max: float, exact_at: float = 1e-10, title: str = "") -> list:
     """The jump time against the regularisation eps of Coulomb's law, one line per start:
     ``runs`` maps a label to rows (eps, t_jump, status, t_stick, wall) (eps None: the exact
-    stick-slip law, drawn at ``exact_at``; t_jump None: no jump by ``t_max``, drawn there);
-    "stick" marks a run whose slip fell below 10 eps.
+    stick-slip law, drawn at ``exact_at``, a power of 10; t_jump None: no jump by ``t_max``,
+    drawn there); "stick" marks a run that stuck (``t_stick`` not None).
 
     Examples
     --------
     >>> import phasekit as pk
     >>> fig, ax = pk.viz.pyplot().subplots()
     >>> runs = {"sliding": [(1e-3, 45.3, "jumped", None, 0.1), (None, 45.256, "jumped", None, 0.1)]}
-    >>> len(pk.viz.plot_regularisation(ax, runs, t_max=400.0))
+    >>> len(pk.viz.plot_regularisation(ax, runs, t_max=400.0, title="t_jump against eps"))
     1
     """
     lines = []
@@ -82,18 +84,18 @@ def plot_regularisation(ax, runs: dict, *, t_max: float, exact_at: float = 1e-10
             if tstick is not None:
                 ax.annotate("stick", (x, y), fontsize=7, xytext=(3, 3), textcoords="offset points")
     ax.axhline(t_max, color="0.6", ls=":", lw=0.8)
-    ax.set_xlabel(r"regularisation $\epsilon$ (units $\sqrt{gb}$; the exact stick-slip law plotted at $10^{-10}$)")
+    ax.set_xlabel(r"regularisation $\epsilon$ (units $\sqrt{gb}$; the exact stick-slip law plotted at "
+                  rf"$10^{{{round(math.log10(exact_at))}}}$)")
     ax.set_ylabel(rf"jump time $t_*$ (units $\sqrt{{b/g}}$; {t_max:g} = no jump by $t = {t_max:g}$)")
-    ax.set_title(r"(c) $t_*$ against $\epsilon$: converges on the sliding start, not on the sticking one; "
-                 "'stick': the slip fell below 10 eps", fontsize=9)
+    ax.set_title(title, fontsize=9)
     ax.legend(fontsize=8, loc="center left")
     return lines
 
 
-def plot_cost_growth(ax, by_T, by_omega) -> list:
+def plot_cost_growth(ax, by_T, by_omega, *, omega0: float = 10.0, T: float = 100.0, title: str = "") -> list:
     """Wall time per run against the simulated time T (``by_T``: rows (T, wall, steps), at
-    Omega0 = 10) and, on a second x axis, against the initial precession rate Omega0
-    (``by_omega``: rows (Omega0, wall, steps), at T = 100), on log scales labelled with the
+    ``omega0``) and, on a second x axis, against the initial precession rate Omega0
+    (``by_omega``: rows (Omega0, wall, steps), at ``T``), on log scales labelled with the
     values measured.
 
     Examples
@@ -106,16 +108,16 @@ def plot_cost_growth(ax, by_T, by_omega) -> list:
     from matplotlib.ticker import NullFormatter
 
     Ts, oms = [T for T, *_ in by_T], [o for o, *_ in by_omega]
-    lines = ax.loglog(Ts, [w for _, w, _ in by_T], "o-", label=r"against simulated time $T$ ($\Omega_0=10$)")
+    lines = ax.loglog(Ts, [w for _, w, _ in by_T], "o-", label=rf"against simulated time $T$ ($\Omega_0={omega0:g}$)")
     ax2 = ax.twiny()
-    lines += ax2.loglog(oms, [w for _, w, _ in by_omega], "s--", color="C1", label=r"against $\Omega_0$ ($T=100$)")
+    lines += ax2.loglog(oms, [w for _, w, _ in by_omega], "s--", color="C1", label=rf"against $\Omega_0$ ($T={T:g}$)")
     for a, ticks in ((ax, Ts), (ax2, oms)):  # label the measured values, plainly
         a.set_xticks(ticks, [f"{v:g}" for v in ticks])
         a.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel(r"simulated time $T$ (units $\sqrt{b/g}$)")
     ax2.set_xlabel(r"initial precession rate $\Omega_0$ (units $\sqrt{g/b}$)", color="C1")
     ax.set_ylabel("wall time per run (s)")
-    ax.set_title(r"(d) cost growth, $\mu = 0$ (no rise, no jump), rtol $10^{-9}$", fontsize=9)
+    ax.set_title(title, fontsize=9)
     h1, l1 = ax.get_legend_handles_labels()
     h2, l2 = ax2.get_legend_handles_labels()
     ax.legend(h1 + h2, l1 + l2, fontsize=8, loc="upper left")
