@@ -49,8 +49,19 @@ from .multiscale import (
     slow_rates,
 )
 from .paper import PAPER_CASES, PaperCase
+from .paper_checks import (
+    EnvelopeCheck,
+    FlightCheck,
+    add_nutation,
+    envelope_check,
+    fit_gyroscopic_mu,
+    flight_check,
+    rise_complete,
+    sigma_zero,
+)
 from .structure import RollingMotion, rolling_motion
 from .surface import exact_boundary, surface_n
+from .tippe_inversion import InversionRun, inversion_run, inversion_summary, simulate_inversion
 
 __all__ = [
     # stability criteria of the steady states
@@ -64,10 +75,15 @@ __all__ = [
     # the multiscale analysis: fast frequency, slow rates, the envelope Sigma
     "omega2", "omega_gyro", "slow_rates", "I_quadrature", "Gamma_closed", "Sigma", "c_xi", "perturbation_from_c_xi",
     "mean_over_periods",
-    # free flight and impact
+    # a simulated rise against the mean-state theory: the start with a nutation, Sigma's zero, the effective friction
+    "rise_complete", "add_nutation", "sigma_zero", "envelope_check", "EnvelopeCheck", "fit_gyroscopic_mu",
+    # free flight and impact; a simulated flight against them
     "flight_constants", "FlightConstants", "gap_exact", "gap_series", "gap_max_series", "fly", "impact", "ImpactResult",
+    "flight_check", "FlightCheck",
     # the jump surface
     "surface_n", "exact_boundary",
     # the paper's printed cases, and the tippe top
     "PAPER_CASES", "PaperCase", "tippetop",
+    # the tippe top's inversion simulated and classified beside the predictions of tippetop
+    "simulate_inversion", "inversion_run", "InversionRun", "inversion_summary",
 ]

@@ -17,20 +17,11 @@ mu M g however much of the time is spent in flight. Writes bouncing.png and boun
 from __future__ import annotations
 
 import phasekit as pk
-from phasekit.viz import pyplot
+from phasekit.viz import plot_effective_friction
 
 import numpy as np
 
 MU, A_RATIO = 0.1, 1.5
-
-
-def fit_mu(ts, theta, J, theta0):
-    """Least-squares mu for theta(t) ~ (3.18) with T = mu t; returns (mu, standard error)."""
-    from scipy.optimize import curve_fit
-
-    f = lambda t, mu: pk.theory.gyroscopic_closed(A_RATIO, J, theta0, mu * t)[0]  # noqa: E731
-    p, cov = curve_fit(f, ts, theta, p0=[MU])
-    return float(p[0]), float(np.sqrt(cov[0, 0]))
 
 
 def run(omega0: float, e: float):
@@ -40,20 +31,19 @@ def run(omega0: float, e: float):
     J = float(pk.theory.jellett_constant(body, y0[4], y0[2]))
     dt = 2 * np.pi / omega0  # one sample per fast period: residuals roughly independent
     te = np.arange(0.0, 1000.0, dt)
-    rise = pk.Event("theta", 0.05, direction=-1, name="rise-complete")  # the end of the rise
     # dense output kept to sample theta; the fit uses the samples that fall in contact (the
     # gyroscopic solution describes the body on the table)
-    r = pk.simulate(model, y0, 1000.0, stop_at="none", restitution=e, events=[rise], max_switches=500_000,
-                    track_minima=False, dense=True)
+    r = pk.simulate(model, y0, 1000.0, stop_at="none", restitution=e, events=[pk.theory.rise_complete(body)],
+                    max_switches=500_000, track_minima=False, dense=True)
     t0s, t1s = np.array([(s.t0, s.t1) for s in r.segments if s.mode is not pk.Mode.FLIGHT]).T
     k = np.searchsorted(t0s, te, side="right") - 1  # the last contact segment starting before each sample
     ts = te[(k >= 0) & (te <= t1s[np.maximum(k, 0)])]
     theta = r.states(ts)[:, 4]
-    mu_e, s_fit = fit_mu(ts, theta, J, y0[4])
+    mu_e, s_fit = pk.theory.fit_gyroscopic_mu(ts, theta, A_RATIO, J, y0[4], MU)
     bias = np.nan
     if r.t_jump is not None and np.sum(ts <= r.t_jump) > 5:
         sel = ts <= r.t_jump
-        mu_pre, _ = fit_mu(ts[sel], theta[sel], J, y0[4])
+        mu_pre, _ = pk.theory.fit_gyroscopic_mu(ts[sel], theta[sel], A_RATIO, J, y0[4], MU)
         bias = abs(mu_pre / MU - 1)
     flight_time = sum((f.t_touchdown or r.t) - f.t_liftoff for f in r.flights)
     kinds = [ev.name for ev in r.events]
@@ -62,45 +52,17 @@ def run(omega0: float, e: float):
                 wall_s=r.wall_s, t_jump=r.t_jump)
 
 
-def draw(plt, rows, control, omegas):
-    """(a) mu_e / mu with error bars; (b) the naive estimate 1 - (fraction of the rise in flight)."""
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 4.8))
-    for k, om in enumerate(omegas):
-        sub = [r for r in rows if r["omega0"] == om]
-        err = [np.hypot(r["s_fit"] / MU, 0.0 if np.isnan(r["bias"]) else r["bias"]) for r in sub]
-        x = np.array([r["e"] for r in sub]) + 0.012 * (k - len(omegas) / 2)
-        ax.errorbar(x, [r["mu_e"] / MU for r in sub], yerr=err, fmt="o-", ms=4, capsize=3, color=f"C{k}",
-                    label=fr"$\Omega_0={om:g}$")
-        bx.plot(x, [1 - r["flight_fraction"] for r in sub], "o:", ms=4, color=f"C{k}", label=fr"$\Omega_0={om:g}$")
-    ax.axhline(control["mu_e"] / MU, color="0.5", ls="--", lw=1, label=fr"no jump ($\Omega_0=9$): fit gives {control['mu_e'] / MU:.4f}")
-    for a, where in ((ax, "lower right"), (bx, "lower left")):
-        a.axhline(1.0, color="k", lw=0.6)
-        a.set_xlabel(r"coefficient of restitution $e$")
-        a.legend(fontsize=8, loc=where, ncol=2, title=r"$\Omega_0$ in units $\sqrt{g/b}$", title_fontsize=8)
-    lo = min(r["mu_e"] / MU - np.hypot(r["s_fit"] / MU, np.nan_to_num(r["bias"])) for r in rows)
-    ax.set_ylim(lo - 0.6 * (1.005 - lo), 1.005)  # room below the bars for the legend
-    ax.set_ylabel(r"effective friction $\mu_e/\mu$ (fit of (3.18) to $\theta(t)$)")
-    ax.set_title("(a) mu_e / mu; error bars: fit error and the method's bias (fit before the first lift-off)", fontsize=9)
-    bx.set_ylim(0, 1.05)
-    bx.set_ylabel(r"$1 -$ (fraction of the rise spent in flight)")
-    bx.set_title("(b) the naive estimate mu_e / mu ~ 1 - (flight fraction): far off", fontsize=9)
-    fig.suptitle(r"Whole rise with bouncing: prolate $a=1.5$, Coulomb $\mu=0.1$, sliding-branch start "
-                 r"$\theta_0=\pi/2-0.01$, to $\theta = 0.05$; rtol $10^{-9}$", fontsize=10)
-    fig.tight_layout()
-    return fig
-
-
 def main(argv=None) -> list[dict]:
     st = pk.sweep.Study(__file__, __doc__, quick_help="Omega0 = 11, 20 and e = 0, 0.6 only")
     args = st.parse(argv)
-    plt = pyplot()
     es = (0.0, 0.3, 0.6, 0.9) if not args.quick else (0.0, 0.6)
     omegas = (11.0, 15.0, 20.0, 30.0) if not args.quick else (11.0, 20.0)
     # below the jump threshold last (Omega0 = 9): no flight, the method's calibration
     todo = [(om, e) for om in omegas for e in es] + [(9.0, 0.5)]
     *rows, control = [run(om, e) for om, e in st.progress(todo, desc="rises")]
-    fig = draw(plt, rows, control, omegas)
-    png = st.save(fig, "bouncing.png")
+    png = st.save(plot_effective_friction(rows, control, MU, title=r"Whole rise with bouncing: prolate $a=1.5$, Coulomb "
+                                          r"$\mu=0.1$, sliding-branch start $\theta_0=\pi/2-0.01$, to $\theta = 0.05$; rtol $10^{-9}$"),
+                  "bouncing.png")
     st.csv("bouncing.csv", list(rows[0]), rows + [control])
     print(f"Figure {png.name}: mu_e / mu from fits of (3.18) over the whole bouncing rise; {st.wall:.1f} s.")
     print(f"{'Omega0':>6s} {'e':>4s} {'rise t':>7s} {'lift-offs':>9s} {'impacts':>8s} {'flight %':>8s} {'mu_e/mu':>8s} "

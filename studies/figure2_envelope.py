@@ -11,23 +11,12 @@ dominant part (3.57)). Writes figure2_envelope.png.
 from __future__ import annotations
 
 import phasekit as pk
-from phasekit.viz import pyplot
+from phasekit.viz import plot_envelope, pyplot
 
 import numpy as np
 
 J_VALUES = (6.20, 6.50, 6.63, 6.70, 6.83, 7.15, 8.45, 13.0)
 A_RATIO, C_AMP, THETA0 = 1.5, -0.00054, np.pi / 2 - 0.0001
-
-
-def first_zero(theta, sig):
-    """theta-bar where Sigma first reaches 0 along the rise (theta decreasing), or None."""
-    k = np.flatnonzero(sig <= 0)
-    if k.size == 0:
-        return None
-    k = k[0]
-    if k == 0:
-        return float(theta[0])
-    return float(theta[k - 1] + (theta[k] - theta[k - 1]) * sig[k - 1] / (sig[k - 1] - sig[k]))
 
 
 def main(argv=None) -> dict:
@@ -41,17 +30,10 @@ def main(argv=None) -> dict:
     out = {}
     for k, J in enumerate(st.progress(J_VALUES, desc="Jellett constants")):
         sig = pk.theory.Sigma(body, J, THETA0, theta, C_AMP, form="closed")
-        z = first_zero(theta, sig)
-        zq = first_zero(coarse, pk.theory.Sigma(body, J, THETA0, coarse, C_AMP, form="gyro"))
-        out[J] = (z, zq)
-        thick = J >= 8.0
-        col = plt.get_cmap("viridis")(k / (len(J_VALUES) - 1))
-        if z is None:
-            ax.plot(theta, sig, color=col, lw=2.2 if thick else 1.0, label=f"({k + 1}) J = {J:g}")
-        else:
-            cut = theta >= z
-            ax.plot(theta[cut], sig[cut], color=col, lw=2.2 if thick else 1.0, label=f"({k + 1}) J = {J:g}")
-            ax.plot(theta[~cut], sig[~cut], color=col, lw=2.2 if thick else 1.0, ls="--")
+        out[J] = (pk.theory.sigma_zero(theta, sig),
+                  pk.theory.sigma_zero(coarse, pk.theory.Sigma(body, J, THETA0, coarse, C_AMP, form="gyro")))
+        plot_envelope(ax, theta, sig, color=plt.get_cmap("viridis")(k / (len(J_VALUES) - 1)), lw=2.2 if J >= 8.0 else 1.0,
+                      label=f"({k + 1}) J = {J:g}")
     ax.axhline(0, color="0.5", lw=0.8)
     ax.set_ylim(-0.6, 1.05)
     ax.set_xlim(0, np.pi / 2)
@@ -64,8 +46,8 @@ def main(argv=None) -> dict:
     path = st.save(fig, "figure2_envelope.png")
     print(f"Figure {path.name}: Sigma (3.64) against theta-bar, closed forms (3.47), (3.58); {st.wall:.1f} s.")
     print(f"{'J':>6s} {'theta-bar at Sigma = 0 (closed form)':>38s} {'(quadrature, exact I2)':>24s}")
+    fmt = lambda v: "no jump" if v is None else f"{v:.4f}"  # noqa: E731
     for J, (z, zq) in out.items():
-        fmt = lambda v: "no jump" if v is None else f"{v:.4f}"  # noqa: E731
         print(f"{J:6.2f} {fmt(z):>38s} {fmt(zq):>24s}")
     return out
 

@@ -13,13 +13,13 @@ figure5_gap.csv (one row per ensemble member).
 from __future__ import annotations
 
 import phasekit as pk
-from phasekit.viz import pyplot
+from phasekit.viz import plot_gap_flight, plot_gap_maxima, pyplot
 
 import numpy as np
 
 MU, A_RATIO = 0.1, 1.5
 #: the rise is complete (no jump any more) once theta falls through 0.05
-RISE = pk.Event("theta", 0.05, direction=-1, name="rise-complete")
+RISE = pk.theory.rise_complete(pk.Spheroid(A_RATIO))
 
 
 def first_flight(model, x0, t_max=400.0, dense=False):
@@ -35,31 +35,15 @@ def flights_abc(axes, model, body) -> list:
           f"{'(4.23)':>11s} {'rel err':>8s} {'(4.22) curve err':>16s}")
     rows_abc = []
     for ax, om in zip(axes, (11.0, 20.0, 30.0)):
-        y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=om)
-        r = first_flight(model, y0)
-        fl = r.flights[0]
-        T = fl.t_touchdown - fl.t_liftoff
-        te = fl.t_liftoff + np.linspace(0, T, 400)
-        # the flight again at rtol 1e-13, its states (with the gap, index 8) from the dense output
-        gaps = pk.theory.fly(model, r.x_jump, r.t_jump, r.t_jump + 2 * T, rtol=1e-13).segments[0].states(te)[:, 8]
-        k = pk.theory.flight_constants(body, r.x_jump, fl.W_star)
-        tt = te - fl.t_liftoff
-        exact = pk.theory.gap_exact(body, k, tt)
-        series = pk.theory.gap_series(fl.Omega_star, fl.W_star, tt)
-        gm, tgm = pk.theory.gap_max_series(fl.Omega_star, fl.W_star)
-        rel = gm / fl.gap_max - 1
-        curve = float(np.max(np.abs(series - exact)) / np.max(exact))
+        r = first_flight(model, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=om))
+        chk = pk.theory.flight_check(r)  # the flight again at rtol 1e-13, and the theory of section 4
+        fl, gm, rel, curve = chk.flight, chk.gap_max_series, chk.rel_error, chk.curve_error
         rows_abc.append((om, rel, curve, fl.W_star * fl.Omega_star))
-        print(f"{om:6.1f} {r.t_jump:8.3f} {fl.W_star:9.5f} {fl.Omega_star:8.3f} {fl.W_star * fl.Omega_star:9.4f} {T:8.5f} "
-              f"{fl.gap_max:11.4e} {gm:11.4e} {rel:+8.3f} {curve:16.3e}")
-        ax.plot(tt, gaps, color="k", lw=1.8, label="numerical flight")
-        ax.plot(tt, exact, color="C2", lw=1, ls=":", label="exact (4.1)+(4.12)")
-        ax.plot(tt, np.maximum(series, 0), color="C3", ls="--", label=r"series (4.22)")
-        ax.set_title(fr"({'abc'[len(rows_abc) - 1]}) $\Omega_0={om:g}$: $W_*={fl.W_star:.4f}$, $\Omega_*={fl.Omega_star:.2f}$; "
-                     fr"$\Delta_{{max}}$ of (4.23) {100 * rel:+.1f}%", fontsize=9)
-        ax.set_xlabel(r"time since lift-off $t-t_*$ (units $\sqrt{b/g}$)")
-        ax.set_ylabel(r"gap $\Delta$ (units $b$)")
-        ax.legend(fontsize=8)
+        print(f"{om:6.1f} {r.t_jump:8.3f} {fl.W_star:9.5f} {fl.Omega_star:8.3f} {fl.W_star * fl.Omega_star:9.4f} "
+              f"{fl.t_touchdown - fl.t_liftoff:8.5f} {fl.gap_max:11.4e} {gm:11.4e} {rel:+8.3f} {curve:16.3e}")
+        title = (fr"({'abc'[len(rows_abc) - 1]}) $\Omega_0={om:g}$: $W_*={fl.W_star:.4f}$, $\Omega_*={fl.Omega_star:.2f}$; "
+                 fr"$\Delta_{{max}}$ of (4.23) {100 * rel:+.1f}%")
+        plot_gap_flight(ax, chk.t, chk.numerical, chk.exact, chk.series, title=title)
     return rows_abc
 
 
@@ -84,23 +68,6 @@ def ensemble(model, omegas, n_each, seed, st) -> list:
     return recs
 
 
-def draw_ensemble(ax, recs, omegas, seed) -> tuple[int, int, np.ndarray]:
-    recs_a = np.array([(q[0], q[3], q[4]) for q in recs], dtype=float)
-    ok = np.isfinite(recs_a[:, 1])
-    bound = (4.65 / recs_a[:, 0]) ** 5
-    over_exact = int(np.sum(recs_a[ok, 1] > bound[ok]))
-    over_series = int(np.sum(recs_a[ok, 2] > bound[ok]))
-    ax.semilogy(recs_a[ok, 0] - 0.3, recs_a[ok, 1], "k.", ms=4, label=r"$\Delta_{max}$ exact (numerical flight)")
-    ax.semilogy(recs_a[ok, 0] + 0.3, recs_a[ok, 2], "C3x", ms=4, label=r"$\Delta_{max}$ from (4.23)")
-    oo = np.linspace(omegas[0], omegas[-1], 200)
-    ax.semilogy(oo, (4.65 / oo) ** 5, "b-", lw=1.2, label=r"bound $(4.65/\Omega_0)^5$")
-    ax.set_xlabel(r"initial precession rate $\Omega_0$ (units $\sqrt{g/b}$)")
-    ax.set_ylabel(r"maximum gap $\Delta_{max}$ (units $b$)")
-    ax.set_title(f"(d) {int(ok.sum())} jumps from perturbations of amplitude 0.05 (seed {seed})", fontsize=9)
-    ax.legend(fontsize=8)
-    return over_exact, over_series, ok
-
-
 def main(argv=None) -> dict:
     st = pk.sweep.Study(__file__, __doc__, quick_help="Omega0 step 5 instead of 2.5, 5 members each instead of 10")
     st.parser.add_argument("--seed", type=st.parser.integer(min=0), default=2006,
@@ -113,7 +80,11 @@ def main(argv=None) -> dict:
     rows_abc = flights_abc(axes.flat[:3], model, body)
     omegas = np.arange(10.0, 41.0, 5.0 if args.quick else 2.5)
     recs = ensemble(model, omegas, 5 if args.quick else 10, args.seed, st)
-    over_exact, over_series, ok = draw_ensemble(axes[1, 1], recs, omegas, args.seed)
+    om, exact, series = np.array([(q[0], q[3], q[4]) for q in recs], dtype=float).T
+    ok = np.isfinite(exact)
+    over_exact, over_series = (int(np.sum(g[ok] > (4.65 / om[ok]) ** 5)) for g in (exact, series))
+    plot_gap_maxima(axes[1, 1], om[ok], exact[ok], series[ok], omegas,
+                    title=f"(d) {int(ok.sum())} jumps from perturbations of amplitude 0.05 (seed {args.seed})")
     fig.suptitle(r"Fig. 5: the gap during the first flight; prolate $a=1.5$, Coulomb $\mu=0.1$" "\n"
                  r"(a-c) from the sliding-branch start $\theta_0=\pi/2-0.01$, flight integrated at rtol $10^{-13}$; "
                  r"(d) from random perturbations of the horizontal steady precession, rtol $10^{-9}$", fontsize=10)

@@ -20,10 +20,10 @@ of the prolate scene.
 
 from __future__ import annotations
 
-import contextlib
 import sys
 
 import phasekit as pk
+from phasekit.viz import render_jump_surface
 
 import numpy as np
 
@@ -38,25 +38,14 @@ TREND_RANGE = {"prolate": (1.5, 10.0, 40.0), "oblate": (2 / 3, 9.0, 40.0)}
 
 
 def render(scenes, st, bar) -> tuple[dict, list]:
-    """Compute and draw each scene (files renamed into place when whole); the exports asked
-    for that could not be written."""
-    from phasekit.viz import render_scene  # the only place pyvista is needed
-
+    """Compute and draw each scene (Fig. 6a); the exports asked for that could not be written."""
     infos, missing = {}, []
     for stem, sc in scenes.items():
         data = pk.compute_scene(sc)
-        what = "horizontal precession, Omega0" if sc.branch == "prolate" else "vertical spin, n0"
-        title = (f"Fig. 6a, {sc.branch} a = {sc.a:.4g}, Coulomb mu = {sc.mu:g}, rtol 1e-9: surface (6.3) (colour), exact R = 0 at "
-                 f"Lambda = +-{data.exact_lambda:.3f} (green),\ntrajectories from the {what} = "
-                 + ", ".join(f"{v:g}" for v in sc.values) + f" (sliding-branch starts, d = {sc.seed_distance:g}; lines), "
-                 "R = 0 crossings (black), fixed points (red)")
         exports = {"gltf": st.args.gltf, "html": st.args.html} if stem == "jump_surface" else {}
-        with contextlib.ExitStack() as stack:  # every file written under a temporary name, then renamed
-            png = stack.enter_context(pk.sweep.atomic_path(st.path(f"{stem}.png")))
-            extra = {k: str(stack.enter_context(pk.sweep.atomic_path(st.path(f"{stem}.{k}")))) for k, on in exports.items() if on}
-            info = render_scene(data, png, title=title, **extra)
-            missing += [k for k, path in extra.items() if path not in info.exported]
+        info, miss = render_jump_surface(data, st.path(f"{stem}.png"), **exports)
         infos[stem] = (data, info)
+        missing += miss
         bar.update()
     return infos, missing
 

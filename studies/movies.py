@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 
-import phasekit as pk
+import phasekit as pk  # first: Ctrl-C while the libraries load ends in one line
 from phasekit.viz import animate, film_strip
 
 import numpy as np

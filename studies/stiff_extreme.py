@@ -21,6 +21,8 @@ import phasekit as pk
 import numpy as np
 
 P2 = math.pi / 2
+#: the paper's printed starts (5.2) (Omega0 = 10.5) and (5.1) (n0 = 10.5)
+P52, P51 = (list(pk.theory.PAPER_CASES[k].state(10.5)) for k in ("5.2", "5.1"))
 
 
 @dataclass
@@ -35,9 +37,7 @@ class Case:
 
 
 def cases(quick: bool) -> list[Case]:
-    C = pk.Coulomb
-    R = pk.RegularisedCoulomb
-    V = pk.Viscous
+    C, R, V = pk.Coulomb, pk.RegularisedCoulomb, pk.Viscous
     pro = dict(theta0=P2 - 0.01, omega0=10.5)
     obl = dict(theta0=0.05, n0=10.5)
     out = [
@@ -72,16 +72,14 @@ def cases(quick: bool) -> list[Case]:
         Case("eps = 1e-6, sliding start", 1.5, R(0.1, 1e-6), pro, 500.0),
         Case("eps = 1e-9, sliding start", 1.5, R(0.1, 1e-9), pro, 500.0),
         Case("eps = 1e-12, sliding start", 1.5, R(0.1, 1e-12), pro, 500.0),
-        Case("eps = 1e-3, start (5.2)", 1.5, R(0.1, 1e-3), dict(state=[7e-5, 2e-6, 10.5, -1e-4, P2 - 1e-3, 2e-2]), 500.0),
-        Case("eps = 1e-6, start (5.2) (sticks: stiff)", 1.5, R(0.1, 1e-6), dict(state=[7e-5, 2e-6, 10.5, -1e-4, P2 - 1e-3, 2e-2]), 300.0),
-        Case("eps = 1e-9, start (5.2) (sticks: stiff)", 1.5, R(0.1, 1e-9), dict(state=[7e-5, 2e-6, 10.5, -1e-4, P2 - 1e-3, 2e-2]), 100.0,
-             max_steps=300_000),
-        Case("eps = 1e-12, start (5.2) (sticks: stiff)", 1.5, R(0.1, 1e-12), dict(state=[7e-5, 2e-6, 10.5, -1e-4, P2 - 1e-3, 2e-2]), 100.0,
-             max_steps=300_000),
+        Case("eps = 1e-3, start (5.2)", 1.5, R(0.1, 1e-3), dict(state=P52), 500.0),
+        Case("eps = 1e-6, start (5.2) (sticks: stiff)", 1.5, R(0.1, 1e-6), dict(state=P52), 300.0),
+        Case("eps = 1e-9, start (5.2) (sticks: stiff)", 1.5, R(0.1, 1e-9), dict(state=P52), 100.0, max_steps=300_000),
+        Case("eps = 1e-12, start (5.2) (sticks: stiff)", 1.5, R(0.1, 1e-12), dict(state=P52), 100.0, max_steps=300_000),
         # the paper's printed starts
-        Case("paper (5.2), exact Coulomb", 1.5, C(0.1), dict(state=[7e-5, 2e-6, 10.5, -1e-4, P2 - 1e-3, 2e-2]), 500.0),
-        Case("paper (5.1), exact Coulomb", 2 / 3, C(0.1), dict(state=[8e-7, 4e-6, 0.4 * 10.5 / pk.Spheroid(2 / 3).A, 1e-5, 4e-6, 10.5]), 500.0),
-        Case("paper (5.1), viscous", 2 / 3, V(0.1), dict(state=[8e-7, 4e-6, 0.4 * 10.5 / pk.Spheroid(2 / 3).A, 1e-5, 4e-6, 10.5]), 2000.0),
+        Case("paper (5.2), exact Coulomb", 1.5, C(0.1), dict(state=P52), 500.0),
+        Case("paper (5.1), exact Coulomb", 2 / 3, C(0.1), dict(state=P51), 500.0),
+        Case("paper (5.1), viscous", 2 / 3, V(0.1), dict(state=P51), 2000.0),
         # tolerances
         Case("rtol = 1e-13, standard workload", 1.5, C(0.1), pro, 200.0, 1e-13),
         Case("rtol = 1e-3, standard workload", 1.5, C(0.1), pro, 200.0, 1e-3),
@@ -104,12 +102,9 @@ def run_case(c: Case) -> dict:
         model = pk.Model(body, c.law, chart)
         x0 = pk.to_chart(chart, y0)
         te = np.linspace(0.0, c.t_end, 201)
-        # with friction, stop once the rise is complete: theta falls through 0.05 (prolate) or
-        # rises through pi/2 - 0.05 (oblate)
-        rise = (pk.Event("theta", 0.05, direction=-1, name="rise-complete") if c.a > 1 else
-                pk.Event("theta", P2 - 0.05, direction=+1, name="rise-complete"))
+        # with friction, stop once the rise is complete
         r = pk.simulate(model, x0, c.t_end, rtol=c.rtol, t_eval=te, track_minima=False, max_steps=c.max_steps,
-                        events=[rise] if c.law.mu > 0 else [], dense=False)
+                        events=[pk.theory.rise_complete(body)] if c.law.mu > 0 else [], dense=False)
         # the start, the samples and the end state: a run that ends early still has two points
         X = np.vstack([x0[None, :]] + ([r.ys] if r.ys is not None and len(r.ys) else []) + [r.x[None, :]])
         E = model.evaluate("energy", X)

@@ -5,6 +5,7 @@ A study's own output (flags, folders, tables, Ctrl-C) is :mod:`phasekit.sweep`'s
 from .animate import AnimationInfo, animate, body_mesh, film_strip, render_body
 from .atlas import plot_atlas, plot_classes, signature_colours
 from .branches import plot_branch_planes, render_structure
+from .figures import plot_cost_growth, plot_regularisation, plot_work_precision
 from .maps import (
     OUTCOME_COLOURS,
     plot_flights,
@@ -19,7 +20,18 @@ from .maps import (
 )
 from .mpl import LABELS, label, plain_log_ticks, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
 from .output import pyplot, save_figure
+from .paper import (
+    plot_effective_friction,
+    plot_envelope,
+    plot_gap_flight,
+    plot_gap_maxima,
+    plot_mean_state,
+    plot_minima_envelope,
+    plot_reaction_to_jump,
+    render_jump_surface,
+)
 from .pv import RenderInfo, render_scene
+from .tippe import OUTCOME_STYLE, plot_hopping, plot_inversion_map, render_inversion
 
 __all__ = [
     "animate",
@@ -54,4 +66,22 @@ __all__ = [
     "LABELS",
     "pyplot",
     "save_figure",
+    # the paper's figures of a rise
+    "plot_reaction_to_jump",
+    "plot_envelope",
+    "plot_mean_state",
+    "plot_minima_envelope",
+    "plot_gap_flight",
+    "plot_gap_maxima",
+    "plot_effective_friction",
+    "render_jump_surface",
+    # accuracy and cost
+    "plot_work_precision",
+    "plot_regularisation",
+    "plot_cost_growth",
+    # the tippe top
+    "plot_inversion_map",
+    "plot_hopping",
+    "render_inversion",
+    "OUTCOME_STYLE",
 ]

@@ -1,0 +1,271 @@
+"""Simulations checked against the paper's theory (``phasekit.theory``).
+
+The event that ends a rise, the nutation of amplitude c and phase xi (3.46) added to a start on
+the sliding branch, the mean inclination at which the envelope Sigma (3.64) first reaches zero
+(the predicted jump), a simulated rise set beside the gyroscopic solution (3.18) and Sigma
+(:class:`EnvelopeCheck`), the friction coefficient that makes (3.18) fit a simulated theta(t)
+best (the effective friction of a bouncing rise), and a simulated first flight beside the gap
+of section 4 (:class:`FlightCheck`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .body import Body
+from .flight import flight_constants, fly, gap_exact, gap_max_series, gap_series
+from .gyroscopic import gyroscopic_closed, jellett_constant
+from .hybrid import Event
+from .multiscale import Gamma_closed, Sigma, mean_over_periods, omega_gyro, perturbation_from_c_xi, slow_rates
+
+__all__ = ["rise_complete", "add_nutation", "sigma_zero", "EnvelopeCheck", "envelope_check", "fit_gyroscopic_mu",
+           "FlightCheck", "flight_check"]
+
+#: the share of the minima of R on which the effective amplitude c_eff is fitted (the rest tests it)
+FIT_SHARE = 0.3
+
+
+def rise_complete(body: Body) -> Event:
+    """The event that ends a rise once it is complete (no jump any more): theta falls through
+    0.05 (a prolate body, rising from the horizontal) or rises through pi/2 - 0.05 (an oblate
+    one, rising from the vertical).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.rise_complete(pk.Spheroid(1.5)).name
+    'rise-complete'
+    """
+    if body.is_prolate:
+        return Event("theta", 0.05, direction=-1, name="rise-complete")
+    return Event("theta", np.pi / 2 - 0.05, direction=+1, name="rise-complete")
+
+
+def add_nutation(body: Body, start, mu: float, c: float, xi: float = 0.0) -> np.ndarray:
+    """A sliding-branch ``start`` (gyroscopic balance, :func:`phasekit.gyroscopic_start`; the
+    paper's state (U, V, Omega, Lambda, theta, n)) with the O(mu) mean state and the nutation of
+    amplitude ``c`` and phase ``xi`` added: the drift U = F_y / Omega of (2.7b) and the rise rate
+    mu dtheta/dT of (3.16b) (without them the start carries an extra nutation of a few times c),
+    then theta', Lambda' (3.46) and Omega' (3.27).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> y = pk.theory.add_nutation(body, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 0.1, -0.00054)
+    >>> y.shape, bool(abs(y[4] - (np.pi / 2 - 0.01)) < 1e-3)
+    ((6,), True)
+    """
+    theta0, om_bar0 = float(start[4]), float(start[2])
+    th_p, lam_p, om_p = perturbation_from_c_xi(body, theta0, om_bar0, mu, c, xi)
+    y = np.array(start, dtype=float)
+    _, dth_dT, vhat, _ = slow_rates(body, theta0, om_bar0)
+    y[0] += -mu * vhat / om_bar0
+    y[3] += mu * dth_dT
+    y[4] += th_p
+    y[3] += lam_p
+    y[2] += om_p
+    return y
+
+
+def sigma_zero(theta, sigma) -> float | None:
+    """The mean inclination at which the envelope ``sigma`` (sampled at ``theta``, in the order
+    of the rise) first reaches 0, interpolated linearly: the predicted jump; None if it does not.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> theta = np.linspace(1.5, 0.02, 500)
+    >>> z = pk.theory.sigma_zero(theta, pk.theory.Sigma(pk.Spheroid(1.5), 8.45, 1.5, theta, -0.00054))
+    >>> 0.02 < z < 1.5
+    True
+    """
+    k = np.flatnonzero(sigma <= 0)
+    if k.size == 0:
+        return None
+    k = k[0]
+    if k == 0:
+        return float(theta[0])
+    return float(theta[k - 1] + (theta[k] - theta[k - 1]) * sigma[k - 1] / (sigma[k - 1] - sigma[k]))
+
+
+@dataclass(frozen=True)
+class EnvelopeCheck:
+    """A simulated rise beside the gyroscopic solution (3.18) and the envelope Sigma (3.64)
+    (made by :func:`envelope_check`). Arrays: ``t``, ``theta``, ``R`` (the run sampled every
+    dt); ``t_min``, ``R_min`` (the located minima of R); ``t_mid``, ``theta_bar``,
+    ``Omega_bar`` (means over each fast period, between successive minima, (3.6)) and
+    ``theta_gyro``, ``Omega_gyro`` ((3.18) at the same times); ``theta_at_min`` (theta-bar
+    interpolated at each minimum), ``valid`` (the minima inside the averaged span), ``sigma``
+    (Sigma with the nominal ``c``) and ``sigma_fit`` (with ``c_eff``, fitted on the first 30%
+    of the valid minima). ``J`` = A Omega h (3.17) of the unperturbed start.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.theory.add_nutation(body, y0, 0.1, -0.00054), 60.0)
+    >>> chk = pk.theory.envelope_check(traj, y0, -0.00054, dt=0.01)
+    >>> len(chk.errors()), bool(chk.valid.any())
+    (6, True)
+    """
+
+    t: np.ndarray
+    theta: np.ndarray
+    R: np.ndarray
+    t_min: np.ndarray
+    R_min: np.ndarray
+    t_mid: np.ndarray
+    theta_bar: np.ndarray
+    Omega_bar: np.ndarray
+    theta_gyro: np.ndarray
+    Omega_gyro: np.ndarray
+    theta_at_min: np.ndarray
+    valid: np.ndarray
+    sigma: np.ndarray
+    sigma_fit: np.ndarray
+    c: float
+    c_eff: float
+    J: float
+
+    def errors(self) -> tuple[float, float, float, float, float, float]:
+        """RMS and max of: the gyroscopic theta-bar - the period means of theta; Sigma(c) - the
+        minima of R; Sigma(c_eff) - the minima of R over the part of the rise not used to fit
+        c_eff."""
+        e_th = self.theta_bar - self.theta_gyro
+        ok = self.valid & np.isfinite(self.sigma)
+        e_s = self.R_min[ok] - self.sigma[ok]
+        idx = np.flatnonzero(ok)
+        late = idx[max(3, int(FIT_SHARE * idx.size)):]
+        e_f = self.R_min[late] - self.sigma_fit[late]
+        rms = lambda e: float(np.sqrt(np.mean(e**2))) if e.size else float("nan")  # noqa: E731
+        mx = lambda e: float(np.max(np.abs(e))) if e.size else float("nan")  # noqa: E731
+        return rms(e_th), mx(e_th), rms(e_s), mx(e_s), rms(e_f), mx(e_f)
+
+
+def envelope_check(traj, start, c: float, *, dt: float) -> EnvelopeCheck:
+    """Set a simulated rise of a spheroid (with dense output and its minima of R, the defaults
+    of :func:`phasekit.simulate`) beside the gyroscopic solution and the envelope Sigma of the
+    sliding-branch ``start`` (the paper's state, before :func:`add_nutation`) with nutation
+    amplitude ``c``, sampled every ``dt``: see :class:`EnvelopeCheck`. The
+    effective amplitude c_eff is fitted on the first 30% of the minima only, so that the rest of
+    the rise tests the growth law Gamma(theta-bar) out of sample.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> y0 = pk.gyroscopic_start(body, 1.56, omega0=10.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), y0, 40.0)
+    >>> pk.theory.envelope_check(traj, y0, -0.00054, dt=0.01).J > 0
+    True
+    """
+    model = traj.model
+    body, mu = model.body, model.friction.mu
+    theta0, om_bar0 = float(start[4]), float(start[2])
+    J = float(jellett_constant(body, theta0, om_bar0))
+    ts = np.arange(0.0, traj.t, dt)
+    ys = traj.states(ts)  # the Euler chart: the paper's (U, V, Omega, Lambda, theta, n)
+    theta, Omega = ys[:, 4], ys[:, 2]
+    tm, Rm = traj.minima[:, 0], traj.minima[:, 1]
+    t_mid, th_bar = mean_over_periods(ts, theta, tm)
+    _, om_bar = mean_over_periods(ts, Omega, tm)
+    th_gyro, om_gyro = gyroscopic_closed(body.a, J, theta0, mu * t_mid)
+    # Sigma at the simulated mean inclination at each minimum of R
+    th_at_min = np.interp(tm, t_mid, th_bar) if t_mid.size else np.full_like(tm, np.nan)
+    valid = (tm >= t_mid[0]) & (tm <= t_mid[-1]) if t_mid.size else np.zeros_like(tm, bool)
+    sig = np.full_like(tm, np.nan)
+    sig_fit = np.full_like(tm, np.nan)
+    c_eff = np.nan
+    if valid.any():
+        sig[valid] = Sigma(body, J, theta0, th_at_min[valid], c, form="closed")
+        idx = np.flatnonzero(valid)
+        early = idx[: max(3, int(FIT_SHARE * idx.size))]
+        th_e = th_at_min[early]
+        om_e = J / (body.A * body.h(th_e)[0])
+        scale = np.abs(body.h(th_e)[1] * omega_gyro(body, th_e, om_e) ** 2 * Gamma_closed(body, J, theta0, th_e))
+        c_eff = float(np.median((1 - Rm[early]) / scale)) * np.sign(c)
+        sig_fit[valid] = Sigma(body, J, theta0, th_at_min[valid], c_eff, form="closed")
+    return EnvelopeCheck(ts, theta, model.normal_reaction(ys), tm, Rm, t_mid, th_bar, om_bar, th_gyro, om_gyro, th_at_min,
+                         valid, sig, sig_fit, c, c_eff, J)
+
+
+def fit_gyroscopic_mu(ts, theta, a: float, J: float, theta0: float, mu0: float) -> tuple[float, float]:
+    """The friction coefficient mu for which the gyroscopic solution (3.18) of a spheroid of
+    aspect ratio ``a`` (slow time T = mu t) fits the simulated ``theta`` at ``ts`` best (least
+    squares, from ``mu0``): (mu, its standard error). On a rise with bouncing: the effective
+    friction mu_e.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> ts = np.linspace(0.0, 100.0, 50)
+    >>> theta = pk.theory.gyroscopic_closed(1.5, 6.8, 1.5, 0.1 * ts)[0]
+    >>> round(pk.theory.fit_gyroscopic_mu(ts, theta, 1.5, 6.8, 1.5, 0.08)[0], 6)
+    0.1
+    """
+    from scipy.optimize import curve_fit
+
+    f = lambda t, mu: gyroscopic_closed(a, J, theta0, mu * t)[0]  # noqa: E731
+    p, cov = curve_fit(f, ts, theta, p0=[mu0])
+    return float(p[0]), float(np.sqrt(cov[0, 0]))
+
+
+@dataclass(frozen=True)
+class FlightCheck:
+    """A simulated first flight beside the gap of section 4 (made by :func:`flight_check`):
+    ``flight`` (the :class:`phasekit.Flight`), the time since lift-off ``t`` and at those times
+    the gap of the flight integrated again at a tight tolerance (``numerical``), the exact
+    solution (4.1)+(4.12) (``exact``) and the series (4.22) with the computed Omega* and W*
+    (``series``); the largest gap by (4.23) (``gap_max_series``), its relative error against the
+    flight's (``rel_error``), and the largest difference of the series from the exact curve
+    relative to its maximum (``curve_error``).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=20.0), 400.0,
+    ...                    stop_at="touchdown")
+    >>> chk = pk.theory.flight_check(traj, n=50)
+    >>> chk.t.shape, abs(chk.rel_error) < 0.5
+    ((50,), True)
+    """
+
+    flight: object
+    t: np.ndarray
+    numerical: np.ndarray
+    exact: np.ndarray
+    series: np.ndarray
+    gap_max_series: float
+    rel_error: float
+    curve_error: float
+
+
+def flight_check(traj, *, n: int = 400, rtol: float = 1e-13) -> FlightCheck:
+    """Set the first flight of ``traj`` (a run to its first touchdown) beside the theory of the
+    flight, at ``n`` times over the flight; the numerical gap comes from the flight integrated
+    again from the jump at ``rtol`` (:func:`fly`, its dense output). See :class:`FlightCheck`.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 400.0,
+    ...                    stop_at="touchdown")
+    >>> pk.theory.flight_check(traj, n=50).curve_error < 0.5
+    True
+    """
+    model, fl = traj.model, traj.flights[0]
+    T = fl.t_touchdown - fl.t_liftoff
+    te = fl.t_liftoff + np.linspace(0, T, n)
+    # the flight again at rtol, its states (with the gap, index 8) from the dense output
+    gaps = fly(model, traj.x_jump, traj.t_jump, traj.t_jump + 2 * T, rtol=rtol).segments[0].states(te)[:, 8]
+    tt = te - fl.t_liftoff
+    exact = gap_exact(model.body, flight_constants(model.body, traj.x_jump, fl.W_star), tt)
+    series = gap_series(fl.Omega_star, fl.W_star, tt)
+    gm, _ = gap_max_series(fl.Omega_star, fl.W_star)
+    return FlightCheck(fl, tt, gaps, exact, series, gm, gm / fl.gap_max - 1, float(np.max(np.abs(series - exact)) / np.max(exact)))
