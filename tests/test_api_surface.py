@@ -10,6 +10,7 @@ import doctest
 import importlib
 import inspect
 import re
+import sys
 import tomllib
 from pathlib import Path
 
@@ -85,7 +86,11 @@ def _modules():
 @pytest.mark.parametrize("module", _modules())
 def test_the_docstring_examples_run(module, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    res = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    try:
+        res = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    finally:
+        if "matplotlib.pyplot" in sys.modules:  # the examples draw figures and keep them open
+            sys.modules["matplotlib.pyplot"].close("all")
     assert res.failed == 0
 
 
