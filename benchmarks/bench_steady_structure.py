@@ -24,30 +24,15 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import importlib.util
 import json
 import os
 import sys
 import time
-from pathlib import Path
 
 import phasekit as pk
 
 import numpy as np
-
-ROOT = Path(__file__).resolve().parents[1]
-
-
-def load(name: str):
-    spec = importlib.util.spec_from_file_location(name, ROOT / "studies" / f"{name}.py")
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    import cloudpickle
-
-    cloudpickle.register_pickle_by_value(mod)  # Dask workers cannot import a study by name
-    return mod
-
+from _studies import load
 
 BODIES = {"spheroid a=1.5 offset=0.2": lambda: pk.Spheroid(1.5, offset=0.2),
           "tippe top 0.3, A/C 0.95": lambda: pk.EccentricSphere(0.3, A=0.38, C=0.4),
