@@ -32,6 +32,7 @@ from .atlas import (
 from .batch import BatchStats, compile_batch
 from .maps import (
     OUTCOME_KINDS,
+    OutcomeMapPlan,
     OutcomeRow,
     SearchRow,
     ThresholdRow,
@@ -39,6 +40,7 @@ from .maps import (
     group_search_tasks,
     outcome_class,
     outcome_key,
+    outcome_map_report,
     outcome_map_summary,
     outcome_task,
     search_job,
@@ -85,4 +87,6 @@ __all__ = [
     "ThresholdSearch", "run_searches", "evaluate_outcomes", "Outcome", "Sensitivity", "BatchStats", "compile_batch",
     # the scaffold of a study script
     "Study", "run_study", "save_figure", "write_csv", "write_json", "atomic_path",
+    # an outcome map's tasks and report
+    "OutcomeMapPlan", "outcome_map_report",
 ]
