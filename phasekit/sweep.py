@@ -6,6 +6,7 @@ studies, the searches behind them, batch compilation, and the scaffold of a stud
 * Rows and their tasks (:mod:`phasekit.maps`): :class:`ThresholdRow`, :class:`SearchRow`,
   :class:`OutcomeRow`, :func:`search_job`, :func:`group_search_tasks`, ..., and what the studies
   read off them: :func:`outcome_map_summary`, :func:`threshold_collapse`, ...
+* The spinning egg (:mod:`phasekit.eggs`): :func:`which_end`, :class:`EndRow`, :class:`EggDefinition`, ...
 * Atlases of steady-state structure (:mod:`phasekit.atlas`): :class:`AtlasRow`, :func:`trace_boundary`, ...
 * Searches in lock-step (:mod:`phasekit.threshold`): :class:`ThresholdSearch`, :func:`run_searches`,
   :func:`evaluate_outcomes`, :class:`Outcome`, :class:`Sensitivity`.
@@ -30,6 +31,7 @@ from .atlas import (
     trace_boundary,
 )
 from .batch import BatchStats, compile_batch
+from .eggs import EggDefinition, EndRow, egg_separatrix, which_end, which_end_key, which_end_starts, which_end_summary
 from .maps import (
     OUTCOME_KINDS,
     OutcomeMapPlan,
@@ -89,4 +91,6 @@ __all__ = [
     "Study", "run_study", "save_figure", "write_csv", "write_json", "atomic_path",
     # an outcome map's tasks and report
     "OutcomeMapPlan", "outcome_map_report",
+    # the spinning egg: which end it rises onto, its threshold from the horizontal-like state
+    "egg_separatrix", "which_end_starts", "EndRow", "which_end", "which_end_key", "which_end_summary", "EggDefinition",
 ]
