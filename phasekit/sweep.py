@@ -24,9 +24,13 @@ from .atlas import (
     AtlasPanel,
     AtlasRow,
     BoundaryRow,
+    atlas_edge_key,
     atlas_edges,
+    atlas_grid,
+    atlas_point_key,
     atlas_representatives,
     axis_values,
+    bifurcation_pairs,
     is_class,
     trace_boundary,
 )
@@ -93,4 +97,6 @@ __all__ = [
     "OutcomeMapPlan", "outcome_map_report",
     # the spinning egg: which end it rises onto, its threshold from the horizontal-like state
     "egg_separatrix", "which_end_starts", "EndRow", "which_end", "which_end_key", "which_end_summary", "EggDefinition",
+    # atlases: their grid and keys, the bifurcations on their boundaries
+    "atlas_grid", "atlas_point_key", "atlas_edge_key", "bifurcation_pairs",
 ]
