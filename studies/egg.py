@@ -63,14 +63,13 @@ def threshold_rows(cfg: dict, st) -> tuple[list[dict], list[dict]]:
     out = []
     for start, rel in (("pi/2 - 0.01", False), ("theta_h - 0.01", True)):
         defn = pk.sweep.EggDefinition("egg-sliding", "sliding", mu=MU, t_max=cfg["t_max"], from_horizontal_like=rel)
-        guess = None
-        for w in st.progress(cfg["threshold_ws"], desc=f"egg thresholds from {start}"):
-            th = pk.find_threshold(defn, pk.Egg(A_HEN, w), hi=40.0, lo=3.0, guess=guess, tol=2e-3)
-            out.append({"start": start, "w": w, "threshold": th.value, "bracket_lo": th.bracket[0], "bracket_hi": th.bracket[1],
-                        "status": th.status.value, "n_sims": th.n_sims,
-                        "n_settled": sum(1 for o in th.outcomes if o.status is pk.Status.SETTLED), "wall_s": th.wall_s})
-            # n_settled: runs ended by the settle rule (before issue 24: by the first stick or the rise)
-            guess = th.value or guess
+        ths = pk.continue_threshold(defn, [pk.Egg(A_HEN, w) for w in cfg["threshold_ws"]], hi=40.0, lo=3.0, tol=2e-3,
+                                    progress=st.show)
+        # n_settled: runs ended by the settle rule (before issue 24: by the first stick or the rise)
+        out += [{"start": start, "w": w, "threshold": th.value, "bracket_lo": th.bracket[0], "bracket_hi": th.bracket[1],
+                 "status": th.status.value, "n_sims": th.n_sims,
+                 "n_settled": sum(1 for o in th.outcomes if o.status is pk.Status.SETTLED), "wall_s": th.wall_s}
+                for w, th in zip(cfg["threshold_ws"], ths)]
     checks = []
     default = pk.Definition("sliding", "sliding", mu=MU, t_max=cfg["t_max"])
     for w in (0.0, 0.02):
