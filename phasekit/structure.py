@@ -1003,7 +1003,7 @@ def manifold_runs(structure: SteadyStructure, *, omega_range, seed_delta: float,
     >>> s = pk.steady_structure(pk.Spheroid(1.5, offset=0.2), pk.Viscous(0.1))
     >>> runs = pk.theory.manifold_runs(s, omega_range=(2.0, 6.0), seed_delta=0.01, t_end=5.0)
     >>> len(runs["trajectories"]), runs["trajectories"][0].shape[1], sorted(runs["state"])
-    (2, 3, ['Omega', 'classification', 'n', 'theta'])
+    (6, 3, ['Omega', 'classification', 'n', 'theta'])
     """
     from .manifolds import unstable_seeds
     from .simulate import simulate
