@@ -6,9 +6,11 @@ of body parameters, and the boundaries between its classes.
   offset by half a cell (no point on a measure-zero boundary such as A = C).
 * :class:`AtlasRow` (a body's signature) and :class:`BoundaryRow` (a traced boundary point), as
   stored by :class:`phasekit.sweep.ResultStore`.
+* :func:`atlas_grid` (the points of the panels), keyed by :func:`atlas_point_key`.
 * :func:`atlas_edges` (neighbours whose signatures differ), :func:`trace_boundary` (bisection on
   the signature along one of them, naming the bifurcation), :func:`is_class`,
-  :func:`atlas_representatives` (one body per class).
+  :func:`atlas_representatives` (one body per class), :func:`bifurcation_pairs` (the class pairs
+  each bifurcation separates). A traced edge is keyed by :func:`atlas_edge_key`.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ import numpy as np
 from .structure import bifurcation_between
 
 __all__ = ["AtlasPanel", "AtlasRow", "BoundaryRow", "axis_values", "atlas_edges", "trace_boundary", "is_class",
-           "atlas_representatives"]
+           "atlas_representatives", "atlas_grid", "atlas_point_key", "atlas_edge_key", "bifurcation_pairs"]
 
 
 class AtlasPanel(NamedTuple):
@@ -196,3 +198,63 @@ def atlas_representatives(rows, classes, panels) -> dict:
             out[sig] = pts[k]
             break
     return out
+
+
+def atlas_grid(panels: dict, n: int) -> list[tuple]:
+    """The points ``(panel, x, y, 0.0)`` of an ``n`` x ``n`` grid (:func:`axis_values`) over
+    each 2-D panel (``panels``: name -> :class:`AtlasPanel`), x the outer loop.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> P = {"demo": pk.sweep.AtlasPanel("demo", "x", "y", (0.0, 1.0), (0.0, 1.0), False, False)}
+    >>> pk.sweep.atlas_grid(P, 2)
+    [('demo', 0.25, 0.25, 0.0), ('demo', 0.25, 0.75, 0.0), ('demo', 0.75, 0.25, 0.0), ('demo', 0.75, 0.75, 0.0)]
+    """
+    pts = []
+    for panel, (_, _, _, xr, yr, logx, logy) in panels.items():
+        pts += [(panel, float(x), float(y), 0.0) for x in axis_values(xr, n, logx) for y in axis_values(yr, n, logy)]
+    return pts
+
+
+def atlas_point_key(panel: str, x: float, y: float, z: float) -> str:
+    """The key of an :class:`AtlasRow`.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.sweep.atlas_point_key("tippe-top", 0.3, 1.2, 0.0)
+    'tippe-top|0.3|1.2|0'
+    """
+    return f"{panel}|{x:.12g}|{y:.12g}|{z:.12g}"
+
+
+def atlas_edge_key(panel: str, p, q, span: float | None = None) -> str:
+    """The key of a :class:`BoundaryRow` traced along the edge from ``p`` to ``q`` (an
+    :func:`atlas_edges` item; its span is not part of the key).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.sweep.atlas_edge_key("tippe-top", (0.3, 1.2), (0.3, 1.4), 1.5)
+    'edge|tippe-top|0.3|1.2|0.3|1.4'
+    """
+    return f"edge|{panel}|{p[0]:.12g}|{p[1]:.12g}|{q[0]:.12g}|{q[1]:.12g}"
+
+
+def bifurcation_pairs(bounds) -> dict:
+    """The bifurcations found on traced boundaries (:class:`BoundaryRow`), in the order of their
+    names, each with the sorted class pairs it separates (``"a <-> b"``, the pair's
+    signatures in order).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> b = [pk.sweep.BoundaryRow("k", "demo", 0.3, 0.7, 1e-4, "b", "a", "saddle-node")]
+    >>> pk.sweep.bifurcation_pairs(b)
+    {'saddle-node': ['a <-> b']}
+    """
+    names = {}
+    for b in bounds:
+        names.setdefault(b.bifurcation, set()).add(tuple(sorted((b.below, b.above))))
+    return {k: sorted(" <-> ".join(p) for p in v) for k, v in sorted(names.items())}

@@ -13,6 +13,8 @@ module: the task runner is :mod:`phasekit.tasks`).
 * The stored rows as text tables (the studies' reports): :func:`threshold_table`,
   :func:`definition_sensitivity_table`, :func:`threshold_grid_table`, :func:`seed_sensitivity_table`.
 * :func:`threshold_chain`: the tasks of one threshold curve, each seeded by its neighbour's.
+* :class:`OutcomeMapPlan`: the tasks of an outcome map (its sampled starts and traced boundaries),
+  and :func:`outcome_map_report`, its summary as text.
 * :func:`stability_grid`: part I's linear-stability map of the steady states over (a, rate).
 """
 
@@ -28,7 +30,7 @@ from functools import partial
 import numpy as np
 
 from .errors import SearchStatus, Status
-from .tasks import TaskSpec
+from .tasks import TaskSpec, chunked
 from .threshold import (
     Definition,
     evaluate_outcomes,
@@ -41,7 +43,7 @@ from .threshold import (
 
 __all__ = ["ThresholdRow", "threshold_task", "threshold_key", "threshold_chain", "SearchRow", "search_job",
            "search_group_task", "group_search_tasks", "OutcomeRow", "outcome_task", "outcome_key", "OUTCOME_KINDS", "outcome_class",
-           "outcome_map_summary", "threshold_collapse", "threshold_against_d", "stability_grid", "threshold_table",
+           "outcome_map_summary", "OutcomeMapPlan", "outcome_map_report", "threshold_collapse", "threshold_against_d", "stability_grid", "threshold_table",
            "definition_sensitivity_table", "threshold_grid_table", "seed_sensitivity_table"]
 
 #: the classes of an :class:`OutcomeRow`, in the order the studies count and draw them
@@ -416,6 +418,119 @@ def threshold_chain(defn, a_values, search: dict, *, group: str = "main", is_def
         specs.append(TaskSpec(key, threshold_task, (asdict(defn), a, group, is_default, search, engine, levels), after=prev))
         prev = key
     return specs
+
+
+@dataclass(frozen=True)
+class OutcomeMapPlan:
+    """The tasks of an outcome map (studies/outcome_map.py): starts of ``definition`` at seed
+    distance d in ``d_range`` (log-spaced) and family parameter (Omega0 or n0) from
+    ``value_span[0]`` to ``value_span[1]`` times the definition's lower bound at each aspect
+    ratio, classified in chunks (:func:`outcome_task`); and the boundaries traced between them
+    (:func:`search_job`, several in lock-step per task): the jump threshold along d-lines
+    (``threshold_search``) and the sticking boundary d_min along value-lines (``stick_search``),
+    with value-lines added where d_min turns a corner (:meth:`corners`).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> plan = pk.sweep.OutcomeMapPlan(pk.Definition("sliding", "sliding"), {}, {}, (1e-3, 0.2), (2.0, 12.0))
+    >>> specs, keys = plan.grid_tasks([1.5], n_value=3, n_d=2, chunk=4)
+    >>> len(specs), sum(len(k) for k in keys.values())
+    (2, 6)
+    >>> specs, members = plan.boundary_tasks({("threshold", 1.5, 0.01), ("stick", 1.5, 8.0)}, per_task=2)
+    >>> len(specs), sum(len(k) for k in members.values())
+    (1, 2)
+    """
+
+    definition: Definition
+    threshold_search: dict
+    stick_search: dict
+    d_range: tuple
+    value_span: tuple
+    steep: float = 2.0  # the d_min ratio between neighbouring value-lines above which a line is added between them
+    study: str = ""
+    engine: str = "batch"
+
+    def value_range(self, a: float) -> tuple[float, float]:
+        """The family parameter's range at aspect ratio ``a``."""
+        lo = self.definition.lower_bound(a)
+        return self.value_span[0] * lo, self.value_span[1] * lo
+
+    def grid_tasks(self, maps, *, n_value: int, n_d: int, chunk: int) -> tuple[list[TaskSpec], dict]:
+        """Tasks of ``chunk`` sampled starts each (an ``n_d`` x ``n_value`` grid per aspect ratio
+        in ``maps``); returns them and each task's row keys."""
+        base = self.definition
+        task = partial(outcome_task, study=self.study, engine=self.engine)
+        specs, keys = [], {}
+        for a in maps:
+            vs = np.geomspace(*self.value_range(a), n_value)
+            points = [(a, float(d), float(v)) for d in np.geomspace(*self.d_range, n_d) for v in vs]
+            s, k = chunked(points, lambda aa, d, v: outcome_key(replace(base, amplitude=d), aa, v), task, size=chunk,
+                           args=(asdict(base),), prefix=f"grid|a={a:.10g}", cost=3.0)
+            specs += s
+            keys.update(k)
+        return specs, keys
+
+    def lines(self, a_values, *, d_first: float, n_d: int, n_value: int) -> set:
+        """The boundaries to trace at each aspect ratio: ``n_d`` d-lines from ``d_first`` to the
+        top of the d range and ``n_value`` value-lines over the value range, as
+        ``(kind, a, d or value)``."""
+        points = set()
+        for a in a_values:
+            points |= {("threshold", a, float(d)) for d in np.geomspace(d_first, self.d_range[1], n_d)}
+            points |= {("stick", a, float(v)) for v in np.geomspace(*self.value_range(a), n_value)}
+        return points
+
+    def boundary_tasks(self, points, *, per_task: int) -> tuple[list[TaskSpec], dict]:
+        """The tasks tracing ``points`` (:meth:`lines`), ``per_task`` searches each
+        (:func:`group_search_tasks`); returns them and each task's row keys."""
+        jobs, costs = [], []
+        for kind, a, x in sorted(points):
+            if kind == "threshold":
+                jobs.append(search_job(asdict(replace(self.definition, amplitude=x)), a, self.threshold_search))
+                costs.append(1.0 + 0.3 / abs(a - 1))
+            else:
+                jobs.append(search_job(asdict(self.definition), a, self.stick_search, kind="stick", value=x))
+                costs.append(3.0)
+        return group_search_tasks(jobs, costs, per_task=per_task, study=self.study, engine=self.engine)
+
+    def corners(self, searches, maps) -> set:
+        """Where the traced sticking boundary of a map turns a corner (d_min changes by more than
+        a factor ``steep`` between neighbouring value-lines, or one of them sticks at every d): a
+        new value-line halfway (geometrically), so that the boundary is traced there too, not
+        drawn as a straight line across the corner."""
+        points = set()
+        for a in maps:
+            st = sorted((s.value, self.d_range[1] if s.status == "no_jump_in_range" else s.threshold)
+                        for s in searches if s.kind == "stick" and abs(s.a - a) < 1e-12)
+            for (v1, d1), (v2, d2) in zip(st, st[1:]):
+                if d1 and d2 and max(d1 / d2, d2 / d1) > self.steep and v2 / v1 > 1.01:
+                    points.add(("stick", a, float(math.sqrt(v1 * v2))))
+        return points
+
+
+def outcome_map_report(summary: dict) -> str:
+    """Outcome maps' summaries (:func:`outcome_map_summary`, keyed by map) as text: per map its
+    classes, the ranges of t* and of the rise share at the jump, the sampled starts against the
+    traced threshold, and the traced boundaries.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> s = {"counts": {"jump": 1}, "t_jump_range": [1.0, 1.0], "rise_fraction_range": [0.5, 0.5],
+    ...      "grid_disagreements": {}, "threshold_vs_d": [(0.01, 9.75, "converged")], "d_min_vs_value": []}
+    >>> print(pk.sweep.outcome_map_report({"a=1.5": s}).splitlines()[1])
+        jump threshold against d: d=0.01: 9.75
+    """
+    lines = []
+    for k, v in summary.items():
+        lines.append(f"  {k}: classes {v['counts']}; t* {v['t_jump_range']}; rise share at the jump {v['rise_fraction_range']}; "
+                     f"sampled starts against the traced threshold (3% margin): {v['grid_disagreements']}")
+        lines.append("    jump threshold against d: " + ", ".join(f"d={d:.3g}: {t:.4g}" if t else f"d={d:.3g}: {s}"
+                                                              for d, t, s in v["threshold_vs_d"]))
+        lines.append("    d_min against the family parameter: " + ", ".join(f"{x:.3g}: {t:.3g}" if t else f"{x:.3g}: {s}"
+                                                                        for x, t, s in v["d_min_vs_value"]))
+    return "\n".join(lines)
 
 
 # -- what the studies read off the stored rows ----------------------------------------------------

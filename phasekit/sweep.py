@@ -6,6 +6,7 @@ studies, the searches behind them, batch compilation, and the scaffold of a stud
 * Rows and their tasks (:mod:`phasekit.maps`): :class:`ThresholdRow`, :class:`SearchRow`,
   :class:`OutcomeRow`, :func:`search_job`, :func:`group_search_tasks`, ..., and what the studies
   read off them: :func:`outcome_map_summary`, :func:`threshold_collapse`, ...
+* The spinning egg (:mod:`phasekit.eggs`): :func:`which_end`, :class:`EndRow`, :class:`EggDefinition`, ...
 * Atlases of steady-state structure (:mod:`phasekit.atlas`): :class:`AtlasRow`, :func:`trace_boundary`, ...
 * Searches in lock-step (:mod:`phasekit.threshold`): :class:`ThresholdSearch`, :func:`run_searches`,
   :func:`evaluate_outcomes`, :class:`Outcome`, :class:`Sensitivity`.
@@ -23,15 +24,21 @@ from .atlas import (
     AtlasPanel,
     AtlasRow,
     BoundaryRow,
+    atlas_edge_key,
     atlas_edges,
+    atlas_grid,
+    atlas_point_key,
     atlas_representatives,
     axis_values,
+    bifurcation_pairs,
     is_class,
     trace_boundary,
 )
 from .batch import BatchStats, compile_batch
+from .eggs import EggDefinition, EndRow, egg_separatrix, which_end, which_end_key, which_end_starts, which_end_summary
 from .maps import (
     OUTCOME_KINDS,
+    OutcomeMapPlan,
     OutcomeRow,
     SearchRow,
     ThresholdRow,
@@ -39,6 +46,7 @@ from .maps import (
     group_search_tasks,
     outcome_class,
     outcome_key,
+    outcome_map_report,
     outcome_map_summary,
     outcome_task,
     search_job,
@@ -85,4 +93,10 @@ __all__ = [
     "ThresholdSearch", "run_searches", "evaluate_outcomes", "Outcome", "Sensitivity", "BatchStats", "compile_batch",
     # the scaffold of a study script
     "Study", "run_study", "save_figure", "write_csv", "write_json", "atomic_path",
+    # an outcome map's tasks and report
+    "OutcomeMapPlan", "outcome_map_report",
+    # the spinning egg: which end it rises onto, its threshold from the horizontal-like state
+    "egg_separatrix", "which_end_starts", "EndRow", "which_end", "which_end_key", "which_end_summary", "EggDefinition",
+    # atlases: their grid and keys, the bifurcations on their boundaries
+    "atlas_grid", "atlas_point_key", "atlas_edge_key", "bifurcation_pairs",
 ]

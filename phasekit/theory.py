@@ -59,7 +59,7 @@ from .paper_checks import (
     rise_complete,
     sigma_zero,
 )
-from .structure import RollingMotion, rolling_motion
+from .structure import RollingMotion, manifold_runs, rolling_motion, settled_motion
 from .surface import exact_boundary, surface_n
 from .tippe_inversion import InversionRun, inversion_run, inversion_summary, simulate_inversion
 
@@ -86,4 +86,6 @@ __all__ = [
     "PAPER_CASES", "PaperCase", "tippetop",
     # the tippe top's inversion simulated and classified beside the predictions of tippetop
     "simulate_inversion", "inversion_run", "InversionRun", "inversion_summary",
+    # runs against the steady-state structure: from a branch state's unstable manifold, and what a run settles into
+    "manifold_runs", "settled_motion",
 ]

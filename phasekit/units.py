@@ -206,6 +206,31 @@ class Scale:
             return out
         return self.quantity(value, kind).to(unit)
 
+    def flight(self, flight) -> dict:
+        """A flight (:class:`phasekit.Flight`) in real units, as numbers: ``t_liftoff``,
+        ``t_touchdown``, ``duration`` and ``t_gap_max`` in ms, ``gap_max`` in mm (each as
+        :meth:`to_real` gives it; None where the flight has none: no touchdown, no located
+        maximum), and ``theta_liftoff``, the axis angle at lift-off in radians.
+
+        >>> import numpy as np, phasekit as pk
+        >>> egg, sc = pk.egg_of_size("57 mm", "43 mm")
+        >>> y0 = pk.gyroscopic_start(egg, np.pi / 2 - 0.01, omega0=sc.dimensionless("50 rev/s"))
+        >>> r = pk.simulate(pk.Model(egg, pk.Coulomb(0.1)), y0, 400.0, stop_at="touchdown")
+        >>> f = sc.flight(r.flights[0])
+        >>> round(f["duration"], 1), round(f["gap_max"] * 1e3, 1)  # ms, micrometres
+        (8.2, 16.4)
+        """
+        from .starts import to_paper
+
+        def real(x, kind):
+            return None if x is None else float(self.to_real(x, kind).magnitude)
+
+        done = flight.t_touchdown is not None
+        return {"t_liftoff": real(flight.t_liftoff, "time"), "t_touchdown": real(flight.t_touchdown, "time"),
+                "duration": real(flight.t_touchdown - flight.t_liftoff, "time") if done else None,
+                "gap_max": real(flight.gap_max, "length"), "t_gap_max": real(flight.t_gap_max, "time"),
+                "theta_liftoff": float(to_paper("vector", flight.x_liftoff[:8])[4])}
+
     def table(self, df):
         """A sampled table (:meth:`phasekit.Trajectory.sample`, a section, any DataFrame with
         those column names) in real units: each column of :data:`COLUMN_KINDS` converted to its

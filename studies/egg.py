@@ -41,8 +41,6 @@ from __future__ import annotations
 
 import json
 import math
-import time
-from dataclasses import dataclass
 
 import phasekit as pk
 from phasekit.viz import plot_threshold_against, plot_which_end
@@ -61,84 +59,17 @@ QUICK = dict(ws=(0.0, 0.05), omegas=(6.0,), offsets=(-0.05, 0.05, 0.25), t_max=3
 FIRST_STICK = 1e-6
 
 
-@dataclass(frozen=True)
-class EndRow:
-    key: str
-    w: float
-    omega0: float
-    theta0: float
-    theta_h: float | None  # the horizontal-like precession at omega0 (the predicted separatrix)
-    theta_2: float
-    end: str  # the side of pi/2 it ends on: fat | thin | failed (see risen())
-    predicted: str
-    theta_reached: float
-    how: str  # rise-fat | rise-thin | settled | t_max | jumped | failed
-    t: float
-    n_liftoff: int
-    wall_s: float
-
-
-@dataclass(frozen=True)
-class EggDefinition(pk.Definition):
-    """The default sliding-branch threshold definition (its settle rule ends the runs that
-    settle tilted). With ``from_horizontal_like`` the start is d below the horizontal-like
-    precession theta_h(Omega0) (the egg's unstable state) instead of d below pi/2."""
-
-    from_horizontal_like: bool = False
-
-    def start(self, body, value: float):
-        if not self.from_horizontal_like or body.flip_symmetric:
-            return super().start(body, value)
-        th_h = pk.theory.horizontal_like_angle(body, pk.theory.precession_angles(body, omega0=value))
-        y0 = pk.gyroscopic_start(body, th_h - self.amplitude, omega0=value)
-        return pk.Model(body, self.friction(), "euler"), y0
-
-
-def which_end(w: float, omega0: float, theta0: float, t_max: float) -> EndRow:
-    t0 = time.perf_counter()
-    egg = pk.Egg(A_HEN, w)
-    thetas = pk.theory.precession_angles(egg, omega0=omega0)
-    th_h = pk.theory.horizontal_like_angle(egg, thetas) if w > 0 else math.pi / 2
-    th2 = pk.theory.side_equilibrium(egg)[1]
-    y0 = pk.gyroscopic_start(egg, theta0, omega0=omega0)
-    events = [pk.Event("theta", 0.1, direction=-1, name="rise-fat"), pk.Event("theta", math.pi - 0.1, direction=+1, name="rise-thin"),
-              pk.Event("slip_speed", FIRST_STICK, direction=-1, name="settled")]
-    r = pk.simulate(pk.Model(egg, pk.Coulomb(MU)), y0, t_max, rtol=RTOL, stop_at="none", events=events, track_minima=False,
-                    max_wall=120.0)
-    key = end_key(w, omega0, theta0, t_max)
-    if r.status is pk.Status.FAILED:
-        how = "failed"
-    elif r.status is pk.Status.STOPPED:
-        how = r.events[-1].name
-    else:
-        how = "t_max"
-    theta_end = float(r.euler_end[4])
-    end = "failed" if how == "failed" else ("fat" if theta_end < math.pi / 2 else "thin")
-    predicted = "fat" if th_h is not None and theta0 < th_h else "thin"
-    return EndRow(key, w, omega0, theta0, th_h, th2, end, predicted, theta_end, how, r.t, len(r.events_named("lift-off")),
-                  time.perf_counter() - t0)
-
-
-def risen(r: EndRow) -> str:
-    """fat | thin, or "none" when the start's slip vanished at once (the egg stuck and rolls
-    where it was put: within 0.05 rad of theta0, t < 1), or "failed"."""
-    if r.how == "settled" and abs(r.theta_reached - r.theta0) < 0.05:
-        return "none"
-    return r.end
-
-
 def threshold_rows(cfg: dict, st) -> tuple[list[dict], list[dict]]:
     out = []
     for start, rel in (("pi/2 - 0.01", False), ("theta_h - 0.01", True)):
-        defn = EggDefinition("egg-sliding", "sliding", mu=MU, t_max=cfg["t_max"], from_horizontal_like=rel)
-        guess = None
-        for w in st.progress(cfg["threshold_ws"], desc=f"egg thresholds from {start}"):
-            th = pk.find_threshold(defn, pk.Egg(A_HEN, w), hi=40.0, lo=3.0, guess=guess, tol=2e-3)
-            out.append({"start": start, "w": w, "threshold": th.value, "bracket_lo": th.bracket[0], "bracket_hi": th.bracket[1],
-                        "status": th.status.value, "n_sims": th.n_sims,
-                        "n_settled": sum(1 for o in th.outcomes if o.status is pk.Status.SETTLED), "wall_s": th.wall_s})
-            # n_settled: runs ended by the settle rule (before issue 24: by the first stick or the rise)
-            guess = th.value or guess
+        defn = pk.sweep.EggDefinition("egg-sliding", "sliding", mu=MU, t_max=cfg["t_max"], from_horizontal_like=rel)
+        ths = pk.continue_threshold(defn, [pk.Egg(A_HEN, w) for w in cfg["threshold_ws"]], hi=40.0, lo=3.0, tol=2e-3,
+                                    progress=st.show)
+        # n_settled: runs ended by the settle rule (before issue 24: by the first stick or the rise)
+        out += [{"start": start, "w": w, "threshold": th.value, "bracket_lo": th.bracket[0], "bracket_hi": th.bracket[1],
+                 "status": th.status.value, "n_sims": th.n_sims,
+                 "n_settled": sum(1 for o in th.outcomes if o.status is pk.Status.SETTLED), "wall_s": th.wall_s}
+                for w, th in zip(cfg["threshold_ws"], ths)]
     checks = []
     default = pk.Definition("sliding", "sliding", mu=MU, t_max=cfg["t_max"])
     for w in (0.0, 0.02):
@@ -166,39 +97,28 @@ def real_egg(threshold: float | None, w: float) -> list[dict]:
         row = {"w": w, "case": label, "Omega0": om, "spin_rev_per_s": sc.quantity(om, "rate").to("rev/s").magnitude,
                "status": str(r.status), "t_liftoff_s": None, "theta_liftoff": None, "flight_ms": None, "gap_max_mm": None}
         if fl is not None and fl.t_touchdown is not None:
-            row.update(t_liftoff_s=sc.quantity(fl.t_liftoff, "time").to("s").magnitude,
-                       theta_liftoff=float(pk.to_paper("vector", fl.x_liftoff[:8])[4]),
-                       flight_ms=sc.quantity(fl.t_touchdown - fl.t_liftoff, "time").to("ms").magnitude,
-                       gap_max_mm=sc.quantity(fl.gap_max, "length").to("mm").magnitude)
+            f = sc.flight(fl)
+            row.update(t_liftoff_s=sc.quantity(fl.t_liftoff, "time").to("s").magnitude, theta_liftoff=f["theta_liftoff"],
+                       flight_ms=f["duration"], gap_max_mm=f["gap_max"])
         rows.append(row)
     return rows
-
-
-def end_key(w, omega0, theta0, t_max) -> str:
-    return f"w={w:g}|omega0={omega0:g}|theta0={theta0:.6f}|t_max={t_max:g}"
 
 
 def main(argv=None) -> dict:
     st = pk.sweep.Study(__file__, __doc__, resumable=True)
     args = st.parse(argv)
     cfg = QUICK if args.quick else FULL
-    store = st.store(EndRow, {"a": A_HEN, "mu": MU, "rtol": RTOL,
-                              "config": {k: list(v) if isinstance(v, tuple) else v for k, v in cfg.items()}}, name="egg_which_end")
-    tasks = []
-    for w in cfg["ws"]:
-        for om in cfg["omegas"]:
-            egg = pk.Egg(A_HEN, w)
-            th_h = pk.theory.horizontal_like_angle(egg, pk.theory.precession_angles(egg, omega0=om)) if w > 0 else math.pi / 2
-            starts = [(th_h if th_h is not None else math.pi / 2) + d for d in cfg["offsets"]]
-            starts += [math.pi / 2 - 0.05, math.pi / 2 + 0.05]  # both sides of the horizontal
-            for th in starts:
-                tasks.append((w, om, th))
-    keys = [end_key(*t, cfg["t_max"]) for t in tasks]
+    config = {k: list(v) if isinstance(v, tuple) else v for k, v in cfg.items()}
+    store = st.store(pk.sweep.EndRow, {"a": A_HEN, "mu": MU, "rtol": RTOL, "config": config}, name="egg_which_end")
+    tasks = [(w, om, th) for w in cfg["ws"] for om in cfg["omegas"]
+             for th in pk.sweep.which_end_starts(pk.Egg(A_HEN, w), om, cfg["offsets"])]
+    keys = [pk.sweep.which_end_key(*t, cfg["t_max"]) for t in tasks]
     # (some starts coincide: each is run and stored as often as it is listed, as the committed rows were)
     for t in st.progress([t for t, k in zip(tasks, keys) if k not in store], desc="which end"):
-        store.add(which_end(*t, cfg["t_max"]))
+        store.add(pk.sweep.which_end(A_HEN, *t, t_max=cfg["t_max"], mu=MU, rtol=RTOL, first_stick=FIRST_STICK))
     rows = [r for r in store.rows() if r.key in keys]
-    st.save(plot_which_end(rows, cfg["omegas"], risen=risen, theta_2=lambda w: pk.theory.side_equilibrium(pk.Egg(A_HEN, w))[1],
+    st.save(plot_which_end(rows, cfg["omegas"], risen=pk.sweep.EndRow.risen,
+                           theta_2=lambda w: pk.theory.side_equilibrium(pk.Egg(A_HEN, w))[1],
                            title=f"Egg a = L/B = {A_HEN:.4f} (57 x 43 mm), uniform, Coulomb mu = {MU}: which end it rises "
                                  f"onto{' [quick run]' if args.quick else ''}"), "egg_which_end.png")
     thr, checks = threshold_rows(cfg, st)
@@ -214,14 +134,8 @@ def main(argv=None) -> dict:
     for w in sorted({0.0, W_HEN} & set(cfg["threshold_ws"])):
         real += real_egg(next(r["threshold"] for r in thr if r["w"] == w and r["start"] == "pi/2 - 0.01"), w)
     st.csv("egg_real_units.csv", list(real[0]), [list(r.values()) for r in real])
-    ok = [r for r in rows if risen(r) in ("fat", "thin")]
-    summary = {"which_end": {"n": len(rows), "rose": len(ok), "as_predicted": sum(1 for r in ok if r.end == r.predicted),
-                             "not_as_predicted": [r.key for r in ok if r.end != r.predicted],
-                             "stuck_at_start": [r.key for r in rows if risen(r) == "none"],
-                             "failed": [r.key for r in rows if r.end == "failed"],
-                             "theta_2": {f"{w:g}": pk.theory.side_equilibrium(pk.Egg(A_HEN, w))[1] for w in cfg["ws"]}},
-               "threshold": thr, "default_definition_check": checks, "real_units": real, "scale": repr(sc),
-               "wall_s": st.wall}
+    summary = {"which_end": pk.sweep.which_end_summary(rows, A_HEN, cfg["ws"]), "threshold": thr,
+               "default_definition_check": checks, "real_units": real, "scale": repr(sc), "wall_s": st.wall}
     st.json("egg_summary.json", summary)
     print(json.dumps(summary, indent=1, default=str))
     return summary

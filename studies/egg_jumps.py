@@ -35,8 +35,6 @@ from pathlib import Path
 import phasekit as pk
 from phasekit.viz import animate, film_strip, plot_flights
 
-import numpy as np
-
 LENGTH, BREADTH = "57 mm", "43 mm"
 T_END = 200.0  # 9.4 s for b = 21.5 mm
 RTOL = 1e-10
@@ -74,18 +72,16 @@ def run_case(case: dict, rtol: float = RTOL, t_end: float = T_END, stop_at: str 
 def measure(lever: str, value, case: dict, rtol: float = RTOL) -> dict:
     t0 = time.perf_counter()
     r, sc = run_case(case, rtol)
-    ms, mm = (lambda x: float(sc.to_real(x, "time").magnitude)), (lambda x: float(sc.to_real(x, "length").magnitude))
-    done = [f for f in r.flights if f.t_touchdown is not None]
+    done = [(f, sc.flight(f)) for f in r.flights if f.t_touchdown is not None]
     row = {"lever": lever, "value": value, **case, "rtol": rtol, "status": r.status.value,
-           "t_end_s": ms(r.t) / 1e3, "n_flights": len(r.flights), "wall_s": time.perf_counter() - t0}
+           "t_end_s": float(sc.to_real(r.t, "time").magnitude) / 1e3, "n_flights": len(r.flights),
+           "wall_s": time.perf_counter() - t0}
     if done:
-        dur = [f.t_touchdown - f.t_liftoff for f in done]
-        gaps = [f.gap_max or 0.0 for f in done]
-        big = done[int(np.argmax(gaps))]
-        row.update(first_flight_ms=ms(dur[0]), first_gap_mm=mm(gaps[0]), longest_flight_ms=ms(max(dur)),
-                   largest_gap_mm=mm(max(gaps)), t_largest_gap_s=ms(big.t_gap_max) / 1e3,
-                   theta_largest_gap=float(pk.to_paper("vector", big.x_liftoff[:8])[4]),
-                   **{"n_gap_over_0.05mm": sum(1 for g in gaps if mm(g) > 0.05)})
+        first, big = done[0][1], max(done, key=lambda p: p[0].gap_max or 0.0)[1]
+        row.update(first_flight_ms=first["duration"], first_gap_mm=first["gap_max"] or 0.0,
+                   longest_flight_ms=max(f["duration"] for _, f in done), largest_gap_mm=big["gap_max"] or 0.0,
+                   t_largest_gap_s=big["t_gap_max"] / 1e3, theta_largest_gap=big["theta_liftoff"],
+                   **{"n_gap_over_0.05mm": sum(1 for _, f in done if (f["gap_max"] or 0.0) > 0.05)})
     return row
 
 
@@ -97,29 +93,23 @@ def first_flights(revs, st) -> list[dict]:
     rows = []
     for rev in st.progress(revs, desc="first flights"):
         r, sc = run_case({**BASE, "rev": rev}, rtol=1e-12, stop_at="touchdown")
-        fl = r.flights[0] if r.flights else None
-        rows.append({"rev": rev, "status": r.status.value,
-                     "flight_ms": None if fl is None or fl.t_touchdown is None
-                     else float(sc.to_real(fl.t_touchdown - fl.t_liftoff, "time").magnitude),
-                     "gap_um": None if fl is None or fl.gap_max is None
-                     else float(sc.to_real(fl.gap_max, "length").to("um").magnitude)})
+        fl = sc.flight(r.flights[0]) if r.flights else {}
+        rows.append({"rev": rev, "status": r.status.value, "flight_ms": fl.get("duration"), "gap_um": None
+                     if fl.get("gap_max") is None else float(sc.to_real(r.flights[0].gap_max, "length").to("um").magnitude)})
     return rows
 
 
 def movie(st) -> dict:
     """The base case around its largest flight, as a GIF and a film strip."""
     r, sc = run_case(BASE)
-    done = [f for f in r.flights if f.t_touchdown is not None]
-    big = max(done, key=lambda f: f.gap_max or 0.0)
-    span = (big.t_liftoff - 0.05, min(r.t, big.t_touchdown + 0.05))
-    gap = float(sc.to_real(big.gap_max, "length").magnitude)
-    title = f"57 x 43 mm egg, {BASE['rev']:g} rev/s, mu {BASE['mu']}, e {BASE['e']}: its highest hop ({gap:.2f} mm)"
+    big = max((f for f in r.flights if f.t_touchdown is not None), key=lambda f: f.gap_max or 0.0)
+    span, fl = (big.t_liftoff - 0.05, min(r.t, big.t_touchdown + 0.05)), sc.flight(big)
+    title = f"57 x 43 mm egg, {BASE['rev']:g} rev/s, mu {BASE['mu']}, e {BASE['e']}: its highest hop ({fl['gap_max']:.2f} mm)"
     a = animate(r, st.path("egg_jump.gif"), frames=16 if st.quick else 40, t_span=span, scale=sc, gap_scale=25.0,
                 window_size=(400, 300), panel="R", title=title, progress=False, fps=12)
     s = film_strip(r, st.path("egg_jump_strip.png"), frames=5, t_span=span, scale=sc, gap_scale=25.0,
                    window_size=(300, 250), title=title + " (gap drawn x25)")
-    return {"gif_bytes": a.bytes, "strip": Path(s.path).name, "span": span, "gap_mm": gap,
-            "flight_ms": float(sc.to_real(big.t_touchdown - big.t_liftoff, "time").magnitude)}
+    return {"gif_bytes": a.bytes, "strip": Path(s.path).name, "span": span, "gap_mm": fl["gap_max"], "flight_ms": fl["duration"]}
 
 
 def main(argv=None) -> dict:

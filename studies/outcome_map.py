@@ -25,9 +25,7 @@ resumable: finished rows are appended to the CSV files at once and skipped on a 
 from __future__ import annotations
 
 import json
-import math
-from dataclasses import asdict, replace
-from functools import partial
+from dataclasses import asdict
 
 import phasekit as pk
 from phasekit.viz import plot_outcome_map, render_jump_region
@@ -36,80 +34,15 @@ import numpy as np
 
 STEM = "outcome_map"
 BASE = pk.Definition("sliding", "sliding")
-THRESHOLD_SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5, levels=3)
-STICK_SEARCH = dict(lo=1e-4, hi=0.2, tol=1e-2, n_coarse=8, levels=3)
 D_RANGE = (1e-3, 0.2)
-STEEP = 2.0  # d_min ratio between neighbouring value-lines above which a line is added between them
-VALUE_SPAN = (2.0, 12.0)  # the family parameter from 2x to 12x the lower bound (1.05 x the stability threshold)
+#: threshold searches to 1e-3, d_min to 1e-2; the family parameter from 2x to 12x the lower bound (1.05 x the
+#: stability threshold); a value-line is added where d_min changes by more than a factor 2 between neighbours
+PLAN = pk.sweep.OutcomeMapPlan(BASE, dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5, levels=3),
+                               dict(lo=1e-4, hi=0.2, tol=1e-2, n_coarse=8, levels=3), D_RANGE, (2.0, 12.0), steep=2.0, study=STEM)
 FULL = dict(maps=[1.5, 2 / 3], n_value=28, n_d=24, d_lines=10, stick_lines=8, refine=3,
             scene_a=[0.5, 0.6, 2 / 3, 0.75, 0.8, 1.2, 1.35, 1.5, 1.75, 2.0, 2.5], scene_d=6, scene_v=5, chunk=48, per_task=8)
 QUICK = dict(maps=[1.5, 2 / 3], n_value=10, n_d=8, d_lines=5, stick_lines=4, refine=1,
              scene_a=[0.6, 2 / 3, 0.8, 1.3, 1.5, 2.0], scene_d=4, scene_v=3, chunk=40, per_task=6)
-
-
-def value_range(a: float) -> tuple[float, float]:
-    lo = BASE.lower_bound(a)
-    return VALUE_SPAN[0] * lo, VALUE_SPAN[1] * lo
-
-
-def grid_points(a: float, g: dict) -> list[tuple[float, float, float]]:
-    """(a, d, value) of the sampled map."""
-    vs = np.geomspace(*value_range(a), g["n_value"])
-    ds = np.geomspace(*D_RANGE, g["n_d"])
-    return [(a, float(d), float(v)) for d in ds for v in vs]
-
-
-def search_specs(g: dict, engine: str):
-    """The traced boundaries: d-lines (jump thresholds) and value-lines (sticking
-    boundaries) of the 2-D maps, and the (a, d) / (a, value) grids of the 3-D scene; tasks
-    of ``per_task`` searches traced in lock-step. Returns the tasks and their row keys."""
-    points = set()
-    for a in g["maps"]:
-        points |= {("threshold", a, float(d)) for d in np.geomspace(2e-3, D_RANGE[1], g["d_lines"])}
-        points |= {("stick", a, float(v)) for v in np.geomspace(*value_range(a), g["stick_lines"])}
-    for a in g["scene_a"]:
-        points |= {("threshold", a, float(d)) for d in np.geomspace(4e-3, D_RANGE[1], g["scene_d"])}
-        points |= {("stick", a, float(v)) for v in np.geomspace(*value_range(a), g["scene_v"])}
-    return _specs(points, g, engine)
-
-
-def refine_stick_lines(searches, g: dict) -> set:
-    """Where the traced sticking boundary of a 2-D map turns a corner (d_min changes by more
-    than a factor STEEP between neighbouring value-lines, or one of them sticks at every d),
-    a new value-line halfway (geometrically): the boundary is traced there too, not drawn
-    as a straight line across the corner."""
-    points = set()
-    for a in g["maps"]:
-        st = sorted((s.value, D_RANGE[1] if s.status == "no_jump_in_range" else s.threshold)
-                    for s in searches if s.kind == "stick" and abs(s.a - a) < 1e-12)
-        for (v1, d1), (v2, d2) in zip(st, st[1:]):
-            if d1 and d2 and max(d1 / d2, d2 / d1) > STEEP and v2 / v1 > 1.01:
-                points.add(("stick", a, float(math.sqrt(v1 * v2))))
-    return points
-
-
-def _specs(points, g: dict, engine: str):
-    jobs, costs = [], []
-    for kind, a, x in sorted(points):
-        if kind == "threshold":
-            jobs.append(pk.sweep.search_job(asdict(replace(BASE, amplitude=x)), a, THRESHOLD_SEARCH))
-            costs.append(1.0 + 0.3 / abs(a - 1))
-        else:
-            jobs.append(pk.sweep.search_job(asdict(BASE), a, STICK_SEARCH, kind="stick", value=x))
-            costs.append(3.0)
-    return pk.sweep.group_search_tasks(jobs, costs, per_task=g["per_task"], study=STEM, engine=engine)
-
-
-def grid_specs(g: dict, engine: str) -> tuple[list, dict]:
-    """Tasks of ``chunk`` sampled starts each; returns them and each task's point keys."""
-    task = partial(pk.sweep.outcome_task, study=STEM, engine=engine)
-    specs, keys = [], {}
-    for a in g["maps"]:
-        s, k = pk.sweep.chunked(grid_points(a, g), lambda aa, d, v: pk.sweep.outcome_key(replace(BASE, amplitude=d), aa, v),
-                                task, size=g["chunk"], args=(asdict(BASE),), prefix=f"grid|a={a:.10g}", cost=3.0)
-        specs += s
-        keys.update(k)
-    return specs, keys
 
 
 def warm_up() -> None:
@@ -122,35 +55,36 @@ def main(argv=None) -> dict:
     st.parser.add_argument("--no-scene", action="store_true", help="skip the 3-D scene")
     args = st.parse(argv)
     g = QUICK if args.quick else FULL
-    meta = {"definition": asdict(BASE), "threshold_search": THRESHOLD_SEARCH, "stick_search": STICK_SEARCH, "d_range": D_RANGE,
-            "value_span": VALUE_SPAN, "grid": g, "classes": {"stuck": "stuck and not risen by t_max",
-                                                             "rise": "rise completed in contact",
-                                                             "jump": "R = 0 before the rise completed"}}
+    meta = {"definition": asdict(BASE), "threshold_search": PLAN.threshold_search, "stick_search": PLAN.stick_search,
+            "d_range": D_RANGE, "value_span": PLAN.value_span, "grid": g,
+            "classes": {"stuck": "stuck and not risen by t_max", "rise": "rise completed in contact",
+                        "jump": "R = 0 before the rise completed"}}
     out_store = st.store(pk.sweep.OutcomeRow, meta)
     search_store = st.store(pk.sweep.SearchRow, meta, name=f"{STEM}_boundaries")
-    gspecs, grid_keys = grid_specs(g, "batch")
-    sspecs, members = search_specs(g, "batch")
+    gspecs, grid_keys = PLAN.grid_tasks(g["maps"], n_value=g["n_value"], n_d=g["n_d"], chunk=g["chunk"])
+    lines = PLAN.lines(g["maps"], d_first=2e-3, n_d=g["d_lines"], n_value=g["stick_lines"]) | \
+        PLAN.lines(g["scene_a"], d_first=4e-3, n_d=g["scene_d"], n_value=g["scene_v"])
+    sspecs, members = PLAN.boundary_tasks(lines, per_task=g["per_task"])
     how = str(st.run(gspecs + sspecs, out_store, search_store, members={**grid_keys, **members}, warm_up=warm_up,
                      desc="outcome map"))
     points = out_store.rows(k for ks in grid_keys.values() for k in ks)
     searches = search_store.rows(k for ks in members.values() for k in ks)
     for level in range(g["refine"]):  # each level depends on the last: resumable, since its lines follow from stored rows
-        extra = refine_stick_lines(searches, g)
+        extra = PLAN.corners(searches, g["maps"])
         if not extra:
             break
-        rspecs, rmembers = _specs(extra, g, "batch")
+        rspecs, rmembers = PLAN.boundary_tasks(extra, per_task=g["per_task"])
         members.update(rmembers)
         how += f"; corners of d_min, level {level + 1}: " + str(st.run(rspecs, out_store, search_store, members=members,
                                                                        warm_up=warm_up, desc="outcome map"))
         searches = search_store.rows(k for ks in members.values() for k in ks)
-    quick = " (quick run)" if args.quick else ""
     st.save(plot_outcome_map(points, searches, g["maps"], d_top=D_RANGE[1], title=(
         r"Outcome of sliding-branch starts, exact Coulomb $\mu$ = 0.1, rtol $10^{-9}$; "
-        r"thresholds bisected to $10^{-3}$, $d_{min}$ to $10^{-2}$" + quick)), f"{STEM}.png")
+        r"thresholds bisected to $10^{-3}$, $d_{min}$ to $10^{-2}$" + (" (quick run)" if args.quick else ""))), f"{STEM}.png")
     counts = {} if args.no_scene else render_jump_region(
-        points, searches, st.path("jump_region.png"), scene_a=g["scene_a"], value_range=value_range, d_range=D_RANGE,
+        points, searches, st.path("jump_region.png"), scene_a=g["scene_a"], value_range=PLAN.value_range, d_range=D_RANGE,
         threshold_d=np.geomspace(4e-3, D_RANGE[1], g["scene_d"]),
-        stick_values=lambda a: np.geomspace(*value_range(a), g["scene_v"]), quick=args.quick,
+        stick_values=lambda a: np.geomspace(*PLAN.value_range(a), g["scene_v"]), quick=args.quick,
         caption="surfaces: jump threshold {name}*(a, d) (bisected to 1e-3) and sticking\n"
                 "boundary d_min(a, {name}) (to 1e-2); sliding-branch starts at distance d,\n"
                 f"exact Coulomb mu = {BASE.mu:g}, rtol {BASE.rtol:g}; dots: jumping starts, colour t* (sqrt(b/g))")
@@ -158,11 +92,7 @@ def main(argv=None) -> dict:
     wall = st.wall
     n_sims = sum(s.n_sims for s in searches) + len(points)
     print(f"\n{STEM}: {len(points)} sampled starts, {len(searches)} traced boundary points; {how}; {wall:.1f} s wall")
-    for k, v in summary.items():
-        print(f"  {k}: classes {v['counts']}; t* {v['t_jump_range']}; rise share at the jump {v['rise_fraction_range']}; "
-              f"sampled starts against the traced threshold (3% margin): {v['grid_disagreements']}")
-        print("    jump threshold against d: " + ", ".join(f"d={d:.3g}: {t:.4g}" if t else f"d={d:.3g}: {s}" for d, t, s in v["threshold_vs_d"]))
-        print("    d_min against the family parameter: " + ", ".join(f"{x:.3g}: {t:.3g}" if t else f"{x:.3g}: {s}" for x, t, s in v["d_min_vs_value"]))
+    print(pk.sweep.outcome_map_report(summary))
     search_store.annotate(summary=summary, scene=counts)
     print(json.dumps({"wall_s": wall, "n_sims": n_sims, "n_points": len(points), "n_searches": len(searches)}))
     return {"points": points, "searches": searches, "summary": summary, "wall_s": wall}

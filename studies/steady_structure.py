@@ -73,32 +73,21 @@ def signatures(prev, points):
     out = []
     for panel, x, y, z in points:
         s = structure_at(panel, x, y, z)
-        out.append(pk.sweep.AtlasRow(point_key(panel, x, y, z), panel, x, y, z, s.signature, s.status.value))
+        out.append(pk.sweep.AtlasRow(pk.sweep.atlas_point_key(panel, x, y, z), panel, x, y, z, s.signature, s.status.value))
     return out
 
 
 def trace(prev, edges, xtol):
     """Task: the boundary along each edge of a 2-D panel, bisected to ``xtol`` of the panel's span."""
-    return [pk.sweep.trace_boundary(structure_at, *e, xtol=xtol, key=edge_key(*e)) for e in edges]
+    return [pk.sweep.trace_boundary(structure_at, *e, xtol=xtol, key=pk.sweep.atlas_edge_key(*e)) for e in edges]
 
 
 def grid_points(g) -> list[tuple]:
+    """The 2-D panels' points, then the 3-D grid's (a, offset/a, A/C)."""
     axis = pk.sweep.axis_values
-    pts = []
-    for panel, (_, _, _, xr, yr, logx, logy) in PANELS.items():
-        pts += [(panel, float(x), float(y), 0.0) for x in axis(xr, g["n"], logx) for y in axis(yr, g["n"], logy)]
-    na, nr, ng = g["cube"]
-    for a, r, gam in itertools.product(axis((0.2, 5.0), na, True), axis((0.0, 0.95), nr, False), axis((0.5, 4.0), ng, True)):
-        pts.append(("cube", float(a), float(r), float(gam)))
-    return pts
-
-
-def point_key(panel, x, y, z) -> str:
-    return f"{panel}|{x:.12g}|{y:.12g}|{z:.12g}"
-
-
-def edge_key(panel, p, q, span) -> str:
-    return f"edge|{panel}|{p[0]:.12g}|{p[1]:.12g}|{q[0]:.12g}|{q[1]:.12g}"
+    cube = itertools.product(axis((0.2, 5.0), g["cube"][0], True), axis((0.0, 0.95), g["cube"][1], False),
+                             axis((0.5, 4.0), g["cube"][2], True))
+    return pk.sweep.atlas_grid(PANELS, g["n"]) + [("cube", float(a), float(r), float(gam)) for a, r, gam in cube]
 
 
 def boundary_edges(rows) -> list[tuple]:
@@ -123,24 +112,14 @@ def scene(png: Path, quick: bool) -> dict:
     unstable manifold of its most unstable branch state at moderate spin."""
     body = pk.Spheroid(SCENE["a"], offset=SCENE["offset"])
     s = pk.steady_structure(body, LAW)
-    cands = [(float(np.max(p.eigenvalues.real)), i, k) for i, b in enumerate(s.branches) for k, p in enumerate(b.points)
-             if p.n_unstable and 2.0 < b.Omega[k] < 6.0]
-    _, i, k = max(cands)
-    fp = s.branches[i].points[k]
-    trs = []
-    for _, x0 in pk.unstable_seeds(fp, SCENE["seed_delta"]):
-        r = pk.simulate(pk.Model(body, LAW), x0, SCENE["t_end"], stop_at="jump")
-        df = r.sample(np.linspace(0.0, r.t, 4000))
-        near = np.minimum(df["theta"], math.pi - df["theta"]) < 0.02  # Omega is undefined at the poles
-        stop = int(np.argmax(near)) if near.any() else len(df)
-        trs.append(df[["Omega", "theta", "n"]].to_numpy()[:stop])
+    runs = pk.theory.manifold_runs(s, omega_range=(2.0, 6.0), seed_delta=SCENE["seed_delta"], t_end=SCENE["t_end"])
+    trs = runs["trajectories"]
     info = render_structure(s, png, trajectories=trs, omega_max=8.0,
                             title=f"{body!r}, viscous mu = {LAW.mu:g}: its branches (green stable, red unstable) and\n"
                                   f"{len(trs)} trajectories from the unstable manifold of the branch state at theta = "
-                                  f"{s.branches[i].theta[k]:.3f}, run to the poles" + (" (quick run)" if quick else ""),
+                                  f"{runs['state']['theta']:.3f}, run to the poles" + (" (quick run)" if quick else ""),
                             camera=[(2.9, -2.6, 1.4), (0.7, 0.5, 0.45), (0.0, 0.0, 1.0)])
-    return {"body": repr(body), "seed_state": {"theta": float(s.branches[i].theta[k]), "Omega": float(s.branches[i].Omega[k]),
-            "n": float(s.branches[i].n[k]), "classification": fp.classification}, "points": info.n_points}
+    return {"body": repr(body), "seed_state": runs["state"], "points": info.n_points}
 
 
 # -- where the egg's rise ends --------------------------------------------------------------------
@@ -158,20 +137,10 @@ def egg_rise_end(png: Path) -> dict:
     for om0, colour in zip(EGG["omegas"], ("#4575b4", "#d73027")):
         r = pk.simulate(pk.Model(egg, law), pk.gyroscopic_start(egg, EGG["theta0"], omega0=om0), EGG["t_end"],
                         stop_at="none", track_minima=False)
-        late = r.sample(np.linspace(0.5 * r.t, r.t, 6000))
-        th, om, n = (float(late[c].mean()) for c in ("theta", "Omega", "n"))
-        branch_om, branch_n = (float(v[0]) for v in s.precession(np.array([th])))
-        roll = pk.theory.rolling_motion(egg, th, om)
+        run = {"omega0": om0, **pk.theory.settled_motion(r, s)}
         drawn.append(dict(path=r.sample(np.linspace(0.0, r.t, 3000)), colour=colour, label=f"egg, $\\Omega_0$ = {om0:g}",
-                          star=(th, om, roll.n)))
-        out["runs"].append({
-            "omega0": om0, "status": r.status.value, "t_end": r.t, "n_events": len(r.events),
-            "stick_slip_cycles": sum(e.name == "slip" for e in r.events),
-            "late_mean": {"theta": th, "Omega": om, "n": n, "V": float(late["V"].mean()),
-                          "theta_spread": float(late["theta"].std()), "slip_max": float(late["slip"].max())},
-            "branch_at_theta": {"Omega": branch_om, "n": branch_n},
-            "rolling_motion": {"n": roll.n, "V": roll.V, "radius": roll.radius, "needs_mu": roll.needs_mu,
-                               "n_rel_difference": abs(roll.n - n) / abs(n)}})
+                          star=(run["late_mean"]["theta"], run["late_mean"]["Omega"], run["rolling_motion"]["n"])))
+        out["runs"].append(run)
     save_figure(plot_branch_planes(s, drawn, omega_max=14, caption="stars: the late mean state; its n is that of the steady "
                                    "rolling motion (G on a circle)", title=f"Where the rise of {egg!r} ends (exact Coulomb mu = "
                                    f"{EGG['mu']:g}, start theta0 = pi/2 - 0.05, gyroscopic)"), png)
@@ -192,10 +161,10 @@ def main(argv=None) -> dict:
     atlas = st.store(pk.sweep.AtlasRow, meta, name=f"{STEM}_atlas")
     borders = st.store(pk.sweep.BoundaryRow, meta, name=f"{STEM}_boundaries")
     points = grid_points(g)
-    specs, members = pk.sweep.chunked(points, point_key, signatures, size=g["chunk"], prefix="atlas")
+    specs, members = pk.sweep.chunked(points, pk.sweep.atlas_point_key, signatures, size=g["chunk"], prefix="atlas")
     rows, ran = st.sweep(specs, atlas, members=members, desc="atlas")
     edges = boundary_edges(rows)
-    specs, members = pk.sweep.chunked(edges, edge_key, trace, size=40, args=(g["xtol"],), prefix="boundaries")
+    specs, members = pk.sweep.chunked(edges, pk.sweep.atlas_edge_key, trace, size=40, args=(g["xtol"],), prefix="boundaries")
     bounds, ran_b = st.sweep(specs, borders, members=members, desc="boundaries")
     how = f"{ran}; boundaries: {ran_b}"
     counts = class_counts(rows)
@@ -215,14 +184,11 @@ def main(argv=None) -> dict:
     if not args.no_scene:
         extra["scene"] = scene(st.path(f"{STEM}_scene.png"), args.quick)
         extra["egg"] = egg_rise_end(st.path(f"{STEM}_egg.png"))
-    names = {}
-    for b in bounds:
-        names.setdefault(b.bifurcation, set()).add(tuple(sorted((b.below, b.above))))
     tops = [b for b in bounds if b.panel == "tippe-top"]
     closed = {"max_distance": max((min(abs(b.y - (1 - b.x)), abs(b.y - (1 + b.x))) for b in tops), default=None),
               "max_half_width": max((b.width / 2 for b in tops), default=None), "points": len(tops)}
     summary = {"classes": counts, "part_iii": {"spheroid": 9, "tippe_top": 3}, "tippe_top_boundary_vs_1_pm_alpha": closed,
-               "bifurcations": {k: sorted(" <-> ".join(p) for p in v) for k, v in sorted(names.items())},
+               "bifurcations": pk.sweep.bifurcation_pairs(bounds),
                "boundary_width_max": max((b.width for b in bounds), default=None), "representatives": rep_info, **extra}
     atlas.annotate(summary=summary)
     wall = st.wall
