@@ -52,6 +52,8 @@ from .maps import (
     threshold_table,
     threshold_task,
 )
+from .paper_pairs import PairRow, as_printed, pair_key, pair_report, pair_run, pair_runs, pair_table
+from .stress import STRESS_COLUMNS, StressCase, invariant_drift, stress_report, stress_run
 from .study import Study, atomic_path, run_study, save_figure, write_csv, write_json
 from .tasks import (
     ModelPack,
@@ -85,4 +87,8 @@ __all__ = [
     "ThresholdSearch", "run_searches", "evaluate_outcomes", "Outcome", "Sensitivity", "BatchStats", "compile_batch",
     # the scaffold of a study script
     "Study", "run_study", "save_figure", "write_csv", "write_json", "atomic_path",
+    # the paper's printed pairs of single trajectories (studies/paper_pairs.py)
+    "PairRow", "pair_key", "pair_run", "pair_runs", "as_printed", "pair_table", "pair_report",
+    # stiff and extreme cases: a run checked for its status, invariants and cost (studies/stiff_extreme.py)
+    "StressCase", "stress_run", "invariant_drift", "STRESS_COLUMNS", "stress_report",
 ]
