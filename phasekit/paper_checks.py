@@ -21,7 +21,7 @@ from .hybrid import Event
 from .multiscale import Gamma_closed, Sigma, mean_over_periods, omega_gyro, perturbation_from_c_xi, slow_rates
 
 __all__ = ["rise_complete", "add_nutation", "sigma_zero", "EnvelopeCheck", "envelope_check", "fit_gyroscopic_mu",
-           "FlightCheck", "flight_check"]
+           "FlightCheck", "flight_check", "surface_crossings", "loglog_fit", "crossing_trend"]
 
 #: the share of the minima of R on which the effective amplitude c_eff is fitted (the rest tests it)
 FIT_SHARE = 0.3
@@ -269,3 +269,62 @@ def flight_check(traj, *, n: int = 400, rtol: float = 1e-13) -> FlightCheck:
     series = gap_series(fl.Omega_star, fl.W_star, tt)
     gm, _ = gap_max_series(fl.Omega_star, fl.W_star)
     return FlightCheck(fl, tt, gaps, exact, series, gm, gm / fl.gap_max - 1, float(np.max(np.abs(series - exact)) / np.max(exact)))
+
+
+def surface_crossings(branch: str, a: float, values, d: float = 0.01, *, bar=None) -> list:
+    """The R = 0 crossing (a :class:`phasekit.surface.Crossing`, with the error in n of the jump
+    surface (6.3) there) of the trajectory from each family value in ``values`` (Omega0 prolate,
+    n0 oblate), started on the sliding branch at distance ``d`` of a uniform spheroid of aspect
+    ratio ``a`` under Coulomb friction mu = 0.1; a start that does not jump has none. One
+    trajectory at a time (crossings only: no dense output); ``bar`` (a progress bar) is updated
+    after each.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [c.value for c in pk.theory.surface_crossings("prolate", 1.5, [12.0])]
+    [12.0]
+    """
+    from .surface import Scene, compute_scene
+
+    out = []
+    for v in values:
+        out += compute_scene(Scene(branch, a, values=(v,), seed_distance=d, show=frozenset({"crossings"}))).crossings
+        if bar is not None:
+            bar.update()
+    return out
+
+
+def loglog_fit(x, y) -> tuple[float, float, float]:
+    """The slope of log y against log x (least squares), its standard error, and the
+    correlation coefficient of log x and log y.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> x = np.array([1.0, 2.0, 4.0, 8.0])
+    >>> [round(v, 6) for v in pk.theory.loglog_fit(x, 3 * x**-2 * (1 + 0.01 * np.array([1, -1, 1, -1])))][::2]
+    [-2.005771, -0.999983]
+    """
+    X, Y = np.log(x), np.log(y)
+    (slope, _), cov = np.polyfit(X, Y, 1, cov=True)
+    return float(slope), float(np.sqrt(cov[0, 0])), float(np.corrcoef(X, Y)[0, 1])
+
+
+def crossing_trend(crossings) -> tuple:
+    """Whether the error in n of the jump surface (6.3) at ``crossings`` (of one branch, from
+    several start values, :func:`surface_crossings`) has a trend in the start value: the
+    smallest, median and largest error, the :func:`loglog_fit` of the error against the start
+    value (slope, standard error, r), and the log-log slopes of its two factors, the geometric
+    error / ``Lambda*^2`` and ``|Lambda*|`` (the error is ``(A/C) h_tt Lambda*^2 / (Omega* h_theta
+    sin theta* n*)``, the Lambda^2 term that (6.3) drops).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> fit = pk.theory.crossing_trend(pk.theory.surface_crossings("prolate", 1.5, [12.0, 20.0, 30.0]))
+    >>> len(fit), bool(fit[0] <= fit[1] <= fit[2])
+    (8, True)
+    """
+    v, e, lam = (np.array([getattr(c, k) for c in crossings]) for k in ("value", "rel_error", "Lambda"))
+    return (e.min(), np.median(e), e.max(), *loglog_fit(v, e), loglog_fit(v, e / lam**2)[0], loglog_fit(v, np.abs(lam))[0])

@@ -53,11 +53,14 @@ from .paper_checks import (
     EnvelopeCheck,
     FlightCheck,
     add_nutation,
+    crossing_trend,
     envelope_check,
     fit_gyroscopic_mu,
     flight_check,
+    loglog_fit,
     rise_complete,
     sigma_zero,
+    surface_crossings,
 )
 from .structure import RollingMotion, rolling_motion
 from .surface import exact_boundary, surface_n
@@ -86,4 +89,6 @@ __all__ = [
     "PAPER_CASES", "PaperCase", "tippetop",
     # the tippe top's inversion simulated and classified beside the predictions of tippetop
     "simulate_inversion", "inversion_run", "InversionRun", "inversion_summary",
+    # the jump surface (6.3) against simulated crossings, and the trend of its error
+    "surface_crossings", "crossing_trend", "loglog_fit",
 ]
