@@ -20,7 +20,8 @@ from .gyroscopic import gyroscopic_closed, jellett_constant
 from .hybrid import Event
 from .multiscale import Gamma_closed, Sigma, mean_over_periods, omega_gyro, perturbation_from_c_xi, slow_rates
 
-__all__ = ["rise_complete", "add_nutation", "sigma_zero", "EnvelopeCheck", "envelope_check", "fit_gyroscopic_mu",
+__all__ = ["rise_complete", "add_nutation", "sigma_zero", "EnvelopeCheck", "envelope_check", "NutationCase", "envelope_report",
+           "fit_gyroscopic_mu",
            "FlightCheck", "flight_check", "surface_crossings", "loglog_fit", "crossing_trend"]
 
 #: the share of the minima of R on which the effective amplitude c_eff is fitted (the rest tests it)
@@ -191,6 +192,75 @@ def envelope_check(traj, start, c: float, *, dt: float) -> EnvelopeCheck:
         sig_fit[valid] = Sigma(body, J, theta0, th_at_min[valid], c_eff, form="closed")
     return EnvelopeCheck(ts, theta, model.normal_reaction(ys), tm, Rm, t_mid, th_bar, om_bar, th_gyro, om_gyro, th_at_min,
                          valid, sig, sig_fit, c, c_eff, J)
+
+
+@dataclass(frozen=True)
+class NutationCase:
+    """A rise of a uniform spheroid (aspect ratio ``a``) under Coulomb friction from the sliding
+    branch at inclination ``theta0`` (gyroscopic balance; ``omega0`` prolate or ``n0`` oblate,
+    :func:`phasekit.gyroscopic_start`), with the nutation of amplitude ``c`` and phase ``xi``
+    (:func:`add_nutation`); ``label`` names it in tables.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> case = pk.theory.NutationCase("prolate", 1.5, np.pi / 2 - 0.01, omega0=10.5, c=-0.00054)
+    >>> traj, chk = case.run(40.0, dt=0.01)
+    >>> traj.status.value, chk.c == case.c
+    ('jumped', True)
+    """
+
+    label: str
+    a: float
+    theta0: float
+    omega0: float | None = None
+    n0: float | None = None
+    c: float = 0.0
+    xi: float = 0.0
+
+    def run(self, t_max: float, *, dt: float, mu: float = 0.1):
+        """The rise (to the jump, or until it is complete, :func:`rise_complete`, or ``t_max``)
+        and, sampled every ``dt``, its :func:`envelope_check`: (Trajectory, EnvelopeCheck)."""
+        from .body import Spheroid
+        from .friction import Coulomb
+        from .model import Model
+        from .simulate import simulate
+        from .starts import gyroscopic_start
+
+        body = Spheroid(self.a)
+        y0 = gyroscopic_start(body, self.theta0, omega0=self.omega0, n0=self.n0)
+        r = simulate(Model(body, Coulomb(mu)), add_nutation(body, y0, mu, self.c, self.xi), t_max,
+                     events=[rise_complete(body)])
+        return r, envelope_check(r, y0, self.c, dt=dt)
+
+
+def envelope_report(runs) -> tuple[list[str], dict]:
+    """Rows (label, Trajectory, :class:`EnvelopeCheck`) as the lines of a text table (what the
+    errors are and a header first): status, t*, the Jellett constant J, c_eff / c and the RMS
+    and max of each error of :meth:`EnvelopeCheck.errors`; and, by label, those errors followed
+    by c_eff / c.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> case = pk.theory.NutationCase("prolate", 1.5, np.pi / 2 - 0.01, omega0=10.5, c=-0.00054)
+    >>> lines, errors = pk.theory.envelope_report([(case.label, *case.run(40.0, dt=0.01))])
+    >>> len(lines), len(errors["prolate"])
+    (3, 7)
+    """
+    lines = ["errors over the rise up to the jump: theta = gyroscopic theta-bar - simulated period means;"
+             " S(c) = minima of R - Sigma with the nominal c; S(c_eff) = the same with c fitted on the first 30% of the"
+             " rise, over the other 70%"]
+    lines += [f"{'case':<28s} {'status':<9s} {'t*':>7s} {'J=AOh':>7s} {'c_eff/c':>7s} {'theta RMS':>9s} {'max':>8s} "
+             f"{'S(c) RMS':>9s} {'max':>8s} {'S(c_eff) RMS':>12s} {'max':>8s}"]
+    out = {}
+    for label, r, d in runs:
+        e = d.errors()
+        out[label] = e + (d.c_eff / d.c,)
+        tj = f"{r.t_jump:.2f}" if r.t_jump else "-"
+        lines.append(f"{label:<28s} {r.status.value:<9s} {tj:>7s} {d.J:7.3f} {d.c_eff / d.c:7.2f} "
+                     f"{e[0]:9.2e} {e[1]:8.2e} {e[2]:9.2e} {e[3]:8.2e} {e[4]:12.2e} {e[5]:8.2e}")
+    return lines, out
 
 
 def fit_gyroscopic_mu(ts, theta, a: float, J: float, theta0: float, mu0: float) -> tuple[float, float]:

@@ -52,9 +52,11 @@ from .paper import PAPER_CASES, PaperCase
 from .paper_checks import (
     EnvelopeCheck,
     FlightCheck,
+    NutationCase,
     add_nutation,
     crossing_trend,
     envelope_check,
+    envelope_report,
     fit_gyroscopic_mu,
     flight_check,
     loglog_fit,
@@ -91,4 +93,6 @@ __all__ = [
     "simulate_inversion", "inversion_run", "InversionRun", "inversion_summary",
     # the jump surface (6.3) against simulated crossings, and the trend of its error
     "surface_crossings", "crossing_trend", "loglog_fit",
+    # a rise from the sliding branch with a nutation, beside the gyroscopic solution and Sigma
+    "NutationCase", "envelope_report",
 ]
