@@ -57,8 +57,11 @@ from .paper_checks import (
     crossing_trend,
     envelope_check,
     envelope_report,
+    first_flight,
     fit_gyroscopic_mu,
     flight_check,
+    gap_ensemble,
+    gap_ensemble_report,
     loglog_fit,
     rise_complete,
     sigma_zero,
@@ -95,4 +98,6 @@ __all__ = [
     "surface_crossings", "crossing_trend", "loglog_fit",
     # a rise from the sliding branch with a nutation, beside the gyroscopic solution and Sigma
     "NutationCase", "envelope_report",
+    # first flights, and the largest gaps of an ensemble of them against (4.23) and the paper's bound
+    "first_flight", "gap_ensemble", "gap_ensemble_report",
 ]
