@@ -30,6 +30,7 @@ from .atlas import (
     trace_boundary,
 )
 from .batch import BatchStats, compile_batch
+from .map_reports import threshold_map_report
 from .maps import (
     OUTCOME_KINDS,
     OutcomeRow,
@@ -69,7 +70,16 @@ from .tasks import (
     run_tasks,
     stored_rows,
 )
-from .threshold import Outcome, Sensitivity, ThresholdSearch, evaluate_outcomes, run_searches
+from .threshold import (
+    Outcome,
+    Sensitivity,
+    ThresholdSearch,
+    evaluate_outcomes,
+    prepare_definitions,
+    run_searches,
+    sensitivity_definitions,
+    sensitivity_parent,
+)
 
 __all__ = [
     # tasks on Dask or in this process, resumable from a store
@@ -91,4 +101,8 @@ __all__ = [
     "PairRow", "pair_key", "pair_run", "pair_runs", "as_printed", "pair_table", "pair_report",
     # stiff and extreme cases: a run checked for its status, invariants and cost (studies/stiff_extreme.py)
     "StressCase", "stress_run", "invariant_drift", "STRESS_COLUMNS", "stress_report",
+    # the variants of the threshold definitions a sensitivity run compares, and their compilation
+    "sensitivity_definitions", "sensitivity_parent", "prepare_definitions",
+    # the report of an (a, mu) threshold map (studies/threshold_vs_mu.py)
+    "threshold_map_report",
 ]
