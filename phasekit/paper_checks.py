@@ -4,8 +4,11 @@ The event that ends a rise, the nutation of amplitude c and phase xi (3.46) adde
 the sliding branch, the mean inclination at which the envelope Sigma (3.64) first reaches zero
 (the predicted jump), a simulated rise set beside the gyroscopic solution (3.18) and Sigma
 (:class:`EnvelopeCheck`), the friction coefficient that makes (3.18) fit a simulated theta(t)
-best (the effective friction of a bouncing rise), and a simulated first flight beside the gap
-of section 4 (:class:`FlightCheck`).
+best (the effective friction of a bouncing rise), a simulated first flight beside the gap
+of section 4 (:class:`FlightCheck`), and the flights of an ensemble of perturbed starts
+(:func:`gap_ensemble`). A rise from the sliding branch with a nutation is a
+:class:`NutationCase`; the error of the jump surface (6.3) at simulated crossings, and its
+trend in the start value, :func:`surface_crossings` and :func:`crossing_trend`.
 """
 
 from __future__ import annotations
