@@ -4,8 +4,11 @@ The event that ends a rise, the nutation of amplitude c and phase xi (3.46) adde
 the sliding branch, the mean inclination at which the envelope Sigma (3.64) first reaches zero
 (the predicted jump), a simulated rise set beside the gyroscopic solution (3.18) and Sigma
 (:class:`EnvelopeCheck`), the friction coefficient that makes (3.18) fit a simulated theta(t)
-best (the effective friction of a bouncing rise), and a simulated first flight beside the gap
-of section 4 (:class:`FlightCheck`).
+best (the effective friction of a bouncing rise), a simulated first flight beside the gap
+of section 4 (:class:`FlightCheck`), and the flights of an ensemble of perturbed starts
+(:func:`gap_ensemble`). A rise from the sliding branch with a nutation is a
+:class:`NutationCase`; the error of the jump surface (6.3) at simulated crossings, and its
+trend in the start value, :func:`surface_crossings` and :func:`crossing_trend`.
 """
 
 from __future__ import annotations
@@ -20,8 +23,9 @@ from .gyroscopic import gyroscopic_closed, jellett_constant
 from .hybrid import Event
 from .multiscale import Gamma_closed, Sigma, mean_over_periods, omega_gyro, perturbation_from_c_xi, slow_rates
 
-__all__ = ["rise_complete", "add_nutation", "sigma_zero", "EnvelopeCheck", "envelope_check", "fit_gyroscopic_mu",
-           "FlightCheck", "flight_check"]
+__all__ = ["rise_complete", "add_nutation", "sigma_zero", "EnvelopeCheck", "envelope_check", "NutationCase", "envelope_report",
+           "fit_gyroscopic_mu", "first_flight", "gap_ensemble", "gap_ensemble_report",
+           "FlightCheck", "flight_check", "surface_crossings", "loglog_fit", "crossing_trend"]
 
 #: the share of the minima of R on which the effective amplitude c_eff is fitted (the rest tests it)
 FIT_SHARE = 0.3
@@ -193,6 +197,75 @@ def envelope_check(traj, start, c: float, *, dt: float) -> EnvelopeCheck:
                          valid, sig, sig_fit, c, c_eff, J)
 
 
+@dataclass(frozen=True)
+class NutationCase:
+    """A rise of a uniform spheroid (aspect ratio ``a``) under Coulomb friction from the sliding
+    branch at inclination ``theta0`` (gyroscopic balance; ``omega0`` prolate or ``n0`` oblate,
+    :func:`phasekit.gyroscopic_start`), with the nutation of amplitude ``c`` and phase ``xi``
+    (:func:`add_nutation`); ``label`` names it in tables.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> case = pk.theory.NutationCase("prolate", 1.5, np.pi / 2 - 0.01, omega0=10.5, c=-0.00054)
+    >>> traj, chk = case.run(40.0, dt=0.01)
+    >>> traj.status.value, chk.c == case.c
+    ('jumped', True)
+    """
+
+    label: str
+    a: float
+    theta0: float
+    omega0: float | None = None
+    n0: float | None = None
+    c: float = 0.0
+    xi: float = 0.0
+
+    def run(self, t_max: float, *, dt: float, mu: float = 0.1):
+        """The rise (to the jump, or until it is complete, :func:`rise_complete`, or ``t_max``)
+        and, sampled every ``dt``, its :func:`envelope_check`: (Trajectory, EnvelopeCheck)."""
+        from .body import Spheroid
+        from .friction import Coulomb
+        from .model import Model
+        from .simulate import simulate
+        from .starts import gyroscopic_start
+
+        body = Spheroid(self.a)
+        y0 = gyroscopic_start(body, self.theta0, omega0=self.omega0, n0=self.n0)
+        r = simulate(Model(body, Coulomb(mu)), add_nutation(body, y0, mu, self.c, self.xi), t_max,
+                     events=[rise_complete(body)])
+        return r, envelope_check(r, y0, self.c, dt=dt)
+
+
+def envelope_report(runs) -> tuple[list[str], dict]:
+    """Rows (label, Trajectory, :class:`EnvelopeCheck`) as the lines of a text table (what the
+    errors are and a header first): status, t*, the Jellett constant J, c_eff / c and the RMS
+    and max of each error of :meth:`EnvelopeCheck.errors`; and, by label, those errors followed
+    by c_eff / c.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> case = pk.theory.NutationCase("prolate", 1.5, np.pi / 2 - 0.01, omega0=10.5, c=-0.00054)
+    >>> lines, errors = pk.theory.envelope_report([(case.label, *case.run(40.0, dt=0.01))])
+    >>> len(lines), len(errors["prolate"])
+    (3, 7)
+    """
+    lines = ["errors over the rise up to the jump: theta = gyroscopic theta-bar - simulated period means;"
+             " S(c) = minima of R - Sigma with the nominal c; S(c_eff) = the same with c fitted on the first 30% of the"
+             " rise, over the other 70%"]
+    lines += [f"{'case':<28s} {'status':<9s} {'t*':>7s} {'J=AOh':>7s} {'c_eff/c':>7s} {'theta RMS':>9s} {'max':>8s} "
+             f"{'S(c) RMS':>9s} {'max':>8s} {'S(c_eff) RMS':>12s} {'max':>8s}"]
+    out = {}
+    for label, r, d in runs:
+        e = d.errors()
+        out[label] = e + (d.c_eff / d.c,)
+        tj = f"{r.t_jump:.2f}" if r.t_jump else "-"
+        lines.append(f"{label:<28s} {r.status.value:<9s} {tj:>7s} {d.J:7.3f} {d.c_eff / d.c:7.2f} "
+                     f"{e[0]:9.2e} {e[1]:8.2e} {e[2]:9.2e} {e[3]:8.2e} {e[4]:12.2e} {e[5]:8.2e}")
+    return lines, out
+
+
 def fit_gyroscopic_mu(ts, theta, a: float, J: float, theta0: float, mu0: float) -> tuple[float, float]:
     """The friction coefficient mu for which the gyroscopic solution (3.18) of a spheroid of
     aspect ratio ``a`` (slow time T = mu t) fits the simulated ``theta`` at ``ts`` best (least
@@ -269,3 +342,145 @@ def flight_check(traj, *, n: int = 400, rtol: float = 1e-13) -> FlightCheck:
     series = gap_series(fl.Omega_star, fl.W_star, tt)
     gm, _ = gap_max_series(fl.Omega_star, fl.W_star)
     return FlightCheck(fl, tt, gaps, exact, series, gm, gm / fl.gap_max - 1, float(np.max(np.abs(series - exact)) / np.max(exact)))
+
+
+def surface_crossings(branch: str, a: float, values, d: float = 0.01, *, bar=None) -> list:
+    """The R = 0 crossing (a :class:`phasekit.surface.Crossing`, with the error in n of the jump
+    surface (6.3) there) of the trajectory from each family value in ``values`` (Omega0 prolate,
+    n0 oblate), started on the sliding branch at distance ``d`` of a uniform spheroid of aspect
+    ratio ``a`` under Coulomb friction mu = 0.1; a start that does not jump has none. One
+    trajectory at a time (crossings only: no dense output); ``bar`` (a progress bar) is updated
+    after each.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [c.value for c in pk.theory.surface_crossings("prolate", 1.5, [12.0])]
+    [12.0]
+    """
+    from .surface import Scene, compute_scene
+
+    out = []
+    for v in values:
+        out += compute_scene(Scene(branch, a, values=(v,), seed_distance=d, show=frozenset({"crossings"}))).crossings
+        if bar is not None:
+            bar.update()
+    return out
+
+
+def loglog_fit(x, y) -> tuple[float, float, float]:
+    """The slope of log y against log x (least squares), its standard error, and the
+    correlation coefficient of log x and log y.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> x = np.array([1.0, 2.0, 4.0, 8.0])
+    >>> [round(v, 6) for v in pk.theory.loglog_fit(x, 3 * x**-2 * (1 + 0.01 * np.array([1, -1, 1, -1])))][::2]
+    [-2.005771, -0.999983]
+    """
+    X, Y = np.log(x), np.log(y)
+    (slope, _), cov = np.polyfit(X, Y, 1, cov=True)
+    return float(slope), float(np.sqrt(cov[0, 0])), float(np.corrcoef(X, Y)[0, 1])
+
+
+def crossing_trend(crossings) -> tuple:
+    """Whether the error in n of the jump surface (6.3) at ``crossings`` (of one branch, from
+    several start values, :func:`surface_crossings`) has a trend in the start value: the
+    smallest, median and largest error, the :func:`loglog_fit` of the error against the start
+    value (slope, standard error, r), and the log-log slopes of its two factors, the geometric
+    error / ``Lambda*^2`` and ``|Lambda*|`` (the error is ``(A/C) h_tt Lambda*^2 / (Omega* h_theta
+    sin theta* n*)``, the Lambda^2 term that (6.3) drops).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> fit = pk.theory.crossing_trend(pk.theory.surface_crossings("prolate", 1.5, [12.0, 20.0, 30.0]))
+    >>> len(fit), bool(fit[0] <= fit[1] <= fit[2])
+    (8, True)
+    """
+    v, e, lam = (np.array([getattr(c, k) for c in crossings]) for k in ("value", "rel_error", "Lambda"))
+    return (e.min(), np.median(e), e.max(), *loglog_fit(v, e), loglog_fit(v, e / lam**2)[0], loglog_fit(v, np.abs(lam))[0])
+
+
+def first_flight(model, x0, t_max: float = 400.0):
+    """The run from ``x0`` to its first touchdown (status "touchdown"), or until its rise is
+    complete (:func:`rise_complete`: status "stopped", no jump) or ``t_max``; without dense
+    output or minima of R.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.theory.first_flight(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=20.0))
+    >>> traj.status.value, len(traj.flights)
+    ('touchdown', 1)
+    """
+    from .simulate import simulate
+
+    return simulate(model, x0, t_max, stop_at="touchdown", events=[rise_complete(model.body)], track_minima=False, dense=False)
+
+
+def gap_ensemble(model, omegas, n_each: int, seed: int, *, amplitude: float = 0.05, bar=None) -> list[tuple]:
+    """First flights (:func:`first_flight`) from ``n_each`` random perturbations of amplitude
+    ``amplitude`` (uniform on the unit sphere of (U, V, Omega, Lambda, theta, n), drawn in
+    turn from one generator seeded with ``seed``) of the horizontal steady precession at each
+    Omega0 in ``omegas``. One tuple per run: (Omega0, member, status, the flight's largest gap,
+    the largest gap by (4.23), W*, Omega*, stuck), NaN where the run did not touch down;
+    ``bar`` (a progress bar) is updated after each run.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> recs = pk.theory.gap_ensemble(pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)), [20.0], 2, seed=1)
+    >>> [(r[0], r[1], r[2]) for r in recs]
+    [(20.0, 0, 'touchdown'), (20.0, 1, 'touchdown')]
+    """
+    from .errors import Status
+    from .fixedpoints import horizontal_state
+
+    rng = np.random.default_rng(seed)
+    recs = []
+    for om in omegas:
+        for j in range(n_each):
+            v = rng.standard_normal(6)
+            v /= np.linalg.norm(v)
+            r = first_flight(model, horizontal_state(om) + amplitude * v)
+            if bar is not None:
+                bar.update()
+            if r.status is not Status.TOUCHDOWN:
+                recs.append((om, j, r.status.value, np.nan, np.nan, np.nan, np.nan, r.stuck))
+                continue
+            fl = r.flights[0]
+            gm, _ = gap_max_series(fl.Omega_star, fl.W_star)
+            recs.append((om, j, "touchdown", fl.gap_max, gm, fl.W_star, fl.Omega_star, r.stuck))
+    return recs
+
+
+def gap_ensemble_report(recs, omegas) -> tuple[list[str], dict]:
+    """The runs of :func:`gap_ensemble` in a few lines of text: how many did not jump, how many
+    largest gaps (exact, and by (4.23)) exceed the paper's bound (4.65/Omega0)^5, and the median
+    relative error of (4.23) at each Omega0; and the counts (``over_exact``, ``over_series``,
+    ``n``: the runs that touched down).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> lines, counts = pk.theory.gap_ensemble_report([(20.0, 0, "touchdown", 2e-7, 2.2e-7, 0.1, 20.0, False)], [20.0])
+    >>> lines[-1], counts
+    ('  Omega0 =  20.0: 0.100 (1 runs)', {'over_exact': 0, 'over_series': 0, 'n': 1})
+    """
+    om, exact, series = np.array([(q[0], q[3], q[4]) for q in recs], dtype=float).T
+    ok = np.isfinite(exact)
+    over_exact, over_series = (int(np.sum(g[ok] > (4.65 / om[ok]) ** 5)) for g in (exact, series))
+    n_stuck = sum(1 for q in recs if q[2] != "touchdown")
+    touch = [q for q in recs if q[2] == "touchdown"]
+    lines = [f"ensemble of {len(recs)} runs ({n_stuck} without a jump: stuck or rose without losing contact).",
+             f"points above the bound (4.65/Omega0)^5: {over_exact} of {int(ok.sum())} (exact Delta_max), "
+             f"{over_series} of {int(ok.sum())} ((4.23) estimate, as plotted in the paper)",
+             "median relative error of (4.23) against the exact maximum, by Omega0:"]
+    for w in omegas:
+        er = [abs(q[4] / q[3] - 1) for q in touch if q[0] == w]
+        if er:
+            lines.append(f"  Omega0 = {w:5.1f}: {np.median(er):.3f} ({len(er)} runs)")
+    return lines, {"over_exact": over_exact, "over_series": over_series, "n": int(ok.sum())}

@@ -36,6 +36,7 @@ from .atlas import (
 )
 from .batch import BatchStats, compile_batch
 from .eggs import EggDefinition, EndRow, egg_separatrix, which_end, which_end_key, which_end_starts, which_end_summary
+from .map_reports import threshold_map_report
 from .maps import (
     OUTCOME_KINDS,
     OutcomeMapPlan,
@@ -60,6 +61,8 @@ from .maps import (
     threshold_table,
     threshold_task,
 )
+from .paper_pairs import PairRow, as_printed, pair_key, pair_report, pair_run, pair_runs, pair_table
+from .stress import STRESS_COLUMNS, StressCase, invariant_drift, stress_report, stress_run
 from .study import Study, atomic_path, run_study, save_figure, write_csv, write_json
 from .tasks import (
     ModelPack,
@@ -75,7 +78,16 @@ from .tasks import (
     run_tasks,
     stored_rows,
 )
-from .threshold import Outcome, Sensitivity, ThresholdSearch, evaluate_outcomes, run_searches
+from .threshold import (
+    Outcome,
+    Sensitivity,
+    ThresholdSearch,
+    evaluate_outcomes,
+    prepare_definitions,
+    run_searches,
+    sensitivity_definitions,
+    sensitivity_parent,
+)
 
 __all__ = [
     # tasks on Dask or in this process, resumable from a store
@@ -99,4 +111,12 @@ __all__ = [
     "egg_separatrix", "which_end_starts", "EndRow", "which_end", "which_end_key", "which_end_summary", "EggDefinition",
     # atlases: their grid and keys, the bifurcations on their boundaries
     "atlas_grid", "atlas_point_key", "atlas_edge_key", "bifurcation_pairs",
+    # the paper's printed pairs of single trajectories (studies/paper_pairs.py)
+    "PairRow", "pair_key", "pair_run", "pair_runs", "as_printed", "pair_table", "pair_report",
+    # stiff and extreme cases: a run checked for its status, invariants and cost (studies/stiff_extreme.py)
+    "StressCase", "stress_run", "invariant_drift", "STRESS_COLUMNS", "stress_report",
+    # the variants of the threshold definitions a sensitivity run compares, and their compilation
+    "sensitivity_definitions", "sensitivity_parent", "prepare_definitions",
+    # the report of an (a, mu) threshold map (studies/threshold_vs_mu.py)
+    "threshold_map_report",
 ]

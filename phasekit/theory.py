@@ -52,12 +52,20 @@ from .paper import PAPER_CASES, PaperCase
 from .paper_checks import (
     EnvelopeCheck,
     FlightCheck,
+    NutationCase,
     add_nutation,
+    crossing_trend,
     envelope_check,
+    envelope_report,
+    first_flight,
     fit_gyroscopic_mu,
     flight_check,
+    gap_ensemble,
+    gap_ensemble_report,
+    loglog_fit,
     rise_complete,
     sigma_zero,
+    surface_crossings,
 )
 from .structure import RollingMotion, manifold_runs, rolling_motion, settled_motion
 from .surface import exact_boundary, surface_n
@@ -88,4 +96,10 @@ __all__ = [
     "simulate_inversion", "inversion_run", "InversionRun", "inversion_summary",
     # runs against the steady-state structure: from a branch state's unstable manifold, and what a run settles into
     "manifold_runs", "settled_motion",
+    # the jump surface (6.3) against simulated crossings, and the trend of its error
+    "surface_crossings", "crossing_trend", "loglog_fit",
+    # a rise from the sliding branch with a nutation, beside the gyroscopic solution and Sigma
+    "NutationCase", "envelope_report",
+    # first flights, and the largest gaps of an ensemble of them against (4.23) and the paper's bound
+    "first_flight", "gap_ensemble", "gap_ensemble_report",
 ]

@@ -54,7 +54,8 @@ from .watch import WALL_REASON, check_max_wall, deadline, passed, progress_bar, 
 
 __all__ = ["Definition", "Outcome", "Threshold", "Sensitivity", "ThresholdSearch", "find_threshold", "continue_threshold",
            "run_searches", "evaluate_outcomes", "find_stick_boundary",
-           "threshold_searches", "threshold_result", "stick_search", "DEFAULT_DEFINITIONS", "EVALUATION", "as_body"]
+           "threshold_searches", "threshold_result", "stick_search", "DEFAULT_DEFINITIONS", "EVALUATION", "as_body",
+           "sensitivity_definitions", "sensitivity_parent", "prepare_definitions"]
 
 
 #: the settle rule of every built-in definition (see :mod:`phasekit.settle`)
@@ -778,3 +779,63 @@ DEFAULT_DEFINITIONS = (
     Definition("literal-eps1e-4", "literal", eps=1e-4),
     Definition("literal-exact", "literal"),
 )
+
+
+def sensitivity_definitions(quick: bool = False) -> list[Definition]:
+    """The variants of the default definition ("sliding", d = 0.01) and of the literal one with
+    eps = 1e-4 at which a threshold's sensitivity is measured: the seed distance d (or delta)
+    halved and doubled, rtol 1e-8 and 1e-10, and (unless ``quick``) eps 1e-4, 1e-6, 1e-8 for the
+    sliding seed and the literal variants. Each is named after what it changes
+    (:func:`sensitivity_parent` names the definition it varies).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [d.name for d in pk.sweep.sensitivity_definitions(quick=True)]
+    ['sliding-d0.005', 'sliding-d0.02', 'sliding-rtol1e-8', 'sliding-rtol1e-10']
+    >>> len(pk.sweep.sensitivity_definitions())
+    13
+    """
+    base = next(d for d in DEFAULT_DEFINITIONS if d.name == "sliding")
+    lit = Definition("literal-eps1e-4", "literal", eps=1e-4)
+    out = [replace(base, name="sliding-d0.005", amplitude=0.005), replace(base, name="sliding-d0.02", amplitude=0.02),
+           replace(base, name="sliding-rtol1e-8", rtol=1e-8), replace(base, name="sliding-rtol1e-10", rtol=1e-10)]
+    if quick:
+        return out
+    out += [replace(base, name=f"sliding-eps{e:g}", eps=e) for e in (1e-4, 1e-6, 1e-8)]
+    out += [replace(lit, name="literal-eps1e-4-delta0.005", amplitude=0.005), replace(lit, name="literal-eps1e-4-delta0.02", amplitude=0.02),
+            replace(lit, name="literal-eps1e-4-rtol1e-8", rtol=1e-8), replace(lit, name="literal-eps1e-4-rtol1e-10", rtol=1e-10),
+            replace(lit, name="literal-eps1e-6", eps=1e-6), replace(lit, name="literal-eps1e-8", eps=1e-8)]
+    return out
+
+
+def sensitivity_parent(defn) -> str:
+    """The name of the definition of :data:`DEFAULT_DEFINITIONS` that a variant of
+    :func:`sensitivity_definitions` (a definition, or a row with its ``seed``) varies.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [pk.sweep.sensitivity_parent(d) for d in pk.sweep.sensitivity_definitions()][::6]
+    ['sliding', 'sliding', 'literal-eps1e-4']
+    """
+    return "literal-eps1e-4" if defn.seed == "literal" else "sliding"
+
+
+def prepare_definitions(definitions, bodies, engine: str = "batch") -> None:
+    """Compile (or load) the models and integrators of each definition for each body (or
+    aspect ratio) in ``bodies`` (:meth:`Definition.prepare`), e.g. before a Dask run ships them
+    to the workers; a definition that cannot be prepared is skipped (its runs compile when they
+    first need it).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.sweep.prepare_definitions(pk.DEFAULT_DEFINITIONS[:1], [1.5])
+    """
+    for d in definitions:
+        for a in bodies:
+            try:
+                d.prepare(a, engine=engine)
+            except Exception:
+                pass

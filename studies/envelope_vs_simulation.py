@@ -16,27 +16,13 @@ sigma, r_min_sim, sigma_c_eff, c, c_eff).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import phasekit as pk
 from phasekit.viz import plot_mean_state, plot_minima_envelope, pyplot
 
 import numpy as np
 
 MU = 0.1
-
-
-@dataclass
-class Case:
-    label: str
-    a: float
-    theta0: float
-    omega0: float | None = None
-    n0: float | None = None
-    c: float = 0.0
-    xi: float = 0.0
-
-
+Case = pk.theory.NutationCase
 PAPER_CASES = [
     Case("oblate a=2/3 n0=10", 2 / 3, 0.05, n0=10.0, c=0.00052),
     Case("oblate a=2/3 n0=10.5", 2 / 3, 0.05, n0=10.5, c=0.00052),
@@ -45,16 +31,6 @@ PAPER_CASES = [
 ]
 TREND = [Case(f"prolate Omega0={w:g}", 1.5, np.pi / 2 - 0.01, omega0=w, c=-0.00054) for w in (10.5, 20.0, 40.0)] + \
         [Case(f"oblate n0={n:g}", 2 / 3, 0.05, n0=n, c=0.00052) for n in (10.5, 20.0, 40.0)]
-
-
-def run_case(case: Case, t_max: float, dt: float):
-    """The case's rise (to the jump, or theta passing 0.05 prolate / pi/2 - 0.05 oblate: the rise
-    is complete) beside the gyroscopic solution and Sigma."""
-    body = pk.Spheroid(case.a)
-    y0 = pk.gyroscopic_start(body, case.theta0, omega0=case.omega0, n0=case.n0)
-    r = pk.simulate(pk.Model(body, pk.Coulomb(MU)), pk.theory.add_nutation(body, y0, MU, case.c, case.xi), t_max,
-                    events=[pk.theory.rise_complete(body)])
-    return case, r, pk.theory.envelope_check(r, y0, case.c, dt=dt)
 
 
 def draw(plt, runs):
@@ -84,7 +60,7 @@ def main(argv=None) -> dict:
     with st.progress(total=len(PAPER_CASES) + len(trend_cases) + 2, desc="simulations") as bar:
         for cases, out in ((PAPER_CASES, runs), (trend_cases, trends)):
             for c in cases:
-                out.append(run_case(c, 400.0, dt))
+                out.append((c, *c.run(400.0, dt=dt, mu=MU)))
                 bar.update()
         lits = {label: pk.simulate(*pk.paper_start(k), 300.0)  # the printed starts (their charts: pk.choose_chart)
                 for k, label in (("5.2", "(5.2) prolate Omega0=10.5"), ("5.1", "(5.1) oblate n0=10.5"))}
@@ -98,18 +74,8 @@ def main(argv=None) -> dict:
                   rows)
     print(f"Figure {png.name}: R(t), Sigma and the gyroscopic mean state for {len(runs)} cases; table {path.name}; "
           f"{st.wall:.1f} s.")
-    print("errors over the rise up to the jump: theta = gyroscopic theta-bar - simulated period means;"
-          " S(c) = minima of R - Sigma with the nominal c; S(c_eff) = the same with c fitted on the first 30% of the"
-          " rise, over the other 70%")
-    print(f"{'case':<28s} {'status':<9s} {'t*':>7s} {'J=AOh':>7s} {'c_eff/c':>7s} {'theta RMS':>9s} {'max':>8s} "
-          f"{'S(c) RMS':>9s} {'max':>8s} {'S(c_eff) RMS':>12s} {'max':>8s}")
-    out = {}
-    for case, r, d in runs + trends:
-        e = d.errors()
-        out[case.label] = e + (d.c_eff / case.c,)
-        tj = f"{r.t_jump:.2f}" if r.t_jump else "-"
-        print(f"{case.label:<28s} {r.status.value:<9s} {tj:>7s} {d.J:7.3f} {d.c_eff / case.c:7.2f} "
-              f"{e[0]:9.2e} {e[1]:8.2e} {e[2]:9.2e} {e[3]:8.2e} {e[4]:12.2e} {e[5]:8.2e}")
+    lines, out = pk.theory.envelope_report([(case.label, r, d) for case, r, d in runs + trends])
+    print("\n".join(lines))
     print("Jellett constants: the paper quotes J = 4, 4.2 (Fig. 3, oblate; = C n0) and 6.63, 6.83 (Fig. 4, prolate; = A Omega0 h);"
           " here J = A Omega h (3.17) throughout (docs/physics.md, pitfall 4).")
     for label, r in lits.items():

@@ -18,13 +18,6 @@ from phasekit.viz import plot_gap_flight, plot_gap_maxima, pyplot
 import numpy as np
 
 MU, A_RATIO = 0.1, 1.5
-#: the rise is complete (no jump any more) once theta falls through 0.05
-RISE = pk.theory.rise_complete(pk.Spheroid(A_RATIO))
-
-
-def first_flight(model, x0, t_max=400.0, dense=False):
-    """To the first touchdown (status "touchdown"), or the end of the rise ("stopped")."""
-    return pk.simulate(model, x0, t_max, stop_at="touchdown", events=[RISE], track_minima=False, dense=dense)
 
 
 def flights_abc(axes, model, body) -> list:
@@ -35,7 +28,7 @@ def flights_abc(axes, model, body) -> list:
           f"{'(4.23)':>11s} {'rel err':>8s} {'(4.22) curve err':>16s}")
     rows_abc = []
     for ax, om in zip(axes, (11.0, 20.0, 30.0)):
-        r = first_flight(model, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=om))
+        r = pk.theory.first_flight(model, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=om))
         chk = pk.theory.flight_check(r)  # the flight again at rtol 1e-13, and the theory of section 4
         fl, gm, rel, curve = chk.flight, chk.gap_max_series, chk.rel_error, chk.curve_error
         rows_abc.append((om, rel, curve, fl.W_star * fl.Omega_star))
@@ -45,27 +38,6 @@ def flights_abc(axes, model, body) -> list:
                  fr"$\Delta_{{max}}$ of (4.23) {100 * rel:+.1f}%")
         plot_gap_flight(ax, chk.t, chk.numerical, chk.exact, chk.series, title=title)
     return rows_abc
-
-
-def ensemble(model, omegas, n_each, seed, st) -> list:
-    """(d): first flights from random perturbations of amplitude 0.05 of the horizontal state."""
-    rng = np.random.default_rng(seed)
-    recs = []
-    with st.progress(total=len(omegas) * n_each, desc="ensemble") as bar:
-        for om in omegas:
-            for j in range(n_each):
-                v = rng.standard_normal(6)
-                v /= np.linalg.norm(v)
-                x0 = pk.theory.horizontal_state(om) + 0.05 * v
-                r = first_flight(model, x0)
-                bar.update()
-                if r.status is not pk.Status.TOUCHDOWN:
-                    recs.append((om, j, r.status.value, np.nan, np.nan, np.nan, np.nan, r.stuck))
-                    continue
-                fl = r.flights[0]
-                gm, _ = pk.theory.gap_max_series(fl.Omega_star, fl.W_star)
-                recs.append((om, j, "touchdown", fl.gap_max, gm, fl.W_star, fl.Omega_star, r.stuck))
-    return recs
 
 
 def main(argv=None) -> dict:
@@ -79,10 +51,11 @@ def main(argv=None) -> dict:
     fig, axes = plt.subplots(2, 2, figsize=(11, 8))
     rows_abc = flights_abc(axes.flat[:3], model, body)
     omegas = np.arange(10.0, 41.0, 5.0 if args.quick else 2.5)
-    recs = ensemble(model, omegas, 5 if args.quick else 10, args.seed, st)
+    n_each = 5 if args.quick else 10
+    with st.progress(total=len(omegas) * n_each, desc="ensemble") as bar:
+        recs = pk.theory.gap_ensemble(model, omegas, n_each, args.seed, bar=bar)
     om, exact, series = np.array([(q[0], q[3], q[4]) for q in recs], dtype=float).T
     ok = np.isfinite(exact)
-    over_exact, over_series = (int(np.sum(g[ok] > (4.65 / om[ok]) ** 5)) for g in (exact, series))
     plot_gap_maxima(axes[1, 1], om[ok], exact[ok], series[ok], omegas,
                     title=f"(d) {int(ok.sum())} jumps from perturbations of amplitude 0.05 (seed {args.seed})")
     fig.suptitle(r"Fig. 5: the gap during the first flight; prolate $a=1.5$, Coulomb $\mu=0.1$" "\n"
@@ -92,18 +65,10 @@ def main(argv=None) -> dict:
     png = st.save(fig, "figure5_gap.png", dpi=120)
     st.csv("figure5_gap.csv", ["omega0", "member", "status", "gap_max_exact", "gap_max_4_23", "W_star", "Omega_star", "stuck", "bound"],
            [[*q, (4.65 / q[0]) ** 5] for q in recs])
-    n_stuck = sum(1 for q in recs if q[2] != "touchdown")
-    touch = [q for q in recs if q[2] == "touchdown"]
-    print(f"\nFigure {png.name}; ensemble of {len(recs)} runs ({n_stuck} without a jump: stuck or rose without losing contact).")
-    print(f"points above the bound (4.65/Omega0)^5: {over_exact} of {int(ok.sum())} (exact Delta_max), "
-          f"{over_series} of {int(ok.sum())} ((4.23) estimate, as plotted in the paper)")
-    print("median relative error of (4.23) against the exact maximum, by Omega0:")
-    for om in omegas:
-        er = [abs(q[4] / q[3] - 1) for q in touch if q[0] == om]
-        if er:
-            print(f"  Omega0 = {om:5.1f}: {np.median(er):.3f} ({len(er)} runs)")
+    lines, counts = pk.theory.gap_ensemble_report(recs, omegas)
+    print(f"\nFigure {png.name}; " + "\n".join(lines))
     print(f"{st.wall:.1f} s")
-    return {"abc": rows_abc, "over_exact": over_exact, "over_series": over_series, "n": int(ok.sum())}
+    return {"abc": rows_abc, **counts}
 
 
 if __name__ == "__main__":

@@ -28,7 +28,6 @@ from phasekit.viz import render_jump_surface
 import numpy as np
 
 ALL = frozenset({"surface", "exact_boundary", "trajectories", "crossings", "fixed_points", "axes", "colorbar"})
-CROSSINGS = frozenset({"crossings"})
 #: starts of the error table: (branch, a, Omega0 or n0 values)
 TABLE = (("prolate", 1.5, (10.0, 11.0, 12.5, 15.0, 17.5, 20.0, 25.0, 30.0, 40.0)),
          ("oblate", 2 / 3, (9.0, 10.0, 12.5, 15.0, 17.5, 20.0, 25.0, 30.0, 40.0)))
@@ -50,22 +49,6 @@ def render(scenes, st, bar) -> tuple[dict, list]:
     return infos, missing
 
 
-def crossings(branch, a, values, d, bar) -> list:
-    """The R = 0 crossing of the trajectory from each start (none if it does not jump)."""
-    out = []
-    for v in values:
-        out += pk.compute_scene(pk.Scene(branch, a, values=(v,), seed_distance=d, show=CROSSINGS)).crossings
-        bar.update()
-    return out
-
-
-def loglog(x, y) -> tuple[float, float, float]:
-    """Slope of log y against log x, its standard error, and the correlation coefficient."""
-    X, Y = np.log(x), np.log(y)
-    (slope, _), cov = np.polyfit(X, Y, 1, cov=True)
-    return float(slope), float(np.sqrt(cov[0, 0])), float(np.corrcoef(X, Y)[0, 1])
-
-
 def trend(starts, bar) -> tuple[list, list]:
     """Fits over many starts per (branch, d): of the error, of its geometric factor
     error / Lambda*^2, and of |Lambda*|."""
@@ -73,11 +56,9 @@ def trend(starts, bar) -> tuple[list, list]:
     for branch, (a, lo, hi) in TREND_RANGE.items():
         values = np.round(np.geomspace(lo, hi, starts), 4)
         for d in TREND_D:
-            cs = crossings(branch, a, values, d, bar)
-            v, e, lam = (np.array([getattr(c, k) for c in cs]) for k in ("value", "rel_error", "Lambda"))
+            cs = pk.theory.surface_crossings(branch, a, values, d, bar=bar)
             rows += [(branch, a, d, c.value, c.t, c.Omega, c.theta, c.n, c.Lambda, c.rel_error) for c in cs]
-            fits.append((branch, d, len(cs), len(values), e.min(), np.median(e), e.max(), *loglog(v, e),
-                         loglog(v, e / lam**2)[0], loglog(v, np.abs(lam))[0]))
+            fits.append((branch, d, len(cs), len(values), *pk.theory.crossing_trend(cs)))
     return rows, fits
 
 
@@ -91,7 +72,7 @@ def report(infos, table, fits, starts) -> None:
         print(f"{row[0]:<8s} {row[2]:6.1f} {row[3]:8.2f} {row[5]:7.4f} {row[6]:8.4f} {row[7]:8.4f} {row[9]:9.2e}")
     for branch in ("prolate", "oblate"):
         rows = [r for r in table if r[0] == branch]
-        slope = np.polyfit(np.log([r[2] for r in rows]), np.log([r[9] for r in rows]), 1)[0]
+        slope = pk.theory.loglog_fit([r[2] for r in rows], [r[9] for r in rows])[0]
         print(f"{branch}: log-log trend of the error against the start value: slope {slope:.2f} "
               f"(these {len(rows)} starts only; see the fit below)")
     print(f"\nfit over {starts} log-spaced starts per branch and seed distance d: log-log slope of the error against "
@@ -117,7 +98,7 @@ def main(argv=None) -> dict:
     with st.progress(total=n_runs, desc="scenes and crossings") as bar:
         infos, missing = render(scenes, st, bar)
         table = [(branch, a, c.value, c.t, c.Omega, c.theta, c.n, c.Lambda, c.n_surface, c.rel_error)
-                 for branch, a, vals in table_starts for c in crossings(branch, a, vals, 0.01, bar)]
+                 for branch, a, vals in table_starts for c in pk.theory.surface_crossings(branch, a, vals, bar=bar)]
         trend_rows, fits = trend(starts, bar)
     st.csv("jump_surface.csv", ["branch", "a", "start", "t_cross", "Omega", "theta", "n", "Lambda", "n_63", "rel_error_n"], table)
     st.csv("jump_surface_trend.csv", ["branch", "a", "d", "start", "t_cross", "Omega", "theta", "n", "Lambda", "rel_error_n"],

@@ -13,27 +13,13 @@ Writes stiff_extreme.csv and prints the table.
 from __future__ import annotations
 
 import math
-import time
-from dataclasses import dataclass
 
 import phasekit as pk
-
-import numpy as np
 
 P2 = math.pi / 2
 #: the paper's printed starts (5.2) (Omega0 = 10.5) and (5.1) (n0 = 10.5)
 P52, P51 = (list(pk.theory.PAPER_CASES[k].state(10.5)) for k in ("5.2", "5.1"))
-
-
-@dataclass
-class Case:
-    label: str
-    a: float
-    law: object
-    start: dict  # {"theta0", "omega0" | "n0"} (gyroscopic) or {"state": [...]}
-    t_end: float
-    rtol: float = 1e-9
-    max_steps: int = 2_000_000
+Case = pk.sweep.StressCase
 
 
 def cases(quick: bool) -> list[Case]:
@@ -89,58 +75,13 @@ def cases(quick: bool) -> list[Case]:
     return out
 
 
-def run_case(c: Case) -> dict:
-    body = pk.Spheroid(c.a)
-    t0 = time.perf_counter()
-    row = dict(case=c.label, a=c.a, law=c.law.describe(), t_end=c.t_end, rtol=c.rtol)
-    try:
-        if "state" in c.start:
-            y0 = np.array(c.start["state"], dtype=float)
-        else:
-            y0 = pk.gyroscopic_start(body, c.start["theta0"], omega0=c.start.get("omega0"), n0=c.start.get("n0"))
-        chart = pk.choose_chart(float(y0[4]))
-        model = pk.Model(body, c.law, chart)
-        x0 = pk.to_chart(chart, y0)
-        te = np.linspace(0.0, c.t_end, 201)
-        # with friction, stop once the rise is complete
-        r = pk.simulate(model, x0, c.t_end, rtol=c.rtol, t_eval=te, track_minima=False, max_steps=c.max_steps,
-                        events=[pk.theory.rise_complete(body)] if c.law.mu > 0 else [], dense=False)
-        # the start, the samples and the end state: a run that ends early still has two points
-        X = np.vstack([x0[None, :]] + ([r.ys] if r.ys is not None and len(r.ys) else []) + [r.x[None, :]])
-        E = model.evaluate("energy", X)
-        L = model.evaluate("L_Z", X)
-        if c.law.mu == 0:
-            drift = float(max(np.max(np.abs(E - E[0])) / abs(E[0]), np.max(np.abs(L - L[0])) / abs(L[0])))
-        else:
-            drift = float(np.max(np.diff(E)) / abs(E[0])) if E.size > 1 else float("nan")
-        finite = bool(np.all(np.isfinite(r.x)))
-        row.update(status=r.status.value, reason=r.reason or "", t_jump=r.t_jump, t_reached=r.t,
-                   theta_end=float(r.euler_end[4]), stuck=r.stuck, n_events=len(r.events), invariant_drift=drift,
-                   steps=r.n_steps, backend=r.backend, chart=chart, finite=finite)
-    except Exception as exc:  # a crash is a bug to report, not to hide: record it
-        row.update(status="CRASH", reason=f"{type(exc).__name__}: {exc}", finite=False)
-    row["wall_s"] = time.perf_counter() - t0
-    return row
-
-
 def main(argv=None) -> list[dict]:
     st = pk.sweep.Study(__file__, __doc__, quick_help="horizons up to t = 2000, no eps = 1e-12")
     args = st.parse(argv)
-    rows = [run_case(c) for c in st.progress(cases(args.quick), desc="cases")]
-    fields = ["case", "a", "law", "t_end", "rtol", "status", "reason", "t_jump", "t_reached", "theta_end", "stuck",
-              "n_events", "invariant_drift", "steps", "backend", "chart", "finite", "wall_s"]
-    st.csv("stiff_extreme.csv", fields, rows)
+    rows = [pk.sweep.stress_run(c) for c in st.progress(cases(args.quick), desc="cases")]
+    st.csv("stiff_extreme.csv", pk.sweep.STRESS_COLUMNS, rows)
     print(f"{len(rows)} cases; table stiff_extreme.csv; {st.wall:.1f} s")
-    print(f"{'case':<46s} {'status':<10s} {'t_jump':>9s} {'theta_end':>9s} {'drift':>9s} {'steps':>8s} {'backend':>13s} {'wall s':>7s}  note")
-    for r in rows:
-        tj = f"{r['t_jump']:.3f}" if r.get("t_jump") is not None else "-"
-        th = f"{r['theta_end']:.4f}" if r.get("theta_end") is not None else "-"
-        dr = f"{r['invariant_drift']:.1e}" if r.get("invariant_drift") is not None else "-"
-        note = ("stuck; " if r.get("stuck") else "") + (r.get("reason") or "")[:60]
-        print(f"{r['case']:<46s} {r['status']:<10s} {tj:>9s} {th:>9s} {dr:>9s} {r.get('steps', 0):>8} {r.get('backend', '-'):>13s} "
-              f"{r['wall_s']:7.2f}  {note}")
-    bad = [r for r in rows if r["status"] == "CRASH" or not r.get("finite", False)]
-    print(f"crashes or non-finite results: {len(bad)}")
+    print("\n".join(pk.sweep.stress_report(rows)))
     return rows
 
 

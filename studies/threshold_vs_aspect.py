@@ -24,11 +24,11 @@ threshold_vs_aspect.csv at once (manifest .json). Writes threshold_vs_aspect.png
 
 from __future__ import annotations
 
-from dataclasses import asdict, replace
+from dataclasses import asdict
 
 import phasekit as pk
-from phasekit import DEFAULT_DEFINITIONS, Definition
-from phasekit.viz import plot_threshold_curves
+from phasekit import DEFAULT_DEFINITIONS
+from phasekit.viz import DEFINITION_STYLES, plot_threshold_curves
 
 STEM = "threshold_vs_aspect"
 SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5)
@@ -41,28 +41,6 @@ DEFAULT_NAME = "sliding"
 # viscous eigenvector with delta ~ 0.02): Omega0 = 10.2 no jump, 10.5 jump. Fig. 3 (a = 2/3,
 # start (5.1), delta ~ 1e-5): n0 = 10 no jump, 10.5 jump.
 PAPER_BRACKETS = {1.5: (10.2, 10.5), 2 / 3: (10.0, 10.5)}
-STYLES = {"sliding": dict(color="k", lw=2.2, marker="o", ms=4, zorder=5), "literal-eps1e-3": dict(color="C0", lw=1, marker="s", ms=3),
-          "literal-eps1e-4": dict(color="C1", lw=1, marker="^", ms=3), "literal-exact": dict(color="C3", lw=1, marker="v", ms=3),
-          "viscous": dict(color="C2", lw=1, marker="x", ms=3)}
-
-
-def sensitivity_definitions(quick: bool) -> list[Definition]:
-    base = next(d for d in DEFAULT_DEFINITIONS if d.name == DEFAULT_NAME)
-    lit = Definition("literal-eps1e-4", "literal", eps=1e-4)
-    out = [replace(base, name="sliding-d0.005", amplitude=0.005), replace(base, name="sliding-d0.02", amplitude=0.02),
-           replace(base, name="sliding-rtol1e-8", rtol=1e-8), replace(base, name="sliding-rtol1e-10", rtol=1e-10)]
-    if quick:
-        return out
-    out += [replace(base, name=f"sliding-eps{e:g}", eps=e) for e in (1e-4, 1e-6, 1e-8)]
-    out += [replace(lit, name="literal-eps1e-4-delta0.005", amplitude=0.005), replace(lit, name="literal-eps1e-4-delta0.02", amplitude=0.02),
-            replace(lit, name="literal-eps1e-4-rtol1e-8", rtol=1e-8), replace(lit, name="literal-eps1e-4-rtol1e-10", rtol=1e-10),
-            replace(lit, name="literal-eps1e-6", eps=1e-6), replace(lit, name="literal-eps1e-8", eps=1e-8)]
-    return out
-
-
-def parent_name(defn) -> str:
-    """The main definition a sensitivity run varies (a definition or its row)."""
-    return "literal-eps1e-4" if defn.seed == "literal" else DEFAULT_NAME
 
 
 def build_tasks(quick: bool, sensitivity: bool, engine: str = "scalar", levels: int = 1) -> list:
@@ -71,8 +49,8 @@ def build_tasks(quick: bool, sensitivity: bool, engine: str = "scalar", levels: 
     prolate, oblate = (QUICK_PROLATE, QUICK_OBLATE) if quick else (PROLATE, OBLATE)
     specs = [s for defn in DEFAULT_DEFINITIONS for a_list in (prolate, oblate) for s in pk.sweep.threshold_chain(
         defn, a_list, SEARCH, is_default=defn.name == DEFAULT_NAME, engine=engine, levels=levels)]
-    for defn in sensitivity_definitions(quick) if sensitivity else ():
-        parent = next(d for d in DEFAULT_DEFINITIONS if d.name == parent_name(defn))
+    for defn in pk.sweep.sensitivity_definitions(quick) if sensitivity else ():
+        parent = next(d for d in DEFAULT_DEFINITIONS if d.name == pk.sweep.sensitivity_parent(defn))
         specs += [s for a in (1.5, 2 / 3) for s in pk.sweep.threshold_chain(
             defn, [a], SEARCH, group="sensitivity", engine=engine, levels=levels, after=pk.sweep.threshold_key(parent, a, SEARCH))]
     return specs
@@ -80,13 +58,7 @@ def build_tasks(quick: bool, sensitivity: bool, engine: str = "scalar", levels: 
 
 def warm_up() -> None:
     """Compile (or load) every model and integrator the sweep uses, so the pack carries them."""
-    defs = list(DEFAULT_DEFINITIONS) + sensitivity_definitions(False)
-    for d in defs:
-        for a in (1.5, 2 / 3):
-            try:
-                d.prepare(a, engine="batch")
-            except Exception:
-                pass
+    pk.sweep.prepare_definitions(list(DEFAULT_DEFINITIONS) + pk.sweep.sensitivity_definitions(False), (1.5, 2 / 3))
 
 
 def report(rows: list, wall: float, n_new: int, mode: str) -> dict:
@@ -94,7 +66,7 @@ def report(rows: list, wall: float, n_new: int, mode: str) -> dict:
     print(pk.sweep.threshold_table(rows, first=DEFAULT_NAME))
     if any(r.group == "sensitivity" for r in rows):
         print("\nSensitivity at a = 1.5 (Omega0) and a = 2/3 (n0):")
-        print(pk.sweep.definition_sensitivity_table(rows, parent=parent_name))
+        print(pk.sweep.definition_sensitivity_table(rows, parent=pk.sweep.sensitivity_parent))
     n_sims = sum(r.n_sims + r.n_check_sims for r in rows)
     sim_wall = sum(r.wall_s for r in rows)
     print(f"\n{len(rows)} points ({n_new} computed now, {mode}); {n_sims} simulations, {sim_wall:.1f} s of task time, "
@@ -113,12 +85,12 @@ def main(argv=None) -> dict:
     args = st.parse(argv)
     specs = build_tasks(args.quick, not args.no_sensitivity, args.engine, args.levels)
     store = st.store(pk.sweep.ThresholdRow, {
-        "search": SEARCH, "definitions": {d.name: asdict(d) for d in list(DEFAULT_DEFINITIONS) + sensitivity_definitions(args.quick)},
+        "search": SEARCH, "definitions": {d.name: asdict(d) for d in list(DEFAULT_DEFINITIONS) + pk.sweep.sensitivity_definitions(args.quick)},
         "default_definition": DEFAULT_NAME, "jump": "R reaches 0 with dR/dt < 0 before the rise completes",
         "rise_complete": "theta within rise_margin of the final state (0 prolate, pi/2 oblate), or t_max reached"})
     ran = st.run(specs, store, warm_up=warm_up, desc="thresholds")
     rows = store.rows(s.key for s in specs)
-    st.save(plot_threshold_curves(rows, DEFAULT_DEFINITIONS, default=DEFAULT_NAME, styles=STYLES, hi=SEARCH["hi"],
+    st.save(plot_threshold_curves(rows, DEFAULT_DEFINITIONS, default=DEFAULT_NAME, styles=DEFINITION_STYLES, hi=SEARCH["hi"],
                                   brackets=PAPER_BRACKETS, title=r"Smallest $\Omega_0$ / $n_0$ that leads to loss of contact, "
                                   r"$\mu=0.1$" + (" (quick run)" if args.quick else "")), f"{STEM}.png")
     stats = report(rows, st.wall, ran.computed, ran.mode)

@@ -78,23 +78,8 @@ def warm_up() -> None:
 
 
 def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
-    main = [r for r in rows if r.d == BASE.amplitude]
     print(f"\n{STEM}: {len(rows)} searches ({n_new} computed now, {mode}), {wall:.1f} s wall")
-    print(pk.sweep.threshold_grid_table(main, g["mu"]))
-    bad = [r for r in rows if r.status not in ("converged",)]
-    print(f"not converged: {len(bad)} " + ", ".join(f"(a={r.a:.3g}, mu={r.mu:.3g}, d={r.d:g}: {r.status})" for r in bad[:10]))
-    print("collapse test, f(mu) and remaining spread (max |ln T/(f T_ref)|):")
-    for branch in ("prolate", "oblate"):
-        for mu, v in sorted(coll[branch].items()):
-            print(f"  {branch:<8s} mu={mu:<7.3g} f={v['f']:.4f} spread={v['spread']:.4f} (f = 1: {v['raw_spread']:.4f})")
-    print("threshold against d (relative change per halving of d, from the largest d down):")
-    for k, v in dl.items():
-        th = ", ".join(f"{t:.4f}" if t else s for t, s in zip(v["threshold"], v["status"]))
-        ch = ", ".join(f"{c:+.3f}" if c is not None else "-" for c in v["change_per_halving"])
-        print(f"  {k}: d = {v['d']}: {th}; change per halving: {ch}")
-    if any(r.sens_dominant for r in main):
-        print(f"sensitivity to the seed distance at mu = {MU_REF:g} (thresholds at d/2 and 2d; slope = d ln T*/d ln d):")
-        print(pk.sweep.seed_sensitivity_table(main))
+    print("\n".join(pk.sweep.threshold_map_report(rows, g["mu"], coll, dl, d0=BASE.amplitude, mu_ref=MU_REF)))
     n_sims = sum(r.n_sims for r in rows)
     return {"n_sims": n_sims, "task_s": sum(r.wall_s for r in rows), "critical_path": max((r.n_rounds for r in rows), default=0)}
 

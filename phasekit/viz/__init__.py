@@ -5,7 +5,7 @@ A study's own output (flags, folders, tables, Ctrl-C) is :mod:`phasekit.sweep`'s
 from .animate import AnimationInfo, animate, body_mesh, film_strip, render_body
 from .atlas import plot_atlas, plot_classes, signature_colours
 from .branches import plot_branch_planes, render_structure
-from .figures import plot_cost_growth, plot_regularisation, plot_work_precision
+from .figures import DEFINITION_STYLES, plot_cost_growth, plot_regularisation, plot_work_precision
 from .maps import (
     OUTCOME_COLOURS,
     plot_flights,
@@ -84,4 +84,6 @@ __all__ = [
     "plot_hopping",
     "render_inversion",
     "OUTCOME_STYLE",
+    # the line styles of the threshold definitions
+    "DEFINITION_STYLES",
 ]
