@@ -334,7 +334,8 @@ def plot_threshold_map(rows, mus, collapse: dict, *, d0: float, d_lines: dict, d
     axes[0, 1].set_ylabel(r"threshold $n_0^*$ (units $\sqrt{g/b}$)")
     axes[0, 0].set_title(r"prolate, from the horizontal precession ($\mu \leq 0.1$: curves nearly coincide)", fontsize=10)
     axes[0, 1].set_title("oblate, from the vertical spin", fontsize=10)
-    axes[0, 0].legend(fontsize=8, ncol=2)
+    if axes[0, 0].get_legend_handles_labels()[0]:  # an empty map has no curves to name
+        axes[0, 0].legend(fontsize=8, ncol=2)
     _collapse_panel(axes[1, 0], main, mus, collapse, colour)
     ax = axes[1, 1]
     for a, ls in zip(d_lines["a"], ("-", "--")):
