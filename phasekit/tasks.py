@@ -325,7 +325,31 @@ class TaskSpec:
     cost: float = 1.0
 
 
+class _ByValue:
+    """A task function pickled by value: Dask checks only the task's own module against
+    cloudpickle's by-value registry, so a function from a module registered there (a study
+    loaded from its file, as the benchmarks do) would go by reference and fail to import on
+    the worker (``No module named ...``), killing it again at every restart."""
+
+    def __init__(self, func):
+        import cloudpickle
+
+        self.blob = cloudpickle.dumps(func)
+
+    def load(self):
+        return pickle.loads(self.blob)
+
+
+def _shipped(func):
+    import cloudpickle
+
+    module = getattr(sys.modules.get(getattr(func, "__module__", None) or ""), "__name__", None)
+    return _ByValue(func) if module in cloudpickle.list_registry_pickle_by_value() else func
+
+
 def _call(func, pack, prev, *args):
+    if isinstance(func, _ByValue):
+        func = func.load()
     if pack is not None:
         pack.install()
     return func(prev, *args)
@@ -467,7 +491,7 @@ def _run_on(client, todo, results, on_result, pack, bar, end) -> None:
     futures, by_future = {}, {}
     for s in todo:
         prev = futures.get(s.after, results.get(s.after)) if s.after else None
-        f = client.submit(_call, s.func, pack_f, prev, *s.args, key=f"task-{abs(hash(s.key))}", pure=False,
+        f = client.submit(_call, _shipped(s.func), pack_f, prev, *s.args, key=f"task-{abs(hash(s.key))}", pure=False,
                           priority=int(round(1000 * s.cost)))
         futures[s.key] = f
         by_future[f] = s

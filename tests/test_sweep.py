@@ -258,3 +258,31 @@ def test_runs_one_after_another_on_one_client_share_the_pack_without_losing_it()
     finally:
         client.close()
         cluster.close()
+
+
+def test_a_task_function_from_a_module_loaded_from_its_file_runs_on_dask(tmp_path):
+    """A study loaded from its file and registered with cloudpickle by value (what the benchmarks
+    do) hands its own functions to the workers, which cannot import it by name: they are shipped
+    by value (before, every worker died on the message and the run waited until its wall budget)."""
+    import importlib.util
+    import sys
+
+    import cloudpickle
+
+    (tmp_path / "a_study_by_path.py").write_text("def square(prev, x):\n    return x * x\n")
+    spec = importlib.util.spec_from_file_location("a_study_by_path", tmp_path / "a_study_by_path.py")
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["a_study_by_path"] = mod
+    spec.loader.exec_module(mod)
+    cloudpickle.register_pickle_by_value(mod)
+    client, cluster = pk.sweep.make_client(workers=1)
+    try:
+        got = {}
+        run_tasks([TaskSpec(f"sq{i}", mod.square, (i,)) for i in range(4)], store_get=lambda k: None,
+                  on_result=lambda s, r: got.__setitem__(s.key, r), client=client, progress=False, max_wall=60.0)
+    finally:
+        client.close()
+        cluster.close()
+        cloudpickle.unregister_pickle_by_value(mod)
+        del sys.modules["a_study_by_path"]
+    assert got == {f"sq{i}": i * i for i in range(4)}
