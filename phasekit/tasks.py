@@ -343,8 +343,8 @@ class _ByValue:
 def _shipped(func):
     import cloudpickle
 
-    module = getattr(sys.modules.get(getattr(func, "__module__", None) or ""), "__name__", None)
-    return _ByValue(func) if module in cloudpickle.list_registry_pickle_by_value() else func
+    by_value = getattr(func, "__module__", None) in cloudpickle.list_registry_pickle_by_value()
+    return _ByValue(func) if by_value else func
 
 
 def _call(func, pack, prev, *args):
