@@ -39,6 +39,7 @@ from dataclasses import asdict
 from functools import partial
 
 import phasekit as pk
+import phasekit.studies as ps
 
 from _studies import load
 
@@ -71,10 +72,10 @@ def default_curve_specs(aspect, engine: str, levels: int, per_task: int):
     """The default definition at the 24 aspect ratios, independent searches, ``per_task``
     of them traced in lock-step per task."""
     search = dict(aspect.SEARCH, levels=levels)
-    defn = next(d for d in pk.DEFAULT_DEFINITIONS if d.name == aspect.DEFAULT_NAME)
+    defn = next(d for d in pk.thresholds.DEFAULT_DEFINITIONS if d.name == aspect.DEFAULT_NAME)
     a_list = aspect.PROLATE + aspect.OBLATE
-    jobs = [pk.sweep.search_job(asdict(defn), a, search) for a in a_list]
-    specs, _ = pk.sweep.group_search_tasks(jobs, [1.0 / abs(a - 1.0) for a in a_list], per_task=per_task, study="bench",
+    jobs = [ps.search_job(asdict(defn), a, search) for a in a_list]
+    specs, _ = ps.group_search_tasks(jobs, [1.0 / abs(a - 1.0) for a in a_list], per_task=per_task, study="bench",
                                      engine=engine)
     return specs
 

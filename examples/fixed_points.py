@@ -38,7 +38,7 @@ def main(argv=None):
     lam = fp.eigenvalues.real.max()
     traj = pk.simulate(model, x0, 12.0 / lam, rtol=1e-12)
     df = traj.sample(np.linspace(0.0, traj.t, 400))
-    dist = np.linalg.norm(df[list(pk.PAPER_NAMES)].to_numpy() - fp.y, axis=1)
+    dist = np.linalg.norm(df[list(pk.core.PAPER_NAMES)].to_numpy() - fp.y, axis=1)
     rate = np.polyfit(df["t"], np.log(dist), 1)[0]
     print(f"unstable eigenvalue {lam:.6f}; growth rate of |x - x*| along the seeded trajectory {rate:.6f}")
 

@@ -29,7 +29,7 @@ def main(argv=None):
     body = pk.Spheroid(1.5)
     model = pk.Model(body, pk.Coulomb(0.1))
     x0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5)
-    df, traj = pk.poincare(model, x0, 200.0, on="Lambda", value=0.0, direction=+1, return_trajectory=True)
+    df, traj = pk.core.poincare(model, x0, 200.0, on="Lambda", value=0.0, direction=+1, return_trajectory=True)
     df.to_csv(out / "section.csv", index=False)
     print(
         f"{len(df)} crossings of Lambda = 0 (upward) until the run ended ({traj.status}, t = {traj.t:.3f});"

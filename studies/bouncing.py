@@ -17,7 +17,8 @@ mu M g however much of the time is spent in flight. Writes bouncing.png and boun
 from __future__ import annotations
 
 import phasekit as pk
-from phasekit.viz import plot_effective_friction
+import phasekit.studies as ps
+from phasekit.studies import plot_effective_friction
 
 import numpy as np
 
@@ -33,17 +34,17 @@ def run(omega0: float, e: float):
     te = np.arange(0.0, 1000.0, dt)
     # dense output kept to sample theta; the fit uses the samples that fall in contact (the
     # gyroscopic solution describes the body on the table)
-    r = pk.simulate(model, y0, 1000.0, stop_at="none", restitution=e, events=[pk.theory.rise_complete(body)],
+    r = pk.simulate(model, y0, 1000.0, stop_at="none", restitution=e, events=[ps.rise_complete(body)],
                     max_switches=500_000, track_minima=False, dense=True)
-    t0s, t1s = np.array([(s.t0, s.t1) for s in r.segments if s.mode is not pk.Mode.FLIGHT]).T
+    t0s, t1s = np.array([(s.t0, s.t1) for s in r.segments if s.mode is not pk.core.Mode.FLIGHT]).T
     k = np.searchsorted(t0s, te, side="right") - 1  # the last contact segment starting before each sample
     ts = te[(k >= 0) & (te <= t1s[np.maximum(k, 0)])]
     theta = r.states(ts)[:, 4]
-    mu_e, s_fit = pk.theory.fit_gyroscopic_mu(ts, theta, A_RATIO, J, y0[4], MU)
+    mu_e, s_fit = ps.fit_gyroscopic_mu(ts, theta, A_RATIO, J, y0[4], MU)
     bias = np.nan
     if r.t_jump is not None and np.sum(ts <= r.t_jump) > 5:
         sel = ts <= r.t_jump
-        mu_pre, _ = pk.theory.fit_gyroscopic_mu(ts[sel], theta[sel], A_RATIO, J, y0[4], MU)
+        mu_pre, _ = ps.fit_gyroscopic_mu(ts[sel], theta[sel], A_RATIO, J, y0[4], MU)
         bias = abs(mu_pre / MU - 1)
     flight_time = sum((f.t_touchdown or r.t) - f.t_liftoff for f in r.flights)
     kinds = [ev.name for ev in r.events]

@@ -11,7 +11,7 @@ Friction: exact Coulomb, mu = 0.1 (the paper's value, an assumption for an egg o
 1. Which end rises. Starts on the gyroscopic-balance (sliding) branch at theta0 on both sides
    of pi/2, precession rate Omega0. Outcome: the end the egg comes to spin on (theta < pi/2:
    fat end down; > pi/2: thin end down), the angle reached and the time. Prediction
-   (phasekit.fixedpoints): the separatrix is the horizontal-like steady precession theta_h(Omega0),
+   (phasekit.steady.fixedpoints): the separatrix is the horizontal-like steady precession theta_h(Omega0),
    which tends as Omega0 -> infinity to theta_2, where (A - C) cos(theta) x_P + C h_theta = 0 (the
    zero-slip angle of the gyroscopic theory; Sasaki 2004's critical angle is of this kind). Starts
    below theta_h rise toward the fat end, starts above it toward the thin end.
@@ -19,10 +19,10 @@ Friction: exact Coulomb, mu = 0.1 (the paper's value, an assumption for an egg o
    (theta0 = pi/2 - 0.01, Omega0 from the balance), and with the start 0.01 below the egg's
    unstable horizontal-like state theta_h(Omega0) (which moves away from pi/2 as w grows, so
    that the default start lies ever farther from it). An egg with w > 0 does not stand upright on
-   its fat end at moderate spin (phasekit.manifolds.pole_stability_threshold: the fat end is
+   its fat end at moderate spin (phasekit.steady.manifolds.pole_stability_threshold: the fat end is
    flatter than the spheroid's end), it settles in a tilted precession where exact Coulomb
    friction alternates stick and slip for very long. The default definition's end of the rise
-   (theta < 0.1) is then never reached; its settle rule (phasekit.Settle: rolling in a steady
+   (theta < 0.1) is then never reached; its settle rule (phasekit.core.Settle: rolling in a steady
    state for 20 time units) ends such a run as no jump. Checked against the default definition
    at w = 0 and 0.02 (the same thresholds) in the output.
 3. Real units (phasekit.Scale, pint): the hen's egg above spinning at its threshold and at the
@@ -43,7 +43,8 @@ import json
 import math
 
 import phasekit as pk
-from phasekit.viz import plot_threshold_against, plot_which_end
+import phasekit.studies as ps
+from phasekit.studies import plot_threshold_against, plot_which_end
 
 A_HEN = 57.0 / 43.0
 MU = 0.1
@@ -62,8 +63,8 @@ FIRST_STICK = 1e-6
 def threshold_rows(cfg: dict, st) -> tuple[list[dict], list[dict]]:
     out = []
     for start, rel in (("pi/2 - 0.01", False), ("theta_h - 0.01", True)):
-        defn = pk.sweep.EggDefinition("egg-sliding", "sliding", mu=MU, t_max=cfg["t_max"], from_horizontal_like=rel)
-        ths = pk.continue_threshold(defn, [pk.Egg(A_HEN, w) for w in cfg["threshold_ws"]], hi=40.0, lo=3.0, tol=2e-3,
+        defn = ps.EggDefinition("egg-sliding", "sliding", mu=MU, t_max=cfg["t_max"], from_horizontal_like=rel)
+        ths = pk.thresholds.continue_threshold(defn, [pk.Egg(A_HEN, w) for w in cfg["threshold_ws"]], hi=40.0, lo=3.0, tol=2e-3,
                                     progress=st.show)
         # n_settled: runs ended by the settle rule (before issue 24: by the first stick or the rise)
         out += [{"start": start, "w": w, "threshold": th.value, "bracket_lo": th.bracket[0], "bracket_hi": th.bracket[1],
@@ -85,7 +86,7 @@ def threshold_rows(cfg: dict, st) -> tuple[list[dict], list[dict]]:
 def real_egg(threshold: float | None, w: float) -> list[dict]:
     """The hen's egg (57 x 43 mm, 57 g) in real units: its first jump at 1.02, 1.2 and 1.5 x its
     threshold, and at 1800 rpm (Mitsui et al.'s hard-boiled eggs) and 2500 rpm (their fastest)."""
-    egg, sc = pk.egg_of_size("57 mm", "43 mm", w=w, mass="57 g")
+    egg, sc = pk.core.egg_of_size("57 mm", "43 mm", w=w, mass="57 g")
     rows = []
     spins = [(f"{f:g} x threshold", f * threshold) for f in (1.02, 1.2, 1.5)] if threshold else []
     spins += [(q, sc.dimensionless(q)) for q in ("1800 rpm", "2500 rpm")]
@@ -109,16 +110,16 @@ def main(argv=None) -> dict:
     args = st.parse(argv)
     cfg = QUICK if args.quick else FULL
     config = {k: list(v) if isinstance(v, tuple) else v for k, v in cfg.items()}
-    store = st.store(pk.sweep.EndRow, {"a": A_HEN, "mu": MU, "rtol": RTOL, "config": config}, name="egg_which_end")
+    store = st.store(ps.EndRow, {"a": A_HEN, "mu": MU, "rtol": RTOL, "config": config}, name="egg_which_end")
     tasks = [(w, om, th) for w in cfg["ws"] for om in cfg["omegas"]
-             for th in pk.sweep.which_end_starts(pk.Egg(A_HEN, w), om, cfg["offsets"])]
-    keys = [pk.sweep.which_end_key(*t, cfg["t_max"]) for t in tasks]
+             for th in ps.which_end_starts(pk.Egg(A_HEN, w), om, cfg["offsets"])]
+    keys = [ps.which_end_key(*t, cfg["t_max"]) for t in tasks]
     # (some starts coincide: each is run and stored as often as it is listed, as the committed rows were)
     for t in st.progress([t for t, k in zip(tasks, keys) if k not in store], desc="which end"):
-        store.add(pk.sweep.which_end(A_HEN, *t, t_max=cfg["t_max"], mu=MU, rtol=RTOL, first_stick=FIRST_STICK))
+        store.add(ps.which_end(A_HEN, *t, t_max=cfg["t_max"], mu=MU, rtol=RTOL, first_stick=FIRST_STICK))
     rows = [r for r in store.rows() if r.key in keys]
-    st.save(plot_which_end(rows, cfg["omegas"], risen=pk.sweep.EndRow.risen,
-                           theta_2=lambda w: pk.theory.side_equilibrium(pk.Egg(A_HEN, w))[1],
+    st.save(plot_which_end(rows, cfg["omegas"], risen=ps.EndRow.risen,
+                           theta_2=lambda w: pk.steady.side_equilibrium(pk.Egg(A_HEN, w))[1],
                            title=f"Egg a = L/B = {A_HEN:.4f} (57 x 43 mm), uniform, Coulomb mu = {MU}: which end it rises "
                                  f"onto{' [quick run]' if args.quick else ''}"), "egg_which_end.png")
     thr, checks = threshold_rows(cfg, st)
@@ -134,7 +135,7 @@ def main(argv=None) -> dict:
     for w in sorted({0.0, W_HEN} & set(cfg["threshold_ws"])):
         real += real_egg(next(r["threshold"] for r in thr if r["w"] == w and r["start"] == "pi/2 - 0.01"), w)
     st.csv("egg_real_units.csv", list(real[0]), [list(r.values()) for r in real])
-    summary = {"which_end": pk.sweep.which_end_summary(rows, A_HEN, cfg["ws"]), "threshold": thr,
+    summary = {"which_end": ps.which_end_summary(rows, A_HEN, cfg["ws"]), "threshold": thr,
                "default_definition_check": checks, "real_units": real, "scale": repr(sc), "wall_s": st.wall}
     st.json("egg_summary.json", summary)
     print(json.dumps(summary, indent=1, default=str))

@@ -8,7 +8,7 @@ default sliding start) last a few ms with gaps of micrometres. Which lever close
 the spin above the threshold, the friction coefficient, the asymmetry, bouncing (restitution
 at the touchdowns after the first flight), or the start?
 
-What is run. The egg of `pk.egg_of_size("57 mm", "43 mm", w=...)` (b = 21.5 mm, time unit
+What is run. The egg of `pk.core.egg_of_size("57 mm", "43 mm", w=...)` (b = 21.5 mm, time unit
 46.8 ms), exact Coulomb friction, from the sliding-branch start theta0 = pi/2 - 0.01 unless the
 lever is the start, rtol 1e-10, through every flight and impact (stop_at="none") until the rise
 completes (theta < 0.1) or t = T_END (9.4 s). One lever at a time around a base case
@@ -33,7 +33,8 @@ import time
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.viz import animate, film_strip, plot_flights
+from phasekit.studies import plot_flights
+from phasekit.viz import animate, film_strip
 
 LENGTH, BREADTH = "57 mm", "43 mm"
 T_END = 200.0  # 9.4 s for b = 21.5 mm
@@ -59,7 +60,7 @@ COLUMNS = ("lever", "value", "rev", "mu", "w", "e", "theta0", "Lambda0", "rtol",
 
 def run_case(case: dict, rtol: float = RTOL, t_end: float = T_END, stop_at: str = "none"):
     """One egg run: (trajectory, scale)."""
-    egg, sc = pk.egg_of_size(LENGTH, BREADTH, w=case["w"])
+    egg, sc = pk.core.egg_of_size(LENGTH, BREADTH, w=case["w"])
     y0 = pk.gyroscopic_start(egg, case["theta0"], omega0=sc.dimensionless(f"{case['rev']} rev/s"))
     y0[3] = case["Lambda0"]
     rise = pk.Event("theta", 0.1, direction=-1, name="rise-complete")

@@ -17,12 +17,14 @@ sigma, r_min_sim, sigma_c_eff, c, c_eff).
 from __future__ import annotations
 
 import phasekit as pk
-from phasekit.viz import plot_mean_state, plot_minima_envelope, pyplot
+import phasekit.studies as ps
+from phasekit.studies import plot_mean_state, plot_minima_envelope
+from phasekit.viz import pyplot
 
 import numpy as np
 
 MU = 0.1
-Case = pk.theory.NutationCase
+Case = ps.NutationCase
 PAPER_CASES = [
     Case("oblate a=2/3 n0=10", 2 / 3, 0.05, n0=10.0, c=0.00052),
     Case("oblate a=2/3 n0=10.5", 2 / 3, 0.05, n0=10.5, c=0.00052),
@@ -62,7 +64,7 @@ def main(argv=None) -> dict:
             for c in cases:
                 out.append((c, *c.run(400.0, dt=dt, mu=MU)))
                 bar.update()
-        lits = {label: pk.simulate(*pk.paper_start(k), 300.0)  # the printed starts (their charts: pk.choose_chart)
+        lits = {label: pk.simulate(*pk.paper_start(k), 300.0)  # the printed starts (their charts: pk.core.choose_chart)
                 for k, label in (("5.2", "(5.2) prolate Omega0=10.5"), ("5.1", "(5.1) oblate n0=10.5"))}
         bar.update(2)
 
@@ -74,7 +76,7 @@ def main(argv=None) -> dict:
                   rows)
     print(f"Figure {png.name}: R(t), Sigma and the gyroscopic mean state for {len(runs)} cases; table {path.name}; "
           f"{st.wall:.1f} s.")
-    lines, out = pk.theory.envelope_report([(case.label, r, d) for case, r, d in runs + trends])
+    lines, out = ps.envelope_report([(case.label, r, d) for case, r, d in runs + trends])
     print("\n".join(lines))
     print("Jellett constants: the paper quotes J = 4, 4.2 (Fig. 3, oblate; = C n0) and 6.63, 6.83 (Fig. 4, prolate; = A Omega0 h);"
           " here J = A Omega h (3.17) throughout (docs/physics.md, pitfall 4).")

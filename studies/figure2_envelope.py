@@ -11,7 +11,9 @@ dominant part (3.57)). Writes figure2_envelope.png.
 from __future__ import annotations
 
 import phasekit as pk
-from phasekit.viz import plot_envelope, pyplot
+import phasekit.studies as ps
+from phasekit.studies import plot_envelope
+from phasekit.viz import pyplot
 
 import numpy as np
 
@@ -30,8 +32,8 @@ def main(argv=None) -> dict:
     out = {}
     for k, J in enumerate(st.progress(J_VALUES, desc="Jellett constants")):
         sig = pk.theory.Sigma(body, J, THETA0, theta, C_AMP, form="closed")
-        out[J] = (pk.theory.sigma_zero(theta, sig),
-                  pk.theory.sigma_zero(coarse, pk.theory.Sigma(body, J, THETA0, coarse, C_AMP, form="gyro")))
+        out[J] = (ps.sigma_zero(theta, sig),
+                  ps.sigma_zero(coarse, pk.theory.Sigma(body, J, THETA0, coarse, C_AMP, form="gyro")))
         plot_envelope(ax, theta, sig, color=plt.get_cmap("viridis")(k / (len(J_VALUES) - 1)), lw=2.2 if J >= 8.0 else 1.0,
                       label=f"({k + 1}) J = {J:g}")
     ax.axhline(0, color="0.5", lw=0.8)

@@ -13,7 +13,9 @@ figure5_gap.csv (one row per ensemble member).
 from __future__ import annotations
 
 import phasekit as pk
-from phasekit.viz import plot_gap_flight, plot_gap_maxima, pyplot
+import phasekit.studies as ps
+from phasekit.studies import plot_gap_flight, plot_gap_maxima
+from phasekit.viz import pyplot
 
 import numpy as np
 
@@ -28,8 +30,8 @@ def flights_abc(axes, model, body) -> list:
           f"{'(4.23)':>11s} {'rel err':>8s} {'(4.22) curve err':>16s}")
     rows_abc = []
     for ax, om in zip(axes, (11.0, 20.0, 30.0)):
-        r = pk.theory.first_flight(model, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=om))
-        chk = pk.theory.flight_check(r)  # the flight again at rtol 1e-13, and the theory of section 4
+        r = ps.first_flight(model, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=om))
+        chk = ps.flight_check(r)  # the flight again at rtol 1e-13, and the theory of section 4
         fl, gm, rel, curve = chk.flight, chk.gap_max_series, chk.rel_error, chk.curve_error
         rows_abc.append((om, rel, curve, fl.W_star * fl.Omega_star))
         print(f"{om:6.1f} {r.t_jump:8.3f} {fl.W_star:9.5f} {fl.Omega_star:8.3f} {fl.W_star * fl.Omega_star:9.4f} "
@@ -53,7 +55,7 @@ def main(argv=None) -> dict:
     omegas = np.arange(10.0, 41.0, 5.0 if args.quick else 2.5)
     n_each = 5 if args.quick else 10
     with st.progress(total=len(omegas) * n_each, desc="ensemble") as bar:
-        recs = pk.theory.gap_ensemble(model, omegas, n_each, args.seed, bar=bar)
+        recs = ps.gap_ensemble(model, omegas, n_each, args.seed, bar=bar)
     om, exact, series = np.array([(q[0], q[3], q[4]) for q in recs], dtype=float).T
     ok = np.isfinite(exact)
     plot_gap_maxima(axes[1, 1], om[ok], exact[ok], series[ok], omegas,
@@ -65,7 +67,7 @@ def main(argv=None) -> dict:
     png = st.save(fig, "figure5_gap.png", dpi=120)
     st.csv("figure5_gap.csv", ["omega0", "member", "status", "gap_max_exact", "gap_max_4_23", "W_star", "Omega_star", "stuck", "bound"],
            [[*q, (4.65 / q[0]) ** 5] for q in recs])
-    lines, counts = pk.theory.gap_ensemble_report(recs, omegas)
+    lines, counts = ps.gap_ensemble_report(recs, omegas)
     print(f"\nFigure {png.name}; " + "\n".join(lines))
     print(f"{st.wall:.1f} s")
     return {"abc": rows_abc, **counts}

@@ -8,7 +8,7 @@ jump time at two tolerances (its error estimate) and the run time.
 from __future__ import annotations
 
 import phasekit as pk
-from phasekit.viz import plot_reaction_to_jump
+from phasekit.studies import plot_reaction_to_jump
 
 import numpy as np
 

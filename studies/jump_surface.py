@@ -23,7 +23,8 @@ from __future__ import annotations
 import sys
 
 import phasekit as pk
-from phasekit.viz import render_jump_surface
+import phasekit.studies as ps
+from phasekit.studies import render_jump_surface
 
 import numpy as np
 
@@ -56,9 +57,9 @@ def trend(starts, bar) -> tuple[list, list]:
     for branch, (a, lo, hi) in TREND_RANGE.items():
         values = np.round(np.geomspace(lo, hi, starts), 4)
         for d in TREND_D:
-            cs = pk.theory.surface_crossings(branch, a, values, d, bar=bar)
+            cs = ps.surface_crossings(branch, a, values, d, bar=bar)
             rows += [(branch, a, d, c.value, c.t, c.Omega, c.theta, c.n, c.Lambda, c.rel_error) for c in cs]
-            fits.append((branch, d, len(cs), len(values), *pk.theory.crossing_trend(cs)))
+            fits.append((branch, d, len(cs), len(values), *ps.crossing_trend(cs)))
     return rows, fits
 
 
@@ -72,7 +73,7 @@ def report(infos, table, fits, starts) -> None:
         print(f"{row[0]:<8s} {row[2]:6.1f} {row[3]:8.2f} {row[5]:7.4f} {row[6]:8.4f} {row[7]:8.4f} {row[9]:9.2e}")
     for branch in ("prolate", "oblate"):
         rows = [r for r in table if r[0] == branch]
-        slope = pk.theory.loglog_fit([r[2] for r in rows], [r[9] for r in rows])[0]
+        slope = ps.loglog_fit([r[2] for r in rows], [r[9] for r in rows])[0]
         print(f"{branch}: log-log trend of the error against the start value: slope {slope:.2f} "
               f"(these {len(rows)} starts only; see the fit below)")
     print(f"\nfit over {starts} log-spaced starts per branch and seed distance d: log-log slope of the error against "
@@ -98,7 +99,7 @@ def main(argv=None) -> dict:
     with st.progress(total=n_runs, desc="scenes and crossings") as bar:
         infos, missing = render(scenes, st, bar)
         table = [(branch, a, c.value, c.t, c.Omega, c.theta, c.n, c.Lambda, c.n_surface, c.rel_error)
-                 for branch, a, vals in table_starts for c in pk.theory.surface_crossings(branch, a, vals, bar=bar)]
+                 for branch, a, vals in table_starts for c in ps.surface_crossings(branch, a, vals, bar=bar)]
         trend_rows, fits = trend(starts, bar)
     st.csv("jump_surface.csv", ["branch", "a", "start", "t_cross", "Omega", "theta", "n", "Lambda", "n_63", "rel_error_n"], table)
     st.csv("jump_surface_trend.csv", ["branch", "a", "d", "start", "t_cross", "Omega", "theta", "n", "Lambda", "rel_error_n"],

@@ -18,7 +18,7 @@ outcome_map_boundaries.csv), and a 3-D scene of the jump region over (a, Omega0 
 (a, Omega0) grid only, with the jumping starts of the two maps.
 
 Every start runs on heyoka's SIMD batch integrator (starts that stick are followed through
-the rolling mode in batch too; see phasekit.batch). Dask LocalCluster (or --scheduler),
+the rolling mode in batch too; see phasekit.core.batch). Dask LocalCluster (or --scheduler),
 resumable: finished rows are appended to the CSV files at once and skipped on a rerun.
 """
 
@@ -28,7 +28,8 @@ import json
 from dataclasses import asdict
 
 import phasekit as pk
-from phasekit.viz import plot_outcome_map, render_jump_region
+import phasekit.studies as ps
+from phasekit.studies import plot_outcome_map, render_jump_region
 
 import numpy as np
 
@@ -37,7 +38,7 @@ BASE = pk.Definition("sliding", "sliding")
 D_RANGE = (1e-3, 0.2)
 #: threshold searches to 1e-3, d_min to 1e-2; the family parameter from 2x to 12x the lower bound (1.05 x the
 #: stability threshold); a value-line is added where d_min changes by more than a factor 2 between neighbours
-PLAN = pk.sweep.OutcomeMapPlan(BASE, dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5, levels=3),
+PLAN = ps.OutcomeMapPlan(BASE, dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5, levels=3),
                                dict(lo=1e-4, hi=0.2, tol=1e-2, n_coarse=8, levels=3), D_RANGE, (2.0, 12.0), steep=2.0, study=STEM)
 FULL = dict(maps=[1.5, 2 / 3], n_value=28, n_d=24, d_lines=10, stick_lines=8, refine=3,
             scene_a=[0.5, 0.6, 2 / 3, 0.75, 0.8, 1.2, 1.35, 1.5, 1.75, 2.0, 2.5], scene_d=6, scene_v=5, chunk=48, per_task=8)
@@ -59,8 +60,8 @@ def main(argv=None) -> dict:
             "d_range": D_RANGE, "value_span": PLAN.value_span, "grid": g,
             "classes": {"stuck": "stuck and not risen by t_max", "rise": "rise completed in contact",
                         "jump": "R = 0 before the rise completed"}}
-    out_store = st.store(pk.sweep.OutcomeRow, meta)
-    search_store = st.store(pk.sweep.SearchRow, meta, name=f"{STEM}_boundaries")
+    out_store = st.store(ps.OutcomeRow, meta)
+    search_store = st.store(ps.SearchRow, meta, name=f"{STEM}_boundaries")
     gspecs, grid_keys = PLAN.grid_tasks(g["maps"], n_value=g["n_value"], n_d=g["n_d"], chunk=g["chunk"])
     lines = PLAN.lines(g["maps"], d_first=2e-3, n_d=g["d_lines"], n_value=g["stick_lines"]) | \
         PLAN.lines(g["scene_a"], d_first=4e-3, n_d=g["scene_d"], n_value=g["scene_v"])
@@ -88,11 +89,11 @@ def main(argv=None) -> dict:
         caption="surfaces: jump threshold {name}*(a, d) (bisected to 1e-3) and sticking\n"
                 "boundary d_min(a, {name}) (to 1e-2); sliding-branch starts at distance d,\n"
                 f"exact Coulomb mu = {BASE.mu:g}, rtol {BASE.rtol:g}; dots: jumping starts, colour t* (sqrt(b/g))")
-    summary = {f"a={a:.4g}": pk.sweep.outcome_map_summary(points, searches, a) for a in g["maps"]}
+    summary = {f"a={a:.4g}": ps.outcome_map_summary(points, searches, a) for a in g["maps"]}
     wall = st.wall
     n_sims = sum(s.n_sims for s in searches) + len(points)
     print(f"\n{STEM}: {len(points)} sampled starts, {len(searches)} traced boundary points; {how}; {wall:.1f} s wall")
-    print(pk.sweep.outcome_map_report(summary))
+    print(ps.outcome_map_report(summary))
     search_store.annotate(summary=summary, scene=counts)
     print(json.dumps({"wall_s": wall, "n_sims": n_sims, "n_points": len(points), "n_searches": len(searches)}))
     return {"points": points, "searches": searches, "summary": summary, "wall_s": wall}

@@ -19,7 +19,8 @@ from __future__ import annotations
 import json
 
 import phasekit as pk
-from phasekit.viz import plot_pair_scan
+import phasekit.studies as ps
+from phasekit.studies import plot_pair_scan
 
 STEM = "paper_pairs"
 T_END = 600.0
@@ -34,15 +35,15 @@ def main(argv=None) -> dict:
     st = pk.sweep.Study(__file__, __doc__, resumable=True)
     args = st.parse(argv)
     eps_list = EPS_QUICK if args.quick else EPS_FULL
-    store = st.store(pk.sweep.PairRow, {"t_end": T_END, "eps": eps_list, "charts": CHARTS, "t_tolerance": T_TOLERANCE,
+    store = st.store(ps.PairRow, {"t_end": T_END, "eps": eps_list, "charts": CHARTS, "t_tolerance": T_TOLERANCE,
                                         "max_wall": MAX_WALL, "rtol": pk.SolverOptions().rtol})
-    rows, ran = st.sweep(pk.sweep.pair_runs(eps_list, CHARTS, t_end=T_END, max_wall=MAX_WALL), store, desc="paper pairs")
-    tab = pk.sweep.pair_table(rows, eps_list, CHARTS, T_TOLERANCE)
+    rows, ran = st.sweep(ps.pair_runs(eps_list, CHARTS, t_end=T_END, max_wall=MAX_WALL), store, desc="paper pairs")
+    tab = ps.pair_table(rows, eps_list, CHARTS, T_TOLERANCE)
     st.save(plot_pair_scan(rows, tab, pk.theory.PAPER_CASES, charts=CHARTS, t_end=T_END, t_tolerance=T_TOLERANCE, title=(
         r"The paper's trajectory pairs under regularised Coulomb friction ($\mu$ = 0.1, rtol $10^{-9}$; "
         r"markers above the axis: no jump)" + (" (quick run)" if args.quick else ""))), f"{STEM}.png")
     print(f"\n{STEM}: {len(rows)} runs ({ran.computed} now), {st.wall:.1f} s")
-    lines, summary = pk.sweep.pair_report(tab)
+    lines, summary = ps.pair_report(tab)
     print("\n".join(lines))
     store.annotate(as_printed=summary)
     print(json.dumps({"as_printed": summary}))

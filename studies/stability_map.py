@@ -11,7 +11,8 @@ of CasADi's exact linearisation. Writes stability_map.png and prints a summary
 from __future__ import annotations
 
 import phasekit as pk
-from phasekit.viz import plot_stability_map
+import phasekit.studies as ps
+from phasekit.studies import plot_stability_map
 
 import numpy as np
 
@@ -25,8 +26,8 @@ def main(argv=None) -> dict:
     om_vals = np.linspace(0.2, 15.0, n)
     n0_vals = np.linspace(0.2, 15.0, n)
     with st.progress(total=2 * n * n, desc="linearisations") as bar:
-        H = pk.sweep.stability_grid("horizontal", a_vals, om_vals, mu=args.mu, progress=bar)
-        V = pk.sweep.stability_grid("vertical", a_vals, n0_vals, mu=args.mu, progress=bar)
+        H = ps.stability_grid("horizontal", a_vals, om_vals, mu=args.mu, progress=bar)
+        V = ps.stability_grid("vertical", a_vals, n0_vals, mu=args.mu, progress=bar)
     wall = st.wall
     # agreement of the maps with the criteria
     bodies = [pk.Spheroid(a) for a in a_vals]

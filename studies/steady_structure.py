@@ -29,14 +29,16 @@ import math
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.viz import plot_atlas, plot_branch_planes, plot_classes, render_structure, save_figure
+import phasekit.studies as ps
+from phasekit.studies import plot_atlas, plot_branch_planes, plot_classes, render_structure
+from phasekit.viz import save_figure
 
 import numpy as np
 
 STEM = "steady_structure"
 LAW = pk.Viscous(0.1)  # stability of the representatives (the signature does not depend on the law)
 C_SCALE = 0.05  # C of the free-moment bodies, times min(1, a)^2: small enough for every A/C <= 4
-PANELS = {k: pk.sweep.AtlasPanel(*v) for k, v in {
+PANELS = {k: ps.AtlasPanel(*v) for k, v in {
     "tippe-top": ("tippe top (eccentric sphere)", r"offset $\alpha$ = OG / radius", "A / C", (0.02, 0.9), (0.5, 2.0),
                   False, False),
     "spheroid-default": ("spheroid, default moments", "aspect ratio a", "offset / a", (0.2, 5.0), (0.005, 0.445),
@@ -73,34 +75,34 @@ def signatures(prev, points):
     out = []
     for panel, x, y, z in points:
         s = structure_at(panel, x, y, z)
-        out.append(pk.sweep.AtlasRow(pk.sweep.atlas_point_key(panel, x, y, z), panel, x, y, z, s.signature, s.status.value))
+        out.append(ps.AtlasRow(ps.atlas_point_key(panel, x, y, z), panel, x, y, z, s.signature, s.status.value))
     return out
 
 
 def trace(prev, edges, xtol):
     """Task: the boundary along each edge of a 2-D panel, bisected to ``xtol`` of the panel's span."""
-    return [pk.sweep.trace_boundary(structure_at, *e, xtol=xtol, key=pk.sweep.atlas_edge_key(*e)) for e in edges]
+    return [ps.trace_boundary(structure_at, *e, xtol=xtol, key=ps.atlas_edge_key(*e)) for e in edges]
 
 
 def grid_points(g) -> list[tuple]:
     """The 2-D panels' points, then the 3-D grid's (a, offset/a, A/C)."""
-    axis = pk.sweep.axis_values
+    axis = ps.axis_values
     cube = itertools.product(axis((0.2, 5.0), g["cube"][0], True), axis((0.0, 0.95), g["cube"][1], False),
                              axis((0.5, 4.0), g["cube"][2], True))
-    return pk.sweep.atlas_grid(PANELS, g["n"]) + [("cube", float(a), float(r), float(gam)) for a, r, gam in cube]
+    return ps.atlas_grid(PANELS, g["n"]) + [("cube", float(a), float(r), float(gam)) for a, r, gam in cube]
 
 
 def boundary_edges(rows) -> list[tuple]:
-    return pk.sweep.atlas_edges(rows, PANELS)
+    return ps.atlas_edges(rows, PANELS)
 
 
 # -- classes ------------------------------------------------------------------------------------
 
 
 def class_counts(rows) -> dict:
-    tops = sorted({r.signature for r in rows if r.panel == "tippe-top" and pk.sweep.is_class(r.signature)})
+    tops = sorted({r.signature for r in rows if r.panel == "tippe-top" and ps.is_class(r.signature)})
     spheroid = [r for r in rows if r.panel != "tippe-top" and r.status == "completed"]
-    classes = sorted({r.signature for r in spheroid if pk.sweep.is_class(r.signature)})
+    classes = sorted({r.signature for r in spheroid if ps.is_class(r.signature)})
     cube = [r for r in spheroid if r.panel == "cube"]
     per_cube = {s: sum(r.signature == s for r in cube) for s in sorted({r.signature for r in cube})}
     return {"tippe_top": tops, "spheroid": classes, "cube_counts": per_cube,
@@ -112,7 +114,7 @@ def scene(png: Path, quick: bool) -> dict:
     unstable manifold of its most unstable branch state at moderate spin."""
     body = pk.Spheroid(SCENE["a"], offset=SCENE["offset"])
     s = pk.steady_structure(body, LAW)
-    runs = pk.theory.manifold_runs(s, omega_range=(2.0, 6.0), seed_delta=SCENE["seed_delta"], t_end=SCENE["t_end"])
+    runs = ps.manifold_runs(s, omega_range=(2.0, 6.0), seed_delta=SCENE["seed_delta"], t_end=SCENE["t_end"])
     trs = runs["trajectories"]
     info = render_structure(s, png, trajectories=trs, omega_max=8.0,
                             title=f"{body!r}, viscous mu = {LAW.mu:g}: its branches (green stable, red unstable) and\n"
@@ -137,7 +139,7 @@ def egg_rise_end(png: Path) -> dict:
     for om0, colour in zip(EGG["omegas"], ("#4575b4", "#d73027")):
         r = pk.simulate(pk.Model(egg, law), pk.gyroscopic_start(egg, EGG["theta0"], omega0=om0), EGG["t_end"],
                         stop_at="none", track_minima=False)
-        run = {"omega0": om0, **pk.theory.settled_motion(r, s)}
+        run = {"omega0": om0, **ps.settled_motion(r, s)}
         drawn.append(dict(path=r.sample(np.linspace(0.0, r.t, 3000)), colour=colour, label=f"egg, $\\Omega_0$ = {om0:g}",
                           star=(run["late_mean"]["theta"], run["late_mean"]["Omega"], run["rolling_motion"]["n"])))
         out["runs"].append(run)
@@ -158,23 +160,23 @@ def main(argv=None) -> dict:
     meta = {"panels": {k: list(v[:5]) for k, v in PANELS.items()}, "grid": g, "law_for_stability": repr(LAW),
             "moments": "tippe top: C = 0.4, A = (A/C) C; spheroid-default: A = (1 + a^2)/5 - offset^2, C = 2/5; "
                        "others: C = 0.05 min(1, a)^2, A = (A/C) C"}
-    atlas = st.store(pk.sweep.AtlasRow, meta, name=f"{STEM}_atlas")
-    borders = st.store(pk.sweep.BoundaryRow, meta, name=f"{STEM}_boundaries")
+    atlas = st.store(ps.AtlasRow, meta, name=f"{STEM}_atlas")
+    borders = st.store(ps.BoundaryRow, meta, name=f"{STEM}_boundaries")
     points = grid_points(g)
-    specs, members = pk.sweep.chunked(points, pk.sweep.atlas_point_key, signatures, size=g["chunk"], prefix="atlas")
+    specs, members = pk.sweep.chunked(points, ps.atlas_point_key, signatures, size=g["chunk"], prefix="atlas")
     rows, ran = st.sweep(specs, atlas, members=members, desc="atlas")
     edges = boundary_edges(rows)
-    specs, members = pk.sweep.chunked(edges, pk.sweep.atlas_edge_key, trace, size=40, args=(g["xtol"],), prefix="boundaries")
+    specs, members = pk.sweep.chunked(edges, ps.atlas_edge_key, trace, size=40, args=(g["xtol"],), prefix="boundaries")
     bounds, ran_b = st.sweep(specs, borders, members=members, desc="boundaries")
     how = f"{ran}; boundaries: {ran_b}"
     counts = class_counts(rows)
-    colours = pk.viz.signature_colours({r.signature for r in rows})
+    colours = ps.signature_colours({r.signature for r in rows})
     note = (f"{len(rows)} bodies ({g['n']}x{g['n']} per panel, {'x'.join(map(str, g['cube']))} on the 3-D grid), "
             f"{len(bounds)} boundary points bisected to {g['xtol']:g} of the span" + (" (quick run)" if args.quick else ""))
     al = np.linspace(*PANELS["tippe-top"].xrange, 50)
     st.save(plot_atlas(rows, bounds, PANELS, colours, n=g["n"], note=note, closed_forms={"tippe-top": (
         [(al, 1 - al), (al, 1 + al)], r"white dashes: A/C = 1 $\pm$ $\alpha$ (closed form)")}), f"{STEM}_atlas.png")
-    reps = pk.sweep.atlas_representatives(rows, sorted(set(counts["spheroid"]) | set(counts["tippe_top"])), [*PANELS, "cube"])
+    reps = ps.atlas_representatives(rows, sorted(set(counts["spheroid"]) | set(counts["tippe_top"])), [*PANELS, "cube"])
     structures = {sig: pk.steady_structure(body_at(r.panel, r.x, r.y, r.z), LAW) for sig, r in reps.items()}
     st.save(plot_classes(structures, note=f"representatives of the {len(reps)} classes found; stability: exact Jacobian, "
                                           "bounded eigenvalues"), f"{STEM}_classes.png")
@@ -188,7 +190,7 @@ def main(argv=None) -> dict:
     closed = {"max_distance": max((min(abs(b.y - (1 - b.x)), abs(b.y - (1 + b.x))) for b in tops), default=None),
               "max_half_width": max((b.width / 2 for b in tops), default=None), "points": len(tops)}
     summary = {"classes": counts, "part_iii": {"spheroid": 9, "tippe_top": 3}, "tippe_top_boundary_vs_1_pm_alpha": closed,
-               "bifurcations": pk.sweep.bifurcation_pairs(bounds),
+               "bifurcations": ps.bifurcation_pairs(bounds),
                "boundary_width_max": max((b.width for b in bounds), default=None), "representatives": rep_info, **extra}
     atlas.annotate(summary=summary)
     wall = st.wall

@@ -15,11 +15,12 @@ from __future__ import annotations
 import math
 
 import phasekit as pk
+import phasekit.studies as ps
 
 P2 = math.pi / 2
 #: the paper's printed starts (5.2) (Omega0 = 10.5) and (5.1) (n0 = 10.5)
 P52, P51 = (list(pk.theory.PAPER_CASES[k].state(10.5)) for k in ("5.2", "5.1"))
-Case = pk.sweep.StressCase
+Case = ps.StressCase
 
 
 def cases(quick: bool) -> list[Case]:
@@ -78,10 +79,10 @@ def cases(quick: bool) -> list[Case]:
 def main(argv=None) -> list[dict]:
     st = pk.sweep.Study(__file__, __doc__, quick_help="horizons up to t = 2000, no eps = 1e-12")
     args = st.parse(argv)
-    rows = [pk.sweep.stress_run(c) for c in st.progress(cases(args.quick), desc="cases")]
-    st.csv("stiff_extreme.csv", pk.sweep.STRESS_COLUMNS, rows)
+    rows = [ps.stress_run(c) for c in st.progress(cases(args.quick), desc="cases")]
+    st.csv("stiff_extreme.csv", ps.STRESS_COLUMNS, rows)
     print(f"{len(rows)} cases; table stiff_extreme.csv; {st.wall:.1f} s")
-    print("\n".join(pk.sweep.stress_report(rows)))
+    print("\n".join(ps.stress_report(rows)))
     return rows
 
 

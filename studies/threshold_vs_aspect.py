@@ -3,7 +3,7 @@
 For each aspect ratio, the smallest precession rate Omega0 (prolate, from the horizontal
 steady precession) or spin n0 (oblate, from the vertical spin) whose trajectory loses
 contact (R = 0, dR/dt < 0) before its rise completes, under three definitions side by side
-(see phasekit.threshold): (i) viscous friction; (ii) exact Coulomb friction with starts on
+(see phasekit.thresholds.threshold): (i) viscous friction; (ii) exact Coulomb friction with starts on
 the sliding (gyroscopic-balance) branch at d = 0.01 from the fixed point, the DEFAULT;
 (iii) the paper's literal recipe, the viscous unstable eigenvector (delta = 0.01)
 integrated with Coulomb friction regularised with eps = 1e-3, 1e-4, or exact.
@@ -27,8 +27,9 @@ from __future__ import annotations
 from dataclasses import asdict
 
 import phasekit as pk
-from phasekit import DEFAULT_DEFINITIONS
-from phasekit.viz import DEFINITION_STYLES, plot_threshold_curves
+import phasekit.studies as ps
+from phasekit.studies import DEFINITION_STYLES, plot_threshold_curves
+from phasekit.thresholds import DEFAULT_DEFINITIONS
 
 STEM = "threshold_vs_aspect"
 SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5)
@@ -47,26 +48,26 @@ def build_tasks(quick: bool, sensitivity: bool, engine: str = "scalar", levels: 
     """One chain per definition and branch, ordered from far to near a = 1 (thresholds grow along
     it); the sensitivity runs at a = 1.5 and 2/3 each seeded by its parent definition's point."""
     prolate, oblate = (QUICK_PROLATE, QUICK_OBLATE) if quick else (PROLATE, OBLATE)
-    specs = [s for defn in DEFAULT_DEFINITIONS for a_list in (prolate, oblate) for s in pk.sweep.threshold_chain(
+    specs = [s for defn in DEFAULT_DEFINITIONS for a_list in (prolate, oblate) for s in ps.threshold_chain(
         defn, a_list, SEARCH, is_default=defn.name == DEFAULT_NAME, engine=engine, levels=levels)]
-    for defn in pk.sweep.sensitivity_definitions(quick) if sensitivity else ():
-        parent = next(d for d in DEFAULT_DEFINITIONS if d.name == pk.sweep.sensitivity_parent(defn))
-        specs += [s for a in (1.5, 2 / 3) for s in pk.sweep.threshold_chain(
-            defn, [a], SEARCH, group="sensitivity", engine=engine, levels=levels, after=pk.sweep.threshold_key(parent, a, SEARCH))]
+    for defn in ps.sensitivity_definitions(quick) if sensitivity else ():
+        parent = next(d for d in DEFAULT_DEFINITIONS if d.name == ps.sensitivity_parent(defn))
+        specs += [s for a in (1.5, 2 / 3) for s in ps.threshold_chain(
+            defn, [a], SEARCH, group="sensitivity", engine=engine, levels=levels, after=ps.threshold_key(parent, a, SEARCH))]
     return specs
 
 
 def warm_up() -> None:
     """Compile (or load) every model and integrator the sweep uses, so the pack carries them."""
-    pk.sweep.prepare_definitions(list(DEFAULT_DEFINITIONS) + pk.sweep.sensitivity_definitions(False), (1.5, 2 / 3))
+    ps.prepare_definitions(list(DEFAULT_DEFINITIONS) + ps.sensitivity_definitions(False), (1.5, 2 / 3))
 
 
 def report(rows: list, wall: float, n_new: int, mode: str) -> dict:
     print(f"\nFigure {STEM}.png: jump thresholds against aspect ratio, mu = 0.1, 5 definitions; table {STEM}.csv.")
-    print(pk.sweep.threshold_table(rows, first=DEFAULT_NAME))
+    print(ps.threshold_table(rows, first=DEFAULT_NAME))
     if any(r.group == "sensitivity" for r in rows):
         print("\nSensitivity at a = 1.5 (Omega0) and a = 2/3 (n0):")
-        print(pk.sweep.definition_sensitivity_table(rows, parent=pk.sweep.sensitivity_parent))
+        print(ps.definition_sensitivity_table(rows, parent=ps.sensitivity_parent))
     n_sims = sum(r.n_sims + r.n_check_sims for r in rows)
     sim_wall = sum(r.wall_s for r in rows)
     print(f"\n{len(rows)} points ({n_new} computed now, {mode}); {n_sims} simulations, {sim_wall:.1f} s of task time, "
@@ -84,8 +85,8 @@ def main(argv=None) -> dict:
                            help="bisection steps per round (k-section, 2^L - 1 values; 1 to 8, default 1)")
     args = st.parse(argv)
     specs = build_tasks(args.quick, not args.no_sensitivity, args.engine, args.levels)
-    store = st.store(pk.sweep.ThresholdRow, {
-        "search": SEARCH, "definitions": {d.name: asdict(d) for d in list(DEFAULT_DEFINITIONS) + pk.sweep.sensitivity_definitions(args.quick)},
+    store = st.store(ps.ThresholdRow, {
+        "search": SEARCH, "definitions": {d.name: asdict(d) for d in list(DEFAULT_DEFINITIONS) + ps.sensitivity_definitions(args.quick)},
         "default_definition": DEFAULT_NAME, "jump": "R reaches 0 with dR/dt < 0 before the rise completes",
         "rise_complete": "theta within rise_margin of the final state (0 prolate, pi/2 oblate), or t_max reached"})
     ran = st.run(specs, store, warm_up=warm_up, desc="thresholds")

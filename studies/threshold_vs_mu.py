@@ -22,7 +22,8 @@ import json
 from dataclasses import asdict, replace
 
 import phasekit as pk
-from phasekit.viz import plot_threshold_map
+import phasekit.studies as ps
+from phasekit.studies import plot_threshold_map
 
 STEM = "threshold_vs_mu"
 SEARCH = dict(hi=120.0, tol=1e-3, n_coarse=8, window=1.5, levels=3)
@@ -61,14 +62,14 @@ def build_tasks(quick: bool, engine: str, per_task: int | None = None):
     for defn, a in definitions(quick):
         # at the paper's mu the threshold's sensitivity to d (d/2 and 2d) is measured too
         sens = defn.mu == MU_REF and defn.amplitude == BASE.amplitude
-        jobs.append(pk.sweep.search_job(asdict(defn), a, SEARCH, sensitivity=sens))
+        jobs.append(ps.search_job(asdict(defn), a, SEARCH, sensitivity=sens))
         # measured: the slow rise at small mu and the stick-slip chatter near the end of the
         # rise at large mu are the costly searches, and scans near a = 1 are long
         costs.append(((MU_REF / defn.mu) ** 0.5 + defn.mu / MU_REF) * (1.0 + 0.2 / abs(a - 1.0)) * (3 if sens else 1))
     # One search per task by default: a few chattering searches cost as much as all the others
     # (measured: one group of 10 took 36% of the map), so lock-step groups unbalance the workers.
     per_task = per_task or 1
-    return pk.sweep.group_search_tasks(jobs, costs, per_task=per_task, study=STEM, engine=engine)
+    return ps.group_search_tasks(jobs, costs, per_task=per_task, study=STEM, engine=engine)
 
 
 def warm_up() -> None:
@@ -79,7 +80,7 @@ def warm_up() -> None:
 
 def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
     print(f"\n{STEM}: {len(rows)} searches ({n_new} computed now, {mode}), {wall:.1f} s wall")
-    print("\n".join(pk.sweep.threshold_map_report(rows, g["mu"], coll, dl, d0=BASE.amplitude, mu_ref=MU_REF)))
+    print("\n".join(ps.threshold_map_report(rows, g["mu"], coll, dl, d0=BASE.amplitude, mu_ref=MU_REF)))
     n_sims = sum(r.n_sims for r in rows)
     return {"n_sims": n_sims, "task_s": sum(r.wall_s for r in rows), "critical_path": max((r.n_rounds for r in rows), default=0)}
 
@@ -92,15 +93,15 @@ def main(argv=None) -> dict:
     args = st.parse(argv)
     g = grid(args.quick)
     specs, members = build_tasks(args.quick, args.engine, args.per_task)
-    store = st.store(pk.sweep.SearchRow, {
+    store = st.store(ps.SearchRow, {
         "search": SEARCH, "definition": asdict(BASE), "mu": g["mu"], "a": g["a"], "d_lines": g["d_lines"], "d_mu": g["d_mu"],
         "engine": args.engine, "jump": "R reaches 0 with dR/dt < 0 before the rise completes (theta within 0.1 of its end)"})
     keys = {k for ks in members.values() for k in ks}
     n_new = sum(k not in store for k in keys)
     mode = str(st.run(specs, store, members=members, warm_up=warm_up, desc="thresholds (a, mu)"))
     rows = store.rows(keys)
-    coll = pk.sweep.threshold_collapse([r for r in rows if r.d == BASE.amplitude], g["mu"], MU_REF)
-    dl = pk.sweep.threshold_against_d(rows, g["d_lines"]["a"], g["d_mu"])
+    coll = ps.threshold_collapse([r for r in rows if r.d == BASE.amplitude], g["mu"], MU_REF)
+    dl = ps.threshold_against_d(rows, g["d_lines"]["a"], g["d_mu"])
     st.save(plot_threshold_map(rows, g["mu"], coll, d0=BASE.amplitude, d_lines=g["d_lines"], d_mu=g["d_mu"], title=(
         r"Jump thresholds over $(a, \mu)$: exact Coulomb friction, sliding-branch starts at $d$ = 0.01 "
         r"(bottom right: $d$ varies), bisection to $10^{-3}$, rtol $10^{-9}$" + (" (quick run)" if args.quick else ""))),

@@ -10,7 +10,7 @@ What is run. phasekit's full model in the vector chart (regular at theta = 0 and
 viscous friction (F = -mu u: slip is dissipated whenever it is nonzero, the setting of the
 classical theory) and exact Coulomb friction (stick-slip: a zero-slip top rolls, and rolling
 does no work). Flights and impacts (restitution e = 0) are followed (stop_at="none"). A run
-(pk.theory.inversion_run) ends when theta reaches pi - 0.05 ("full", with its time) or at
+(ps.inversion_run) ends when theta reaches pi - 0.05 ("full", with its time) or at
 t_end; otherwise the outcome is "never" if theta stayed below 0.3 and "partial" if not, with
 theta_end the mean of theta over the last 10% of the run. A Coulomb top that alternates stick
 and slip for hundreds of cycles is cut after 400 mode switches or 45 s and classified from the
@@ -36,7 +36,8 @@ from __future__ import annotations
 import json
 
 import phasekit as pk
-from phasekit.viz import plot_hopping, plot_inversion_map, render_inversion
+import phasekit.studies as ps
+from phasekit.studies import plot_hopping, plot_inversion_map, render_inversion
 
 C = 0.4
 THETA0 = 0.1
@@ -53,9 +54,9 @@ def row_key(law: str, mu: float, alpha: float, gamma: float, n0: float, t_end: f
     return f"{law}|mu={mu:g}|alpha={alpha:g}|gamma={gamma:g}|n0={n0:g}|t_end={t_end:g}|rtol={rtol:g}"
 
 
-def run_point(law: str, mu: float, alpha: float, gamma: float, n0: float, t_end: float, rtol: float) -> pk.theory.InversionRun:
+def run_point(law: str, mu: float, alpha: float, gamma: float, n0: float, t_end: float, rtol: float) -> ps.InversionRun:
     """One point of the map: the top (alpha, gamma C, C) spun at n0 under the law, classified."""
-    return pk.theory.inversion_run(law, mu, alpha, gamma, n0, t_end, rtol, C=C, theta0=THETA0,
+    return ps.inversion_run(law, mu, alpha, gamma, n0, t_end, rtol, C=C, theta0=THETA0,
                                    key=row_key(law, mu, alpha, gamma, n0, t_end, rtol))
 
 
@@ -110,7 +111,7 @@ def main(argv=None) -> dict:
     cfg = QUICK if args.quick else FULL
     conv = convergence(st)
     config = {k: list(v) if isinstance(v, tuple) else v for k, v in cfg.items()}
-    store = st.store(pk.theory.InversionRun, {"config": config, "rtol": RTOL, "theta0": THETA0, "C": C}, name="tippe_top_map")
+    store = st.store(ps.InversionRun, {"config": config, "rtol": RTOL, "theta0": THETA0, "C": C}, name="tippe_top_map")
     tasks = [(law, mu, a, g, n0) for (law, mu) in cfg["laws"] for n0 in cfg["spins"] for a in cfg["alphas"] for g in cfg["gammas"]
              if g * C >= 0.5 * C]  # C <= 2A
     specs = pk.sweep.each(tasks, lambda *t: row_key(*t, cfg["t_end"], RTOL), lambda *t: run_point(*t, cfg["t_end"], RTOL))
@@ -121,10 +122,10 @@ def main(argv=None) -> dict:
         f"Tippe top spun about the vertical from $\\theta_0$ = {THETA0}, C = {C}: outcome by t = {cfg['t_end']:g}\n"
         f"markers: phasekit (vector chart, rtol {RTOL:g}); background: tippetop.ueda_group{' [quick run]' if args.quick else ''}")),
             "tippe_top_map.png")
-    summary = pk.theory.inversion_summary(rows)
+    summary = ps.inversion_summary(rows)
     summary["rtol_check"] = check_rtol(cfg, rows, 3 if args.quick else 8)
     ex = EXAMPLE
-    r = pk.theory.simulate_inversion(pk.EccentricSphere(ex["alpha"], A=ex["A"], C=C), pk.Coulomb(ex["mu"]), ex["n0"], 200.0,
+    r = ps.simulate_inversion(pk.EccentricSphere(ex["alpha"], A=ex["A"], C=C), pk.Coulomb(ex["mu"]), ex["n0"], 200.0,
                                      theta0=THETA0, rtol=RTOL)
     summary["hopping_example"] = hopping(r, st)
     summary["scene"] = render_inversion(r, st.path("tippe_top_scene.png"), title=(

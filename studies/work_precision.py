@@ -28,7 +28,9 @@ from __future__ import annotations
 import statistics
 
 import phasekit as pk
-from phasekit.viz import plot_cost_growth, plot_regularisation, plot_work_precision, pyplot
+import phasekit.studies as ps
+from phasekit.studies import plot_cost_growth, plot_regularisation, plot_work_precision
+from phasekit.viz import pyplot
 
 import numpy as np
 
@@ -103,7 +105,7 @@ def draw(plt, rows, refs, eps_rows, by_T, by_om, cap, quick):
 
 def report(rows, refs, eps_rows, by_T, by_om, cap, repeats, png) -> None:
     print(f"Figure {png.name}; table work_precision.csv; {len(rows)} runs, cap {cap:g} s, median of {repeats}.")
-    print(pk.baseline.work_precision_summary(rows, refs))
+    print(ps.work_precision_summary(rows, refs))
     print("\n(c) t_jump against eps (stuck: the slip fell below 10 eps, or held at zero with the exact law):")
     for label, erows in eps_rows.items():
         print("  " + label + ": " + "; ".join(f"eps={'exact' if e is None else f'{e:g}'}: "

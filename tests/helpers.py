@@ -38,7 +38,7 @@ def run_cli(*args):
     return code, out.getvalue(), err.getvalue()
 
 
-class UserSpheroid(pk.Body):
+class UserSpheroid(pk.bodies.Body):
     """A spheroid as a user writes it: only ``height`` and ``shape_params``."""
 
     def __init__(self, a):

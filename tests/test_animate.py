@@ -1,7 +1,7 @@
 """The moving body: GIF, MP4 and film strip from a run, through the API and the CLI."""
 
 import phasekit as pk
-from phasekit import pose
+from phasekit.core import pose
 from phasekit.viz.animate import BODY_COLORS
 
 import numpy as np

@@ -28,7 +28,7 @@ def _public():
     for ns in NAMESPACES:
         mod = importlib.import_module(f"phasekit.{ns}")
         out += [(f"phasekit.{ns}.{n}", getattr(mod, n)) for n in mod.__all__]
-    tip = importlib.import_module("phasekit.tippetop")
+    tip = importlib.import_module("phasekit.theory.tippetop")
     out += [(f"phasekit.theory.tippetop.{n}", getattr(tip, n)) for n in tip.__all__]
     return [(name, obj) for name, obj in out if not inspect.ismodule(obj)]
 

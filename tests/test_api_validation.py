@@ -6,9 +6,9 @@ import math
 import os
 
 import phasekit as pk
-from phasekit import units
-from phasekit.impact import collision_matrix, contact_point
-from phasekit.surface import Scene, compute_scene
+from phasekit.core import units
+from phasekit.core.impact import collision_matrix, contact_point
+from phasekit.theory.surface import Scene, compute_scene
 
 import numpy as np
 import pytest
@@ -142,7 +142,7 @@ GOOD_IMPACT = dict(k=[0.0, 0.0, 1.0], w=[0.0, 0.0, 0.0], v=[0.0, 0.0, -1.0], e=0
 ])
 def test_impact_rejects(name, bad):
     args = dict(GOOD_IMPACT, body=B) | {name: bad}
-    _raises(name, lambda: pk.theory.impact(args["body"], args["k"], args["w"], args["v"], e=args["e"], mu=args["mu"]))
+    _raises(name, lambda: pk.core.impact(args["body"], args["k"], args["w"], args["v"], e=args["e"], mu=args["mu"]))
 
 
 @pytest.mark.parametrize("fn", [contact_point, collision_matrix])
@@ -155,7 +155,7 @@ def test_impact_geometry_rejects(fn):
 def test_impact_valid_upright_drop():
     """Upright (k = e_Z) and falling straight: the impulse passes through G, so it only reverses
     the fall by Newton's law and spins nothing: v = (0, 0, e), w = 0, P = (0, 0, 1 + e)."""
-    r = pk.theory.impact(B, **GOOD_IMPACT)
+    r = pk.core.impact(B, **GOOD_IMPACT)
     np.testing.assert_allclose(r.v, [0.0, 0.0, 0.5], atol=1e-15)
     np.testing.assert_allclose(r.w, [0.0, 0.0, 0.0], atol=1e-15)
     np.testing.assert_allclose(r.impulse, [0.0, 0.0, 1.5], atol=1e-15)
@@ -171,21 +171,21 @@ def test_impact_valid_upright_drop():
 
 
 @pytest.mark.parametrize("name, call", [
-    ("length", lambda: pk.egg_of_size("57 s", "43 mm")),
-    ("breadth", lambda: pk.egg_of_size("57 mm", "43 rev/s")),
-    ("breadth", lambda: pk.egg_of_size("57 mm", "-43 mm")),
-    ("length", lambda: pk.egg_of_size("nan mm", "43 mm")),
-    ("length", lambda: pk.egg_of_size(57, "43 mm")),
-    ("length", lambda: pk.egg_of_size("570 mm", "43 mm")),  # aspect ratio out of range
-    ("mass", lambda: pk.egg_of_size("57 mm", "43 mm", mass="57 mm")),
-    ("g", lambda: pk.egg_of_size("57 mm", "43 mm", g="9.81 m/s")),
-    ("w", lambda: pk.egg_of_size("57 mm", "43 mm", w=NAN)),
-    ("radius", lambda: pk.tippe_top_of_size("15 s", "3 mm")),
-    ("offset", lambda: pk.tippe_top_of_size("15 mm", "3 s")),
-    ("offset", lambda: pk.tippe_top_of_size("15 mm", "30 mm")),
-    ("A", lambda: pk.tippe_top_of_size("15 mm", "3 mm", A="2 g")),
-    ("A", lambda: pk.tippe_top_of_size("15 mm", "3 mm", A=True)),
-    ("C", lambda: pk.tippe_top_of_size("15 mm", "3 mm", C=NAN)),
+    ("length", lambda: pk.core.egg_of_size("57 s", "43 mm")),
+    ("breadth", lambda: pk.core.egg_of_size("57 mm", "43 rev/s")),
+    ("breadth", lambda: pk.core.egg_of_size("57 mm", "-43 mm")),
+    ("length", lambda: pk.core.egg_of_size("nan mm", "43 mm")),
+    ("length", lambda: pk.core.egg_of_size(57, "43 mm")),
+    ("length", lambda: pk.core.egg_of_size("570 mm", "43 mm")),  # aspect ratio out of range
+    ("mass", lambda: pk.core.egg_of_size("57 mm", "43 mm", mass="57 mm")),
+    ("g", lambda: pk.core.egg_of_size("57 mm", "43 mm", g="9.81 m/s")),
+    ("w", lambda: pk.core.egg_of_size("57 mm", "43 mm", w=NAN)),
+    ("radius", lambda: pk.core.tippe_top_of_size("15 s", "3 mm")),
+    ("offset", lambda: pk.core.tippe_top_of_size("15 mm", "3 s")),
+    ("offset", lambda: pk.core.tippe_top_of_size("15 mm", "30 mm")),
+    ("A", lambda: pk.core.tippe_top_of_size("15 mm", "3 mm", A="2 g")),
+    ("A", lambda: pk.core.tippe_top_of_size("15 mm", "3 mm", A=True)),
+    ("C", lambda: pk.core.tippe_top_of_size("15 mm", "3 mm", C=NAN)),
     ("b", lambda: pk.Scale("21.5 s")),
     ("b", lambda: pk.Scale(21.5)),
     ("b", lambda: pk.Scale("0 mm")),
@@ -213,9 +213,9 @@ def test_units_valid_by_hand():
     assert sc.dimensionless("30 rev/s") == pytest.approx(30 * 2 * math.pi * math.sqrt(0.0215 / 9.81), rel=1e-12)
     assert sc.dimensionless("30 rev/s", "rate") == pytest.approx(30 * 2 * math.pi * math.sqrt(0.0215 / 9.81), rel=1e-12)
     assert sc.quantity(1.0, "time").to("s").magnitude == pytest.approx(math.sqrt(0.0215 / 9.81), rel=1e-12)
-    egg, sc2 = pk.egg_of_size("57 mm", "43 mm", w=0.05, mass="57 g")
+    egg, sc2 = pk.core.egg_of_size("57 mm", "43 mm", w=0.05, mass="57 g")
     assert egg.a == pytest.approx(57 / 43, rel=1e-14) and sc2.b.to("mm").magnitude == pytest.approx(21.5, rel=1e-14)
-    top, sc3 = pk.tippe_top_of_size("15 mm", "3 mm")
+    top, sc3 = pk.core.tippe_top_of_size("15 mm", "3 mm")
     assert top.offset == pytest.approx(0.2, rel=1e-14) and top.A == pytest.approx(0.4 - 0.2**2, rel=1e-14)
 
 

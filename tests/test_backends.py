@@ -1,9 +1,9 @@
 """Integrators: the on-disk cache round trip, guards ~0 at located events, located minima."""
 
 import phasekit as pk
-from phasekit import engines
-from phasekit.engines import Budget, TaylorEngine
-from phasekit.system import declare, watched
+from phasekit.core import engines
+from phasekit.core.engines import Budget, TaylorEngine
+from phasekit.core.system import declare, watched
 
 import numpy as np
 
@@ -14,8 +14,8 @@ def test_taylor_cache_reload_keeps_the_monitor(tmp_path, monkeypatch, prolate, s
     monkeypatch.setenv("PHASEKIT_CACHE", str(tmp_path))
     model = pk.Model(prolate, pk.Coulomb(0.1))
     system = declare(model)
-    flow = system.flow(pk.Mode.SLIDING)
-    events = watched(system, pk.Mode.SLIDING, TaylorEngine)
+    flow = system.flow(pk.core.Mode.SLIDING)
+    events = watched(system, pk.core.Mode.SLIDING, TaylorEngine)
     cflow = model.compile_flow(flow, events)
     counts = []
     for _ in range(2):

@@ -8,8 +8,9 @@ import subprocess
 import sys
 
 import phasekit as pk
-from phasekit import friction, starts
 from phasekit.cli import main
+from phasekit.core import starts
+from phasekit.friction import laws as friction
 
 import pytest
 from hypothesis import given, settings

@@ -5,10 +5,10 @@ and a user's CustomBody works for simulation, fixed points, thresholds and scene
 import math
 
 import phasekit as pk
-from phasekit.body import TIPPE_TOP_OFFSET_MAX, uniform_mass_properties
-from phasekit.egg import Egg
-from phasekit.fixedpoints import fixed_points, horizontal_state, vertical_state
-from phasekit.threshold import Definition, find_threshold
+from phasekit.bodies.body import TIPPE_TOP_OFFSET_MAX, uniform_mass_properties
+from phasekit.bodies.egg import Egg
+from phasekit.steady.fixedpoints import fixed_points, horizontal_state, vertical_state
+from phasekit.thresholds.threshold import Definition, find_threshold
 
 import casadi as ca
 import numpy as np
@@ -265,10 +265,10 @@ def test_scale_rejects_bad_quantities_by_name(call, param):
 
 
 def test_bodies_of_a_given_size():
-    egg, sc = pk.egg_of_size("57 mm", "4.3 cm", w=0.05, mass="57 g")
+    egg, sc = pk.core.egg_of_size("57 mm", "4.3 cm", w=0.05, mass="57 g")
     assert egg.a == pytest.approx(57 / 43, rel=1e-14) and egg.w == 0.05
     assert sc.b.to("mm").magnitude == pytest.approx(21.5, rel=1e-14)
-    top, sc = pk.tippe_top_of_size("15 mm", "4.5 mm", A=0.38, C=0.4)
+    top, sc = pk.core.tippe_top_of_size("15 mm", "4.5 mm", A=0.38, C=0.4)
     assert top.offset == pytest.approx(0.3, rel=1e-14) and (top.A, top.C) == (0.38, 0.4)
-    top, sc = pk.tippe_top_of_size("15 mm", "4.5 mm", A="0.38 * 20 g * (15 mm)**2", C=0.4, mass="20 g")
+    top, sc = pk.core.tippe_top_of_size("15 mm", "4.5 mm", A="0.38 * 20 g * (15 mm)**2", C=0.4, mass="20 g")
     assert top.A == pytest.approx(0.38, rel=1e-14)

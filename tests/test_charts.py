@@ -1,8 +1,8 @@
 """Issue 3: the singularity-free vector chart against the Euler chart (2.7)."""
 
 import phasekit as pk
-from phasekit import charts
-from phasekit.charts import choose_chart
+from phasekit.core import charts
+from phasekit.core.charts import choose_chart
 
 import numpy as np
 import pytest
@@ -27,7 +27,7 @@ def test_charts_agree_on_trajectory_and_jump(a, start):
     runs = {}
     for chart in ("euler", "vector"):
         m = pk.Model(body, pk.Coulomb(0.1), chart)
-        runs[chart] = pk.simulate(m, pk.to_chart(chart, y0), 300.0, rtol=1e-12, t_eval=[10.0, 20.0])
+        runs[chart] = pk.simulate(m, pk.core.to_chart(chart, y0), 300.0, rtol=1e-12, t_eval=[10.0, 20.0])
     e, v = runs["euler"], runs["vector"]
     assert e.status is v.status is pk.Status.JUMPED
     assert abs(e.t_jump - v.t_jump) / e.t_jump < 1e-7
@@ -46,7 +46,7 @@ def vertical_rise():
     rise = pk.Event("theta", np.pi / 2 - 0.05, direction=+1, name="rise-complete")
     r_vert = pk.simulate(m, z0, 3000.0, rtol=1e-9, events=[rise])
     y_away = pk.gyroscopic_start(body, 0.05, n0=12.0)
-    r_away = pk.simulate(m, pk.to_chart("vector", y_away), 3000.0, rtol=1e-9, events=[rise])
+    r_away = pk.simulate(m, pk.core.to_chart("vector", y_away), 3000.0, rtol=1e-9, events=[rise])
     return r_vert, r_away
 
 

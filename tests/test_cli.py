@@ -28,7 +28,7 @@ def test_simulate_json_keys():
     # the printed state at the jump has R = 0 (recomputed here from the model, not read back)
     import phasekit as pk
 
-    y = np.array([d["state_at_jump"][k] for k in pk.PAPER_NAMES])
+    y = np.array([d["state_at_jump"][k] for k in pk.core.PAPER_NAMES])
     assert abs(pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)).normal_reaction(y)) < 1e-8
 
 

@@ -98,7 +98,7 @@ def test_an_end_time_beyond_the_wall_budget_is_said_at_once():
 
 
 @pytest.mark.parametrize("call, name", [
-    (lambda b: pk.theory.impact(b, [np.sin(1.0), 0, np.cos(1.0)], [0, 0, 1e308], [0, 0, -1e308], e=0.5, mu=0.1), "w"),
+    (lambda b: pk.core.impact(b, [np.sin(1.0), 0, np.cos(1.0)], [0, 0, 1e308], [0, 0, -1e308], e=0.5, mu=0.1), "w"),
     (lambda b: pk.theory.flight_constants(b, [0, 0, 1e200, 0, 1.0, 1.0], 1e200), "euler_state"),
     (lambda b: pk.theory.c_xi(b, 1.0, 1e300, 0.1, 0.01, 0.0), "Omega_bar0"),
     (lambda b: pk.theory.omega2(b, 1.0, 1e300), "Omega"),
@@ -170,7 +170,7 @@ def test_version_flag_help_says_json():
 
 @pytest.mark.parametrize("argv, flag", [(["--quick", "--quick"], "--quick"), (["--out", "a", "--out=b"], "--out")])
 def test_a_study_refuses_a_repeated_flag_too(argv, flag, capsys):
-    from phasekit.study import study_parser
+    from phasekit.sweep.study import study_parser
 
     ap = study_parser("a study", default_out=ROOT / "figures")
     with pytest.raises(SystemExit) as info:
@@ -182,7 +182,7 @@ def test_a_study_refuses_a_repeated_flag_too(argv, flag, capsys):
 def test_an_interrupt_that_compiled_code_turns_into_another_error_ends_a_study_as_interrupted(capsys):
     """CasADi's argument dispatch turns a KeyboardInterrupt into NotImplementedError ("Wrong
     number or type of arguments"), which propagated as a traceback (found at 1.2 s into a study)."""
-    from phasekit.study import run_study
+    from phasekit.sweep.study import run_study
 
     if signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
         pytest.skip("SIGINT is handled by something else in this process")

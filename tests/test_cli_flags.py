@@ -143,7 +143,7 @@ def test_unstable_manifold_of_a_state_the_body_lacks_is_bad_input(body, state, v
 @pytest.fixture
 def started(monkeypatch):
     """simulate_start replaced by a recorder: what the CLI passes on, without integrating."""
-    import phasekit.api
+    import phasekit.cli.params
 
     calls = []
 
@@ -151,7 +151,7 @@ def started(monkeypatch):
         calls.append(kw)
         return {"status": "completed", "reason": None}
 
-    monkeypatch.setattr(phasekit.api, "simulate_start", record)
+    monkeypatch.setattr(phasekit.cli.params, "simulate_start", record)
     return calls
 
 
@@ -170,7 +170,7 @@ def test_paper_start_takes_its_aspect_ratio_by_default(started):
 
 
 def test_a_failed_solve_in_json_has_status_and_reason(monkeypatch):
-    import phasekit.fixedpoints as fpm
+    import phasekit.steady.fixedpoints as fpm
 
     monkeypatch.setattr(fpm, "NEWTON_RTOL", -1.0)  # no iterate can pass: Newton "fails"
     code, out, err = run_cli("fixed-points", "--a", 1.5, "--mu", 0.1, "--omega0", 10, "--json")

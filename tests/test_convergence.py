@@ -41,7 +41,7 @@ def test_t_jump_converges_in_eps_and_rtol(runs):
 
 def test_euler_and_vector_and_cvodes_agree_on_t_jump(prolate, standard_start):
     ref = pk.simulate(pk.Model(prolate, pk.Coulomb(0.1)), standard_start, 200.0, rtol=1e-12).t_jump
-    rv = pk.simulate(pk.Model(prolate, pk.Coulomb(0.1), "vector"), pk.to_chart("vector", standard_start), 200.0, rtol=1e-12)
+    rv = pk.simulate(pk.Model(prolate, pk.Coulomb(0.1), "vector"), pk.core.to_chart("vector", standard_start), 200.0, rtol=1e-12)
     rc = pk.simulate(pk.Model(prolate, pk.Coulomb(0.1)), standard_start, 200.0, rtol=1e-11, backend="cvodes")
     assert abs(rv.t_jump - ref) / ref < 1e-9
     assert abs(rc.t_jump - ref) / ref < 1e-7

@@ -52,8 +52,8 @@ def plain(html: str) -> str:
 
 def test_api_reference(site):
     api = text(site, "api")
-    for name in ("phasekit.simulate", "phasekit.Trajectory.sample", "phasekit.poincare", "phasekit.ensemble",
-                 "phasekit.rerun", "phasekit.paper_start", "phasekit.Scene.add_trajectory", "phasekit.Body"):
+    for name in ("phasekit.simulate", "phasekit.core.Trajectory.sample", "phasekit.core.poincare", "phasekit.ensemble",
+                 "phasekit.rerun", "phasekit.paper_start", "phasekit.Scene.add_trajectory", "phasekit.bodies.Body"):
         assert f'id="{name}"' in api, name
     viz = text(site, "viz")
     for name in ("plot_timeseries", "plot_events", "plot_section", "render_scene", "animate", "film_strip"):
@@ -128,7 +128,7 @@ def test_results_pages_show_the_committed_numbers(site):
 
 
 def test_the_event_table_is_generated_once(site):
-    from phasekit import system
+    from phasekit.core import system
 
     page = text(site, "architecture")
     model = __import__("phasekit").Model(__import__("phasekit").Spheroid(1.5), __import__("phasekit").Coulomb(0.1))
@@ -215,8 +215,8 @@ def test_guide_python_blocks_run(code):
     assert p.returncode == 0, p.stderr[-2000:]
 
 
-@pytest.mark.parametrize("module", ["phasekit.sections", "phasekit.ensemble", "phasekit.viz.mpl", "phasekit.paper",
-                                    "phasekit.surface", "phasekit.units"])
+@pytest.mark.parametrize("module", ["phasekit.core.sections", "phasekit.ensemble", "phasekit.viz.mpl", "phasekit.theory.paper",
+                                    "phasekit.theory.surface", "phasekit.core.units"])
 def test_docstring_examples_run(module):
     mod = importlib.import_module(module)
     res = doctest.testmod(mod, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)

@@ -1,13 +1,13 @@
 """Egg (Hugelschaffer's curve): spheroid limit, support function, curvature, mass properties,
 orientation and bad input. Reference values are computed here from Narushin's formula
-y(x) = (B/2) sqrt((L^2 - 4x^2) / (L^2 + 8wx + 4w^2)) directly, not from phasekit.egg's own
+y(x) = (B/2) sqrt((L^2 - 4x^2) / (L^2 + 8wx + 4w^2)) directly, not from phasekit.bodies.egg's own
 parametrisation, so that the two can disagree."""
 
 import time
 
-from phasekit.body import Spheroid
-from phasekit.egg import W_GUARANTEED, Egg, clenshaw, mass_properties
-from phasekit.errors import ParameterError
+from phasekit._runtime.errors import ParameterError
+from phasekit.bodies.body import Spheroid
+from phasekit.bodies.egg import W_GUARANTEED, Egg, clenshaw, mass_properties
 
 import casadi as ca
 import numpy as np
@@ -92,7 +92,7 @@ def test_symbolic_clenshaw_equals_numpy_chebval():
 
 def test_height_translates_to_heyoka():
     hy = pytest.importorskip("heyoka")
-    from phasekit._translate import to_heyoka
+    from phasekit._runtime.translate import to_heyoka
 
     egg = Egg(1.3, 0.02)
     c, sh = ca.SX.sym("c"), ca.SX.sym("shape", egg.n_shape)
@@ -140,7 +140,7 @@ def test_pole_radius_equals_tip_curvature_of_the_curve(a, w):
 # -- (iv) mass properties ----------------------------------------------------------------------
 @pytest.mark.parametrize("a, w", EGGS + [(1.3, 0.0), (2.0, 0.4)])
 def test_mass_properties_against_gauss_legendre_in_phi(a, w):
-    """Gauss-Legendre in phi, x = (L/2) sin(phi) (the quad in phasekit.egg works in x)."""
+    """Gauss-Legendre in phi, x = (L/2) sin(phi) (the quad in phasekit.bodies.egg works in x)."""
     L, B, wa = curve(a, w)
     nodes, weights = roots_legendre(400)
     phi = 0.5 * np.pi * nodes
@@ -270,7 +270,7 @@ def test_the_horizontal_like_state_separates_the_two_ends():
     import phasekit as pk
 
     egg = Egg(57 / 43, 0.05)
-    th_h = pk.theory.horizontal_like_angle(egg, pk.theory.precession_angles(egg, omega0=6.0))
+    th_h = pk.steady.horizontal_like_angle(egg, pk.steady.precession_angles(egg, omega0=6.0))
     assert th_h - np.pi / 2 > 0.15
     ends = {}
     for d in (-0.02, 0.02):

@@ -7,8 +7,9 @@ import dataclasses
 import json
 
 import phasekit as pk
-from phasekit import engines
-from phasekit.system import declare, watched
+import phasekit.studies as ps
+from phasekit.core import engines
+from phasekit.core.system import declare, watched
 from tests.helpers import run_cli
 
 import numpy as np
@@ -23,14 +24,14 @@ def test_an_egg_runs_on_the_batch_engine_compiled_as_the_scalar_one_with_the_sam
     model = pk.Model(egg, pk.Coulomb(0.1))
     rise = pk.Event("theta", 0.1, direction=-1, name="rise-complete")
     system = declare(model, stop_at="jump", events=[rise])
-    flow = dataclasses.replace(system.flow(pk.Mode.SLIDING), monitor=None)
-    cflow = model.compile_flow(flow, watched(system, pk.Mode.SLIDING, engines.TaylorEngine))
+    flow = dataclasses.replace(system.flow(pk.core.Mode.SLIDING), monitor=None)
+    cflow = model.compile_flow(flow, watched(system, pk.core.Mode.SLIDING, engines.TaylorEngine))
     scalar, _, _ = engines.TaylorEngine(1e-9).integrator(cflow, len(model.p))
     batch, _ = engines.TaylorBatchEngine(1e-9, 8).integrator(cflow, len(model.p))  # simulate_batch's lanes
     assert scalar.compact_mode and batch.compact_mode
     starts = [pk.gyroscopic_start(egg, np.pi / 2 - 0.01, omega0=w) for w in (6.0, 12.0, 20.0)]
     kw = dict(events=[rise], track_minima=False, dense=False)
-    stats = pk.sweep.BatchStats()
+    stats = ps.BatchStats()
     runs = pk.simulate_batch(model, starts, 60.0, stats=stats, **kw)
     assert stats.batched == 3 and stats.scalar == 0
     for b, x0 in zip(runs, starts):
@@ -71,9 +72,9 @@ def test_an_unknown_engine_is_an_error_and_a_registered_one_needs_nothing_else()
 def test_results_are_frozen():
     body = pk.Spheroid(1.5)
     traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0),
-                       200.0, stop_at="touchdown", pose0=pk.Pose(psi=0.3))
-    assert isinstance(traj.segments[0], pk.Segment) and isinstance(traj.events[0], pk.EventRecord)
-    assert isinstance(traj.flights[0], pk.Flight) and traj.pose0 == pk.Pose(psi=0.3)
+                       200.0, stop_at="touchdown", pose0=pk.core.Pose(psi=0.3))
+    assert isinstance(traj.segments[0], pk.core.Segment) and isinstance(traj.events[0], pk.core.EventRecord)
+    assert isinstance(traj.flights[0], pk.core.Flight) and traj.pose0 == pk.core.Pose(psi=0.3)
     for obj, field in ((traj, "status"), (traj, "segments"), (traj, "pose0"), (traj.segments[0], "t1"),
                        (traj.events[0], "t"), (traj.flights[0], "gap_max")):
         with pytest.raises(dataclasses.FrozenInstanceError):
@@ -90,7 +91,7 @@ def test_one_status_vocabulary_per_level():
     th = pk.find_threshold(pk.Definition("sliding", "sliding"), 1.5, hi=120.0, guess=9.74, tol=1e-2)
     assert th.status is pk.SearchStatus.CONVERGED and all(isinstance(o.status, pk.Status) for o in th.outcomes)
     s = pk.steady_structure(pk.Spheroid(1.5, offset=0.2), pk.Viscous(0.1))
-    assert isinstance(s, pk.SteadyStructure) and s.status is pk.Status.COMPLETED
+    assert isinstance(s, pk.steady.SteadyStructure) and s.status is pk.Status.COMPLETED
     assert all(c.status in pk.SearchStatus for b in s.branches for c in b.changes)
     prop = engines.engine_for("taylor", 1e-9)
     assert prop.name == "taylor" and {e.value for e in engines.End} == {"time", "event", "failed"}
@@ -111,4 +112,4 @@ def test_the_chart_and_its_old_name_formulation():
     d["model"].pop("chart")
     d["model"]["formulation"] = "euler"  # an old result's key
     assert pk.rerun(d).model.chart.name == "euler"
-    assert np.allclose(pk.to_paper("vector", pk.to_chart("vector", [0, 0, 2.0, 0, 1.0, 5.0])), [0, 0, 2.0, 0, 1.0, 5.0])
+    assert np.allclose(pk.core.to_paper("vector", pk.core.to_chart("vector", [0, 0, 2.0, 0, 1.0, 5.0])), [0, 0, 2.0, 0, 1.0, 5.0])

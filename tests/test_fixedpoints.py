@@ -1,12 +1,7 @@
 """Issue 4: fixed points, exact linearisation, stability, unstable-manifold seeds."""
 
 import phasekit as pk
-from phasekit.criteria import (
-    horizontal_stability_threshold,
-    vertical_is_stable,
-    vertical_stability_threshold,
-)
-from phasekit.fixedpoints import (
+from phasekit.steady.fixedpoints import (
     continue_family,
     find_fixed_point,
     fixed_points,
@@ -15,7 +10,12 @@ from phasekit.fixedpoints import (
     linearise,
     vertical_state,
 )
-from phasekit.manifolds import unstable_manifold_start, unstable_seeds
+from phasekit.steady.manifolds import unstable_manifold_start, unstable_seeds
+from phasekit.theory.criteria import (
+    horizontal_stability_threshold,
+    vertical_is_stable,
+    vertical_stability_threshold,
+)
 
 import numpy as np
 import pytest

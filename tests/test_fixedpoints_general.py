@@ -3,14 +3,8 @@ horizontal-like state of an egg, their linearisations and unstable directions, a
 closed-form criteria (general pole criterion; equator criterion and where it stops holding)."""
 
 import phasekit as pk
-from phasekit.criteria import (
-    equator_stability_threshold,
-    horizontal_stability_threshold,
-    pole_stability_threshold,
-    vertical_stability_threshold,
-)
-from phasekit.egg import Egg
-from phasekit.fixedpoints import (
+from phasekit.bodies.egg import Egg
+from phasekit.steady.fixedpoints import (
     fixed_points,
     horizontal_state,
     inverted_state,
@@ -20,7 +14,13 @@ from phasekit.fixedpoints import (
     side_equilibrium,
     vertical_state,
 )
-from phasekit.manifolds import unstable_manifold_start
+from phasekit.steady.manifolds import unstable_manifold_start
+from phasekit.theory.criteria import (
+    equator_stability_threshold,
+    horizontal_stability_threshold,
+    pole_stability_threshold,
+    vertical_stability_threshold,
+)
 
 import casadi as ca
 import numpy as np
@@ -55,7 +55,7 @@ def rotating_residual(body, y, law=pk.Viscous(0.1)) -> float:
     """|f(x) - Omega e_Z x x| in the vector chart: zero iff y is a steady precession at rate
     Omega (independent of the Euler chart in which it was found)."""
     m = pk.Model(body, law, "vector")
-    x = pk.to_chart("vector", y)
+    x = pk.core.to_chart("vector", y)
     k, w, v = x[0:3], x[3:6], np.array([x[6], x[7], 0.0])
     Om = y[2]
     rot = np.concatenate([np.cross(Om * EZ, k), np.cross(Om * EZ, w), np.cross(Om * EZ, v)[:2]])

@@ -5,9 +5,11 @@ import io
 import json
 
 import phasekit as pk
-from phasekit import charts
 from phasekit.cli import main
-from phasekit.flight import (
+from phasekit.core import charts
+from phasekit.core.impact import impact
+from phasekit.core.resets import flight_state
+from phasekit.theory.flight import (
     cos_theta_exact,
     flight_constants,
     flight_invariants,
@@ -16,8 +18,6 @@ from phasekit.flight import (
     gap_max_series,
     gap_series,
 )
-from phasekit.impact import impact
-from phasekit.resets import flight_state
 
 import numpy as np
 import pytest
@@ -49,7 +49,7 @@ def test_numerical_flight_equals_closed_form_4_12(jump11):
     euler = np.array([charts.vector_to_euler(x[:8]) for x in xs[1:]])
     inv = flight_invariants(body, euler)
     assert np.max(np.abs(inv - inv[0]) / np.maximum(np.abs(inv[0]), 1e-300)) < 1e-10  # (4.6)-(4.8)
-    E = m.evaluate("energy", xs, pk.Mode.FLIGHT)
+    E = m.evaluate("energy", xs, pk.core.Mode.FLIGHT)
     assert np.ptp(E) / abs(E[0]) < 1e-12
 
 
@@ -107,13 +107,13 @@ def test_velocities_and_accelerations_continuous_through_lift_off(jump11):
     z = charts.euler_to_vector(r.x_jump)
     xf = flight_state(m, r.x_jump)
     a_contact = mv.rhs(z)  # (dk, dw, dv_h) in contact at R = 0
-    a_flight = m.rhs(xf, pk.Mode.FLIGHT)
+    a_flight = m.rhs(xf, pk.core.Mode.FLIGHT)
     np.testing.assert_allclose(a_flight[:8], a_contact, atol=1e-9)
     # vertical: in contact dW/dt = R - 1 = -1 at lift-off, so G's vertical acceleration is that of
     # free fall on both sides; in flight it is the gap's acceleration plus d2h/dt2
-    assert abs(m.evaluate("gap_acc", xf, pk.Mode.FLIGHT)) < 1e-9
+    assert abs(m.evaluate("gap_acc", xf, pk.core.Mode.FLIGHT)) < 1e-9
     # the vertical velocity of G carries over: W in contact (2.5) equals gap rate + dh/dt in flight
-    assert m.evaluate("W", xf, pk.Mode.FLIGHT) == pytest.approx(mv.evaluate("W", z), abs=1e-12)
+    assert m.evaluate("W", xf, pk.core.Mode.FLIGHT) == pytest.approx(mv.evaluate("W", z), abs=1e-12)
 
 
 @pytest.mark.parametrize("e, mu", [(0.0, 0.1), (0.5, 0.1), (0.9, 0.3), (1.0, 0.0)])

@@ -1,7 +1,7 @@
 """Friction-law conformance: odd in the slip, dissipative, and the documented forms."""
 
 import phasekit as pk
-from phasekit import friction
+from phasekit.friction import laws as friction
 
 import numpy as np
 import pytest

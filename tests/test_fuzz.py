@@ -30,7 +30,9 @@ import time
 import warnings
 
 import phasekit as pk
-from phasekit import charts, cli, friction
+from phasekit import cli
+from phasekit.core import charts
+from phasekit.friction import laws as friction
 
 import numpy as np
 import pytest
@@ -357,7 +359,7 @@ def classify_api(allowed: set[str], call):
 
 
 def check_trajectory(r) -> str:
-    assert isinstance(r, pk.Trajectory)
+    assert isinstance(r, pk.core.Trajectory)
     d = r.to_dict()
     assert finite_everywhere(d), d
     assert np.all(np.isfinite(r.x))
@@ -428,7 +430,7 @@ def test_api_gyroscopic_start(body, theta0, which, value):
 
 
 def check_fixed_point(fp) -> str:
-    assert isinstance(fp, pk.FixedPoint)
+    assert isinstance(fp, pk.steady.FixedPoint)
     assert np.all(np.isfinite(fp.x)) and np.all(np.isfinite(fp.eigenvalues)) and math.isfinite(fp.residual)
     assert finite_everywhere(fp.to_dict())
     return "valid"
@@ -439,7 +441,7 @@ def check_fixed_point(fp) -> str:
        real_or_wrong(10.0, 2.0, 1e6), st.sampled_from([None, "Omega", "n", "q"]))
 def test_api_find_fixed_point(model, guess, kind, value, fixed):
     outcome, fp = classify_api({"model", "guess", "kind", "value", "fixed"},
-                               lambda: pk.find_fixed_point(model, guess, kind=kind, value=value, fixed=fixed))
+                               lambda: pk.steady.find_fixed_point(model, guess, kind=kind, value=value, fixed=fixed))
     if outcome == "valid":
         outcome = check_fixed_point(fp)
     record("api find_fixed_point", outcome)

@@ -102,7 +102,7 @@ def test_api_ensemble(law, x0s, t_end, kw):
         kw.pop("t_eval", None)
     outcome, df = classify_api(ENSEMBLE_NAMES, lambda: pk.ensemble(model, x0s, t_end, max_wall=5.0, **kw))
     if outcome == "valid":
-        assert list(df["i"]) == list(range(len(x0s))) and list(df.columns[:7]) == ["i", *pk.PAPER_NAMES]
+        assert list(df["i"]) == list(range(len(x0s))) and list(df.columns[:7]) == ["i", *pk.core.PAPER_NAMES]
         assert set(df["status"]) <= {s.value for s in pk.Status}
         ran = df[df["status"] != "failed"]  # a row that never ran has its status and reason only
         numeric = ran.drop(columns=["reason", "mode_end", "status", *[c for c in df.columns if c.startswith("t_")
@@ -121,12 +121,12 @@ def test_api_ensemble(law, x0s, t_end, kw):
 
 DEF_KW = st.fixed_dictionaries({"seed": st.sampled_from(["sliding", "sliding", "viscous", "literal"])}, optional={
     "mu": reals(0.1, 0.3), "amplitude": reals(0.01, 0.05),
-    "settle": st.sampled_from([pk.Settle(), None, True, pk.Settle(window=1.0), {"window": -1.0}, "x"]),
+    "settle": st.sampled_from([pk.core.Settle(), None, True, pk.core.Settle(window=1.0), {"window": -1.0}, "x"]),
     "t_max": st.sampled_from([5.0, 20.0])})
 
 
 def _threshold_checks(th) -> str:
-    assert isinstance(th, pk.Threshold) and th.status in pk.SearchStatus
+    assert isinstance(th, pk.thresholds.Threshold) and th.status in pk.SearchStatus
     assert th.value is None or math.isfinite(th.value)
     assert all(b is None or math.isfinite(b) for b in th.bracket)
     if th.status is pk.SearchStatus.CONVERGED:
@@ -169,11 +169,11 @@ def test_api_find_threshold_with_budgets(defn_kw, a, kw):
 def test_api_find_stick_boundary(value, kw):
     defn = pk.Definition("fuzz", "sliding", t_max=5.0, max_steps=3000)
     outcome, th = classify_api({"value", "max_wall", "lo", "hi", "tol", "progress", "n_coarse"},
-                               lambda: pk.find_stick_boundary(defn, PROLATE, value, n_coarse=2, **kw))
+                               lambda: pk.thresholds.find_stick_boundary(defn, PROLATE, value, n_coarse=2, **kw))
     if outcome == "valid":
         import inspect
 
-        defaults = inspect.signature(pk.find_stick_boundary).parameters
+        defaults = inspect.signature(pk.thresholds.find_stick_boundary).parameters
         lo = kw.get("lo", defaults["lo"].default)
         hi = kw.get("hi", defaults["hi"].default)
         assert th.value is None or lo <= th.value <= hi
@@ -253,7 +253,7 @@ def runs():
                             restitution=0.5),
         "stuck": pk.simulate(prolate, pk.paper_start("5.2")[1], 3.0),
         "vector": pk.simulate(pk.Model(PROLATE, pk.Coulomb(0.1), "vector"),
-                              pk.to_chart("vector", pk.gyroscopic_start(PROLATE, 1.5, omega0=10.0)), 5.0),
+                              pk.core.to_chart("vector", pk.gyroscopic_start(PROLATE, 1.5, omega0=10.0)), 5.0),
         "regularised": pk.simulate(pk.Model(OBLATE, pk.RegularisedCoulomb(0.1, 1e-3)),
                                    pk.gyroscopic_start(OBLATE, 0.05, n0=10.0), 5.0),
     }
@@ -279,8 +279,8 @@ def test_api_sample_of_every_kind_of_run(runs, which, fractions):
         if len(df):
             k = len(df) // 2
             at = r.at(float(df["t"].iloc[k]))
-            assert np.array_equal(at[list(pk.PAPER_NAMES)].to_numpy(float),
-                                  df.iloc[k][list(pk.PAPER_NAMES)].to_numpy(float))  # the same instant, the same row
+            assert np.array_equal(at[list(pk.core.PAPER_NAMES)].to_numpy(float),
+                                  df.iloc[k][list(pk.core.PAPER_NAMES)].to_numpy(float))  # the same instant, the same row
             states = r.states(df["t"].to_numpy())
             assert states.shape[0] == len(df) and np.all(np.isfinite(states))
             assert all((df["gap"] > 0) <= (df["mode"] == "flight"))  # a gap only in flight
@@ -289,7 +289,7 @@ def test_api_sample_of_every_kind_of_run(runs, which, fractions):
 
 @fuzz_settings(100)
 @given(st.fixed_dictionaries({}, optional={
-    "settle": st.sampled_from([None, True, False, pk.Settle(), {"window": 5.0, "tol": 0.1}, {"windows": 1}, "x",
+    "settle": st.sampled_from([None, True, False, pk.core.Settle(), {"window": 5.0, "tol": 0.1}, {"windows": 1}, "x",
                                {"window": math.nan}]),
     "bounce_stop": mostly(st.sampled_from([1e-4, 1e-6, 1e-2]), st.sampled_from([0.0, -1.0, 2.0, math.nan, "x"])),
     "bounce_tail": mostly(st.sampled_from([None, 100, 3]), st.sampled_from([0, -1, 2.5, "x"])),
@@ -309,7 +309,7 @@ def test_api_new_solver_options(kw):
 @fuzz_settings(150)
 @given(st.sampled_from([10.0, 20.0, 30.0]), real_or_wrong(0.5, 0.0, 0.95, 1.0), real_or_wrong(2.0, 5.0, 0.5),
        st.fixed_dictionaries({}, optional={
-           "settle": st.sampled_from([None, True, pk.Settle(window=0.5, tol=0.5)]),
+           "settle": st.sampled_from([None, True, pk.core.Settle(window=0.5, tol=0.5)]),
            "bounce_stop": st.sampled_from([1e-4, 1e-3, 1e-6]), "bounce_tail": st.sampled_from([None, 100, 2]),
            "max_switches": st.sampled_from([None, 50, 3]), "max_steps": st.sampled_from([5_000_000, 2000]),
            "stop_at": st.sampled_from(["none", "none", "touchdown", "jump"])}))

@@ -9,7 +9,7 @@ accumulation point reached) with a bounded effect on the state after it.
 import json
 
 import phasekit as pk
-from phasekit.resets import BOUNCE_STOP, flight_state
+from phasekit.core.resets import BOUNCE_STOP, flight_state
 
 import numpy as np
 import pytest
@@ -92,7 +92,7 @@ def _bounce_train(e, v0, **options):
     """A train of rebounds from a flight that leaves the table at v0 (vector chart, dense)."""
     body = pk.Spheroid(A)
     model = pk.Model(body, pk.Coulomb(MU), chart="vector")
-    xf = flight_state(model, pk.to_chart("vector", pk.gyroscopic_start(body, np.pi / 2 - 0.3, omega0=11.0)))
+    xf = flight_state(model, pk.core.to_chart("vector", pk.gyroscopic_start(body, np.pi / 2 - 0.3, omega0=11.0)))
     xf[9] = v0
     r = pk.simulate(model, xf, 3.0, stop_at="none", restitution=e, mode="flight", **options)
     back = [ev for ev in r.events if ev.name == "impact" and ev.mode_after != "flight"]
@@ -110,7 +110,7 @@ def test_a_resolved_bounce_train_changes_the_state_after_it_by_at_most_its_rebou
     assert full.hops["n_trains_resolved"] == 0 and full.hops["n_impacts"] > 2 * fast.hops["n_impacts"]
     assert end_fast.t < end_full.t < end_fast.t + 0.2  # the tail it summed: a fraction of a fast period
     t = end_full.t + 0.5
-    cols = list(pk.PAPER_NAMES)
+    cols = list(pk.core.PAPER_NAMES)
     diff = np.abs(fast.sample([t])[cols].to_numpy() - full.sample([t])[cols].to_numpy()).max()
     assert diff < 1e-3  # the stated tolerance (TAIL_SPEED x BOUNCE_STOP as documented)
 

@@ -1,7 +1,7 @@
 """Issue 24, item 2: every long call reports and ends.
 
 Wall budgets (``max_wall``) of searches, continuations, maps and ensembles; progress bars where
-a person waits (``progress``); runs that have settled end as "settled" (:class:`phasekit.Settle`),
+a person waits (``progress``); runs that have settled end as "settled" (:class:`phasekit.core.Settle`),
 and the default threshold definition uses that rule, so that an egg that settles tilted no
 longer stick-slips to t_max.
 """
@@ -10,7 +10,7 @@ import importlib
 import time
 
 import phasekit as pk
-from phasekit.watch import show_progress
+from phasekit._runtime.watch import show_progress
 
 import numpy as np
 import pytest
@@ -20,7 +20,7 @@ HANG_GUARD = 120.0  # s
 
 @pytest.fixture(scope="module")
 def egg():
-    return pk.egg_of_size("57 mm", "43 mm", w=0.05)[0]
+    return pk.core.egg_of_size("57 mm", "43 mm", w=0.05)[0]
 
 
 def test_the_issues_egg_search_ends_with_a_threshold(egg):
@@ -47,9 +47,9 @@ def test_a_settled_egg_would_not_have_jumped(egg):
     assert slow.status is pk.Status.COMPLETED and slow.t_jump is None
     later = [e for e in slow.events if e.t > fast.t and e.x is not None]
     theta = np.array([e.y[4] for e in later])
-    assert len(later) > 50 and np.abs(theta - fast.euler_end[4]).max() < 2 * pk.Settle().tol
+    assert len(later) > 50 and np.abs(theta - fast.euler_end[4]).max() < 2 * pk.core.Settle().tol
     R = [model.evaluate("R", e.x, e.mode_after) for e in later]
-    assert min(R) > pk.Settle().R_floor
+    assert min(R) > pk.core.Settle().R_floor
 
 
 def test_the_settle_rule_leaves_sliding_and_regularised_runs_alone(prolate, standard_start):
@@ -58,17 +58,17 @@ def test_the_settle_rule_leaves_sliding_and_regularised_runs_alone(prolate, stan
     # a regularised law keeps a small slip while "rolling": it never settles
     model, x0 = pk.paper_start("5.2")
     reg = pk.Model(model.body, pk.RegularisedCoulomb(0.1, 1e-3))
-    r = pk.simulate(reg, x0, 120.0, settle=pk.Settle(window=5.0))
+    r = pk.simulate(reg, x0, 120.0, settle=pk.core.Settle(window=5.0))
     assert r.status is not pk.Status.SETTLED and r.stuck
 
 
 def test_settle_options_are_validated_and_reach_the_json():
     with pytest.raises(pk.ParameterError, match="`window`"):
-        pk.Settle(window=-1.0)
+        pk.core.Settle(window=-1.0)
     with pytest.raises(pk.ParameterError, match="`settle`"):
         pk.SolverOptions(settle="yes")
     opts = pk.SolverOptions(settle={"window": 30.0})
-    assert opts.settle == pk.Settle(window=30.0) and opts.to_dict()["settle"]["window"] == 30.0
+    assert opts.settle == pk.core.Settle(window=30.0) and opts.to_dict()["settle"]["window"] == 30.0
 
 
 def test_the_default_settle_rule_keeps_the_keys_of_stored_results():
@@ -87,12 +87,12 @@ def test_a_search_with_a_wall_budget_returns_at_once_saying_so(prolate):
 
 def test_a_continuation_with_a_wall_budget_marks_the_bodies_it_did_not_reach():
     defn = pk.Definition("sliding", "sliding")
-    out = pk.continue_threshold(defn, [1.5, 1.75, 2.0], max_wall=0.05, progress=False)
+    out = pk.thresholds.continue_threshold(defn, [1.5, 1.75, 2.0], max_wall=0.05, progress=False)
     assert len(out) == 3 and out[-1].status is pk.SearchStatus.FAILED and out[-1].reason.startswith("not searched")
 
 
 def test_a_stick_boundary_search_takes_a_wall_budget(prolate):
-    th = pk.find_stick_boundary(pk.Definition("sliding", "sliding"), prolate, 10.0, max_wall=0.01, progress=False)
+    th = pk.thresholds.find_stick_boundary(pk.Definition("sliding", "sliding"), prolate, 10.0, max_wall=0.01, progress=False)
     assert th.status in (pk.SearchStatus.FAILED, pk.SearchStatus.BRACKET_ONLY) and "max_wall" in th.reason
 
 
@@ -110,7 +110,7 @@ def test_progress_is_shown_where_asked_and_only_there(capsys, prolate):
 
 
 def test_a_single_long_run_shows_its_progress(capsys, monkeypatch, prolate, standard_start):
-    monkeypatch.setattr(importlib.import_module("phasekit.simulate"), "PROGRESS_DELAY", 0.0)
+    monkeypatch.setattr(importlib.import_module("phasekit.core.simulate"), "PROGRESS_DELAY", 0.0)
     pk.simulate(pk.Model(prolate, pk.Coulomb(0.1)), standard_start, 40.0, progress=True)
     assert "simulate" in capsys.readouterr().err
     pk.simulate(pk.Model(prolate, pk.Coulomb(0.1)), standard_start, 40.0)

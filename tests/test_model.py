@@ -1,7 +1,7 @@
 """The compiled model: (6.1), R against (2.8) on a computed trajectory, exact Jacobians."""
 
 import phasekit as pk
-from phasekit.resets import project_no_slip
+from phasekit.core.resets import project_no_slip
 
 import numpy as np
 import pytest
@@ -71,9 +71,9 @@ def test_casadi_jacobian_matches_central_differences(chart, law):
     m = pk.Model(pk.Spheroid(1.5), law, chart)
     rng = np.random.default_rng(2)
     for x in states(rng, 3):
-        z = pk.to_chart(chart, x)
-        for mode in (md for md in m.modes if md is not pk.Mode.FLIGHT):
-            zm = project_no_slip(m, z) if mode is pk.Mode.ROLLING and law.has_rolling_mode else z
+        z = pk.core.to_chart(chart, x)
+        for mode in (md for md in m.modes if md is not pk.core.Mode.FLIGHT):
+            zm = project_no_slip(m, z) if mode is pk.core.Mode.ROLLING and law.has_rolling_mode else z
             J = m.jacobian(zm, mode)
             J_fd = central_jacobian(lambda y: m.rhs(y, mode), zm)
             np.testing.assert_allclose(J, J_fd, atol=1e-6 * max(1.0, np.abs(J).max()))

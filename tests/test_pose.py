@@ -11,9 +11,9 @@ integration; the angles are read off the rotation matrix afterwards.
 import math
 
 import phasekit as pk
-from phasekit import pose
-from phasekit.charts import euler_to_vector
-from phasekit.pose import rotation_matrix
+from phasekit.core import pose
+from phasekit.core.charts import euler_to_vector
+from phasekit.core.pose import rotation_matrix
 
 import numpy as np
 import pytest
@@ -128,7 +128,7 @@ def test_pose_is_the_same_in_both_charts_and_with_cvodes(prolate_run):
     ts = np.linspace(0.0, 40.0, 9)
     ref = traj.pose(ts)
     body = traj.model.body
-    vec = pk.simulate(pk.Model(body, pk.RegularisedCoulomb(MU, EPS), chart="vector"), pk.to_chart("vector", y0), 41.0,
+    vec = pk.simulate(pk.Model(body, pk.RegularisedCoulomb(MU, EPS), chart="vector"), pk.core.to_chart("vector", y0), 41.0,
                       rtol=1e-12)
     got = vec.pose(ts)
     for name in pose.POSE_COLUMNS:
@@ -189,7 +189,7 @@ def test_pose_needs_dense_output():
 def test_rotation_matrix_is_zyz(prolate_run):
     """R = Rz(psi) Ry(theta) Rz(phi): its third column is the axis k of the paper's section 2,
     and along a run dR/dt R^T is the body's angular velocity w = Omega e_Z + Lambda e_Y +
-    (n - Omega cos theta) k (phasekit.charts.euler_to_vector, turned by psi), which fixes the signs
+    (n - Omega cos theta) k (phasekit.core.charts.euler_to_vector, turned by psi), which fixes the signs
     and the conventions of all three angles."""
     R = rotation_matrix(0.4, 1.1, -2.0)
     np.testing.assert_allclose(R[:, 2], [math.sin(1.1) * math.cos(0.4), math.sin(1.1) * math.sin(0.4), math.cos(1.1)],
@@ -202,7 +202,7 @@ def test_rotation_matrix_is_zyz(prolate_run):
         Rs = rotation_matrix(df.psi.to_numpy(), df.theta.to_numpy(), df.phi.to_numpy())
         W = (Rs[2] - Rs[0]) / (2 * h) @ Rs[1].T
         w = np.array([W[2, 1], W[0, 2], W[1, 0]])
-        y = df.iloc[1][list(pk.PAPER_NAMES)].to_numpy(float)
+        y = df.iloc[1][list(pk.core.PAPER_NAMES)].to_numpy(float)
         psi = df.psi.iloc[1]
         Rz = np.array([[math.cos(psi), -math.sin(psi), 0], [math.sin(psi), math.cos(psi), 0], [0, 0, 1]])
         np.testing.assert_allclose(w, Rz @ euler_to_vector(y)[3:6], atol=1e-6 * max(1.0, np.abs(w).max()))

@@ -8,9 +8,11 @@ import subprocess
 import sys
 
 import phasekit as pk
-from phasekit import cli, fixedpoints
-from phasekit.hybrid import Mode
-from phasekit.resets import project_no_slip, sliding_direction
+import phasekit.studies as ps
+from phasekit import cli
+from phasekit.core.hybrid import Mode
+from phasekit.core.resets import project_no_slip, sliding_direction
+from phasekit.steady import fixedpoints
 from phasekit.sweep import ResultStore
 
 import numpy as np
@@ -164,7 +166,7 @@ def test_newton_absolute_residual_missed_fixed_points_at_large_scales(args):
 def test_intermediate_states_found_by_newton_satisfy_the_closed_form_balance():
     body = pk.Spheroid(0.3)
     [inter] = [p for p in pk.fixed_points(pk.Model(body, pk.Viscous(0.1)), omega0=3.0) if p.kind == "intermediate"]
-    assert pk.theory.intermediate_omega(body, inter.y[4]) == pytest.approx(3.0, rel=1e-12)
+    assert ps.intermediate_omega(body, inter.y[4]) == pytest.approx(3.0, rel=1e-12)
     assert inter.residual < 1e-14
 
 
@@ -176,9 +178,9 @@ def test_mu_beyond_the_cap_is_a_clear_error_not_a_convergence_error():
 
 def test_convergence_error_states_the_tolerance_and_reads_an_intermediate():
     model = pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1))
-    guess = pk.theory.intermediate_state(model.body, 0.8)  # Omega* ~ 2.0 here; ask for Omega = 1: no such state
+    guess = pk.steady.intermediate_state(model.body, 0.8)  # Omega* ~ 2.0 here; ask for Omega = 1: no such state
     with pytest.raises(pk.ConvergenceError) as info:
-        pk.find_fixed_point(model, guess, kind="intermediate", value=1.0)
+        pk.steady.find_fixed_point(model, guess, kind="intermediate", value=1.0)
     msg = str(info.value)
     assert msg.startswith("Newton did not converge to an intermediate fixed point with Omega = 1")
     assert "above the tolerance 1e-10" in msg
@@ -234,7 +236,7 @@ def test_rtol_beyond_double_precision_is_refused_instead_of_running_forever():
                                       (dict(n_coarse=1), "n_coarse")])
 def test_threshold_search_refuses_tolerances_and_counts_that_loop_or_mislead(kw, name):
     with pytest.raises(pk.ParameterError, match=f"^`{name}` "):
-        pk.find_threshold(pk.DEFAULT_DEFINITIONS[0], 1.5, **kw)
+        pk.find_threshold(pk.thresholds.DEFAULT_DEFINITIONS[0], 1.5, **kw)
 
 
 @pytest.mark.parametrize("budget, reason", [(["--max-steps", 3000], "step limit"), (["--max-wall", 0.3], "wall-time")])
@@ -291,10 +293,10 @@ Y = [0.0, 0.0, 10.0, 0.0, 1.5, 0.0]
     (lambda: pk.simulate(M, Y, 1.0, mode="bad"), "mode"),
     (lambda: pk.simulate(M, Y, 1.0, events=pk.Event("theta", 0.4)), "events"),
     (lambda: pk.simulate(M, Y, 1.0, throw="yes"), "throw"),
-    (lambda: pk.find_fixed_point(M, [1.0, 2.0, 3.0], kind="horizontal", value=10.0), "guess"),
-    (lambda: pk.find_fixed_point(M, pk.theory.horizontal_state(10.0), kind="xyz", value=10.0), "kind"),
-    (lambda: pk.find_fixed_point(M, pk.theory.horizontal_state(10.0), kind="horizontal", value=10.0, fixed="q"), "fixed"),
-    (lambda: pk.find_fixed_point(M.with_chart("vector"), pk.theory.vertical_state(10.0), kind="horizontal", value=10.0),
+    (lambda: pk.steady.find_fixed_point(M, [1.0, 2.0, 3.0], kind="horizontal", value=10.0), "guess"),
+    (lambda: pk.steady.find_fixed_point(M, pk.steady.horizontal_state(10.0), kind="xyz", value=10.0), "kind"),
+    (lambda: pk.steady.find_fixed_point(M, pk.steady.horizontal_state(10.0), kind="horizontal", value=10.0, fixed="q"), "fixed"),
+    (lambda: pk.steady.find_fixed_point(M.with_chart("vector"), pk.steady.vertical_state(10.0), kind="horizontal", value=10.0),
      "kind"),  # the vector chart's Newton system is the vertical family's
     (lambda: pk.linearise(M, [np.nan] * 6), "x"),
     (lambda: pk.linearise(M, [0, 0, 1e308, 0, 1, 1e308]), "x"),  # finite, but the Jacobian overflows
@@ -306,7 +308,7 @@ Y = [0.0, 0.0, 10.0, 0.0, 1.5, 0.0]
     (lambda: fixedpoints.continue_family(M, "horizontal", []), "values"),
     (lambda: fixedpoints.continue_family(M, "intermediate", [2.0, 2.1]), "start"),
     (lambda: pk.Definition("x", "viscous", rtol=0), "rtol"),
-    (lambda: pk.to_chart("xyz", Y), "chart"),
+    (lambda: pk.core.to_chart("xyz", Y), "chart"),
     (lambda: pk.unstable_manifold_start(pk.Spheroid(1.5), pk.Coulomb(0.1), state="horizontal", delta=0.01), "omega0"),
     (lambda: pk.unstable_manifold_start(pk.Spheroid(1.5), pk.Coulomb(0.1), state="horizontal", delta=0.01,
                                         omega0=10.0, branch="x"), "branch"),
@@ -449,7 +451,7 @@ def test_interrupt_is_one_line_with_exit_130(monkeypatch):
 
 
 def test_solver_failure_is_one_line_with_exit_1(monkeypatch):
-    import phasekit.fixedpoints as fpm
+    import phasekit.steady.fixedpoints as fpm
 
     monkeypatch.setattr(fpm, "NEWTON_RTOL", -1.0)  # no iterate can pass: Newton "fails"
     code, out, err = run_cli("fixed-points", "--a", 1.5, "--mu", 0.1, "--omega0", 10, "--json")
@@ -461,7 +463,7 @@ def test_solver_failure_is_one_line_with_exit_1(monkeypatch):
 def test_a_diverging_integration_ends_failed_at_its_last_finite_state(monkeypatch):
     """A run whose integrator returns a non-finite time or state used to keep a NaN segment
     (t = nan in the result); it now ends "failed" where the state was last finite."""
-    from phasekit.engines import TaylorEngine
+    from phasekit.core.engines import TaylorEngine
 
     real = TaylorEngine.propagate
 

@@ -1,7 +1,7 @@
 """Issue 9: stiff and extreme cases end with a status (never a crash or a NaN); CVODES converges."""
 
 import phasekit as pk
-from phasekit import charts
+from phasekit.core import charts
 
 import numpy as np
 import pytest

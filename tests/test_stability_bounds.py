@@ -1,4 +1,4 @@
-"""Stability labels backed by error bounds (phasekit.fixedpoints.FixedPoint): each eigenvalue's
+"""Stability labels backed by error bounds (phasekit.steady.fixedpoints.FixedPoint): each eigenvalue's
 real part is classified against a first-order bound (condition number x error of the
 Jacobian); labels agree with closed-form criteria, and a state labelled unstable grows at the
 rate of its eigenvalue."""
@@ -16,7 +16,7 @@ def test_horizontal_state_labels_follow_the_closed_form_threshold(a):
     crit = pk.theory.horizontal_stability_threshold(body.A, body.C, a)
     model = pk.Model(body, pk.Viscous(0.1))
     for factor in (0.99, 0.999, 1.001, 1.01):
-        fp = pk.find_fixed_point(model, pk.theory.horizontal_state(factor * crit), kind="horizontal", value=factor * crit)
+        fp = pk.steady.find_fixed_point(model, pk.steady.horizontal_state(factor * crit), kind="horizontal", value=factor * crit)
         assert (fp.n_unstable > 0) == (factor > 1) and fp.n_undecided == 0
         # the deciding eigenvalue is small, but far outside its bound
         nonzero = np.flatnonzero(np.abs(fp.eigenvalues) > fp.bounds)
@@ -28,11 +28,11 @@ def test_horizontal_state_labels_follow_the_closed_form_threshold(a):
 def test_pole_labels_follow_the_pole_criterion(alpha, A, C):
     body = pk.EccentricSphere(alpha, A=A, C=C)
     model = pk.Model(body, pk.Viscous(0.3), "vector")
-    for pole, state in (("upright", pk.theory.vertical_state), ("inverted", pk.theory.inverted_state)):
+    for pole, state in (("upright", pk.steady.vertical_state), ("inverted", pk.steady.inverted_state)):
         crit = pk.theory.pole_stability_threshold(body, pole)
         for n0 in (0.9 * crit.threshold, 1.1 * crit.threshold):
             x = state(n0)
-            fp = pk.find_fixed_point(model, x, kind="vertical", value=n0) if pole == "upright" else pk.linearise(model, x)
+            fp = pk.steady.find_fixed_point(model, x, kind="vertical", value=n0) if pole == "upright" else pk.linearise(model, x)
             assert fp.stable == crit.stable(n0)
 
 
@@ -49,7 +49,7 @@ def test_the_slip_eps_case_is_labelled_unstable_with_its_bound():
 
 def _horizontal(eps):
     model = pk.Model(pk.Spheroid(1.5), pk.RegularisedCoulomb(0.1, eps))
-    fp = pk.find_fixed_point(model, pk.theory.horizontal_state(2.0), kind="horizontal", value=2.0)
+    fp = pk.steady.find_fixed_point(model, pk.steady.horizontal_state(2.0), kind="horizontal", value=2.0)
     return model, fp
 
 
@@ -60,7 +60,7 @@ def test_the_unstable_label_is_the_growth_of_the_linearised_dynamics():
     from scipy.linalg import expm
 
     model, fp = _horizontal(1e-5)
-    J = model.jacobian(fp.x, pk.Mode.SLIDING)
+    J = model.jacobian(fp.x, pk.core.Mode.SLIDING)
     lam = fp.eigenvalues[0]
     step = expm(J * 1000.0)
     y = fp.eigenvectors[:, 0].real.copy()
@@ -92,7 +92,7 @@ def test_a_state_labelled_unstable_grows_in_a_simulation():
 
 def test_rolling_spectra_stay_neutral_and_zero_eigenvalues_are_not_counted():
     model = pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1))
-    fp = pk.find_fixed_point(model, pk.theory.horizontal_state(2.0), kind="horizontal", value=2.0)
+    fp = pk.steady.find_fixed_point(model, pk.steady.horizontal_state(2.0), kind="horizontal", value=2.0)
     assert fp.law == "coulomb-rolling" and fp.stable and fp.n_unstable == 0
     assert fp.classification == "neutral (spectrally stable)"
     # every real part lies within its bound (a reversible, energy-conserving field), and two

@@ -1,13 +1,15 @@
-"""The steady-state structure (phasekit.structure) against independent computations: the
+"""The steady-state structure (phasekit.steady.structure) against independent computations: the
 vector chart's Newton-Euler equations, the tippe top's closed forms and energy criterion, the
 pole criterion, closed-form statics, and the pointwise fixed points."""
 
 import json
 
 import phasekit as pk
-from phasekit import charts, tippetop
-from phasekit.hybrid import Mode
-from phasekit.structure import linearise_precession, precession_on_branch, steady_structure
+import phasekit.studies as ps
+from phasekit.core import charts
+from phasekit.core.hybrid import Mode
+from phasekit.steady.structure import linearise_precession, precession_on_branch, steady_structure
+from phasekit.theory import tippetop
 from tests.helpers import run_cli
 
 import numpy as np
@@ -225,16 +227,16 @@ def test_displaced_spheroid_breaks_part_ones_degenerate_structure():
 
 
 def test_the_atlas_bisection_finds_the_boundary_a_equals_c_and_names_its_bifurcation():
-    """pk.sweep.trace_boundary (studies/steady_structure.py's atlases) across A = C of the displaced
+    """ps.trace_boundary (studies/steady_structure.py's atlases) across A = C of the displaced
     spheroid (offset 0.5 at a = 1.5): the traced point brackets it, and the bifurcation is the one
-    pk.bifurcation_between names for the structures on either side of the bracket."""
+    pk.steady.bifurcation_between names for the structures on either side of the bracket."""
     def at(panel, x, y):  # x: offset / a
         return steady_structure(pk.Spheroid(1.5, offset=1.5 * x), pk.Viscous(0.1), stability=False)
 
-    b = pk.sweep.trace_boundary(at, "demo", (0.3, 0.0), (0.36, 0.0), 0.06, xtol=1e-3, key="k")
+    b = ps.trace_boundary(at, "demo", (0.3, 0.0), (0.36, 0.0), 0.06, xtol=1e-3, key="k")
     assert abs(b.x - 1 / 3) <= b.width / 2 + 1e-12 and b.width <= 0.06 * 1e-3
     lo, hi = at("demo", b.x - b.width / 2, 0.0), at("demo", b.x + b.width / 2, 0.0)
-    assert (b.below, b.above) == (lo.signature, hi.signature) and b.bifurcation == pk.bifurcation_between(lo, hi)
+    assert (b.below, b.above) == (lo.signature, hi.signature) and b.bifurcation == pk.steady.bifurcation_between(lo, hi)
 
 
 @pytest.mark.parametrize("a", [1.5, 2 / 3])

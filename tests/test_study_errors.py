@@ -16,7 +16,7 @@ import time
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.study import run_study, study_parser
+from phasekit.sweep.study import run_study, study_parser
 
 import pytest
 

@@ -1,4 +1,4 @@
-"""The studies' shared output helpers (phasekit.study) and the rule that studies and
+"""The studies' shared output helpers (phasekit.sweep.study) and the rule that studies and
 benchmarks use the public API only (issue 14, item 3; issue 17, item 9)."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import re
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.study import atomic_path, output_dir, run_study, save_figure, study_parser, write_csv
+from phasekit.sweep.study import atomic_path, output_dir, run_study, save_figure, study_parser, write_csv
 
 import pytest
 

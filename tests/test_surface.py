@@ -6,7 +6,7 @@ import sys
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.surface import Scene, compute_scene, exact_boundary, surface_n
+from phasekit.theory.surface import Scene, compute_scene, exact_boundary, surface_n
 
 import numpy as np
 import pytest
@@ -72,8 +72,8 @@ def test_offscreen_render_of_a_full_scene(tmp_path):
 
 def test_pyvista_is_imported_only_to_draw_3d():
     code = (
-        "import sys, phasekit, phasekit.api, phasekit.viz\n"
-        "from phasekit.surface import Scene, compute_scene\n"
+        "import sys, phasekit, phasekit.cli.params, phasekit.viz\n"
+        "from phasekit.theory.surface import Scene, compute_scene\n"
         "compute_scene(Scene(show=frozenset({'surface'}), resolution=20))\n"
         "print('pyvista' in sys.modules)\n"
     )

@@ -8,9 +8,18 @@ import math
 from dataclasses import asdict, dataclass, replace
 
 import phasekit as pk
-from phasekit.batch import BatchStats, simulate_batch
-from phasekit.sweep import ResultStore, SearchRow, TaskSpec, run_tasks
-from phasekit.threshold import Definition, Outcome, ThresholdSearch, find_stick_boundary, find_threshold, run_searches
+import phasekit.studies as ps
+from phasekit.core.batch import BatchStats, simulate_batch
+from phasekit.studies import SearchRow
+from phasekit.sweep import ResultStore, TaskSpec, run_tasks
+from phasekit.thresholds.threshold import (
+    Definition,
+    Outcome,
+    ThresholdSearch,
+    find_stick_boundary,
+    find_threshold,
+    run_searches,
+)
 
 import numpy as np
 import pytest
@@ -224,8 +233,8 @@ def test_dask_k_section_round_and_grouped_searches_equal_the_serial_ones(tmp_pat
         far = find_threshold(defn, 1.5, hi=120.0, levels=3, evaluate=ev)
         near = find_threshold(defn, 1.5, hi=120.0, levels=3, engine="batch")
         assert far.bracket == near.bracket and far.n_rounds == near.n_rounds
-        jobs = [pk.sweep.search_job(asdict(replace(defn, amplitude=d)), 1.5, dict(hi=120.0, levels=3)) for d in (0.01, 0.02, 0.04)]
-        specs, members = pk.sweep.group_search_tasks(jobs, [1.0, 2.0, 3.0], per_task=2)
+        jobs = [ps.search_job(asdict(replace(defn, amplitude=d)), 1.5, dict(hi=120.0, levels=3)) for d in (0.01, 0.02, 0.04)]
+        specs, members = ps.group_search_tasks(jobs, [1.0, 2.0, 3.0], per_task=2)
         store = ResultStore(tmp_path / "g.csv", tmp_path / "g.json", SearchRow, {})
         get, add = pk.sweep.stored_rows([store], members)
         run_tasks(specs, store_get=get, on_result=add, client=client, pack=pack, progress=False)

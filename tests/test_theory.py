@@ -7,8 +7,8 @@ import json
 
 import phasekit as pk
 from phasekit.cli import main
-from phasekit.gyroscopic import gyroscopic_closed, gyroscopic_numeric, jellett_constant, mean_slip, rise_time
-from phasekit.multiscale import (
+from phasekit.theory.gyroscopic import gyroscopic_closed, gyroscopic_numeric, jellett_constant, mean_slip, rise_time
+from phasekit.theory.multiscale import (
     Gamma_closed,
     I1_closed,
     I2_dominant,

@@ -1,7 +1,7 @@
 """The tippe top (eccentric sphere) in phasekit's full model (issue 15, Must show): Jellett's
 integral is an exact invariant under every friction law, energy never increases, both charts
 agree on event times, the README example converges in rtol and eps, and phasekit's model
-agrees with an independent Newton-Euler model and with phasekit.tippetop's closed forms."""
+agrees with an independent Newton-Euler model and with phasekit.theory.tippetop's closed forms."""
 
 import json
 import math
@@ -9,8 +9,8 @@ import subprocess
 import sys
 
 import phasekit as pk
-from phasekit import tippetop as tt
-from phasekit.fixedpoints import fixed_points, inverted_state, linearise, vertical_state
+from phasekit.steady.fixedpoints import fixed_points, inverted_state, linearise, vertical_state
+from phasekit.theory import tippetop as tt
 
 import numpy as np
 import pytest
@@ -34,7 +34,7 @@ def top():
 def run(top, law, chart="euler", t_end=12.2, **kw):
     m = pk.Model(top, law, chart)
     y0 = pk.vertical_spin_start(THETA0, N0)
-    return pk.simulate(m, pk.to_chart(chart, y0), t_end, rtol=1e-12, dense=True, **kw)
+    return pk.simulate(m, pk.core.to_chart(chart, y0), t_end, rtol=1e-12, dense=True, **kw)
 
 
 # -- Jellett and the energy law --------------------------------------------------------------

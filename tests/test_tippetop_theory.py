@@ -1,4 +1,4 @@
-"""Checks of phasekit.tippetop's closed forms against an independent model written here.
+"""Checks of phasekit.theory.tippetop's closed forms against an independent model written here.
 
 The reference model below is the full 3-D Newton-Euler system of an eccentric sphere on a
 plane (unit radius, mass and gravity), with the contact kept and a *viscous* sliding-friction
@@ -10,8 +10,8 @@ classification by integrating it.
 
 import math
 
-from phasekit import tippetop as tt
-from phasekit.errors import ParameterError
+from phasekit._runtime.errors import ParameterError
+from phasekit.theory import tippetop as tt
 
 import numpy as np
 import pytest

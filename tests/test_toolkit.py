@@ -3,8 +3,8 @@
 import json
 
 import phasekit as pk
-from phasekit import trajectory
-from phasekit.errors import ParameterError
+from phasekit._runtime.errors import ParameterError
+from phasekit.core import trajectory
 
 import casadi as ca
 import numpy as np
@@ -64,7 +64,7 @@ def test_sampled_R_matches_the_numpy_transcription_while_sliding(model, prolate,
     at the sampled states."""
     traj = pk.simulate(model, standard_start, 100.0)
     df = traj.sample(np.linspace(0.0, traj.t, 400))
-    Y = df[list(pk.PAPER_NAMES)].to_numpy()
+    Y = df[list(pk.core.PAPER_NAMES)].to_numpy()
     R_np = np.array([pk.baseline.numpy_normal_reaction(y, 1.5, prolate.A, prolate.C, 0.1) for y in Y])
     np.testing.assert_allclose(df["R"], R_np, rtol=1e-11, atol=1e-12)
 
@@ -75,7 +75,7 @@ def test_R_vanishes_at_the_jump_and_the_end_state_matches_the_sample(model, stan
     assert abs(row["R"]) < 1e-9 and row["mode"] == "sliding"
     assert traj.at(traj.t_jump - 0.05)["R"] > 1e-3
     # the dense output at the end equals the integrator's own end state (no re-integration)
-    end = traj.sample([traj.t])[list(pk.PAPER_NAMES)].to_numpy()[0]
+    end = traj.sample([traj.t])[list(pk.core.PAPER_NAMES)].to_numpy()[0]
     np.testing.assert_allclose(end, traj.euler_end, rtol=0, atol=1e-12)
 
 
@@ -117,7 +117,7 @@ def test_sample_across_flights_switches_at_the_recorded_events(bouncing):
 def test_evaluate_lists_its_names(model, standard_start):
     with pytest.raises(ParameterError) as err:
         model.evaluate("normal_force", standard_start)
-    assert all(name in str(err.value) for name in pk.OBSERVABLES)
+    assert all(name in str(err.value) for name in pk.core.OBSERVABLES)
     assert all(name in pk.Model.evaluate.__doc__ for name in ("R", "energy", "jellett", "slip_speed"))
 
 
@@ -132,7 +132,7 @@ def test_poincare_matches_an_independent_integration_refined_by_brent(prolate, s
     from scipy.optimize import brentq
 
     model = pk.Model(prolate, pk.Coulomb(0.1))
-    df = pk.poincare(model, standard_start, 40.0, on="Lambda", value=0.0, direction=+1, rtol=1e-13)
+    df = pk.core.poincare(model, standard_start, 40.0, on="Lambda", value=0.0, direction=+1, rtol=1e-13)
     sol = solve_ivp(pk.baseline.numpy_rhs, (0.0, 40.0), standard_start, method="DOP853", rtol=1e-12, atol=1e-14,
                     args=(1.5, prolate.A, prolate.C, 0.1), dense_output=True)
     grid = np.linspace(0.0, 40.0, 40001)
@@ -149,12 +149,12 @@ def test_poincare_matches_an_independent_integration_refined_by_brent(prolate, s
 
 
 def test_poincare_on_any_observable_and_direction(model, standard_start):
-    up = pk.poincare(model, standard_start, 45.0, on="R", value=0.9, direction=-1)
+    up = pk.core.poincare(model, standard_start, 45.0, on="R", value=0.9, direction=-1)
     assert len(up) >= 3 and np.all(np.abs(up["R"] - 0.9) < 1e-10)
-    both = pk.poincare(model, standard_start, 45.0, on="R", value=0.9, direction=0)
+    both = pk.core.poincare(model, standard_start, 45.0, on="R", value=0.9, direction=0)
     assert len(both) == 2 * len(up) or len(both) == 2 * len(up) - 1
     with pytest.raises(ParameterError, match="`dense`"):
-        pk.poincare(model, standard_start, 10.0, dense=False)
+        pk.core.poincare(model, standard_start, 10.0, dense=False)
 
 
 def test_non_terminal_events_fire_after_a_tangential_start(model, standard_start):
@@ -184,14 +184,14 @@ def test_ensemble_equals_single_runs_row_by_row(model, ten_starts):
         assert (np.isnan(row["t_jump"]) if tr.t_jump is None else row["t_jump"] == tr.t_jump)
         first = tr.events_named("theta1")
         assert row["t_theta1"] == first[0].t if first else np.isnan(row["t_theta1"])
-        np.testing.assert_array_equal(row[list(pk.PAPER_NAMES)].to_numpy(float), x0)
+        np.testing.assert_array_equal(row[list(pk.core.PAPER_NAMES)].to_numpy(float), x0)
     assert set(df["status"]) == {"jumped", "completed"}  # both outcomes occur in this range
 
 
 def test_ensemble_takes_a_table_of_starts_and_reports_failures(model, ten_starts):
     import pandas as pd
 
-    table = pd.DataFrame(ten_starts[:3], columns=list(pk.PAPER_NAMES))
+    table = pd.DataFrame(ten_starts[:3], columns=list(pk.core.PAPER_NAMES))
     df = pk.ensemble(model, table, 200.0, processes=1, progress=False, max_steps=50)
     assert list(df["status"]) == ["failed"] * 3 and all("step limit" in r for r in df["reason"])
     with pytest.raises(ParameterError, match="`starts`"):
@@ -222,7 +222,7 @@ def test_rerun_reproduces_a_result_from_its_json_and_an_ensemble_row(model, ten_
 # -- extension points ------------------------------------------------------------------------------
 
 
-class LoadViscous(pk.FrictionLaw):
+class LoadViscous(pk.friction.FrictionLaw):
     """A user's law, F = -mu R u (viscous, scaled by the load)."""
 
     name = "load-viscous"
@@ -266,10 +266,10 @@ def test_user_friction_law_runs_and_keeps_its_name(prolate, standard_start):
 
 def test_base_classes_document_what_a_subclass_must_provide():
     for name in ("shape_params", "height(c, shape)"):
-        assert name in pk.Body.__doc__
-    assert "sliding_force(u, mu, eps)" in pk.FrictionLaw.__doc__
+        assert name in pk.bodies.Body.__doc__
+    assert "sliding_force(u, mu, eps)" in pk.friction.FrictionLaw.__doc__
     with pytest.raises(NotImplementedError, match="must define `shape_params`"):
-        pk.Body(1.0, 1.0).shape_params
+        pk.bodies.Body(1.0, 1.0).shape_params
 
 
 def test_scene_validation_names_the_argument():

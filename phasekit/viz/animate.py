@@ -4,7 +4,7 @@ The body is drawn from its own support function: the meridian of the surface rel
 is, for theta in [0, pi], the contact point of inclination theta, at z = h_t sin(theta) -
 h cos(theta) along the axis k and at distance x_P = h sin(theta) + h_t cos(theta) from it
 (section 2; a spheroid, an egg, the tippe top's ball and any user body alike). It is placed
-by the run's pose (:mod:`phasekit.pose`): G at (X, Y, h + gap) and the rotation
+by the run's pose (:mod:`phasekit.core.pose`): G at (X, Y, h + gap) and the rotation
 R = Rz(psi) Ry(theta) Rz(phi), so one frame is one row of :meth:`Trajectory.sample`. The
 tippe top's stem is decoration (the model's body is the ball). Coloured sectors make the
 spin about the axis visible; the contact point's path is traced on the table.
@@ -21,8 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ParameterError, PhasekitError
-from ..validate import check_array, check_finite, check_int, check_positive
+from .._runtime.errors import ParameterError, PhasekitError
+from .._runtime.validate import check_array, check_finite, check_int, check_positive
 from .mesh import BODY_COLORS, body_mesh, decorations
 
 __all__ = ["AnimationInfo", "animate", "film_strip", "render_body", "body_mesh", "MOVIE_EXTRA"]
@@ -62,7 +62,7 @@ class AnimationInfo:
 
 
 def _check_traj(traj):
-    from ..trajectory import Trajectory
+    from ..core.trajectory import Trajectory
 
     if not isinstance(traj, Trajectory):
         raise ParameterError("traj", "must be a phasekit Trajectory (from pk.simulate)", traj)
@@ -130,7 +130,7 @@ class _Style:
 
     @classmethod
     def make(cls, *, gap_scale, camera, panel, window_size, scale, title) -> "_Style":
-        from ..units import Scale
+        from ..core.units import Scale
 
         gap_scale = check_positive("gap_scale", gap_scale)
         if gap_scale < 1.0:
@@ -188,7 +188,7 @@ class _Stage:
         self.reach = 2.9 * size + (0.0 if style.camera == "follow" else 1.5 * (extent - 4.0))
 
     def _place(self, row) -> np.ndarray:
-        from ..pose import rotation_matrix
+        from ..core.pose import rotation_matrix
 
         R = rotation_matrix(row["psi"], row["theta"], row["phi"])
         G = np.array([row["X"], row["Y"], row["h"] + self.style.gap_scale * row["gap"]])
@@ -288,7 +288,7 @@ class _Panel:
 
 def _frames(traj, times, style: _Style, span, progress: bool):
     """Render one image per time (the 3-D view, with the side panel to its right)."""
-    from ..study import progress as bar
+    from ..sweep.study import progress as bar
 
     rows = traj.sample(times)
     stage = _Stage(traj, style, span)
@@ -320,7 +320,7 @@ def _even(img: np.ndarray, block: int = 16) -> np.ndarray:
 
 
 def _write(frames, path: Path, fps: float) -> None:
-    from ..study import atomic_path
+    from ..sweep.study import atomic_path
 
     suffix = path.suffix.lower()
     with atomic_path(path) as tmp:

@@ -47,7 +47,7 @@ def decorations(body):
     """Body-frame meshes drawn with the body: the tippe top's stem on +k (decoration only)."""
     import pyvista as pv
 
-    from ..body import EccentricSphere
+    from ..bodies.body import EccentricSphere
 
     if isinstance(body, EccentricSphere):
         centre = body.offset  # the ball's centre is offset above G along k

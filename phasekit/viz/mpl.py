@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..validate import check_bool, check_choice, check_int
+from .._runtime.errors import ParameterError
+from .._runtime.validate import check_bool, check_choice, check_int
 
 __all__ = ["LABELS", "label", "plot_timeseries", "plot_events", "plot_section", "plot_phase", "plot_minima", "plain_log_ticks"]
 
@@ -62,8 +62,8 @@ def label(name: str) -> str:
 
 
 def _columns() -> tuple:
-    """The columns of :meth:`phasekit.Trajectory.sample`."""
-    from ..trajectory import SAMPLE_COLUMNS
+    """The columns of :meth:`phasekit.core.Trajectory.sample`."""
+    from ..core.trajectory import SAMPLE_COLUMNS
 
     return ("t", "mode", *SAMPLE_COLUMNS)
 
@@ -77,7 +77,7 @@ def _check_ax(ax):
 
 
 def _check_traj(traj, *, dense: bool = True):
-    from ..trajectory import Trajectory
+    from ..core.trajectory import Trajectory
 
     if not isinstance(traj, Trajectory):
         raise ParameterError("traj", "must be a phasekit Trajectory (from pk.simulate)", traj)
@@ -213,7 +213,7 @@ def plot_events(ax, traj, names=None, *, text: bool = True, **style) -> list:
 
 
 def plot_section(ax, df, x: str, y: str, *, c: str | None = None, set_labels: bool = True, **style):
-    """Scatter two columns of a table: a Poincare section (:func:`phasekit.poincare`), a
+    """Scatter two columns of a table: a Poincare section (:func:`phasekit.core.poincare`), a
     sample, or an ensemble (:func:`phasekit.ensemble`); ``c`` colours by a third column.
 
     Returns the PathCollection (and adds a colour bar label to nothing: pass the returned
@@ -224,7 +224,7 @@ def plot_section(ax, df, x: str, y: str, *, c: str | None = None, set_labels: bo
     >>> import numpy as np, phasekit as pk
     >>> body = pk.Spheroid(1.5)
     >>> m = pk.Model(body, pk.Coulomb(0.1))
-    >>> sec = pk.poincare(m, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 30.0, on='Lambda', value=0.0, direction=+1)
+    >>> sec = pk.core.poincare(m, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 30.0, on='Lambda', value=0.0, direction=+1)
     >>> fig, ax = pk.viz.pyplot().subplots()
     >>> type(pk.viz.plot_section(ax, sec, 'theta', 'Omega')).__name__
     'PathCollection'

@@ -1,8 +1,8 @@
-"""Figures off-screen; written atomically by :func:`phasekit.sweep.save_figure` (re-exported here)."""
+"""Figures off-screen; written atomically by :func:`phasekit.viz.save_figure` (re-exported here)."""
 
 from __future__ import annotations
 
-from ..study import save_figure
+from ..sweep.study import save_figure
 
 __all__ = ["pyplot", "save_figure"]
 

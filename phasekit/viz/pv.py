@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ParameterError, PhasekitError
+from .._runtime.errors import ParameterError, PhasekitError
 
 __all__ = ["render_scene", "RenderInfo", "HTML_EXTRA", "axes_caption"]
 
@@ -286,7 +286,7 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
     >>> info.image_shape
     (150, 200, 3)
     """
-    from ..surface import Scene, compute_scene
+    from ..theory.surface import Scene, compute_scene
 
     path, window_size, camera = _checked_render(data, path, window_size, html, gltf, title, camera, off_screen)
     if isinstance(data, Scene):
@@ -312,7 +312,7 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
 
 def _checked_render(data, path, window_size, html, gltf, title, camera, off_screen):
     """render_scene's arguments checked before anything is computed or drawn: (path, window_size, camera)."""
-    from ..surface import Scene, SceneData
+    from ..theory.surface import Scene, SceneData
 
     if not isinstance(data, (Scene, SceneData)):
         raise ParameterError("data", "must be a Scene or what compute_scene returned", data)
@@ -393,7 +393,7 @@ def _draw(pl, data, title, window_size) -> dict:
             if len(P):
                 pl.add_points(f(P), color=color, point_size=size, render_points_as_spheres=True)
     if "axes" in show:
-        from ..surface import AXES
+        from ..theory.surface import AXES
 
         titles = [f"{name} [{unit}]" for name, unit in AXES]
         pl.show_bounds(bounds=[0, ASPECT[0], 0, ASPECT[1], 0, ASPECT[2]], axes_ranges=list(data.bounds),
@@ -495,7 +495,7 @@ def _without_vtk_wasm():
 def axes_caption(data, title=None) -> list[str]:
     """The lines of text that say what an exported scene shows: its title and each axis with
     its unit and true range (the drawn box is rescaled)."""
-    from ..surface import AXES
+    from ..theory.surface import AXES
 
     lines = [title] if title else []
     for j, (name, unit) in enumerate(AXES):
@@ -538,7 +538,7 @@ def _add_axes_geometry(pl, bounds) -> None:
     lines, tick marks with their values, and the titles with units, as 3-D text."""
     import pyvista as pv
 
-    from ..surface import AXES
+    from ..theory.surface import AXES
 
     f = _box(bounds)
     lo = np.array(bounds[0::2], dtype=float)
@@ -564,7 +564,7 @@ def _add_axes_geometry(pl, bounds) -> None:
 def _annotate_gltf(path: Path, bounds, title=None) -> None:
     """Record the axes (name, unit, range, drawn span), the title and what glTF cannot hold in
     the file's ``asset.extras``."""
-    from ..surface import AXES
+    from ..theory.surface import AXES
 
     doc = json.loads(Path(path).read_text())
     extras = doc.setdefault("asset", {}).setdefault("extras", {})

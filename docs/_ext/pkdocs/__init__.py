@@ -3,7 +3,7 @@
 * ``{pk}`group.name``` (role) and ``{pk-table} group.name`` (directive): numbers and tables
   generated from the committed study outputs in ``figures/`` and the reports in ``docs/data/``
   (:mod:`pkdocs.facts`); config ``pk_figures``, ``pk_data`` point elsewhere (tests use copies).
-* ``{pk-event-table}``: the table of events, from the declarations in ``phasekit/system.py``.
+* ``{pk-event-table}``: the table of events, from the declarations in ``phasekit/core/system.py``.
 * ``{pk-cli-schema} COMMAND``: the JSON a CLI command prints, from real runs at build time.
 * the gallery (``docs/gallery/``, generated): every script in ``examples/`` run and shown.
 
@@ -75,10 +75,10 @@ class PkTable(SphinxDirective):
 
 
 class PkEventTable(SphinxDirective):
-    """The events of the hybrid system, generated from ``phasekit.system.declare``."""
+    """The events of the hybrid system, generated from ``phasekit.core.system.declare``."""
 
     def run(self):
-        import phasekit.system as system
+        import phasekit.core.system as system
 
         self.env.note_dependency(system.__file__)
         return _markdown(self, events.event_table())

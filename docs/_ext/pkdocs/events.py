@@ -1,4 +1,4 @@
-"""The table of events, generated from the declarations in ``phasekit/system.py``: the hybrid
+"""The table of events, generated from the declarations in ``phasekit/core/system.py``: the hybrid
 system of each friction law and stop rule is declared (``system.declare``), and every event it
 holds becomes a row. The only hand-written part is what each *internal* guard function means
 (``GUARDS``); a guard without an entry there fails the docs build."""
@@ -15,7 +15,7 @@ STOPS = ("jump", "touchdown", "none")  # system.STOP_AT
 
 
 def _guards():
-    from phasekit import model as m
+    from phasekit.core import model as m
 
     return {
         "stick_guard": f"|u| = {m.STICK_SLIP:g} + 10 eps (the slip speed; eps = 0 for exact Coulomb)",
@@ -56,7 +56,7 @@ def declared_events():
     """(law, stop_at, system, event) for every event ``system.declare`` declares, plus a user's
     event (``pk.Event("theta", 0.4)``)."""
     import phasekit as pk
-    from phasekit import system
+    from phasekit.core import system
 
     body = pk.Spheroid(1.5)
     out = []
@@ -72,7 +72,7 @@ def declared_events():
 
 def _integrators(sys_, ev) -> set[str]:
     """Which integrators watch ``ev`` (``system.watched``: the Taylor method or pointwise ones)."""
-    from phasekit import engines, system
+    from phasekit.core import engines, system
 
     found = set()
     for engine, cls, label in (("taylor", engines.TaylorEngine, "Taylor"),
@@ -87,8 +87,8 @@ ORDER = ("lift-off", "stick", "slip", "touchdown", "a user's event")
 
 
 def event_table() -> str:
-    from phasekit import model as m
-    from phasekit.hybrid import Mode
+    from phasekit.core import model as m
+    from phasekit.core.hybrid import Mode
 
     guards = _guards()
     rows: dict[tuple, dict] = {}
@@ -139,7 +139,7 @@ def event_table() -> str:
             "watched in",
             "friction laws",
             "integrators",
-            "reset or outcome (`phasekit/resets.py`)",
+            "reset or outcome (`phasekit/core/resets.py`)",
         ],
         lines,
     )

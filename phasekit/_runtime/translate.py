@@ -1,0 +1,122 @@
+"""Translate CasADi SX functions into heyoka expressions.
+
+The equations are written once, as CasADi SX (:mod:`phasekit.core.model`); this walks a
+function's instruction list (its algorithm, with common subexpressions already shared)
+and rebuilds each instruction with heyoka's expression system, so the Taylor integrator
+runs exactly the compiled model and nothing is transcribed twice.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+
+__all__ = ["to_heyoka"]
+
+
+def _unary(hy):
+    return {
+        ca.OP_NEG: lambda a: -a,
+        ca.OP_SQ: lambda a: a * a,
+        ca.OP_TWICE: lambda a: 2.0 * a,
+        ca.OP_INV: lambda a: 1.0 / a,
+        ca.OP_SQRT: hy.sqrt,
+        ca.OP_SIN: hy.sin,
+        ca.OP_COS: hy.cos,
+        ca.OP_TAN: hy.tan,
+        ca.OP_EXP: hy.exp,
+        ca.OP_LOG: hy.log,
+        ca.OP_ASIN: hy.asin,
+        ca.OP_ACOS: hy.acos,
+        ca.OP_ATAN: hy.atan,
+        ca.OP_TANH: hy.tanh,
+        ca.OP_SINH: hy.sinh,
+        ca.OP_COSH: hy.cosh,
+        ca.OP_ASINH: hy.asinh,
+        ca.OP_ACOSH: hy.acosh,
+        ca.OP_ATANH: hy.atanh,
+        ca.OP_ERF: hy.erf,
+        ca.OP_LOG1P: lambda a: hy.log(1.0 + a),
+        ca.OP_EXPM1: lambda a: hy.exp(a) - 1.0,
+        ca.OP_ASSIGN: lambda a: a,
+    }
+
+
+def _binary(hy):
+    return {
+        ca.OP_ADD: lambda a, b: a + b,
+        ca.OP_SUB: lambda a, b: a - b,
+        ca.OP_MUL: lambda a, b: a * b,
+        ca.OP_DIV: lambda a, b: a / b,
+        ca.OP_POW: lambda a, b: a**b,
+        ca.OP_CONSTPOW: lambda a, b: a**b,
+        ca.OP_ATAN2: hy.atan2,
+        ca.OP_HYPOT: lambda a, b: hy.sqrt(a * a + b * b),
+    }
+
+
+#: operations with a kink or a jump: a body's profile (or a law) built from them is not smooth
+NON_SMOOTH = {getattr(ca, f"OP_{n}") for n in ("FABS", "FMAX", "FMIN", "IF_ELSE_ZERO", "SIGN", "FLOOR", "CEIL", "FMOD",
+                                                "COPYSIGN", "REMAINDER", "EQ", "NE", "LT", "LE", "AND", "OR", "NOT")}
+_STRUCTURAL = {ca.OP_CONST, ca.OP_INPUT, ca.OP_OUTPUT}
+_OP_NAMES = {getattr(ca, n): n[3:].lower() for n in dir(ca) if n.startswith("OP_")}
+
+
+class _AnyFunction:
+    """Stands in for the heyoka module where only the keys of the translation tables are
+    wanted (checking a body's profile does not need heyoka loaded)."""
+
+    def __getattr__(self, name):
+        return None
+
+
+def operations(f: ca.Function) -> dict[str, set[str]]:
+    """The operations of an SX function that the Taylor integrator cannot take:
+    ``{"non_smooth": names, "untranslated": names}`` (both empty when all is well)."""
+    known = set(_unary(_AnyFunction())) | set(_binary(_AnyFunction())) | _STRUCTURAL
+    ops = {f.instruction_id(k) for k in range(f.n_instructions())}
+    return {"non_smooth": {_OP_NAMES.get(op, str(op)) for op in ops & NON_SMOOTH},
+            "untranslated": {_OP_NAMES.get(op, str(op)) for op in ops - known - NON_SMOOTH}}
+
+
+def to_heyoka(f: ca.Function, inputs: list[list]) -> list:
+    """Evaluate the SX function ``f`` on heyoka expressions.
+
+    Parameters
+    ----------
+    f : casadi.Function
+        An SX function with dense vector inputs and outputs.
+    inputs : list of lists
+        For each input of ``f``, one heyoka expression (or float) per entry.
+
+    Returns
+    -------
+    list of lists: for each output, one heyoka expression per entry.
+    """
+    import heyoka as hy
+
+    if not f.is_a("SXFunction"):
+        raise TypeError("to_heyoka needs an SX function")
+    unary, binary = _unary(hy), _binary(hy)
+    work: dict[int, object] = {}
+    outputs = [[None] * f.nnz_out(i) for i in range(f.n_out())]
+    for k in range(f.n_instructions()):
+        op = f.instruction_id(k)
+        o = f.instruction_output(k)
+        i = f.instruction_input(k)
+        if op == ca.OP_CONST:
+            work[o[0]] = hy.expression(float(f.instruction_constant(k)))
+        elif op == ca.OP_INPUT:
+            work[o[0]] = inputs[i[0]][i[1]]
+        elif op == ca.OP_OUTPUT:
+            outputs[o[0]][o[1]] = work[i[0]]
+        elif op in unary:
+            work[o[0]] = unary[op](work[i[0]])
+        elif op in binary:
+            work[o[0]] = binary[op](work[i[0]], work[i[1]])
+        else:
+            raise NotImplementedError(f"CasADi operation {op} has no heyoka translation")
+    for i, out in enumerate(outputs):
+        for j, e in enumerate(out):
+            if e is None:  # structurally zero entry
+                out[j] = hy.expression(0.0)
+    return outputs

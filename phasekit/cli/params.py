@@ -1,0 +1,202 @@
+"""Entry points by plain parameters, shared by the CLI: names and numbers in, JSON-ready dicts out.
+
+These validate their arguments (ParameterError naming the parameter as the Python API
+spells it; the CLI rewords it with its own flag), build the body, law, model and start,
+run, and return dicts in the paper's variables.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._runtime.errors import ParameterError
+from .._runtime.validate import check_choice, check_finite
+from ..bodies.body import Body, Spheroid
+from ..core.charts import choose_chart
+from ..core.hybrid import Event
+from ..core.model import OBSERVABLES, Model
+from ..core.simulate import simulate
+from ..core.starts import RATE_MAX, gyroscopic_start, raw_start, to_chart, vertical_spin_start
+from ..friction.laws import friction_law
+
+__all__ = ["parse_stop", "run_start", "simulate_start", "real_units_report", "fixed_points_report", "gyroscopic_report",
+           "steady_structure_report"]
+
+def parse_stop(stop: str) -> tuple[str, list[Event]]:
+    """``jump``, ``touchdown`` or ``none``, or ``NAME=VALUE`` (stop when the observable NAME
+    first reaches VALUE, e.g. ``theta=0.4``; the run then runs through flights)."""
+    if not isinstance(stop, str):
+        raise ParameterError("stop_at", "must be jump, touchdown, none or NAME=VALUE", stop)
+    if "=" not in stop:
+        return check_choice("stop_at", stop, ("jump", "touchdown", "none")), []
+    name, _, value = stop.partition("=")
+    if name not in OBSERVABLES or name in ("slip", "friction"):
+        raise ParameterError("stop_at", f"NAME=VALUE needs NAME among {', '.join(n for n in OBSERVABLES if n not in ('slip', 'friction'))}",
+                             stop)
+    try:
+        level = float(value)
+    except ValueError:
+        raise ParameterError("stop_at", "NAME=VALUE needs a number VALUE", stop) from None
+    check_finite("stop_at", level)
+    if name == "theta" and not 0.0 <= level <= np.pi:
+        raise ParameterError("stop_at", "theta=VALUE needs VALUE in [0, pi]", level)
+    return "none", [Event(name, level, direction=0, name=f"{name}={level:g}")]
+
+
+def _start(body, law, start: dict, chart: str):
+    """(model, x0, seed info) for a start description."""
+    kind = start["kind"]
+    if kind == "unstable-manifold":
+        from ..steady.manifolds import unstable_manifold_start
+
+        for key in ("omega0", "n0"):
+            if start.get(key) is not None and abs(start[key]) > RATE_MAX:
+                raise ParameterError(key, f"must satisfy |{key}| <= {RATE_MAX:g} for a simulation", start[key])
+        model, x0, fp = unstable_manifold_start(
+            body, law, state=start["state"], delta=start["delta"], omega0=start.get("omega0"), n0=start.get("n0"),
+            branch=start.get("branch", "+0"), seed_law=start.get("seed_law", "viscous"))
+        if chart not in ("auto", model.chart.name):
+            raise ParameterError("chart", f"cannot start on the {start['state']} state (use {model.chart.name} or auto)",
+                                 chart)
+        return model, x0, {"fixed_point": fp.to_dict(), "delta": start["delta"], "branch": start.get("branch", "+0"),
+                           "seed_law": fp.law}
+    if kind == "gyroscopic":
+        y0 = gyroscopic_start(body, start["theta0"], omega0=start.get("omega0"), n0=start.get("n0"))
+    elif kind == "spin-about-vertical":
+        y0 = vertical_spin_start(start["theta0"], start["n0"])
+    elif kind == "paper":
+        from ..theory.paper import PAPER_CASES, paper_start
+
+        model, x0 = paper_start(start["label"], n0=start.get("n0"), omega0=start.get("omega0"), friction=law)
+        case = PAPER_CASES[start["label"]]
+        # the printed start belongs to one body: refuse another rather than ignore it
+        if not (isinstance(body, Spheroid) and body.uniform and abs(body.a - case.a) <= 1e-4 * case.a):
+            raise ParameterError("a", f"must be {case.a:.6g} for the paper's start ({case.label}), a uniform spheroid "
+                                      "(no `A`, `C`)", getattr(body, "a", None))
+        if chart not in ("auto", model.chart.name):
+            raise ParameterError("chart", f"must be auto or {model.chart.name} for the paper's start "
+                                          f"({start['label']})", chart)
+        return model, x0, None
+    else:
+        # the Euler chart only if asked for: "auto" takes a state at a pole into the vector chart
+        y0 = raw_start(start["state"], chart="euler" if chart == "euler" else "vector")
+    chart = choose_chart(float(y0[4]), chart)
+    if chart == "euler":
+        raw_start(y0, chart="euler")  # theta strictly inside (0, pi)
+    return Model(body, law, chart), to_chart(chart, y0), None
+
+
+def run_start(*, body: Body, friction="coulomb", mu, slip_eps=None, start: dict, t_end=200.0, stop_at="jump",
+              restitution=0.0, chart="auto", options: dict | None = None, pose0=None):
+    """Run one simulation described by plain parameters: (Trajectory, seed info or None).
+    The dense output is kept: the pose (psi, phi, X, Y, X_P, Y_P) at the events and the end
+    comes from it, and keeping it changes no number of the run."""
+    law = friction_law(friction, mu, slip_eps)
+    check_choice("chart", chart, ("auto", "euler", "vector"))
+    stop, events = parse_stop(stop_at)
+    model, x0, seed = _start(body, law, start, chart)
+    res = simulate(model, x0, t_end, stop_at=stop, restitution=restitution, events=events, dense=True, pose0=pose0,
+                   **(options or {}))
+    return res, seed
+
+
+def simulate_start(**kwargs) -> dict:
+    """:func:`run_start` as the JSON dict (which carries the model, the start and the solver
+    options, so it can be rerun)."""
+    res, seed = run_start(**kwargs)
+    out = res.to_dict()
+    if seed is not None:
+        out["seed"] = seed
+    return out
+
+
+def real_units_report(out: dict, scale) -> dict:
+    """The times, gaps, positions, speeds and spins of a simulate result in real units (ms, mm,
+    m/s, rev/s; angles in radians), given the body's :class:`phasekit.Scale`."""
+    from ..core.units import DISPLAY_UNITS
+
+    kinds = {"t": "time", "t_jump": "time", "t_stop": "time", "t_end": "time", "t_liftoff": "time",
+             "t_touchdown": "time", "t_gap_max": "time", "gap_max": "length", "W_star": "speed", "Omega_star": "rate",
+             "U": "speed", "V": "speed", "Omega": "rate", "Lambda": "rate", "n": "rate", "X": "length", "Y": "length",
+             "X_P": "length", "Y_P": "length"}
+
+    def conv(d):
+        return {k: (None if v is None else float(scale.quantity(v, kinds[k]).to(DISPLAY_UNITS[kinds[k]]).magnitude))
+                if k in kinds else v for k, v in d.items() if k in kinds or k in ("theta", "psi", "phi", "kind")}
+
+    rep = {"units": {k: f"{DISPLAY_UNITS[k]}" for k in ("time", "length", "speed", "rate")} | {"angle": "rad"},
+           "b": f"{scale.b:~P}", "g": f"{scale.g:~P}", "time_unit": f"{scale.time_unit:.6g~P}"}
+    rep.update(conv({k: out.get(k) for k in ("t_jump", "t_stop", "t_end") if k in out}))
+    for key in ("state_at_jump", "state_end", "pose_end", "flight"):
+        if out.get(key):
+            rep[key] = conv(out[key])
+    if rep.get("flight") and out["flight"].get("t_touchdown") is not None:
+        dur = out["flight"]["t_touchdown"] - out["flight"]["t_liftoff"]
+        rep["flight"]["duration"] = float(scale.quantity(dur, "time").to(DISPLAY_UNITS["time"]).magnitude)
+    rep["events"] = [{**conv({"kind": e["kind"], "t": e["t"]}), **({"state": conv(e["state"])} if "state" in e else {}),
+                      **({"pose": conv(e["pose"])} if "pose" in e else {})} for e in out.get("events", [])]
+    return rep
+
+
+def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, omega0=None, n0=None) -> dict:
+    """All steady states at the given Omega0 or n0 with their linear stability (JSON dict)."""
+    from ..steady.fixedpoints import fixed_points
+
+    if (omega0 is None) == (n0 is None):
+        raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
+    from .._runtime.validate import check_range
+    from ..steady.fixedpoints import FAMILY_MAX
+
+    law = friction_law(friction, mu, slip_eps)
+    name, value = ("omega0", omega0) if omega0 is not None else ("n0", n0)
+    check_range(name, value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")
+    pts = fixed_points(Model(body, law, "euler"), omega0=omega0, n0=n0)
+    note = ("the inverted vertical (theta = pi) is the vertical with k reversed: the same state for a flip-symmetric body"
+            if body.flip_symmetric else "theta = 0 and theta = pi are different states of this body")
+    linearised = "coulomb-rolling" if law.has_rolling_mode else law.name
+    return {"fixed_points": [p.to_dict() for p in pts], "model": Model(body, law).to_dict(), "note": note,
+            "linearised_law": linearised, "stability": STABILITY_MEANING.get(linearised, "the law's own field")}
+
+
+def steady_structure_report(*, body: Body, mu, friction="coulomb", slip_eps=None, omega0=None, n0=None) -> dict:
+    """The steady-state structure of ``body`` (phasekit.steady.structure) as a JSON dict; with
+    ``omega0`` or ``n0`` also the states on it at that rate or spin."""
+    from .._runtime.validate import check_range
+    from ..steady.fixedpoints import FAMILY_MAX
+    from ..steady.structure import steady_structure
+
+    law = friction_law(friction, mu, slip_eps)
+    structure = steady_structure(body, law)
+    out = structure.to_dict()
+    linearised = "coulomb-rolling" if law.has_rolling_mode else law.name
+    out.update(linearised_law=linearised, stability=STABILITY_MEANING.get(linearised, "the law's own field"))
+    if omega0 is not None or n0 is not None:
+        name, value = ("omega0", omega0) if omega0 is not None else ("n0", n0)
+        check_range(name, value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")
+        out["states_at"] = f"{'Omega0' if omega0 is not None else 'n0'} = {value:g}"
+        out["states"] = [p.to_dict() for p in structure.at(omega0=omega0, n0=n0)]
+    return out
+
+
+#: what "stable" means for each linearisation (see phasekit.steady.fixedpoints)
+STABILITY_MEANING = {
+    "coulomb-rolling": "exact Coulomb friction: the rolling (no-slip) linearisation, in which zero-slip states are "
+                       "neutral; the viscous law gives the friction-driven instabilities of part I",
+    "coulomb-regularised": "regularised Coulomb friction: the smooth field's linearisation (the rolling spectrum plus "
+                           "two fast slip modes)",
+    "viscous": "viscous friction (part I): friction drives or damps the modes",
+}
+
+
+def gyroscopic_report(*, body: Body, mu, theta0, t, omega0=None, n0=None) -> dict:
+    """Gyroscopic mean solution (3.16)-(3.19) at times t (slow time T = mu t)."""
+    from .._runtime.validate import check_positive, check_times
+    from ..theory.gyroscopic import gyroscopic_solution
+
+    mu = check_positive("mu", mu)
+    t = check_times("t", t)
+    if np.any(t < 0):
+        raise ParameterError("t", "must be times >= 0", t)
+    sol = gyroscopic_solution(body, theta0, omega0=omega0, n0=n0, T=mu * t)
+    return {"t": t.tolist(), "T": (mu * t).tolist(), "theta": sol["theta"].tolist(), "Omega": sol["Omega"].tolist(),
+            "J": sol["J"], "J_definition": "A Omega h (3.17)", "Omega0": sol["Omega0"], "method": sol["method"]}

@@ -1,0 +1,354 @@
+"""Reset maps: what happens to the state and the mode at an event.
+
+stick      SLIDING -> ROLLING when the slip reaches zero and the required friction
+           |F_req| <= mu R. The guard fires at |u| = STICK_SLIP; the zero of |u| is then
+           extrapolated (|u| is linear in time as it vanishes under Coulomb friction), so
+           the switch is located to O(STICK_SLIP^2). Where static friction cannot hold, the
+           body slides on in the self-consistent direction (:func:`sliding_direction`).
+slip onset ROLLING -> SLIDING when |F_req| reaches mu R. The friction force is continuous,
+           so sliding starts with slip direction -F_req/|F_req|, at |u| = SLIP_ONSET.
+lift-off   contact -> FLIGHT: positions and velocities carry over (R = 0, so the friction,
+           proportional to R, vanishes and no impulse acts); the gap and its rate start at 0.
+touchdown  FLIGHT -> contact or FLIGHT: the impact law (:mod:`phasekit.core.impact`); a rebound
+           slower than BOUNCE_STOP ends a bounce train, and so does a ballistic train with more
+           than BOUNCE_TAIL rebounds left (:func:`bounce_tail`).
+The regularised law's "stick" and "slip" only change the mode (the field is the same).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._runtime.errors import Status
+from .charts import FLIGHT, VECTOR, euler_to_vector
+from .hybrid import Mode, Record, Transition
+from .impact import _impact
+from .model import STICK_SLIP
+
+__all__ = [
+    "SLIP_ONSET",
+    "BOUNCE_STOP",
+    "BOUNCE_TAIL",
+    "bounce_tail",
+    "project_no_slip",
+    "sliding_direction",
+    "zero_slip_start",
+    "contact_start",
+    "flight_state",
+    "contact_state",
+    "rigid_velocities",
+    "from_rigid",
+    "Stick",
+    "SlipOnset",
+    "SwitchMode",
+    "LiftOff",
+    "Touchdown",
+]
+
+#: slip speed given to a body that starts sliding from zero slip. The true slip grows from 0
+#: like t^2 (the friction is continuous at the onset), and while it is tiny the field is stiff
+#: (the slip direction locks at ~mu R/|u|): measured, starting at 4e-10 cost the Taylor method
+#: ~51 000 steps per onset, and the cost falls like SLIP_ONSET^(-1/2). Starting at 1e-6 skips
+#: that stretch at the price of a 1e-6 perturbation of the velocity of G at each onset.
+SLIP_ONSET = 1e-6
+#: after an impact, a normal rebound velocity below this (units sqrt(g b)) ends the bounce
+#: train and contact resumes: e < 1 would otherwise give infinitely many bounces in finite
+#: time. Such a hop lasts ~2e-4 and rises ~5e-9 b, still 20 times the unguarded start of a
+#: flight (system.GUARD_DELAY), so every flight that is integrated is resolved.
+BOUNCE_STOP = 1e-4
+#: a bounce train that has become ballistic (its last TAIL_RATIOS ratios of successive flight
+#: times within TAIL_SPREAD x (1 - e) of the restitution e, as free flights between Newton
+#: impacts give) with more than this many rebounds left before BOUNCE_STOP is resolved at once
+#: (see :func:`bounce_tail`). Chosen above the longest train of the published bouncing runs
+#: (e <= 0.9: at most ~60 rebounds), so that their numbers stay those of the cut-off alone.
+BOUNCE_TAIL = 100
+TAIL_RATIOS = 3
+TAIL_SPREAD = 0.1
+#: ... and only once the rebound speed is below TAIL_SPEED x the cut-off: what resuming contact
+#: drops is that rebound momentum, and the state after the train moves by about as much
+#: (measured: 0.6 x the rebound speed in Lambda, against the train integrated to a cut-off ten
+#: times smaller)
+TAIL_SPEED = 10.0
+#: directions sampled (periodically) when solving for the sliding direction at zero slip
+N_DIRECTIONS = 144
+
+
+# -- zero slip ---------------------------------------------------------------------------------
+
+
+def project_no_slip(model, x) -> np.ndarray:
+    """Shift the velocity of G so that the slip is exactly zero."""
+    x = np.array(x, dtype=float)
+    u = np.asarray(model.function("slip")(x, model.p)).ravel()
+    i, j = model.chart.velocity_slots
+    x[i] -= u[0]
+    x[j] -= u[1]
+    return x
+
+
+def _set_slip(model, x, u_new) -> np.ndarray:
+    x = project_no_slip(model, x)
+    i, j = model.chart.velocity_slots
+    x[i] += u_new[0]
+    x[j] += u_new[1]
+    return x
+
+
+def sliding_direction(model, x) -> tuple[np.ndarray, float] | None:
+    """The direction e in which slip develops from zero slip where rolling is infeasible.
+
+    Sliding along e means friction -mu R e; it is self-consistent when the slip acceleration
+    a(e) it produces is parallel to e and points along it (a x e = 0, a.e > 0), with R > 0.
+    Solved as a periodic root search in the angle of e: the cross product is sampled on a
+    uniform grid over the circle (no end point, the wrap from the last sample to the first
+    included), every sign change is refined by Brent's method, and the consistent root with
+    the largest a.e is returned as (e, a.e); None if there is none.
+    """
+    from scipy.optimize import brentq
+
+    f = model.function("slip_onset")
+    p = model.p
+    phis = 2 * np.pi * np.arange(N_DIRECTIONS) / N_DIRECTIONS
+    acc, R = f.map(N_DIRECTIONS)(np.tile(x[:, None], (1, N_DIRECTIONS)), np.tile(p[:, None], (1, N_DIRECTIONS)), phis[None, :])
+    acc, R = np.asarray(acc), np.asarray(R).ravel()
+    # R(e) = -g0 / (G.d(e)) has poles (Painleve's directions, G.d(e) = 0) where the cross
+    # product changes sign through infinity; divided by R it is smooth, with the same roots.
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cross = (np.cos(phis) * acc[1] - np.sin(phis) * acc[0]) / R
+
+    def cross_at(phi):
+        a, Rphi = (np.asarray(v).ravel() for v in f(x, p, phi))
+        return (np.cos(phi) * a[1] - np.sin(phi) * a[0]) / Rphi[0]
+
+    best = None
+    for k in range(N_DIRECTIONS):
+        lo, hi = phis[k], phis[k] + 2 * np.pi / N_DIRECTIONS
+        c0, c1 = cross[k], cross[(k + 1) % N_DIRECTIONS]
+        if not (np.isfinite(c0) and np.isfinite(c1)):
+            continue
+        if c0 == 0.0:
+            phi = lo
+        elif c0 * c1 < 0.0:
+            try:
+                phi = brentq(cross_at, lo, hi, xtol=1e-14)
+            except ValueError:  # a non-finite value inside the bracket (R exactly infinite)
+                continue
+        else:
+            continue
+        a, Rphi = (np.asarray(v).ravel() for v in f(x, p, phi))
+        along = np.cos(phi) * a[0] + np.sin(phi) * a[1]
+        if along > 0 and Rphi[0] > 0 and (best is None or along > best[1]):
+            best = (np.array([np.cos(phi), np.sin(phi)]), float(along))
+    return best
+
+
+def zero_slip_start(model, x) -> tuple[Mode, np.ndarray, str] | None:
+    """At zero slip: ROLLING if static friction can hold, else SLIDING in the consistent
+    direction (at |u| = SLIP_ONSET). None when no direction is consistent."""
+    x0 = project_no_slip(model, x)
+    if float(model.function("margin_rolling")(x0, model.p)) >= 0.0:
+        return Mode.ROLLING, x0, "zero slip and |F_req| <= mu R"
+    found = sliding_direction(model, x0)
+    if found is None:
+        return None
+    return Mode.SLIDING, _set_slip(model, x0, SLIP_ONSET * found[0]), "zero slip, rolling infeasible"
+
+
+def contact_start(model, t: float, x, *, before: str = "start", stiff: bool = False) -> Transition:
+    """The contact mode a state starts in: at zero slip, ROLLING where static friction holds
+    (exact Coulomb); else SLIDING. A regularised law whose slip is already below 10 eps starts
+    in its ROLLING mode only where that matters, i.e. where the field is ``stiff`` there and
+    another integrator takes over; elsewhere its two modes share one field and the first stick
+    event is left to the integration (which keeps runs bit-for-bit those of earlier versions).
+    :attr:`Trajectory.stuck` reports such starts either way."""
+    law = model.friction
+    speed = float(model.function("slip_speed")(x, model.p))
+    if law.has_rolling_mode and speed <= STICK_SLIP:
+        out = zero_slip_start(model, x)
+        if out is None:
+            x0 = project_no_slip(model, x)
+            if float(model._evaluate("R", x0, Mode.ROLLING)) <= 0.0:
+                return Transition(Mode.ROLLING, t, x0)  # no contact mode has R > 0: the callers lift off
+            return _no_direction(t, x)
+        mode, x, detail = out
+        return Transition(mode, t, x, (Record("stick" if mode is Mode.ROLLING else "slip", before, mode.value, x, detail),))
+    if stiff and law.can_stick and not law.has_rolling_mode and speed < STICK_SLIP + 10 * law.eps:
+        detail = "slip < 10 eps (regularised)"
+        return Transition(Mode.ROLLING, t, x, (Record("stick", before, "rolling", x, detail),))
+    return Transition(Mode.SLIDING, t, np.asarray(x, dtype=float))
+
+
+def _no_direction(t, x) -> Transition:
+    return Transition(None, t, x, stop=Status.FAILED, reason=f"at t = {t:.6g}: zero slip, rolling infeasible, "
+                                                       "and no self-consistent sliding direction (Painleve-type inconsistency)")
+
+
+@dataclass(frozen=True)
+class Stick:
+    """Exact Coulomb: the slip reached STICK_SLIP; extrapolate to zero slip, then roll (or
+    slide on in the consistent direction)."""
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        s2 = float(model.function("slip_speed2")(x, model.p))
+        rate = float(model.function("slip_speed2_rate")(x, model.p))
+        if rate >= 0:  # the guard was grazed, the slip is not vanishing
+            return Transition(mode, t, x, resume=True)
+        dt = 2.0 * s2 / (-rate)  # |u| linear in time as it vanishes: |u|^2 ~ (rate/2) * 2 * dt
+        x_s = x + dt * model._rhs(x, Mode.SLIDING)
+        out = zero_slip_start(model, x_s)
+        if out is None:
+            return _no_direction(t + dt, x_s)
+        new, x_new, detail = out
+        name = "stick" if new is Mode.ROLLING else "slip"
+        return Transition(new, t + dt, x_new, (Record(name, mode.value, new.value, x_new, detail),))
+
+
+@dataclass(frozen=True)
+class SlipOnset:
+    """Exact Coulomb: ROLLING reached |F_req| = mu R; slide with slip along -F_req."""
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        F = np.asarray(model.function("Fc_rolling")(x, model.p)).ravel()[:2]
+        norm = np.hypot(*F)
+        if norm == 0.0:
+            out = zero_slip_start(model, x)
+            if out is None:
+                return _no_direction(t, x)
+            new, x_new, detail = out
+        else:
+            new, x_new, detail = Mode.SLIDING, _set_slip(model, x, -SLIP_ONSET * F / norm), "|F_req| reached mu R"
+        return Transition(new, t, x_new, (Record("slip", mode.value, new.value, x_new, detail),))
+
+
+@dataclass(frozen=True)
+class SwitchMode:
+    """Change the mode only (the regularised law's stick and slip: one field, two modes)."""
+
+    to: Mode
+    record_as: str
+    detail: str = ""
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        return Transition(self.to, t, x, (Record(self.record_as, mode.value, self.to.value, x, self.detail),))
+
+
+# -- flight ---------------------------------------------------------------------------------
+
+
+def flight_state(model, x_contact) -> np.ndarray:
+    """Contact state (either chart) at lift-off -> flight state: same k, w, horizontal v; the
+    gap and its rate start at zero (the contact point's vertical velocity is zero in contact)."""
+    x = np.asarray(x_contact, dtype=float)
+    z = x.copy() if model.chart is VECTOR else euler_to_vector(x)
+    return np.concatenate([z[0:8], [0.0, 0.0]])
+
+
+def contact_state(model, xf) -> np.ndarray:
+    """Flight state -> contact chart state (the vertical motion is then slaved)."""
+    z = np.asarray(xf, dtype=float)[0:8].copy()
+    return z if model.chart is VECTOR else model.chart.from_paper(VECTOR.to_paper(z))
+
+
+def rigid_velocities(model, xf):
+    """(k, w, v) with v = (v_x, v_y, v_z), v_z = dDelta/dt + dh/dt, for the impact law."""
+    xf = np.asarray(xf, dtype=float)
+    vz = xf[9] + float(model.function("Hdot", Mode.FLIGHT)(xf, model.p))
+    return xf[0:3].copy(), xf[3:6].copy(), np.array([xf[6], xf[7], vz])
+
+
+def from_rigid(model, k, w, v, gap: float = 0.0) -> np.ndarray:
+    """Inverse of :func:`rigid_velocities` (gap rate = v_z - dh/dt at the new angular velocity)."""
+    xf = np.concatenate([k, w, v[:2], [gap, 0.0]])
+    xf[9] = v[2] - float(model.function("Hdot", Mode.FLIGHT)(xf, model.p))
+    return xf
+
+
+@dataclass(frozen=True)
+class LiftOff:
+    """contact -> FLIGHT with the flight state of :func:`flight_state`."""
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        return Transition(Mode.FLIGHT, t, flight_state(model, x), (Record("lift-off", mode.value, "flight", x),))
+
+
+def bounce_tail(log, t: float, v_after: float, e: float, stop: float = BOUNCE_STOP, tail: int | None = BOUNCE_TAIL):
+    """The tail of the bounce train an impact at ``t`` continues, if it is to be resolved now:
+    (ratio, rebounds left, time left), else None.
+
+    A ballistic train (free flights between Newton impacts of restitution ``e``: each rebound
+    e times as fast and its flight e times as long) accumulates: infinitely many impacts before
+    t + tau_k e / (1 - e). Event-driven contact solvers resolve the accumulation rather than
+    integrate it. Here the train must have become ballistic (the last TAIL_RATIOS ratios of
+    successive flight times within TAIL_SPREAD x (1 - e) of e: spin and nutation no longer
+    shape the flights, as they do while the body hops), its rebound speed ``v_after`` must be
+    below TAIL_SPEED x ``stop``, and more than ``tail`` rebounds must be left before it falls
+    below ``stop``. Contact then resumes at once with zero normal velocity, as after a rebound
+    below ``stop``; what is dropped is the tail's remaining time and its rebound momentum
+    (``v_after``). ``log``: the run's records so far (this impact not yet in it)."""
+    if tail is None or not stop < v_after <= TAIL_SPEED * stop or not 0.0 < e < 1.0:
+        return None
+    left = math.log(stop / v_after) / math.log(e)
+    if left <= tail:
+        return None
+    times = [t]
+    for r in reversed(log):  # the impacts of this train, back to its lift-off
+        if r.name == "impact" and r.mode_after == "flight":
+            times.append(r.t)
+            if len(times) > TAIL_RATIOS + 1:
+                break
+        elif r.name != "touchdown":
+            break
+    if len(times) <= TAIL_RATIOS + 1:
+        return None
+    tau = np.diff(np.array(times[::-1]))  # flight times between impacts, oldest first
+    ratios = tau[1:] / tau[:-1]
+    if np.any(np.abs(ratios - e) > TAIL_SPREAD * (1.0 - e)):
+        return None
+    return float(np.mean(ratios)), left, float(tau[-1] * e / (1.0 - e))
+
+
+@dataclass(frozen=True)
+class Touchdown:
+    """The gap closed: apply the impact law with Newton's ``restitution``; fly on if the body
+    rebounds faster than ``bounce_stop`` and its train is not resolved (:func:`bounce_tail`),
+    else resume contact (and fly at once if contact would need R <= 0)."""
+
+    restitution: float = 0.0
+    bounce_stop: float = BOUNCE_STOP
+    bounce_tail: int | None = BOUNCE_TAIL
+    uses_log = True  # called with the run's records (the train so far)
+
+    def __call__(self, model, event, mode, t, x, log=()) -> Transition:
+        k, w, v = rigid_velocities(model, x)
+        imp = _impact(model.body, k, w, v, e=self.restitution, mu=model.friction.mu)
+        x_post = from_rigid(model, k, imp.w, imp.v)
+        bounce = imp.v_normal_after > self.bounce_stop
+        detail = (f"e={self.restitution:g}, dE={imp.energy_after - imp.energy_before:.3e}"
+                  + (", stick" if imp.sticking else "") + (", friction limited" if imp.energy_limited else ""))
+        tail = bounce_tail(log, t, imp.v_normal_after, self.restitution, self.bounce_stop, self.bounce_tail) \
+            if bounce else None
+        if tail is not None:
+            bounce = False
+            detail += (f", bounce train resolved: geometric tail (ratio {tail[0]:.4g}, {tail[1]:.0f} rebounds, "
+                       f"{tail[2]:.3g} time units) summed")
+        recs = [Record("touchdown", "flight", "impact", contact_state(model, x)),
+                Record("impact", "flight", "flight" if bounce else "contact", contact_state(model, x_post), detail)]
+        if bounce:
+            return Transition(Mode.FLIGHT, t, x_post, tuple(recs))
+        start = contact_start(model, t, contact_state(model, x_post), before="contact")
+        if start.stop is not None:
+            return Transition(None, t, start.x, tuple(recs), stop=start.stop, reason=start.reason)
+        if float(model._evaluate("R", start.x, start.mode)) <= 0.0:
+            # contact cannot hold (it would need R < 0): the body flies on from rest
+            recs.append(Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 after impact"))
+            return Transition(Mode.FLIGHT, t, flight_state(model, start.x), tuple(recs))
+        return Transition(start.mode, t, start.x, tuple(recs))
+
+
+def flight_start_state(model, x) -> np.ndarray:
+    """A state given to start in flight: a flight state as is, or a contact state lifted off."""
+    x = np.asarray(x, dtype=float)
+    return x.copy() if x.size == FLIGHT.n_states else flight_state(model, x)

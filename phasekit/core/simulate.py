@@ -1,0 +1,402 @@
+"""simulate: one short loop over the hybrid system of :mod:`phasekit.core.system`.
+
+Propagate the current mode's flow to its first event, apply that event's reset (or end
+the run with the event's status), record it, repeat. Nothing here knows any event by name.
+"""
+
+from __future__ import annotations
+
+import functools
+import time
+import warnings
+from dataclasses import replace
+
+import numpy as np
+
+from .._runtime.errors import ConvergenceError, ParameterError, Status
+from .._runtime.validate import check_bool, check_finite, check_range, check_times, check_vector
+from .._runtime.watch import WALL_REASON, deadline, progress_bar, show_progress
+from .charts import FLIGHT, POLE_GUARD
+from .engines import Budget, End, Propagation, TaylorEngine, engine_for
+from .hybrid import Event, Mode, Transition
+from .model import Model
+from .options import SolverOptions
+from .pose import Pose
+from .resets import contact_state
+from .settle import settled
+from .starts import RATE_MAX
+from .system import declare, watched
+from .trajectory import EventRecord, Segment, Trajectory
+
+__all__ = ["simulate", "solver_options", "taylor_integrator", "RunState"]
+
+#: the largest |t0| a run may start at (see simulate)
+T_MAX = 1e6
+#: a single run shows its progress bar (where one is shown) once it has run this long, in s
+PROGRESS_DELAY = 2.0
+#: more simulated time per second of wall time than any run covers (measured: ~750 sliding, ~15 000
+#: for a body that rolls steadily): a span beyond max_wall x this cannot be reached
+REACH_PER_S = 1e5
+
+
+def solver_options(options: SolverOptions | None = None, **overrides) -> SolverOptions:
+    """``options`` (default SolverOptions()) with the given fields replaced; unknown names
+    are an error naming them."""
+    if options is None:
+        try:  # the same keywords again (a sweep): the validated object from last time
+            return _options_from(tuple(sorted(overrides.items())))
+        except TypeError:  # an unhashable value: validate it below (and say what is wrong)
+            pass
+    return _solver_options(options, **overrides)
+
+
+@functools.lru_cache(maxsize=256)
+def _options_from(items: tuple) -> SolverOptions:
+    return _solver_options(None, **dict(items))
+
+
+def _solver_options(options: SolverOptions | None = None, **overrides) -> SolverOptions:
+    if options is not None and not isinstance(options, SolverOptions):
+        raise ParameterError("options", "must be a phasekit SolverOptions", options)
+    unknown = sorted(set(overrides) - set(SolverOptions.names()))
+    if unknown:
+        raise ParameterError(unknown[0], f"is not an option of simulate (options: {', '.join(SolverOptions.names())})",
+                             show_value=False)
+    return replace(options or SolverOptions(), **overrides)
+
+
+def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = "jump", restitution: float = 0.0,
+             events=(), t_eval=None, mode=None, options: SolverOptions | None = None, throw: bool = False,
+             pose0=None, progress: bool | None = None, **option_fields) -> Trajectory:
+    """Integrate the dynamics of ``model`` from ``x0`` until ``t_end``, a stop, or failure.
+
+    Parameters
+    ----------
+    model : Model
+    x0 : array
+        A state of ``model.chart`` (6 numbers for "euler", 8 for "vector"); with
+        ``mode="flight"``, a flight state (10) or a contact state lifted off with zero gap.
+    t_end : float
+        End time (> t0).
+    stop_at : {"jump", "touchdown", "none"}
+        Stop at the first lift-off, at the first touchdown, or run to t_end through every
+        flight and impact.
+    restitution : float in [0, 1]
+        Newton's coefficient e of the impact law (``stop_at="none"``).
+    events : sequence of Event
+        The user's events, e.g. ``[pk.Event("theta", 0.4)]`` (stop when theta reaches 0.4)
+        or ``[pk.Event("Lambda", 0.0, direction=+1, terminal=False)]`` (a section).
+    t_eval : array, optional
+        Times at which to return states in ``traj.ts``, ``traj.ys`` (the model's chart).
+    mode : "flight", optional
+        Start in free flight instead of in contact.
+    options : SolverOptions, optional
+        Tolerances, integrator, step and wall budgets; any field of :class:`SolverOptions`
+        may also be given as a keyword (``rtol=1e-12``, ``max_steps=...``).
+    throw : bool
+        True: raise ConvergenceError (with the trajectory attached) if the run fails.
+        False (default): return it with status "failed" and the reason.
+    pose0 : Pose, dict or 4 numbers, optional
+        Start values of psi, phi, X, Y (default 0), for :meth:`Trajectory.pose`: quadratures
+        after the run, on which no number of the run depends.
+    progress : bool or None
+        A progress bar of the simulated time on stderr for a run that lasts more than
+        PROGRESS_DELAY (2 s); None (default): only on a terminal or in a notebook.
+
+    Returns
+    -------
+    Trajectory
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> traj.status.value, round(traj.t_jump, 4)
+    ('jumped', 45.256)
+    >>> round(float(traj.at(20.0)['theta']), 4)
+    1.2621
+    """
+    opts = solver_options(options, **option_fields)
+    pose0 = Pose.of(pose0)
+    if not isinstance(model, Model):
+        raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
+    if mode is not None and mode not in ("flight", Mode.FLIGHT):
+        raise ParameterError("mode", "must be None (start in contact) or 'flight'", mode)
+    start_mode = None if mode is None else Mode.FLIGHT
+    check_bool("throw", throw)
+    if isinstance(events, Event) or not isinstance(events, (list, tuple)):
+        raise ParameterError("events", "must be a list of phasekit Event objects, e.g. [pk.Event('theta', 0.4)]", events)
+    x0, t0, t_end = _checked_span(model, x0, t0, t_end, start_mode)
+    if t_end - t0 > REACH_PER_S * opts.max_wall:  # said at once, not after max_wall seconds of silence
+        warnings.warn(f"`t_end` = {t_end:g} cannot be reached within `max_wall` = {opts.max_wall:g} s (no run covers "
+                      f"more than {REACH_PER_S:g} time units per second): the run will end \"failed\" when its wall "
+                      "budget runs out", stacklevel=2)
+    te = None if t_eval is None else check_times("t_eval", t_eval)
+    if te is not None and te.size and (te[0] < t0 or te[-1] > t_end):
+        raise ParameterError("t_eval", f"must lie in the requested span [t0, t_end] = [{t0:.10g}, {t_end:.10g}]",
+                             float(te[0] if te[0] < t0 else te[-1]))
+    system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail))
+    run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
+    run.loop(system.initial(model, t0, x0, start_mode), progress)
+    traj = run.result(x0, stop_at, restitution, events, te, pose0)
+    if throw and traj.status is Status.FAILED:
+        raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
+    return traj
+
+
+def _checked_span(model, x0, t0, t_end, start_mode):
+    """simulate's start state and span, checked: (x0, t0, t_end)."""
+    n = FLIGHT.n_states if start_mode is Mode.FLIGHT and np.size(x0) == FLIGHT.n_states else model.n_states
+    x0 = check_vector("x0", x0, n)
+    if np.max(np.abs(x0)) > RATE_MAX:
+        raise ParameterError("x0", f"must have entries of at most {RATE_MAX:g} in size (larger rates are beyond double "
+                                   "precision)", x0)
+    # beyond |t| = T_MAX the spacing of doubles (> 1e-10) is coarser than the located events
+    t0 = check_range("t0", t0, -T_MAX, T_MAX, closed="lr", label=f"[-{T_MAX:g}, {T_MAX:g}]")
+    t_end = check_finite("t_end", t_end)
+    if not t_end > t0:
+        raise ParameterError("t_end", f"must be > t0 = {t0:g}", t_end)
+    if n == model.n_states and not model.chart.regular_at_poles and min(x0[4], np.pi - x0[4]) < POLE_GUARD:
+        raise ParameterError("x0", "has theta at 0 or pi, where the Euler chart is singular (2.7c): use "
+                                   "Model(body, law, chart='vector')", x0)
+    return x0, t0, t_end
+
+
+def _declared(model, stop_at, restitution, events, bounce):
+    """:func:`phasekit.core.system.declare`, kept for runs that declare the same system again (a
+    sweep calls simulate thousands of times; declaring costs ~25 us a call, a few % of a run)."""
+    events = tuple(events)
+    try:  # events compare without their reset: key on the reset objects too
+        return _declare_cached(model, stop_at, restitution, events, bounce,
+                               tuple(id(getattr(e, "reset", None)) for e in events))
+    except TypeError:  # unhashable arguments: declare (which validates them)
+        return declare(model, stop_at=stop_at, restitution=restitution, events=events, bounce=bounce)
+
+
+@functools.lru_cache(maxsize=64)
+def _declare_cached(model, stop_at, restitution, events, bounce, _reset_ids):
+    return declare(model, stop_at=stop_at, restitution=restitution, events=events, bounce=bounce)
+
+
+@functools.lru_cache(maxsize=64)
+def _tracked(flow, track_minima: bool):
+    """``flow``, without its monitor of the minima of R when they are not wanted: the
+    integrator then carries no non-terminal event (fewer steps; the flight's gap maximum stays)."""
+    return flow if track_minima or flow.mode is Mode.FLIGHT else replace(flow, monitor=None)
+
+
+class RunState:
+    """One run of the hybrid loop, as :func:`simulate` runs it or as a lane of
+    :func:`phasekit.simulate_batch` does: the mode, time and state it has reached, its segments
+    and event log, and its status once it ends. :meth:`end_segment` is the one place where the
+    end of a propagation (a time, an event, a failure) becomes the next mode or the end of the run."""
+
+    def __init__(self, model, system, opts, t0: float, t_end: float):
+        self.model, self.system, self.opts, self.t_end = model, system, opts, t_end
+        self.t_start, self.switch_limit = t0, opts.switch_limit(t_end - t0)
+        self.mode, self.t, self.x = Mode.SLIDING, 0.0, None
+        self.status = self.reason = None
+        self.segments, self.records = [], []
+        self.resume = False  # a non-terminal event or a graze: the segment goes on from where it stopped
+
+    def record(self, name, t, before, after, x, detail="") -> None:
+        x = None if x is None else np.asarray(x, dtype=float)
+        if x is not None and x.size == FLIGHT.n_states:
+            x = contact_state(self.model, x)
+        y = None if x is None else self.model.chart.to_paper(x)
+        self.records.append(EventRecord(name, float(t), before, after, x, detail, y))
+
+    def apply(self, tr: Transition) -> None:
+        """Log a transition's records, then continue in its mode or stop (the switch budget, or
+        a settled body with the option ``settle``)."""
+        for r in tr.records:
+            self.record(r.name, tr.t, r.mode_before, r.mode_after, r.x, r.detail)
+        if tr.resume:
+            self.resume = True
+            return
+        if tr.stop is not None:
+            self.status, self.reason = tr.stop, tr.reason
+            if not self.segments:  # stopped before any integration: keep the start
+                self.t, self.x, self.mode = tr.t, np.asarray(tr.x, dtype=float), tr.mode or self.mode
+            return
+        self.mode, self.t, self.x = tr.mode, tr.t, np.asarray(tr.x, dtype=float)
+        if len(self.records) >= self.switch_limit:
+            self.status = Status.FAILED
+            self.reason = f"more than {self.switch_limit} mode switches by t = {self.t:.6g} (chattering)"
+        elif self.opts.settle is not None and tr.records:
+            why = settled(self.model, self.records, self.t_start, self.opts.settle)
+            if why is not None:
+                self.status, self.reason = Status.SETTLED, why
+
+    def add_segment(self, engine: str, t1, x1, end: str, n_steps: int, n_rhs: int, monitored=(), dense=(),
+                    extend: bool = False) -> None:
+        """The stretch of the current mode from (t, x) to (t1, x1); ``extend``: it continues the
+        last segment (after a non-terminal event or a graze)."""
+        if extend and self.segments and self.segments[-1].mode is self.mode:
+            last = self.segments[-1]
+            self.segments[-1] = Segment(self.mode, last.t0, t1, last.x0, x1, engine, end, last.n_steps + n_steps,
+                                        last.n_rhs + n_rhs, last.monitored + tuple(monitored), last.dense + tuple(dense))
+        else:
+            self.segments.append(Segment(self.mode, self.t, t1, self.x, x1, engine, end, n_steps, n_rhs, tuple(monitored),
+                                         tuple(dense)))
+
+    def end_segment(self, end: End, t: float, x, ev: Event | None, reason: str | None = None) -> None:
+        """What the end of a propagation at (t, x) does to the run: a failure or the end time ends
+        it; a non-terminal event is recorded and the run goes on; a terminal event without a
+        reset ends it with the event's status; a reset's transition is applied."""
+        self.t, self.x = t, x
+        if end is End.FAILED:
+            self.status, self.reason = Status.FAILED, reason or f"non-finite state at t = {t:.6g}"
+        elif end is End.TIME:
+            self.status = Status.COMPLETED
+            self.reason = "in flight at t_end" if self.mode is Mode.FLIGHT else None
+        elif not ev.terminal:
+            self.record(ev.name, t, self.mode.value, self.mode.value, x)
+            self.resume = True
+        elif ev.reset is None:
+            self.record(ev.name, t, self.mode.value, "end", x)
+            self.status = ev.stop
+            if ev.stop is Status.STOPPED:
+                self.reason = f"{ev.name}: {ev.on} reached {ev.level:g}"
+        else:
+            log = {"log": self.records} if getattr(ev.reset, "uses_log", False) else {}  # a bounce train so far
+            self.apply(ev.reset(self.model, ev, self.mode, t, x, **log))
+
+    def trajectory(self, x0, wall_s: float, *, stop_at="jump", restitution=0.0, user_events=(), pose0=None,
+                   ts=None, ys=None) -> Trajectory:
+        # a run that ended before its first segment, or settled (it ends in the mode it settled
+        # into), ends where its last transition put it
+        here = not self.segments or self.status is Status.SETTLED
+        return Trajectory(model=self.model, x0=x0, t0=self.t_start, t_end=self.t_end, options=self.opts,
+                          status=self.status, reason=self.reason, segments=self.segments, events=self.records,
+                          wall_s=wall_s, stop_at=stop_at, restitution=restitution, user_events=user_events, pose0=pose0,
+                          ts=ts, ys=ys, x_stop=self.x if here else None, mode_stop=self.mode if here else None)
+
+
+class _Run(RunState):
+    """One run of simulate's loop: the state, the engines it uses and its budgets."""
+
+    def __init__(self, model, system, opts, t0, t_end, dense):
+        super().__init__(model, system, opts, t0, t_end)
+        self.dense = dense
+        self.wall0 = time.perf_counter()
+        own, call = self.wall0 + opts.max_wall, deadline()
+        # the caller's budget (a search, a map) when it ends first: the reason then names it
+        self.call_budget = call[1] if call is not None and call[0] < own else None
+        self.budget = Budget(opts.max_steps, own if self.call_budget is None else call[0])
+        self.engines, self.steps_done = {}, 0
+
+    def loop(self, first: Transition, progress) -> None:
+        """Run from the start transition ``first`` until a status is set (with a progress bar
+        of the simulated time where one is shown, after PROGRESS_DELAY)."""
+        t0 = self.t_start
+        bar = progress_bar(self.t_end - t0, desc="simulate", unit="t", progress=progress, delay=PROGRESS_DELAY) \
+            if show_progress(progress) else None
+        self.budget.tick = None if bar is None else (lambda t: bar.update(t - t0 - bar.n))
+        self.apply(first)
+        while self.status is None:
+            self.step()
+            if self.budget.tick is not None:
+                self.budget.tick(self.t)
+            if self.status is None and self.budget.wall_exceeded():  # many short segments (stick-slip chatter)
+                self.status = Status.FAILED
+                self.reason = f"wall-time limit ({self.opts.max_wall:g} s) reached at t = {self.t:.6g}"
+        if bar is not None:
+            bar.close()
+        if self.call_budget is not None and self.status is Status.FAILED and "wall-time limit" in (self.reason or ""):
+            self.reason = f"{WALL_REASON} (max_wall = {self.call_budget:g} s) ran out at t = {self.t:.6g}"
+
+    def engine(self, flow):
+        name = flow.engine or self.opts.backend
+        if name == "auto":
+            name = "cvodes" if flow.stiff else "taylor"
+        if name not in self.engines:
+            self.engines[name] = engine_for(name, self.opts.rtol, self.opts.atol)
+        return self.engines[name]
+
+    def step(self) -> None:
+        """Propagate the current mode to its first event and handle that event."""
+        flow = _tracked(self.system.flow(self.mode), self.opts.track_minima)
+        engine = self.engine(flow)
+        events = watched(self.system, self.mode, engine)
+        extend = self.resume  # a non-terminal event or a graze: the same segment goes on
+        prop, ev = self.propagate(flow, engine, events)
+        if not (np.isfinite(prop.t) and np.all(np.isfinite(prop.x))):
+            # never a non-finite number in a result: the run ends at its last finite state
+            self.status = Status.FAILED
+            self.reason = f"the integration diverged after t = {self.t:.6g} (non-finite state)"
+            return
+        self.steps_done += prop.n_steps
+        self.add_segment(engine.name, prop.t, prop.x, ev.name if prop.outcome is End.EVENT else str(prop.outcome),
+                         prop.n_steps, prop.n_rhs, prop.monitored, prop.dense, extend)
+        self.end_segment(prop.outcome, prop.t, prop.x, ev, prop.reason)
+
+    def propagate(self, flow, engine, events) -> tuple[Propagation, Event | None]:
+        """One call of the integrator; events armed after a delay are left out for that
+        long, and fire at once if their guard is already past zero when armed."""
+        cflow = lambda evs: self.model.compile_flow(flow, evs)  # noqa: E731
+        delayed = [e for e in events if e.arm_after > 0]
+        if not delayed or self.resume:
+            return self._call(cflow(events), engine, events, self.x, self.t, self.t_end)
+        early = [e for e in events if e.arm_after == 0]
+        t_arm = min(self.t + max(e.arm_after for e in delayed), self.t_end)
+        first, ev = self._call(cflow(early), engine, early, self.x, self.t, t_arm)
+        if first.outcome is not End.TIME or t_arm >= self.t_end:
+            return first, ev
+        for e in delayed:
+            g = float(self.model.guard_function(e.on, self.mode)(first.x, self.model.p, e.level))
+            if (e.direction < 0 and g <= 0) or (e.direction > 0 and g >= 0):
+                first.outcome = End.EVENT
+                return first, e
+        rest, ev = self._call(cflow(events), engine, events, first.x, first.t, self.t_end)
+        rest.n_steps += first.n_steps
+        rest.n_rhs += first.n_rhs
+        rest.dense = first.dense + rest.dense
+        rest.monitored = first.monitored + rest.monitored
+        return rest, ev
+
+    def _call(self, cflow, engine, events, x, t, t_stop) -> tuple[Propagation, Event | None]:
+        self.budget.steps = self.opts.max_steps - self.steps_done
+        prop = engine.propagate(cflow, x, t, t_stop, self.model.p, [e.level for e in events],
+                                budget=self.budget, dense=self.dense, resume=self.resume)
+        self.resume = False
+        return prop, (events[prop.event] if prop.event is not None else None)
+
+    def result(self, x0, stop_at, restitution, events, te, pose0) -> Trajectory:
+        wall = time.perf_counter() - self.wall0
+        kw = dict(stop_at=stop_at, restitution=restitution, user_events=events, pose0=pose0)
+        if te is not None and self.segments:
+            traj = self.trajectory(x0, wall, **kw)
+            te = te[(te >= traj.t0) & (te <= traj.t)]
+            if te.size:
+                kw.update(ts=te, ys=traj._chart_states(te))
+        if not self.opts.dense and self.dense:  # dense output was kept only to answer t_eval
+            self.segments = [replace(s, dense=()) for s in self.segments]
+        return self.trajectory(x0, wall, **kw)
+
+
+def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump", rtol: float = 1e-9, events=(),
+                      track_minima: bool = True):
+    """The compiled heyoka integrator phasekit uses for one mode, for users (and benchmarks)
+    who want to drive heyoka directly: returns (integrator, parameters). Its terminal events
+    are the mode's guards (lift-off first, ...) with the levels of ``events`` appended; set
+    ``integrator.pars[:] = parameters`` (done here) and ``integrator.state``/``.time``.
+    ``track_minima=False``: the integrator simulate uses with that option (no monitor of the
+    minima of R).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> ta, pars = pk.baseline.taylor_integrator(pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)))
+    >>> type(ta).__name__, len(pars)
+    ('taylor_adaptive_dbl', 7)
+    """
+    mode = Mode(mode)
+    system = declare(model, stop_at=stop_at, events=events)
+    evs = watched(system, mode, TaylorEngine)
+    cflow = model.compile_flow(_tracked(system.flow(mode), track_minima), evs)
+    ta, _, npar = TaylorEngine(solver_options(rtol=rtol).rtol).integrator(cflow, len(model.p))
+    pars = np.concatenate([model.p, [e.level for e in evs]])[:npar]
+    ta.pars[:] = pars
+    return ta, pars

@@ -1,0 +1,117 @@
+"""phasekit's hybrid system, declared in one place: its modes, events and resets.
+
+The table of events (guard, modes, friction laws, reset or outcome) is generated from
+:func:`declare` when the documentation is built: docs/architecture.md, "Modes, events and
+resets".
+
+Flows: SLIDING (``rhs_sliding``), ROLLING (``rhs_rolling``; for a regularised law the same
+field as sliding, integrated by CVODES when it is stiff), FLIGHT (``rhs_flight``, always
+the Taylor method). Contact flows record the minima of R, flight the maximum of the gap.
+A new event is one more :class:`phasekit.core.hybrid.Event` passed to :func:`phasekit.simulate`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._runtime.errors import ParameterError, Status
+from .._runtime.validate import check_choice, check_range
+from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
+from .model import STICK_SLIP
+from .resets import (
+    BOUNCE_STOP,
+    BOUNCE_TAIL,
+    LiftOff,
+    SlipOnset,
+    Stick,
+    SwitchMode,
+    Touchdown,
+    contact_start,
+    flight_start_state,
+)
+
+__all__ = ["declare", "STOP_AT", "STIFF_RATE", "GUARD_DELAY"]
+
+#: how far a run goes: the first lift-off, the first touchdown, or the end time
+STOP_AT = ("jump", "touchdown", "none")
+#: "auto" hands a stuck regularised law to CVODES when its slip relaxation rate mu/eps
+#: exceeds this. Measured (prolate a = 1.5, mu = 0.1, literal seeds, t <= 3000): the Taylor
+#: method is faster for eps >= 1e-4 (rate 1e3) and runs out of steps at eps = 1e-5.
+STIFF_RATE = 2000.0
+#: At lift-off Delta = dDelta/dt = 0 and d2Delta/dt2 = -R vanish only to rounding and the
+#: event tolerance (~1e-16, ~1e-12), so the gap's Taylor polynomial can have spurious roots
+#: before its t^3 growth dominates (t ~ 1e-5). The touchdown guard is armed after this long;
+#: a flight whose gap has not opened by then is a graze and touches down there.
+GUARD_DELAY = 1e-5
+
+
+
+def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=(),
+            bounce: tuple[float, int | None] = (BOUNCE_STOP, BOUNCE_TAIL)) -> HybridSystem:
+    """The modes, events and resets of ``model``'s law, with the run's stop rule, the end of a
+    bounce train (``bounce``: the rebound-speed cut-off and the geometric tail resolved, see
+    :class:`phasekit.core.resets.Touchdown`) and the user's ``events`` appended."""
+    check_choice("stop_at", stop_at, STOP_AT)
+    restitution = check_range("restitution", restitution, 0.0, 1.0, closed="lr")
+    law = model.friction
+    stiff = law.can_stick and not law.has_rolling_mode and law.mu / law.eps > STIFF_RATE
+    flows = (
+        Flow(Mode.SLIDING, "rhs_sliding", monitor=("Rdot", +1)),
+        Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1), stiff=stiff),
+        Flow(Mode.FLIGHT, "rhs_flight", monitor=("gap_rate", -1), engine="taylor", contact=False),
+    )
+    jump_ends = stop_at == "jump"
+    contact = frozenset(f.mode for f in flows if f.contact)
+    evs = [Event("R", name="lift-off", direction=-1, modes=contact, rate="Rdot", stop=Status.JUMPED,
+                 reset=None if jump_ends else LiftOff())]
+    if law.can_stick:
+        to_roll = Stick() if law.has_rolling_mode else SwitchMode(Mode.ROLLING, "stick", "slip < 10 eps (regularised)")
+        # the Taylor method watches |u| itself; pointwise integrators the dip of |u|^2 (see model)
+        evs += [Event("stick_guard", name="stick", direction=-1, modes={Mode.SLIDING}, reset=to_roll),
+                Event("stick_guard_sq", name="stick", direction=-1, modes={Mode.SLIDING}, reset=to_roll,
+                      rate="slip_speed2_rate")]
+        if law.has_rolling_mode:
+            evs.append(Event("margin_rolling", name="slip", direction=-1, modes={Mode.ROLLING}, reset=SlipOnset()))
+        else:
+            evs.append(Event("unstick_guard", name="slip", direction=-1, modes={Mode.ROLLING},
+                             reset=SwitchMode(Mode.SLIDING, "slip", "slip > 100 eps (regularised)")))
+    evs.append(Event("gap", name="touchdown", direction=-1, modes={Mode.FLIGHT}, arm_after=GUARD_DELAY,
+                     stop=Status.TOUCHDOWN, reset=None if stop_at == "touchdown" else Touchdown(restitution, *bounce)))
+    for ev in events:
+        if not isinstance(ev, Event):
+            raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
+        evs.append(ev)
+    return HybridSystem(flows, tuple(evs), _initial(stop_at, stiff))
+
+
+def _initial(stop_at: str, stiff: bool):
+    def initial(model, t, x, mode=None):
+        """Start in contact (the mode from the slip), or in flight when asked; a contact
+        state that would need R <= 0 lifts off at once."""
+        if mode is Mode.FLIGHT:
+            return _flight_start(model, t, x)
+        speed, R = np.asarray(model.function("start_probe")(x, model.p)).ravel()
+        if speed > STICK_SLIP + 10 * model.friction.eps and R > 0.0:  # the common case, in one call
+            return Transition(Mode.SLIDING, t, x)
+        start = contact_start(model, t, x, stiff=stiff)
+        if start.stop is not None or float(model._evaluate("R", start.x, start.mode)) > 0.0:
+            return start
+        rec = start.records + (Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 at start"),)
+        if stop_at == "jump":
+            return Transition(start.mode, t, start.x, rec, stop=Status.JUMPED,
+                              reason="R <= 0 at the start: the state cannot stay in contact")
+        return Transition(Mode.FLIGHT, t, flight_start_state(model, start.x), rec)
+
+    return initial
+
+
+def _flight_start(model, t, x):
+    return Transition(Mode.FLIGHT, t, flight_start_state(model, x))
+
+
+def watched(system: HybridSystem, mode: Mode, engine) -> tuple[Event, ...]:
+    """The events ``mode`` watches with this engine (:class:`phasekit.core.engines.Engine`): the
+    stick guard has a form for engines that locate roots of each step's polynomial and a smooth
+    squared one, with a rate, for pointwise engines."""
+    skip = "stick_guard" if engine.pointwise else "stick_guard_sq"
+    return tuple(e for e in system.events_of(mode) if e.on != skip)

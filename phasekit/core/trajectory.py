@@ -1,0 +1,603 @@
+"""Results of a simulation: segments (one mode each), the event log, and one status.
+
+A :class:`Trajectory` is what :func:`phasekit.simulate` returns. It keeps the integrator's
+dense output (heyoka's Taylor polynomials) per segment, so :meth:`Trajectory.sample`
+evaluates the state and any observable at any instant without re-integrating, and it
+carries its inputs (model, start, options) so that it can be rerun from :meth:`to_dict`.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._runtime.errors import ParameterError, Status
+from .._runtime.validate import check_times
+from .charts import FLIGHT, PAPER_NAMES
+from .hybrid import Mode
+from .model import STICK_SLIP, Model, evaluate_function
+from .pose import POSE_COLUMNS, Pose
+
+__all__ = ["EventRecord", "Segment", "Flight", "Trajectory", "SAMPLE_COLUMNS", "observable_table"]
+
+#: the observables of a state (columns of :func:`observable_table`)
+STATE_COLUMNS = (*PAPER_NAMES, "R", "energy", "jellett", "slip", "L_Z", "h", "gap")
+#: columns of :meth:`Trajectory.sample` after t and mode: the state's observables, then where
+#: the body is and how it is turned (:mod:`phasekit.core.pose`)
+SAMPLE_COLUMNS = (*STATE_COLUMNS, *POSE_COLUMNS)
+
+
+@dataclass(frozen=True)
+class EventRecord:
+    """A located event: ``name`` (stick, slip, lift-off, touchdown, impact, a stop or a user
+    event), its time, the modes before and after, the state (in the model's chart) and a
+    detail.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> ev = traj.events[0]
+    >>> isinstance(ev, pk.core.EventRecord), ev.name, ev.mode_before, ev.mode_after
+    (True, 'lift-off', 'sliding', 'end')
+    """
+
+    name: str
+    t: float
+    mode_before: str
+    mode_after: str
+    x: np.ndarray | None = field(default=None, repr=False, compare=False)
+    detail: str = ""
+    y: np.ndarray | None = field(default=None, repr=False, compare=False)  # the paper's variables
+
+    @property
+    def kind(self) -> str:  # the name, as older code called it
+        return self.name
+
+    def to_dict(self) -> dict:
+        d = {"kind": self.name, "t": float(self.t), "mode_before": self.mode_before, "mode_after": self.mode_after}
+        if self.detail:
+            d["detail"] = self.detail
+        if self.y is not None:
+            d["state"] = {k: float(v) for k, v in zip(PAPER_NAMES, self.y)}
+        return d
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A stretch of one mode: from (t0, x0) to (t1, x1), states in the mode's chart (the
+    model's chart in contact, the flight chart in flight). ``end`` names what ended it
+    (an event, "time" or "failed"); ``monitored``: the (t, x) where the flow's monitor
+    crossed zero (minima of R; the maximum of the gap in flight).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> seg = traj.segments[0]
+    >>> isinstance(seg, pk.core.Segment), seg.mode.value, seg.end
+    (True, 'sliding', 'lift-off')
+    """
+
+    mode: Mode
+    t0: float
+    t1: float
+    x0: np.ndarray = field(repr=False)
+    x1: np.ndarray = field(repr=False)
+    engine: str = ""
+    end: str = ""
+    n_steps: int = 0
+    n_rhs: int = 0
+    monitored: tuple = field(default=(), repr=False)
+    dense: tuple = field(default=(), repr=False)
+
+    def states(self, ts) -> np.ndarray:
+        """States at times inside [t0, t1] from the dense output."""
+        ts = np.asarray(ts, dtype=float)
+        out = np.empty((ts.size, self.x0.size))
+        if not self.dense:
+            raise ValueError("no dense output was kept: simulate with dense=True")
+        starts = np.array([s.t0 for s in self.dense])
+        idx = np.clip(np.searchsorted(starts, ts, side="right") - 1, 0, len(self.dense) - 1)
+        for k in np.unique(idx):
+            sel = idx == k
+            span = self.dense[k]
+            out[sel] = span(np.clip(ts[sel], span.t0, span.t1))
+        exact0, exact1 = ts == self.t0, ts == self.t1
+        out[exact0], out[exact1] = self.x0, self.x1
+        return out
+
+
+@dataclass(frozen=True)
+class Flight:
+    """One flight: from lift-off (t_liftoff) to touchdown (t_touchdown, None if it did not
+    end in one). ``gap_max``/``t_gap_max``: the located maximum of the gap; ``W_star`` and
+    ``Omega_star``: vertical velocity of G and precession rate at lift-off.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 200.0, stop_at='touchdown')
+    >>> fl = traj.flights[0]
+    >>> isinstance(fl, pk.core.Flight), fl.status.value, f'{fl.gap_max:.2e}'
+    (True, 'touchdown', '1.57e-07')
+    """
+
+    status: Status
+    t_liftoff: float
+    t_touchdown: float | None
+    x_liftoff: np.ndarray = field(repr=False)
+    x_end: np.ndarray = field(repr=False)
+    gap_max: float | None
+    t_gap_max: float | None
+    W_star: float
+    Omega_star: float
+    n_steps: int = 0
+
+    def to_dict(self) -> dict:
+        return {"t_liftoff": self.t_liftoff, "t_touchdown": self.t_touchdown, "gap_max": self.gap_max,
+                "t_gap_max": self.t_gap_max, "W_star": self.W_star, "Omega_star": self.Omega_star}
+
+
+def observable_table(model, parts):
+    """A :meth:`Trajectory.sample`-style DataFrame from ``parts``: (mode, times, states in
+    that mode's chart) in time order."""
+    import pandas as pd
+
+    n = sum(len(ts) for _, ts, _ in parts)
+    cols = {name: np.empty(n) for name in STATE_COLUMNS}
+    t_all, modes = np.empty(n), np.empty(n, dtype=object)
+    i = 0
+    for mode, ts, X in parts:
+        X = np.asarray(X, dtype=float).reshape(len(ts), -1)
+        sel = slice(i, i + len(ts))
+        t_all[sel], modes[sel] = ts, mode.value
+        P = evaluate_function(model.function("paper", mode), model.p, X)
+        for j, name in enumerate(PAPER_NAMES):
+            cols[name][sel] = np.reshape(P, (len(ts), -1))[:, j]
+        for name in ("R", "energy", "jellett", "L_Z", "h", "gap"):
+            cols[name][sel] = evaluate_function(model.observable(name, mode), model.p, X)
+        cols["slip"][sel] = evaluate_function(model.observable("slip_speed", mode), model.p, X)
+        i += len(ts)
+    return pd.DataFrame({"t": t_all, "mode": modes, **cols})
+
+
+@dataclass(frozen=True, eq=False, repr=False, kw_only=True)
+class Trajectory:
+    """The outcome of :func:`phasekit.simulate` (and of :func:`phasekit.simulate_batch`): frozen.
+
+    Attributes
+    ----------
+    status : Status
+        ``jumped`` (R reached 0 with dR/dt < 0), ``touchdown`` (stopped at the first
+        re-contact), ``stopped`` (a stop event), ``completed`` (reached ``t_end``), ``settled``
+        or ``failed`` (see ``reason``).
+    segments : tuple of Segment
+        The stretches of one mode each, in time order.
+    events : tuple of EventRecord
+        Every located event in time order (stick, slip, lift-off, touchdown, impact, stops
+        and the user's events).
+    model, x0, t0, options
+        The inputs, so that the run can be repeated.
+    ts, ys
+        The states at the requested ``t_eval`` inside the run (None without one).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
+    >>> traj.status.value, round(traj.t_jump, 6)
+    ('jumped', 45.256004)
+    """
+
+    model: Model
+    x0: np.ndarray
+    t0: float
+    t_end: float
+    options: object
+    status: Status
+    reason: str | None
+    segments: tuple[Segment, ...]
+    events: tuple[EventRecord, ...]
+    wall_s: float
+    stop_at: str = "jump"
+    restitution: float = 0.0
+    user_events: tuple = ()
+    pose0: Pose | None = None
+    ts: np.ndarray | None = None
+    ys: np.ndarray | None = None
+    #: where a run that ended without a segment of its own (or as it settled) stopped
+    x_stop: np.ndarray | None = None
+    mode_stop: Mode | None = None
+
+    def __post_init__(self):
+        set_ = object.__setattr__  # frozen: the inputs are normalised once, here
+        set_(self, "x0", np.asarray(self.x0, float))
+        set_(self, "t0", float(self.t0))
+        set_(self, "t_end", float(self.t_end))
+        set_(self, "pose0", Pose.of(self.pose0))
+        set_(self, "segments", tuple(self.segments))
+        set_(self, "events", tuple(self.events))
+        set_(self, "user_events", tuple(self.user_events))
+
+    @functools.cached_property
+    def _pose_track(self):
+        from .pose import PoseTrack
+
+        return PoseTrack(self, self.pose0)
+
+    # -- summary ---------------------------------------------------------------------------
+    @property
+    def chart(self) -> str:
+        return self.model.chart.name
+
+    @property
+    def rtol(self) -> float:
+        return self.options.rtol
+
+    @property
+    def t(self) -> float:
+        """The time the run ended."""
+        return self.segments[-1].t1 if self.segments else self.t0
+
+    @property
+    def x(self) -> np.ndarray:
+        """The final state, in the model's chart."""
+        if self.x_stop is not None:
+            return self.x_stop
+        seg = self.segments[-1]
+        return self._to_chart(seg.mode, seg.x1)
+
+    @property
+    def mode(self) -> str:
+        return (self.mode_stop or self.segments[-1].mode).value if (self.mode_stop or self.segments) else Mode.SLIDING.value
+
+    @property
+    def backend(self) -> str:
+        used = []
+        for s in self.segments:
+            if s.mode is not Mode.FLIGHT and s.engine and s.engine not in used:
+                used.append(s.engine)
+        return "+".join(used) or self.options.backend
+
+    @property
+    def n_steps(self) -> int:
+        return sum(s.n_steps for s in self.segments)
+
+    @property
+    def n_rhs(self) -> int:
+        return sum(s.n_rhs for s in self.segments)
+
+    @property
+    def success(self) -> bool:
+        return self.status is not Status.FAILED
+
+    @property
+    def jumped(self) -> bool:
+        return self.status is Status.JUMPED
+
+    def events_named(self, name: str) -> list[EventRecord]:
+        return [e for e in self.events if e.name == name]
+
+    @property
+    def stuck(self) -> bool:
+        """Whether the body ever held zero slip: any time in the rolling mode, a stick event, or
+        (regularised law) a start with the slip already below its stick threshold 10 eps."""
+        if any(s.mode is Mode.ROLLING for s in self.segments) or any(e.name == "stick" for e in self.events):
+            return True
+        law = self.model.friction
+        if law.can_stick and not law.has_rolling_mode and self.segments and self.segments[0].mode is not Mode.FLIGHT:
+            return float(self.model._evaluate("slip_speed", self.segments[0].x0)) < STICK_SLIP + 10 * law.eps
+        return False
+
+    @property
+    def _liftoff(self) -> EventRecord | None:
+        return next((e for e in self.events if e.name == "lift-off"), None)
+
+    @property
+    def t_jump(self) -> float | None:
+        e = self._liftoff
+        return None if e is None else e.t
+
+    @property
+    def x_jump(self) -> np.ndarray | None:
+        e = self._liftoff
+        return None if e is None else e.x
+
+    @property
+    def Rdot_jump(self) -> float | None:
+        e = self._liftoff
+        if e is None:
+            return None
+        return float(self.model._evaluate("Rdot", e.x, Mode(e.mode_before) if e.mode_before in ("sliding", "rolling") else Mode.SLIDING))
+
+    @property
+    def minima(self) -> np.ndarray:
+        """(t, R) at each located local minimum of R, shape (m, 2)."""
+        rows = []
+        for s in self.segments:
+            if s.mode is not Mode.FLIGHT and s.monitored:
+                X = np.array([x for _, x in s.monitored])
+                R = np.atleast_1d(evaluate_function(self.model.observable("R", s.mode), self.model.p, X))
+                rows.extend(zip([t for t, _ in s.monitored], R))
+        return np.array(rows, dtype=float).reshape(-1, 2)
+
+    @property
+    def R_min(self) -> float | None:
+        """The smallest normal reaction met: over the located minima, the segment ends, and 0
+        at a lift-off."""
+        # R is 0 at a located lift-off (to the event tolerance): count it as 0
+        vals = [float(self.model._evaluate("R", s.x1, s.mode)) for s in self.segments
+                if s.mode is not Mode.FLIGHT and s.end != "lift-off"]
+        vals += [float(self.model._evaluate("R", s.x0, s.mode)) for s in self.segments[:1] if s.mode is not Mode.FLIGHT]
+        m = self.minima
+        if m.size:
+            vals.append(float(m[:, 1].min()))
+        if self._liftoff is not None:
+            vals.append(0.0)
+        return min(vals) if vals else None
+
+    @property
+    def flights(self) -> tuple[Flight, ...]:
+        return tuple(self._flight(s) for s in self.segments if s.mode is Mode.FLIGHT)
+
+    @property
+    def hops(self) -> dict:
+        """Hop statistics: ``n_liftoffs`` (losses of contact), ``n_flights`` (every flight,
+        rebounds included), ``n_impacts``, ``t_flight`` (time in flight), ``flight_fraction``
+        (of the simulated span), ``longest_flight``, ``gap_max`` (the largest gap, units b)
+        and ``n_trains_resolved`` (bounce trains whose geometric tail was summed)."""
+        spans = [(s.t1 - s.t0, s) for s in self.segments if s.mode is Mode.FLIGHT]
+        gaps = [max(x[8] for _, x in s.monitored) for _, s in spans if s.monitored]
+        span = self.t - self.t0
+        t_flight = float(sum(d for d, _ in spans))
+        return {"n_liftoffs": sum(1 for e in self.events if e.name == "lift-off"), "n_flights": len(spans),
+                "n_impacts": sum(1 for e in self.events if e.name == "impact"), "t_flight": t_flight,
+                "flight_fraction": t_flight / span if span > 0 else 0.0,
+                "longest_flight": float(max((d for d, _ in spans), default=0.0)),
+                "gap_max": float(max(gaps)) if gaps else 0.0,
+                "n_trains_resolved": sum(1 for e in self.events if e.name == "impact" and "train resolved" in e.detail)}
+
+    def _flight(self, s: Segment) -> Flight:
+        m = self.model
+        gmax = tg = None
+        if s.monitored:
+            tg, xg = max(s.monitored, key=lambda q: q[1][8])
+            gmax = float(xg[8])
+        W = float(s.x0[9] + m._evaluate("Hdot", s.x0, Mode.FLIGHT))
+        status = Status.TOUCHDOWN if s.end == "touchdown" else Status.FAILED if s.end == "failed" else Status.COMPLETED
+        return Flight(status, s.t0, s.t1 if s.end == "touchdown" else None, s.x0, s.x1, gmax, tg, W,
+                      float(FLIGHT.to_paper(s.x0)[2]), s.n_steps)
+
+    # -- states ----------------------------------------------------------------------------
+    def _to_chart(self, mode: Mode, X) -> np.ndarray:
+        """States of ``mode``'s chart -> the model's chart (flight: drop the gap)."""
+        if mode is not Mode.FLIGHT:
+            return np.asarray(X, dtype=float)
+        from .resets import contact_state
+
+        if np.ndim(X) == 1:
+            return contact_state(self.model, X)
+        return np.array([contact_state(self.model, x) for x in X])
+
+    def _locate(self, ts) -> np.ndarray:
+        """Index of the segment each time belongs to (the first that contains it)."""
+        ends = np.array([s.t1 for s in self.segments])
+        return np.minimum(np.searchsorted(ends, ts, side="left"), len(self.segments) - 1)
+
+    def _check_times(self, times) -> np.ndarray:
+        ts = np.atleast_1d(np.asarray(check_times("times", times, allow_empty=True)))
+        lo, hi = self.t0, self.t
+        ulps = 16 * np.finfo(float).eps * max(1.0, abs(lo), abs(hi))  # t_end computed as t * (1 + 1e-15) is inside
+        ts = np.where((ts < lo) & (ts >= lo - ulps), lo, np.where((ts > hi) & (ts <= hi + ulps), hi, ts))
+        bad = ts[(ts < lo) | (ts > hi)]
+        if bad.size:
+            raise ParameterError("times", f"must lie in the simulated span [{lo:.10g}, {hi:.10g}] ({bad.size} outside)",
+                                 float(bad[0]) if bad.size == 1 else [float(bad[0]), float(bad[-1])])
+        if not self.segments:
+            raise ParameterError("times", "cannot be sampled: the run has no segment", show_value=False)
+        if not all(s.dense for s in self.segments):
+            raise ParameterError("times", "cannot be sampled: this run kept no dense output (simulate with dense=True)",
+                                 show_value=False)
+        return ts
+
+    def _chart_states(self, ts) -> np.ndarray:
+        idx = self._locate(ts)
+        out = np.empty((ts.size, self.model.n_states))
+        for k in np.unique(idx):
+            sel = idx == k
+            seg = self.segments[k]
+            out[sel] = self._to_chart(seg.mode, seg.states(ts[sel])).reshape(int(sel.sum()), -1)
+        return out
+
+    def states(self, times) -> np.ndarray:
+        """States at ``times`` in the model's chart (flight states with the gap dropped)."""
+        return self._chart_states(self._check_times(times))
+
+    def sample(self, times):
+        """The state and the observables at ``times``, from the dense output.
+
+        Parameters
+        ----------
+        times : float or array of float
+            Instants inside the simulated span [t0, t] (sorted on return). A time at an event
+            belongs to the segment that ends there (the state before the reset).
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per time: ``t``, ``mode`` (the mode in force) and the columns of
+            :data:`SAMPLE_COLUMNS`: the paper's state U, V, Omega, Lambda, theta, n; ``R``,
+            the normal reaction of the mode in force (0 in flight); ``energy``; ``jellett``
+            (Jellett's integral -L.GP); ``slip`` (slip speed of the contact point, of the lowest point in
+            flight); ``L_Z``; ``h`` (height of G, the gap excluded); ``gap`` (0 in contact);
+            ``psi``, ``phi`` (azimuth of the axis and spin angle about it), ``X``, ``Y`` (centre
+            of mass on the table) and ``X_P``, ``Y_P`` (the contact point), see :meth:`pose`.
+
+        Raises
+        ------
+        ParameterError
+            A time outside the simulated span, or a run that kept no dense output.
+
+        Notes
+        -----
+        No re-integration: the Taylor method's steps are polynomials, so the error is of
+        the order of the tolerance (CVODES segments use cubic Hermite interpolation on their
+        output grid, whose error can be larger).
+        """
+        ts = self._check_times(times)
+        idx = self._locate(ts)
+        parts = []
+        for k in np.unique(idx):
+            sel = idx == k
+            seg = self.segments[k]
+            parts.append((seg.mode, ts[sel], seg.states(ts[sel])))
+        df = observable_table(self.model, parts)
+        for name, values in self._pose(idx, ts).items():
+            df[name] = values
+        return df
+
+    def _pose(self, idx, ts) -> dict:
+        return self._pose_track(idx, ts)
+
+    def pose(self, times):
+        """Where the body is and how it is turned at ``times``: a DataFrame with ``t`` and
+        the columns psi, phi, X, Y, X_P, Y_P (conventions in :mod:`phasekit.core.pose`).
+
+        Computed after the integration by quadrature of the dense output (the run's numbers
+        are those of a run without them); raises ParameterError when no dense output was kept.
+        """
+        import pandas as pd
+
+        ts = self._check_times(times)
+        return pd.DataFrame({"t": ts, **self._pose(self._locate(ts), ts)})
+
+    def at(self, t: float):
+        """The row of :meth:`sample` at one instant ``t``, as a pandas Series
+        (``traj.at(12.0)["R"]``)."""
+        if np.ndim(t) != 0:
+            raise ParameterError("t", "must be one time (use sample for many)", t)
+        return self.sample([t]).iloc[0]
+
+    def events_table(self, name: str | None = None):
+        """The recorded events (or those called ``name``) as a DataFrame: ``t``, ``event``,
+        ``mode_before``, ``mode_after`` and the paper's state at the event."""
+        import pandas as pd
+
+        rows = [{"t": e.t, "event": e.name, "mode_before": e.mode_before, "mode_after": e.mode_after,
+                 **dict(zip(PAPER_NAMES, e.y if e.y is not None else [np.nan] * len(PAPER_NAMES)))}
+                for e in self.events if name is None or e.name == name]
+        return pd.DataFrame(rows, columns=["t", "event", "mode_before", "mode_after", *PAPER_NAMES])
+
+    @property
+    def euler_end(self) -> np.ndarray:
+        return self.model.chart.to_paper(self.x)
+
+    @property
+    def euler_ys(self) -> np.ndarray | None:
+        if self.ys is None:
+            return None
+        return np.array([self.model.chart.to_paper(z) for z in self.ys])
+
+    # -- export ----------------------------------------------------------------------------
+    def to_xarray(self, times=None, *, n: int = 2001):
+        """The run sampled at ``times`` (default ``n`` instants uniform over it) as an xarray
+        Dataset: coordinate ``t``, one variable per column of :meth:`sample`, and the model,
+        start, options, pose0 and status as JSON-string attributes (needs ``phasekit[data]``)."""
+        from ..io.tables import _need, to_xarray
+
+        _need(".nc")
+        return to_xarray(self, times, n=n)
+
+    def to_netcdf(self, path, times=None, *, n: int = 2001):
+        """Write :meth:`to_xarray` to a NetCDF file (``phasekit[data]``); returns the path."""
+        from ..io.tables import _check_path, write_trajectory
+
+        return write_trajectory(self, _check_path(path, (".nc",)), times, n=n)
+
+    def to_parquet(self, path, times=None, *, n: int = 2001):
+        """Write the sampled table to a Parquet file, the run's inputs in its metadata
+        (``phasekit[data]``); returns the path."""
+        from ..io.tables import _check_path, write_trajectory
+
+        return write_trajectory(self, _check_path(path, (".parquet",)), times, n=n)
+
+    def to_dict(self, *, events: bool = True) -> dict:
+        """JSON form in the paper's variables, with the inputs (model, start, options)."""
+        chart = self.model.chart
+        y_end = chart.to_paper(self.x)
+        xj = self.x_jump
+        d = {
+            "status": str(self.status),
+            "reason": self.reason,
+            "t_jump": self.t_jump,
+            "state_at_jump": None if xj is None else dict(zip(PAPER_NAMES, map(float, chart.to_paper(xj)))),
+            "Rdot_at_jump": self.Rdot_jump,
+            "R_min": self.R_min,
+            "t_end": float(self.t),
+            "theta_end": float(y_end[4]),
+            "state_end": dict(zip(PAPER_NAMES, map(float, y_end))),
+            "mode_end": self.mode,
+            "stuck": self.stuck,
+            "n_events": len(self.events),
+            "n_steps": int(self.n_steps),
+            "n_rhs": int(self.n_rhs),
+            "wall_s": float(self.wall_s),
+            "chart": chart.name,
+            "formulation": chart.name,  # the old name of "chart", kept for readers of older output
+            "backend": self.backend,
+            "rtol": self.options.rtol,
+        }
+        stops = [e for e in self.events if e.mode_after == "end" and e.name not in ("lift-off", "touchdown")]
+        if self.status is Status.STOPPED and stops:
+            d["t_stop"] = stops[-1].t
+            d["stopped_by"] = stops[-1].name
+        poses = self._event_poses() if events else None
+        if events:
+            d["events"] = [e.to_dict() for e in self.events]
+            if poses is not None:
+                for e, pose in zip(d["events"], poses[:-1]):
+                    e["pose"] = pose
+        if poses is not None:
+            d["pose_end"] = poses[-1]
+        fl = self.flights
+        if fl:
+            d["flight"] = fl[0].to_dict()
+            d["n_flights"] = len(fl)
+            d["hops"] = self.hops
+        d["model"] = self.model.to_dict()
+        d["start"] = dict(zip(PAPER_NAMES, map(float, chart.to_paper(self.x0) if self.x0.size == chart.n_states
+                                                   else FLIGHT.to_paper(self.x0))))
+        d["start_chart_state"] = self.x0.tolist()
+        d["t0"] = self.t0
+        d["t_end_requested"] = self.t_end
+        d["stop_at"] = self.stop_at
+        d["restitution"] = self.restitution
+        d["user_events"] = [e.to_dict() for e in self.user_events]
+        d["options"] = self.options.to_dict()
+        d["pose0"] = self.pose0.to_dict()
+        return d
+
+    def _event_poses(self) -> list[dict] | None:
+        """The pose at each event and at the end (None without dense output)."""
+        if not self.segments or not all(s.dense for s in self.segments):
+            return None
+        ts = np.array([e.t for e in self.events] + [self.t])
+        ts = np.clip(ts, self.t0, self.t)
+        order = np.argsort(ts, kind="stable")
+        cols = self._pose(self._locate(ts[order]), ts[order])
+        out = [None] * len(ts)
+        for rank, i in enumerate(order):
+            out[i] = {name: float(cols[name][rank]) for name in POSE_COLUMNS}
+        return out
+
+    def __repr__(self) -> str:
+        tj = f", t_jump={self.t_jump:.9g}" if self.t_jump is not None else ""
+        return (f"Trajectory(status={self.status.value}{tj}, t={self.t:.6g}, segments={len(self.segments)}, "
+                f"events={len(self.events)}, wall_s={self.wall_s:.3g})")

@@ -1,0 +1,355 @@
+"""Real units: millimetres, grams, revolutions per second in and out, by pint.
+
+phasekit computes in the paper's units: mass M, length b (the equatorial radius of a
+spheroid or egg, the radius of a tippe top's ball), acceleration g, hence time sqrt(b/g),
+rates sqrt(g/b), speeds sqrt(g b), forces M g, energies M g b and moments of inertia M b^2.
+A :class:`Scale` holds b, g (and M when forces or moments are wanted) as pint quantities and
+converts both ways by dimensional analysis, so that a user never converts by hand::
+
+    sc = pk.Scale("21.5 mm")                  # g = 9.81 m/s^2
+    sc.dimensionless("30 rev/s")              # -> 8.82..., a spin in units sqrt(g/b)
+    sc.quantity(9.7, "rate").to("rev/s")      # -> 33.0... rev/s
+    sc.to_real(traj.sample(ts)["t"], "time")  # a column (or any array) in ms
+    sc.table(traj.sample(ts))                 # a whole sampled table in ms, mm, rev/s, m/s
+    egg, sc = pk.core.egg_of_size("57 mm", "43 mm", w=0.05, mass="57 g")
+
+Every quantity is shown in one simple unit per kind (:data:`DISPLAY_UNITS`: ms, mm, rev/s, ...),
+never as pint's unsimplified product of the inputs' units.
+
+Angles: pint takes the radian as dimensionless, so 1 rev/s = 2 pi rad/s = 2 pi (1/s). A rate
+in hertz is refused: pint converts 1 Hz to 1 rad/s, which is a factor 2 pi away from one
+revolution per second; write "rev/s" (or "rps", "rpm", "rad/s").
+
+pint is imported on first use (building its registry takes ~0.6 s), not with phasekit.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+
+from .._runtime.errors import ParameterError
+from .._runtime.validate import check_array, check_finite
+
+__all__ = ["KINDS", "DISPLAY_UNITS", "COLUMN_KINDS", "STANDARD_GRAVITY", "Scale", "as_quantity", "egg_of_size",
+           "tippe_top_of_size", "units"]
+
+#: g used unless another is given (the value the issue and most experiments quote)
+STANDARD_GRAVITY = "9.81 m/s**2"
+
+#: kinds of quantity and their unit in phasekit: (pint dimensionality, factor as powers of (b, g, M))
+KINDS = {
+    "length": ("[length]", (1, 0, 0)),
+    "time": ("[time]", (0.5, -0.5, 0)),
+    "rate": ("1 / [time]", (-0.5, 0.5, 0)),
+    "speed": ("[length] / [time]", (0.5, 0.5, 0)),
+    "acceleration": ("[length] / [time] ** 2", (0, 1, 0)),
+    "mass": ("[mass]", (0, 0, 1)),
+    "force": ("[mass] * [length] / [time] ** 2", (0, 1, 1)),
+    "energy": ("[length] ** 2 * [mass] / [time] ** 2", (1, 1, 1)),
+    "inertia": ("[length] ** 2 * [mass]", (2, 0, 1)),
+    "angular_momentum": ("[length] ** 2 * [mass] / [time]", (1.5, 0.5, 1)),
+}
+#: the unit each kind is shown in (times of a spinning body are milliseconds, its size millimetres,
+#: its spin revolutions per second: the units experiments quote)
+DISPLAY_UNITS = {"length": "mm", "time": "ms", "rate": "rev/s", "speed": "m/s", "acceleration": "m/s**2", "mass": "g",
+                 "force": "N", "energy": "mJ", "inertia": "g*cm**2", "angular_momentum": "g*cm**2/s"}
+#: the kind of each column of a sampled table (Trajectory.sample); angles stay in radians and
+#: columns not listed (mode) are left as they are
+COLUMN_KINDS = {"t": "time", "U": "speed", "V": "speed", "slip": "speed", "Omega": "rate", "Lambda": "rate",
+                "n": "rate", "X": "length", "Y": "length", "X_P": "length", "Y_P": "length", "h": "length",
+                "gap": "length",
+                "R": "force", "energy": "energy", "jellett": "angular_momentum", "L_Z": "angular_momentum"}
+#: an example of each kind, for the messages
+EXAMPLES = {"length": "21.5 mm", "time": "12 ms", "rate": "30 rev/s", "speed": "0.5 m/s", "acceleration": "9.81 m/s**2",
+            "mass": "57 g", "force": "0.5 N", "energy": "1 mJ", "inertia": "2 g*cm**2", "angular_momentum": "1e-4 kg*m**2/s"}
+
+
+@functools.lru_cache(maxsize=1)
+def units():
+    """phasekit's pint UnitRegistry (built once, on first use)."""
+    import pint
+
+    ureg = pint.UnitRegistry()
+    ureg.define("rev = revolution")  # "30 rev/s", as people write it
+    return ureg
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+
+
+def as_quantity(value, name: str, default_unit: str | None = None):
+    """A pint Quantity from a Quantity, a string such as "21.5 mm", or a number in
+    ``default_unit``. ParameterError naming ``name`` if it does not parse, is not one finite
+    real number, or is in hertz."""
+    import pint
+
+    if not isinstance(name, str) or not name:
+        raise ParameterError("name", "must be the name of the quantity (a non-empty string)", name)
+    ureg = units()
+    if default_unit is not None:
+        try:
+            if not isinstance(default_unit, str):
+                raise TypeError
+            ureg.Unit(default_unit)
+        except Exception:
+            raise ParameterError("default_unit", "must be a unit such as 'mm' or 'rev/s' (or None)", default_unit) from None
+    if isinstance(value, pint.Quantity):
+        try:
+            q = value if value._REGISTRY is ureg else ureg.Quantity(value.magnitude, str(value.units))
+        except Exception:
+            raise ParameterError(name, "must be a quantity in units phasekit's pint registry knows", str(value)) from None
+    elif isinstance(value, str):
+        try:
+            q = ureg.Quantity(value)
+        except Exception:
+            raise ParameterError(name, "must be a quantity such as '21.5 mm' or '30 rev/s'", value) from None
+    elif _is_number(value) and default_unit is not None:
+        q = ureg.Quantity(float(value), default_unit)
+    else:
+        expected = "must be a pint Quantity or a string with units such as '21.5 mm'"
+        raise ParameterError(name, expected + (f" (or a number in {default_unit})" if default_unit else ""), value)
+    if not _is_number(q.magnitude):
+        raise ParameterError(name, "must be one real number with units, such as '21.5 mm'", str(q))
+    if not math.isfinite(float(q.magnitude)):
+        raise ParameterError(name, "must be finite", value if isinstance(value, str) else str(q))
+    if "hertz" in str(q.units) or "Hz" in str(q.units):
+        raise ParameterError(name, "must not be in hertz (pint reads 1 Hz as 1 rad/s): use rev/s, rpm or rad/s", value)
+    return q
+
+
+def _of_kind(value, name: str, kind: str, *, positive: bool = False):
+    """as_quantity, then a check of its dimension (that of ``kind``) and sign."""
+    q = as_quantity(value, name)
+    dim = KINDS[kind][0]
+    typed = value if isinstance(value, str) else str(q)  # the value as the user wrote it
+    if q.dimensionality != units().get_dimensionality(dim):
+        raise ParameterError(name, f"must be a {kind.replace('_', ' ')} (dimension {dim}, e.g. "
+                                   f"'{EXAMPLES[kind]}'), not of dimension {q.dimensionality}", typed)
+    if positive and not q.magnitude > 0:
+        raise ParameterError(name, "must be > 0", typed)
+    return q
+
+
+def _check_kind(kind, name: str = "kind") -> str:
+    if not isinstance(kind, str) or kind not in KINDS:
+        raise ParameterError(name, f"must be one of {', '.join(KINDS)}", kind)
+    return kind
+
+
+class Scale:
+    """The dimensional scales of one body: length b, gravity g and (optionally) mass M.
+
+    Parameters
+    ----------
+    b : quantity
+        The unit of length: the equatorial radius (spheroid, egg: half the maximum breadth)
+        or the ball's radius (tippe top). A pint Quantity or a string ("21.5 mm").
+    g : quantity
+        Gravity, default 9.81 m/s^2.
+    mass : quantity, optional
+        The body's mass, needed only for forces, energies and moments of inertia.
+
+    Attributes
+    ----------
+    time_unit : Quantity
+        sqrt(b/g), phasekit's unit of time.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> sc = pk.Scale('21.5 mm')
+    >>> str(sc.quantity(1.0, 'time').to('ms').round(2))
+    '46.81 millisecond'
+    >>> round(sc.dimensionless('50 rev/s'), 4)
+    14.7074
+    """
+
+    def __init__(self, b, g=STANDARD_GRAVITY, mass=None):
+        self.b = _of_kind(b, "b", "length", positive=True)
+        self.g = _of_kind(g, "g", "acceleration", positive=True)
+        self.mass = None if mass is None else _of_kind(mass, "mass", "mass", positive=True)
+        self.time_unit = ((self.b / self.g) ** 0.5).to(DISPLAY_UNITS["time"])
+
+    def unit(self, kind: str):
+        """phasekit's unit of ``kind`` (a key of :data:`KINDS`) as a Quantity."""
+        _check_kind(kind)
+        pb, pg, pm = KINDS[kind][1]
+        if pm and self.mass is None:
+            raise ParameterError("mass", f"is needed to express a {kind} (give Scale(..., mass=...))", show_value=False)
+        q = self.b**pb * self.g**pg
+        return q * self.mass**pm if pm else q
+
+    def quantity(self, value, kind: str):
+        """A phasekit (dimensionless) value, or an array of them, as a Quantity of ``kind``, in
+        SI base units."""
+        value = check_finite("value", value) if np.ndim(value) == 0 else check_array("value", value, allow_empty=True)
+        return (value * self.unit(kind)).to_base_units()
+
+    def to_real(self, value, kind: str, unit: str | None = None):
+        """phasekit values in real units: a number or array gives a Quantity in ``unit``
+        (default the kind's :data:`DISPLAY_UNITS` entry, e.g. ms); a pandas Series gives a
+        Series of the magnitudes (same name and index) with ``attrs["unit"]`` set.
+
+        >>> import phasekit as pk
+        >>> print(f"{pk.Scale('21.5 mm').to_real(2.0, 'time'):.5~P}")
+        93.63 ms
+        """
+        unit = self._display(_check_kind(kind), unit)
+        if hasattr(value, "to_numpy") and hasattr(value, "index") and not hasattr(value, "columns"):
+            out = value.copy()
+            out[:] = self.quantity(value.to_numpy(dtype=float), kind).to(unit).magnitude
+            out.attrs["unit"] = _unit_text(unit)
+            return out
+        return self.quantity(value, kind).to(unit)
+
+    def flight(self, flight) -> dict:
+        """A flight (:class:`phasekit.core.Flight`) in real units, as numbers: ``t_liftoff``,
+        ``t_touchdown``, ``duration`` and ``t_gap_max`` in ms, ``gap_max`` in mm (each as
+        :meth:`to_real` gives it; None where the flight has none: no touchdown, no located
+        maximum), and ``theta_liftoff``, the axis angle at lift-off in radians.
+
+        >>> import numpy as np, phasekit as pk
+        >>> egg, sc = pk.core.egg_of_size("57 mm", "43 mm")
+        >>> y0 = pk.gyroscopic_start(egg, np.pi / 2 - 0.01, omega0=sc.dimensionless("50 rev/s"))
+        >>> r = pk.simulate(pk.Model(egg, pk.Coulomb(0.1)), y0, 400.0, stop_at="touchdown")
+        >>> f = sc.flight(r.flights[0])
+        >>> round(f["duration"], 1), round(f["gap_max"] * 1e3, 1)  # ms, micrometres
+        (8.2, 16.4)
+        """
+        from .starts import to_paper
+
+        def real(x, kind):
+            return None if x is None else float(self.to_real(x, kind).magnitude)
+
+        done = flight.t_touchdown is not None
+        return {"t_liftoff": real(flight.t_liftoff, "time"), "t_touchdown": real(flight.t_touchdown, "time"),
+                "duration": real(flight.t_touchdown - flight.t_liftoff, "time") if done else None,
+                "gap_max": real(flight.gap_max, "length"), "t_gap_max": real(flight.t_gap_max, "time"),
+                "theta_liftoff": float(to_paper("vector", flight.x_liftoff[:8])[4])}
+
+    def table(self, df):
+        """A sampled table (:meth:`phasekit.core.Trajectory.sample`, a section, any DataFrame with
+        those column names) in real units: each column of :data:`COLUMN_KINDS` converted to its
+        display unit, angles in radians, other columns as they are; ``attrs["units"]`` maps
+        each column to its unit (forces, energies and angular momenta need the Scale's mass:
+        without it they stay in units of M g, M g b and M sqrt(g b^3))."""
+        if not (hasattr(df, "columns") and hasattr(df, "copy")):
+            raise ParameterError("df", "must be a pandas DataFrame such as traj.sample(times)", type(df).__name__)
+        out, units_of = df.copy(), {}
+        for col in df.columns:
+            kind = COLUMN_KINDS.get(col)
+            if kind is None or KINDS[kind][1][2] and self.mass is None:
+                units_of[col] = {"theta": "rad", "psi": "rad", "phi": "rad", "R": "M g", "energy": "M g b",
+                                 "jellett": "M sqrt(g b^3)", "L_Z": "M sqrt(g b^3)"}.get(col, "")
+                continue
+            out[col] = self.quantity(df[col].to_numpy(dtype=float), kind).to(DISPLAY_UNITS[kind]).magnitude
+            units_of[col] = _unit_text(DISPLAY_UNITS[kind])
+        out.attrs["units"] = units_of
+        return out
+
+    @staticmethod
+    def _display(kind: str, unit) -> str:
+        if unit is None:
+            return DISPLAY_UNITS[kind]
+        try:
+            want = units().get_dimensionality(KINDS[kind][0])
+            ok = isinstance(unit, str) and units().Unit(unit).dimensionality == want
+        except Exception:
+            ok = False
+        if not ok:
+            raise ParameterError("unit", f"must be a unit of {kind.replace('_', ' ')} such as "
+                                         f"'{DISPLAY_UNITS[kind]}'", unit)
+        return unit
+
+    def dimensionless(self, value, kind: str | None = None) -> float:
+        """A quantity (Quantity or string such as "30 rev/s", "57 mm", "12 ms") in phasekit's
+        units; its kind is read from its dimensionality (or checked against ``kind``)."""
+        return self._dimensionless(value, None if kind is None else _check_kind(kind), "value")
+
+    def _dimensionless(self, value, kind: str | None, name: str) -> float:
+        q = as_quantity(value, name)
+        dims = {k: units().get_dimensionality(d) for k, (d, _) in KINDS.items()}
+        found = [k for k, d in dims.items() if d == q.dimensionality]
+        typed = value if isinstance(value, str) else str(q)  # the value as the user wrote it
+        if not found:
+            raise ParameterError(name, f"must have the dimension of one of {', '.join(KINDS)} (it has {q.dimensionality})",
+                                 typed)
+        if kind is not None and kind not in found:
+            raise ParameterError(name, f"must be a {kind.replace('_', ' ')} (dimension {KINDS[kind][0]}, e.g. "
+                                       f"'{EXAMPLES[kind]}')", typed)
+        out = float((q / self.unit(found[0])).to("dimensionless").magnitude)
+        if not math.isfinite(out):
+            raise ParameterError(name, "is too large to express in phasekit's units", str(q))
+        return out
+
+    def __repr__(self) -> str:
+        m = f", mass={self.mass:~P}" if self.mass is not None else ""
+        return f"Scale(b={self.b:~P}, g={self.g:~P}{m}; time unit {self.time_unit:.4g~P})"
+
+
+def _unit_text(unit: str) -> str:
+    """A unit as people write it: 'ms', 'mm', 'rev/s', 'cm²·g'."""
+    return f"{units().Unit(unit):~P}"
+
+
+def egg_of_size(length, breadth, *, w: float = 0.0, mass=None, g=STANDARD_GRAVITY):
+    """An :class:`~phasekit.bodies.egg.Egg` of the given length and maximum breadth (uniform density)
+    and its :class:`Scale` (b = breadth / 2). ``w`` is the egg's asymmetry (w/L).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> egg, sc = pk.core.egg_of_size('57 mm', '43 mm', w=0.05)
+    >>> egg
+    Egg(a=1.32558, w=0.05)
+    >>> str(sc.b)
+    '21.5 millimeter'
+    """
+    from ..bodies.egg import Egg
+
+    L, B = _of_kind(length, "length", "length", positive=True), _of_kind(breadth, "breadth", "length", positive=True)
+    a = float((L / B).to("dimensionless").magnitude)
+    try:
+        egg = Egg(a, w)
+    except ParameterError as err:
+        if err.param == "a":
+            raise ParameterError("length", f"divided by `breadth` (the aspect ratio a) {err.expected}", a) from None
+        raise
+    return egg, Scale(B / 2, g=g, mass=mass)
+
+
+def tippe_top_of_size(radius, offset, *, A=None, C=None, mass=None, g=STANDARD_GRAVITY):
+    """An :class:`~phasekit.bodies.body.EccentricSphere` of the given ball radius with its centre of
+    mass ``offset`` (a length) below the centre, and its :class:`Scale` (b = radius). ``A``
+    and ``C`` may be numbers (units M b^2) or quantities of a moment of inertia (need ``mass``).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> top, sc = pk.core.tippe_top_of_size('15 mm', '4.5 mm')
+    >>> top
+    EccentricSphere(offset=0.3, A=0.31, C=0.4)
+    >>> str(sc.b)
+    '15 millimeter'
+    """
+    from ..bodies.body import EccentricSphere
+
+    _of_kind(radius, "radius", "length", positive=True)
+    sc = Scale(radius, g=g, mass=mass)
+    alpha = sc._dimensionless(offset, "length", "offset")
+    moments = []
+    for name, m in (("A", A), ("C", C)):
+        if isinstance(m, (bool, np.bool_)):
+            raise ParameterError(name, "must be a number (units M b^2) or a moment of inertia such as '2 g*cm**2'", m)
+        moments.append(None if m is None else (float(m) if _is_number(m) else sc._dimensionless(m, "inertia", name)))
+    try:
+        body = EccentricSphere(alpha, A=moments[0], C=moments[1])
+    except ParameterError as err:
+        if err.param == "offset":
+            raise ParameterError("offset", f"divided by `radius` {err.expected}", alpha) from None
+        raise
+    return body, sc

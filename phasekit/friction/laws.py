@@ -1,0 +1,199 @@
+"""Friction laws at the contact point P.
+
+Every law is written so that, while the body slides, the contact force
+Fc = (F_1, F_2, R) (horizontal friction, then normal reaction) is *affine in R*:
+
+    Fc = Fc0(u) + R * d(u),
+
+with u the slip velocity of P. The normal reaction then follows from one linear
+equation (the contact constraint), which for Coulomb friction is the paper's (6.1).
+
+Laws
+----
+Coulomb(mu)
+    F = -mu R u/|u| while sliding (2.6). The exact treatment of zero slip is a separate
+    ROLLING mode (no-slip constraint) entered when the slip vanishes with the required
+    friction <= mu R and left when it exceeds mu R: see :mod:`phasekit.core.system`.
+RegularisedCoulomb(mu, eps)
+    F = -mu R u / sqrt(|u|^2 + eps^2): smooth, one vector field, but stiff once the slip is
+    below ~eps (its relaxation rate is ~mu/eps). eps is a velocity in units sqrt(g b).
+Viscous(mu)
+    F = -mu u (part I's "wet" friction), independent of R and smooth everywhere.
+
+A new law subclasses :class:`FrictionLaw` and implements :meth:`FrictionLaw.sliding_force`;
+it then works everywhere a built-in law does (simulation, fixed points, thresholds).
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import casadi as ca
+import numpy as np
+
+from .._runtime.errors import ParameterError
+from .._runtime.validate import check_nonnegative, check_positive
+
+__all__ = ["FrictionLaw", "Coulomb", "RegularisedCoulomb", "Viscous", "friction_law", "MU_MAX"]
+
+#: friction coefficients above this are not friction but numerical trouble (and overflow R mu)
+MU_MAX = 1e3
+
+
+class FrictionLaw:
+    """Base class of friction laws.
+
+    Parameters
+    ----------
+    mu : float in [0, 1e3]
+        Friction coefficient (Coulomb laws) or drag coefficient (viscous).
+
+    Required of a subclass
+    ----------------------
+    ``sliding_force(u, mu, eps)`` (static) -> (Fc0, d)
+        CasADi 3-vectors with Fc = Fc0 + R d while sliding with slip ``u`` (2-vector).
+    ``name`` (class attribute)
+        Short name used in reports and JSON.
+    ``has_rolling_mode`` (class attribute, default False)
+        True when zero slip is a separate mode (exact Coulomb): the law must then be of the
+        form d = (-mu u/|u|, 1) so that the static friction cone is mu R.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> law = pk.Coulomb(0.1)
+    >>> isinstance(law, pk.friction.FrictionLaw), law.can_stick
+    (True, True)
+    """
+
+    has_rolling_mode = False
+    #: True when the law's force is proportional to R (Coulomb-like): zero slip can stick
+    can_stick = False
+    name = "friction"
+
+    def __init__(self, mu: float):
+        self.mu = check_nonnegative("mu", mu, upper=MU_MAX)
+
+    @property
+    def eps(self) -> float:
+        """Slip-speed regularisation (0 for laws without one)."""
+        return 0.0
+
+    @property
+    def params(self) -> np.ndarray:
+        """(mu, eps): the law's part of a model's parameter vector."""
+        return np.array([self.mu, self.eps], dtype=float)
+
+    @staticmethod
+    def sliding_force(u, mu, eps):
+        """Return (Fc0, d), each a CasADi 3-vector, with Fc = Fc0 + R d while sliding."""
+        raise NotImplementedError("a FrictionLaw subclass must define sliding_force(u, mu, eps)")
+
+    def force(self, u: np.ndarray, R: float) -> np.ndarray:
+        """Numeric horizontal friction force for slip ``u`` (2,) and normal reaction ``R``."""
+        us = ca.SX.sym("u", 2)
+        f0, d = self.sliding_force(us, self.mu, self.eps)
+        f = ca.Function("F", [us], [(ca.SX(f0) + R * ca.SX(d))[:2]])
+        return np.asarray(f(np.asarray(u, float))).ravel()
+
+    def describe(self) -> str:
+        return f"{self.name}(mu={self.mu:g})"
+
+    def to_dict(self) -> dict:
+        return {"law": self.name, "mu": self.mu, "slip_eps": self.eps if self.eps > 0 else None}
+
+    def __eq__(self, other) -> bool:
+        return type(other) is type(self) and np.array_equal(other.params, self.params)
+
+    def __hash__(self) -> int:
+        return hash((type(self), tuple(self.params)))
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}(mu={self.mu!r})"
+
+
+class Coulomb(FrictionLaw):
+    """Exact Coulomb friction: sliding with F = -mu R u/|u|, rolling when the slip vanishes.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.Coulomb(0.1).describe()
+    'coulomb(mu=0.1)'
+    """
+
+    has_rolling_mode = True
+    can_stick = True
+    name = "coulomb"
+
+    @staticmethod
+    def sliding_force(u, mu, eps):
+        s = ca.sqrt(u[0] * u[0] + u[1] * u[1])
+        return ca.SX.zeros(3), ca.vertcat(-mu * u[0] / s, -mu * u[1] / s, 1)
+
+
+class RegularisedCoulomb(FrictionLaw):
+    """Coulomb friction with the slip speed regularised as sqrt(|u|^2 + eps^2).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.RegularisedCoulomb(0.1, 1e-4).describe()
+    'coulomb-regularised(mu=0.1, eps=0.0001)'
+    """
+
+    can_stick = True
+    name = "coulomb-regularised"
+
+    def __init__(self, mu: float, eps: float = 1e-8):
+        super().__init__(mu)
+        self._eps = check_positive("eps", eps, upper=1.0)
+        if self._eps < 1e-14:
+            raise ParameterError("eps", "must lie in [1e-14, 1] (below it the slip relaxation rate mu/eps exceeds "
+                                        "what a double-precision integrator can follow)", eps)
+
+    @property
+    def eps(self) -> float:
+        return self._eps
+
+    @staticmethod
+    def sliding_force(u, mu, eps):
+        s = ca.sqrt(u[0] * u[0] + u[1] * u[1] + eps * eps)
+        return ca.SX.zeros(3), ca.vertcat(-mu * u[0] / s, -mu * u[1] / s, 1)
+
+    def describe(self) -> str:
+        return f"{self.name}(mu={self.mu:g}, eps={self.eps:g})"
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}(mu={self.mu!r}, eps={self.eps!r})"
+
+
+class Viscous(FrictionLaw):
+    """Viscous ("wet") friction F = -mu u, independent of the normal reaction.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.Viscous(0.1).describe()
+    'viscous(mu=0.1)'
+    """
+
+    name = "viscous"
+
+    @staticmethod
+    def sliding_force(u, mu, eps):
+        return ca.vertcat(-mu * u[0], -mu * u[1], 0), ca.DM([0, 0, 1])
+
+
+def friction_law(name: str, mu: float, eps: float | None = None) -> FrictionLaw:
+    """Build a law from its CLI name: ``coulomb`` (exact stick-slip, or regularised when
+    ``eps`` is given) or ``viscous`` (smooth at zero slip: an ``eps`` is checked, then ignored
+    with a warning)."""
+    if name == "coulomb":
+        return Coulomb(mu) if eps is None else RegularisedCoulomb(mu, eps)
+    if name == "viscous":
+        if eps is not None:
+            check_positive("eps", eps, upper=1.0)
+            warnings.warn("`eps` has no effect with viscous friction (it regularises Coulomb friction only)", stacklevel=2)
+        return Viscous(mu)
+    raise ParameterError("friction", "must be one of coulomb, viscous", name)

@@ -1,0 +1,34 @@
+"""Steady states (``phasekit.steady``): fixed points with exact linearisations and eigenvalue error
+bounds, the steady precessions at the poles, the equator and in between, unstable manifolds,
+steady rolling motions, and the whole steady-state structure of a body (parts III and IV).
+
+Examples
+--------
+>>> import phasekit as pk
+>>> [float(v) for v in pk.steady.horizontal_state(10.0)[:4]]
+[0.0, 0.0, 10.0, 0.0]
+"""
+
+from .fixedpoints import (
+    FixedPoint,
+    find_fixed_point,
+    fixed_points,
+    horizontal_like_angle,
+    horizontal_state,
+    intermediate_state,
+    inverted_state,
+    linearise,
+    precession_angles,
+    side_equilibrium,
+    vertical_state,
+)
+from .manifolds import unstable_manifold_start, unstable_seeds
+from .structure import RollingMotion, SteadyStructure, bifurcation_between, rolling_motion, steady_structure
+
+__all__ = [
+    "fixed_points", "find_fixed_point", "FixedPoint", "linearise",
+    "horizontal_state", "vertical_state", "inverted_state", "intermediate_state", "precession_angles",
+    "side_equilibrium", "horizontal_like_angle",
+    "unstable_manifold_start", "unstable_seeds",
+    "steady_structure", "SteadyStructure", "bifurcation_between", "rolling_motion", "RollingMotion",
+]

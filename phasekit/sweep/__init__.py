@@ -1,0 +1,36 @@
+"""Sweeps (``phasekit.sweep``): many independent runs, resumable and on many cores. Tasks and
+their dependencies (:class:`TaskSpec`, :func:`run_tasks`), kill-safe result stores
+(:class:`ResultStore`: typed rows appended and fsynced, a torn row dropped on resume), Dask
+clients and the model shipped once per worker (:func:`make_client`, :class:`ModelPack`),
+ensembles of starts (:func:`ensemble`, :func:`rerun`) and the scaffold of a study script
+(:class:`Study`, :func:`run_study`). What single studies share beyond this lives in
+``phasekit.studies``, which is not API.
+
+Examples
+--------
+>>> import phasekit as pk
+>>> pk.sweep.TaskSpec("k", lambda prev: 1).key
+'k'
+"""
+
+from .ensemble import ensemble, rerun
+from .study import Study, run_study, write_csv, write_json
+from .tasks import (
+    ModelPack,
+    PendingRun,
+    ResultStore,
+    TaskSpec,
+    chunked,
+    client_evaluator,
+    each,
+    make_client,
+    provenance,
+    run_pending,
+    run_tasks,
+    stored_rows,
+)
+
+__all__ = [
+    "TaskSpec", "run_tasks", "run_pending", "PendingRun", "ResultStore", "stored_rows", "each", "chunked", "ModelPack",
+    "make_client", "client_evaluator", "provenance", "ensemble", "rerun", "Study", "run_study", "write_csv", "write_json",
+]

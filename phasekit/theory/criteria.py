@@ -1,0 +1,214 @@
+"""Closed-form stability criteria of the spins about the vertical and of the horizontal
+precession (weak sliding friction), for the spheroid and for any body at its poles.
+
+Each is derived where it is defined and checked against the exact linearisations in the tests
+(tests/test_fixedpoints.py, tests/test_fixedpoints_general.py)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._runtime.validate import check_choice, check_finite, check_positive
+
+__all__ = [
+    "vertical_stability_threshold",
+    "vertical_is_stable",
+    "horizontal_stability_threshold",
+    "horizontal_is_unstable",
+    "PoleCriterion",
+    "pole_stability_threshold",
+    "equator_stability_threshold",
+]
+
+
+def _moments(A, C, a) -> tuple[float, float, float]:
+    return check_positive("A", A), check_positive("C", C), check_positive("a", a)
+
+
+def vertical_stability_threshold(A: float, C: float, a: float) -> float | None:
+    """Spin n0 at which the vertical spin changes stability under friction (any mu > 0).
+
+    Small tilts ~exp(i sigma t) of a spin n about the vertical obey, without friction,
+    A sigma^2 - C n sigma + (a - 1/a) = 0 (stable iff C^2 n^2 > 4 A (a - 1/a), the sleeping
+    top). The contact point does not slip for sigma = n / a^2; friction damps or drives a
+    mode according to the side of that frequency it lies on, so stability changes where a
+    frictionless mode crosses it: (a^2 C - A) n^2 = a^3 (a^2 - 1). For the uniform spheroid
+    this is n0 = sqrt(5 a^3). Returns None when there is no crossing.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> b = pk.Spheroid(0.6)
+    >>> round(pk.theory.vertical_stability_threshold(b.A, b.C, b.a), 6)
+    1.03923
+    """
+    A, C, a = _moments(A, C, a)
+    D = a * a * C - A
+    if D == 0 or (a * a - 1) / D <= 0:
+        return None
+    return float(np.sqrt(a**3 * (a * a - 1) / D))
+
+
+def vertical_is_stable(A: float, C: float, a: float, n0: float) -> bool:
+    """Linear stability of the vertical spin with friction: (a^2 C - A) n0^2 > a^3 (a^2 - 1).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> b = pk.Spheroid(0.6)
+    >>> pk.theory.vertical_is_stable(b.A, b.C, b.a, 0.5), pk.theory.vertical_is_stable(b.A, b.C, b.a, 10.0)
+    (True, False)
+    """
+    A, C, a = _moments(A, C, a)
+    n0 = check_finite("n0", n0)
+    return (a * a * C - A) * n0 * n0 > a**3 * (a * a - 1)
+
+
+def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None:
+    """Precession rate at which the horizontal steady precession changes stability under weak
+    friction: (a^2 C - A) Omega0^2 = a^2 - 1 (Omega0 = sqrt(5) for every uniform spheroid).
+    The zero-slip crossing of the frictionless tilt oscillation, as at the vertical; found from
+    the exact linearisations (stability_map study) and tested. It holds for viscous friction up to
+    a coefficient of about 0.8 (a = 1.5, measured); above, a second mode goes unstable first and
+    the threshold falls (mu = 1: 1.9652, mu = 5: 1.4710). :func:`equator_stability_threshold` is
+    the same criterion for any flip-symmetric body. None when there is no crossing.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> b = pk.Spheroid(1.5)
+    >>> round(pk.theory.horizontal_stability_threshold(b.A, b.C, b.a), 6)
+    2.236068
+    """
+    A, C, a = _moments(A, C, a)
+    D = a * a * C - A
+    if D == 0 or (a * a - 1) / D <= 0:
+        return None
+    return float(np.sqrt((a * a - 1) / D))
+
+
+def horizontal_is_unstable(A: float, C: float, a: float, omega0: float) -> bool:
+    """The horizontal steady precession has a (real, rising) unstable mode iff
+    (a^2 C - A) Omega0^2 > a^2 - 1 (weak friction; see horizontal_stability_threshold).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> b = pk.Spheroid(1.5)
+    >>> pk.theory.horizontal_is_unstable(b.A, b.C, b.a, 2.0), pk.theory.horizontal_is_unstable(b.A, b.C, b.a, 10.0)
+    (False, True)
+    """
+    A, C, a = _moments(A, C, a)
+    omega0 = check_finite("omega0", omega0)
+    return (a * a * C - A) * omega0 * omega0 > a * a - 1
+
+
+# -- any body -------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class PoleCriterion:
+    """Stability of the spin about the vertical at a pole (theta = 0 "upright" or pi "inverted")
+    under sliding friction, from the local geometry: h0 = h, h2 = h_thetatheta at the pole and the
+    radius of curvature rho = h0 + h2 of the surface at the contact point.
+
+    The spin n0 state is stable iff n0^2 rho (A rho - C h0) < h2 h0^2; ``threshold`` is the
+    abs(n0) where that changes (None: never), ``stable_above`` whether the fast side is stable.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> crit = pk.theory.pole_stability_threshold(pk.Spheroid(0.6))
+    >>> isinstance(crit, pk.theory.PoleCriterion), crit.pole
+    (True, 'upright')
+    """
+
+    pole: str
+    h0: float
+    h2: float
+    rho: float
+    A: float
+    C: float
+
+    @property
+    def threshold(self) -> float | None:
+        den = self.rho * (self.A * self.rho - self.C * self.h0)
+        num = self.h2 * self.h0**2
+        if den == 0.0 or num / den <= 0.0:
+            return None
+        return float(np.sqrt(num / den))
+
+    @property
+    def stable_above(self) -> bool:
+        return self.A * self.rho - self.C * self.h0 < 0
+
+    def stable(self, n0: float) -> bool:
+        n0 = check_finite("n0", n0)
+        return bool(n0 * n0 * self.rho * (self.A * self.rho - self.C * self.h0) < self.h2 * self.h0**2)
+
+    def to_dict(self, n0: float | None = None) -> dict:
+        d = {"criterion": "stable under sliding friction iff n0^2 rho (A rho - C h0) < h2 h0^2",
+             "h0": self.h0, "h2": self.h2, "rho": self.rho, "critical_spin": self.threshold,
+             "stable_above_critical_spin": self.stable_above}
+        if n0 is not None:
+            d["stable_under_sliding_friction"] = self.stable(n0)
+        return d
+
+
+def pole_stability_threshold(body, pole: str = "upright") -> PoleCriterion:
+    """The closed-form stability criterion of the spin about the vertical at a pole, any body.
+
+    Derived here (the argument of :func:`vertical_stability_threshold`, for a general support
+    function). Near the pole h = h0 + h2 delta^2 / 2, so the contact point lies h2 xi from the
+    axis through G (xi the horizontal part of k) and the frictionless small tilts ~exp(i sigma t)
+    of a spin n obey A sigma^2 - C n sigma - h2 = 0. The slip of such a mode is proportional to
+    h0 (n - sigma) + n h2, zero for sigma = n rho / h0. A linear mode of the dissipative system
+    can be neutral (purely imaginary) only if it does no work, i.e. does not slip, so stability
+    changes exactly where a frictionless mode has sigma = n rho / h0:
+
+        n^2 rho (A rho - C h0) = h2 h0^2,
+
+    for every sliding law that dissipates whenever it slips (viscous, regularised Coulomb) and
+    every friction coefficient. Spheroid: h0 = a, h2 = (1 - a^2)/a, rho = 1/a gives
+    (a^2 C - A) n^2 = a^3 (a^2 - 1). Eccentric sphere: rho = 1, h0 = 1 -+ alpha, h2 = +-alpha give
+    phasekit.theory.tippetop's upright_unstable_spin and inverted_stable_spin. Under exact Coulomb
+    friction the zero-slip state rolls and the linearisation is neutral (phasekit.steady.fixedpoints).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> crit = pk.theory.pole_stability_threshold(pk.EccentricSphere(0.3, A=0.38, C=0.4))
+    >>> crit.pole, round(crit.threshold, 6), crit.stable(20.0)
+    ('upright', 1.212436, False)
+    """
+    check_choice("pole", pole, ("upright", "inverted"))
+    h0, _, h2 = body.h(0.0 if pole == "upright" else np.pi)
+    return PoleCriterion(pole, float(h0), float(h2), float(h0 + h2), float(body.A), float(body.C))
+
+
+def equator_stability_threshold(body) -> float | None:
+    """Omega0 at which the horizontal precession of a body with h_theta(pi/2) = 0 changes
+    stability, in the weak-friction regime: Omega0^2 (C rho_m / h_e - A) = h2 with h_e = h(pi/2),
+    h2 = h_thetatheta(pi/2), rho_m = h_e + h2 (spheroid: (a^2 C - A) Omega0^2 = a^2 - 1).
+
+    Derived here from the linearisation about the horizontal state: stability changes where the
+    frictionless tilt oscillation has zero slip. Measured (tests): exact for viscous friction
+    below a body-dependent coefficient (a = 1.5 uniform: the threshold is sqrt(5) for every
+    mu <= 0.8); above it a second mode goes unstable first and the threshold falls (mu = 1:
+    1.9652, mu = 5: 1.4710). None when the body is not balanced at pi/2 or there is no crossing.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.equator_stability_threshold(pk.Spheroid(1.5)), 6)
+    2.236068
+    """
+    he, h1, h2 = body.h(np.pi / 2)
+    if abs(h1) > 1e-14:
+        return None
+    den = body.C * (he + h2) / he - body.A
+    if den == 0.0 or h2 / den <= 0.0:
+        return None
+    return float(np.sqrt(h2 / den))

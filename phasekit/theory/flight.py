@@ -1,0 +1,172 @@
+"""Free flight after lift-off (section 4): the exact solution, and flights on their own.
+
+The numerical flight is the FLIGHT mode of the hybrid system (:mod:`phasekit.core.system`):
+the rigid-body equations of the vector chart with no contact force, plus the gap
+Delta (4.1) and its rate as states. At lift-off R = 0 and the friction (proportional to R)
+vanishes, so no impulse acts: positions and velocities carry over, and so do accelerations.
+
+Exact solution (4.6)-(4.14): Omega - Psi cot(theta) = C1, Psi^2 + thetadot^2 = C2^2,
+Omega cos(theta) - Psi / sin(theta) = n0, and cos(theta(t)) of (4.12); the gap (4.1) follows.
+Near lift-off, in the gyroscopic limit, Delta ~ Omega*^2 t^3 (4 W* - t) / 24 (4.22), with
+maximum 9/8 Omega*^2 W*^4 at t = 3 W* (4.23).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._runtime.errors import ParameterError
+from .._runtime.validate import check_finite, check_vector, finite_result
+from ..bodies.body import Body
+
+__all__ = [
+    "FlightConstants",
+    "flight_constants",
+    "cos_theta_exact",
+    "gap_exact",
+    "gap_series",
+    "gap_max_series",
+    "flight_invariants",
+    "fly",
+]
+
+
+@dataclass(frozen=True)
+class FlightConstants:
+    """Constants of the exact free motion (4.6)-(4.14), from the state at lift-off.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> k = pk.theory.flight_constants(body, pk.gyroscopic_start(body, 1.0, omega0=10.0), 0.01)
+    >>> isinstance(k, pk.theory.FlightConstants), round(k.h, 6)
+    (True, 1.168293)
+    """
+
+    theta: float
+    thetadot: float
+    Omega: float
+    Psi: float
+    n: float
+    W: float
+    h: float
+    C1: float
+    C2: float
+    C1p: float
+    C3: float
+    C4: float
+
+
+@finite_result
+def flight_constants(body: Body, euler_state, W: float) -> FlightConstants:
+    """(4.5)-(4.14) from (U, V, Omega, Lambda, theta, n) at lift-off and the vertical velocity W*.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 200.0, stop_at='touchdown')
+    >>> fl = traj.flights[0]
+    >>> k = pk.theory.flight_constants(body, traj.x_jump, fl.W_star)
+    >>> isinstance(k, pk.theory.FlightConstants), round(k.W, 6)
+    (True, 0.006382)
+    """
+    _, _, Om, Lam, th, n = (float(v) for v in check_vector("euler_state", euler_state, 6))
+    W = check_finite("W", W)
+    if abs(np.sin(th)) < 1e-12:
+        raise ParameterError("euler_state", "has theta at a pole, where (4.5)-(4.14) divide by sin(theta)", th)
+    A, C = body.A, body.C
+    s, c = np.sin(th), np.cos(th)
+    Psi = (A * Om * c - C * n) * s / A  # (3.1)
+    C1 = Om - Psi * c / s
+    C2 = np.sqrt(Psi**2 + Lam**2)
+    C1p = Psi / s - Om * c
+    C3 = np.sqrt(C1**2 + C2**2)
+    C4 = C1 * C1p / C3**2
+    return FlightConstants(th, Lam, Om, Psi, n, W, body.h(th)[0], C1, C2, C1p, C3, C4)
+
+
+@finite_result
+def cos_theta_exact(k: FlightConstants, t):
+    """(4.12): cos(theta(t)) of the free motion, t measured from lift-off."""
+    t = np.asarray(t, dtype=float)
+    return -k.C4 - k.thetadot * np.sin(k.theta) * np.sin(k.C3 * t) / k.C3 + (np.cos(k.theta) + k.C4) * np.cos(k.C3 * t)
+
+
+@finite_result
+def gap_exact(body: Body, k: FlightConstants, t):
+    """(4.1) with (4.12): Delta(t) = h* + W* t - t^2/2 - h(theta(t)).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> k = pk.theory.flight_constants(body, pk.gyroscopic_start(body, 1.0, omega0=10.0), 0.01)
+    >>> pk.theory.gap_exact(body, k, [0.0, 1e-3]).round(12)
+    array([0.000000e+00, 9.317979e-06])
+    """
+    th = np.arccos(np.clip(cos_theta_exact(k, t), -1.0, 1.0))
+    return k.h + k.W * np.asarray(t) - 0.5 * np.asarray(t) ** 2 - body.h(th)[0]
+
+
+@finite_result
+def gap_series(Omega: float, W: float, t):
+    """(4.22): Delta ~ Omega*^2 t^3 (4 W* - t) / 24.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.gap_series(9.0, 0.006, [0.0, 0.01]).round(12)
+    array([0.000e+00, 4.725e-08])
+    """
+    t = np.asarray(t, dtype=float)
+    return Omega**2 * t**3 * (4 * W - t) / 24.0
+
+
+@finite_result
+def gap_max_series(Omega: float, W: float) -> tuple[float, float]:
+    """(4.23): (Delta_max, t at the maximum) = (9/8 Omega*^2 W*^4, 3 W*).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [f'{v:.4e}' for v in pk.theory.gap_max_series(9.0, 0.006)]
+    ['1.1810e-07', '1.8000e-02']
+    """
+    return 9.0 / 8.0 * Omega**2 * W**4, 3.0 * W
+
+
+@finite_result
+def flight_invariants(body: Body, euler_states) -> np.ndarray:
+    """(4.6)-(4.8) along a flight: columns C1 = Omega - Psi cot, C2^2 = Psi^2 + thetadot^2,
+    n0 = Omega cos - Psi / sin (all constant in free flight)."""
+    Y = np.atleast_2d(np.asarray(euler_states, dtype=float))
+    Om, Lam, th = Y[:, 2], Y[:, 3], Y[:, 4]
+    n = Y[:, 5]
+    s, c = np.sin(th), np.cos(th)
+    Psi = (body.A * Om * c - body.C * n) * s / body.A
+    return np.column_stack([Om - Psi * c / s, Psi**2 + Lam**2, Om * c - Psi / s])
+
+
+def fly(model, x, t0: float, t_end: float, **options):
+    """The free flight from ``x`` (a contact state at lift-off, or a flight state) until
+    touchdown or ``t_end``: :func:`phasekit.simulate` started in the FLIGHT mode with
+    ``stop_at="touchdown"``. Returns the Trajectory; ``traj.flights[0]`` is the summary,
+    and ``traj.segments[0].states(ts)`` the flight states (with the gap) at times ts.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> m = pk.Model(body, pk.Coulomb(0.1))
+    >>> traj = pk.simulate(m, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 200.0)
+    >>> fl = pk.theory.fly(m, traj.x_jump, traj.t_jump, traj.t_jump + 0.05)
+    >>> fl.status.value, [e.name for e in fl.events]
+    ('touchdown', ['touchdown'])
+    """
+    from ..core.simulate import simulate
+
+    return simulate(model, x, t_end, t0=t0, mode="flight", stop_at="touchdown", **options)

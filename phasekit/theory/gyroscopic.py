@@ -1,0 +1,198 @@
+"""The gyroscopic mean solution (section 3b): slow rise on the time scale T = mu t.
+
+Under Coulomb friction the mean friction is F_y = -mu Vhat_P, with Vhat_P the sign of the
+mean slip. At leading order in 1/Omega the mean slip of the contact point is, for any
+flip-symmetric body (n from the balance A Omega cos = C n),
+
+    Vbar_P = Omega [h_theta + (A - C) cos(theta) x_P / C],          x_P = h sin + h_theta cos,
+
+which for the spheroid is (3.10), (A - a^2 C)/(C h) Omega sin cos. Then (3.16):
+
+    dOmega/dT = -h_theta Vhat_P / A,        Omega dtheta/dT = h Vhat_P / A,
+
+whose first integral is the Jellett constant J = A Omega h (3.17). For the uniform (or any)
+spheroid the solution is (3.18)-(3.19): tan(theta) = -a tan(q (T - T0)),
+q = a (a - 1) / (J |a - 1|), a tan(q T0) = tan(theta0).
+
+Jellett constant: J = A Omega h here (3.17). The paper quotes J = 4 and 4.2 in Fig. 3
+(oblate a = 2/3, n0 = 10, 10.5); those equal C n0, not A Omega h = C n0 a (= 2.67, 2.8):
+see docs/physics.md (Jellett constant). The prolate values of Fig. 4 (6.63, 6.83) do equal A Omega0 h.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._runtime.errors import ConvergenceError, ParameterError
+from .._runtime.validate import check_array, check_finite, check_instance, check_positive, check_range, finite_result
+from ..bodies.body import Body, Spheroid
+from ..core.starts import GYRO_RATE_MAX, balanced_state
+
+__all__ = ["mean_slip", "jellett_constant", "gyroscopic_numeric", "gyroscopic_closed", "gyroscopic_solution", "rise_time"]
+
+
+#: tolerances scipy's DOP853 accepts (it raises tighter ones to 100 x machine epsilon)
+RTOL_RANGE = (1e-14, 1e-3)
+
+
+def _body(body) -> Body:
+    return check_instance("body", body, Body, "Spheroid(1.5)")
+
+
+@finite_result
+def mean_slip(body: Body, theta, omega):
+    """Leading-order mean slip velocity Vbar_P of the gyroscopic state (generalised (3.10))."""
+    return _mean_slip(_body(body), check_array("theta", theta), check_array("omega", omega))
+
+
+def _mean_slip(body: Body, theta, omega):
+    h, ht, _ = body.h(theta)
+    c, s = np.cos(theta), np.sin(theta)
+    xP = h * s + ht * c
+    return omega * (ht + (body.A - body.C) * c * xP / body.C)
+
+
+@finite_result
+def jellett_constant(body: Body, theta, omega):
+    """J = A Omega h (3.17).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(float(pk.theory.jellett_constant(pk.Spheroid(1.5), 1.5607963, 10.5)), 6)
+    6.825427
+    """
+    body, theta, omega = _body(body), check_array("theta", theta), check_array("omega", omega)
+    return body.A * omega * body.h(theta)[0]
+
+
+def _rhs(T, y, body):
+    om, th = y
+    h, ht, _ = body.h(th)
+    v = np.sign(_mean_slip(body, th, om))
+    return [-ht * v / body.A, h * v / (body.A * om)]
+
+
+@finite_result
+def gyroscopic_numeric(body: Body, theta0: float, omega0: float, T, *, rtol: float = 1e-13):
+    """Integrate (3.16) numerically (any body): returns (theta(T), Omega(T)) at the slow
+    times T (>= 0, any order), with ``rtol`` in [1e-14, 1e-3].
+
+    Stops where the mean slip vanishes (theta reaches 0 or pi/2, the end of the rise) and
+    holds the state there.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> theta, omega = pk.theory.gyroscopic_numeric(pk.Spheroid(1.5), 1.5607963, 10.5, [0.0, 5.0])
+    >>> theta.round(6)
+    array([1.560796, 0.63546 ])
+    """
+    from scipy.integrate import solve_ivp
+
+    body = _body(body)
+    theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
+    omega0 = check_finite("omega0", omega0, nonzero=True)
+    T = np.atleast_1d(check_array("T", T, nonnegative=True))
+    rtol = check_range("rtol", rtol, *RTOL_RANGE, closed="lr")
+
+    def end(T_, y, body_):
+        return _mean_slip(body_, y[1], y[0])
+
+    end.terminal = True
+    sol = solve_ivp(_rhs, (0.0, float(T.max())), [omega0, theta0], args=(body,), method="DOP853",
+                    rtol=rtol, atol=1e-14, dense_output=True, events=end)
+    if sol.status < 0 or sol.sol is None:
+        raise ConvergenceError(f"the mean equations (3.16) could not be integrated: {sol.message}")
+    th, om = np.empty_like(T), np.empty_like(T)
+    for k, t in enumerate(T):
+        tt = min(t, sol.t[-1])
+        om[k], th[k] = sol.sol(tt)
+    return th, om
+
+
+@finite_result
+def gyroscopic_closed(a: float, J: float, theta0: float, T, *, A: float | None = None):
+    """Closed form (3.18)-(3.19) for a spheroid of aspect ratio a: returns (theta(T), Omega(T)).
+
+    theta0 may lie in (0, pi/2) or (pi/2, pi) (flip symmetry); after the rise ends
+    (q (T - T0) reaches 0 or -pi/2) the state is held at the end of the rise.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> theta, omega = pk.theory.gyroscopic_closed(1.5, 6.83, 1.5607963, [0.0, 5.0])
+    >>> theta.round(6), omega.round(6)
+    (array([1.560796, 0.636347]), array([10.507036,  7.813401]))
+    """
+    a = check_positive("a", a)
+    if a == 1.0:
+        raise ParameterError("a", "must differ from 1: a sphere does not rise (h_theta = 0; use gyroscopic_numeric)", a)
+    J = check_finite("J", J, nonzero=True)
+    theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
+    T = check_array("T", T)
+    flip = theta0 > np.pi / 2
+    th0 = np.pi - theta0 if flip else theta0
+    q = a * (a - 1) / (J * abs(a - 1))
+    T0 = np.arctan(np.tan(th0) / a) / q
+    arg = q * (T - T0)
+    # the rise runs while q (T - T0) is in (-pi/2, 0): theta -> 0 (prolate) or pi/2 (oblate)
+    arg = np.clip(arg, -np.pi / 2 + 1e-300, 0.0)
+    th = np.arctan(-a * np.tan(arg))
+    th = np.where(arg <= -np.pi / 2, np.pi / 2, th)
+    if flip:
+        th = np.pi - th
+    body = Spheroid(a) if A is None else Spheroid(a, A=A)
+    h = body.h(th)[0]
+    return th, J / (body.A * h)
+
+
+@finite_result
+def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()) -> dict:
+    """Mean theta and Omega at slow times T (>= 0, at least one) from a gyroscopic start
+    (Omega0 given, or n0 with Omega on the fast branch); the closed form for spheroids
+    (a != 1), (3.16) numerically otherwise.
+
+    Returns {"theta", "Omega", "J", "Omega0", "method"}.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> sol = pk.theory.gyroscopic_solution(pk.Spheroid(1.5), 1.5607963, omega0=10.5, T=[0.0, 5.0])
+    >>> sorted(sol)
+    ['J', 'Omega', 'Omega0', 'method', 'theta']
+    >>> sol['theta'].round(6)
+    array([1.560796, 0.63546 ])
+    """
+    y0 = balanced_state(body, theta0, omega0=omega0, n0=n0, limit=GYRO_RATE_MAX)  # no fast motion: any rate
+    T = check_array("T", T, nonnegative=True)
+    om0 = float(y0[2])
+    J = float(jellett_constant(body, theta0, om0))
+    if isinstance(body, Spheroid) and body.a != 1.0 and body.flip_symmetric:
+        th, om = gyroscopic_closed(body.a, J, theta0, T, A=body.A)
+        method = "closed form (3.18)"
+    else:
+        th, om = gyroscopic_numeric(body, theta0, om0, T)
+        method = "numerical (3.16)"
+    return {"theta": np.atleast_1d(th), "Omega": np.atleast_1d(om), "J": J, "Omega0": om0, "method": method}
+
+
+@finite_result
+def rise_time(a: float, J: float, theta0: float) -> float:
+    """Slow time T at which the closed-form rise ends (theta reaches 0 or pi/2).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(pk.theory.rise_time(1.5, 6.83, 1.5607963), 6)
+    7.084062
+    """
+    a = check_positive("a", a)
+    if a == 1.0:
+        raise ParameterError("a", "must differ from 1: a sphere does not rise", a)
+    J = check_finite("J", J, nonzero=True)
+    theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
+    q = a * (a - 1) / (J * abs(a - 1))
+    th0 = min(theta0, np.pi - theta0)
+    T0 = np.arctan(np.tan(th0) / a) / q
+    return float(T0) if q > 0 else float(T0 + np.pi / (2 * abs(q)))

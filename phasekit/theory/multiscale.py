@@ -1,0 +1,355 @@
+"""Multiple-scale quantities of section 3c-d: the fast oscillation and the envelope of R.
+
+All functions take the mean state (theta-bar, Omega-bar) of the gyroscopic solution
+(:mod:`phasekit.theory.gyroscopic`) and a uniform spheroid or any Body. Time derivatives of the mean
+state are with respect to the slow time T = mu t and come from (3.16) (Coulomb friction).
+
+omega2        (3.30)  fast frequency squared;  omega_gyro (3.47) its gyroscopic limit
+lam           (3.35)
+zeta          (3.38)  damping coefficient; the last term is printed h^2/|Vhat_P| but, from
+                      (3.11) (F'_X = mu h/|Vbar_P| d theta'/d tau), it is h^2/|Vbar_P|: used so
+zeta_gyro     (3.48)
+I_quadrature  (3.45)  I = -1/2 int zeta dT, by quadrature along the rise (dT = dtheta/(dtheta/dT))
+I1_closed     (3.53)  exact for the spheroid;  I3_closed (3.52) exact
+I2_dominant   (3.57)  ONLY the dominant part of I2 near theta-bar = 0 or pi/2; away from them
+                      it differs from the quadrature of (3.51) (tested and reported)
+Gamma         (3.44)  omega^(-1/2) exp(I);  Gamma_closed (3.58) = omega^(-1/2) sigma gamma^(...)
+Sigma         (3.64)  envelope of the minima of R: 1 - |h_theta omega^2 c Gamma|
+c_xi / perturbation_from_c_xi  (3.46), and the accompanying Omega' (3.27), Psi' (3.28), n' = 0
+mean_over_periods (3.6) fast-time average over each period of a simulated signal
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._runtime.errors import ParameterError
+from .._runtime.validate import check_array, finite_result
+from ..bodies.body import Body
+from .gyroscopic import mean_slip
+
+__all__ = [
+    "omega2",
+    "omega_gyro",
+    "slow_rates",
+    "lam",
+    "zeta",
+    "zeta_gyro",
+    "I_quadrature",
+    "I1_closed",
+    "I2_dominant",
+    "I3_closed",
+    "alpha_beta",
+    "Gamma",
+    "Gamma_closed",
+    "Sigma",
+    "c_xi",
+    "perturbation_from_c_xi",
+    "mean_over_periods",
+]
+
+
+def _geom(body, theta):
+    h, ht, htt = body.h(theta)
+    return h, ht, htt, np.sin(theta), np.cos(theta)
+
+
+def _angle(name: str, theta):
+    """Finite inclinations off the poles (where the theory's cot and 1/sin diverge)."""
+    th = check_array(name, theta)
+    if np.any(np.abs(np.sin(th)) < 1e-12):
+        raise ParameterError(name, "must be off the poles (0 < theta < pi): the theory divides by sin(theta)", theta)
+    return th
+
+
+def _rate(name: str, value):
+    """A finite, non-zero spin rate (the theory divides by it)."""
+    v = check_array(name, value)
+    if np.any(v == 0):
+        raise ParameterError(name, "must be non-zero (the theory divides by it)", value)
+    return v
+
+
+@finite_result
+def omega2(body: Body, theta, Omega):
+    """(3.30): A/(A + h_t^2) [Omega^2 + (h_tt + h_t cot)/A + (h_t/(A Omega sin))^2].
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(float(pk.theory.omega2(pk.Spheroid(1.5), 1.0, 10.0)), 6)
+    73.238621
+    """
+    theta, Omega = _angle("theta", theta), _rate("Omega", Omega)
+    h, ht, htt, s, c = _geom(body, theta)
+    A = body.A
+    return A / (A + ht**2) * (Omega**2 + (htt + ht * c / s) / A + (ht / (A * Omega * s)) ** 2)
+
+
+@finite_result
+def omega_gyro(body: Body, theta, Omega):
+    """(3.47): |Omega| (A/(A + h_t^2))^(1/2).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(float(pk.theory.omega_gyro(pk.Spheroid(1.5), 1.0, 10.0)), 6)
+    8.562205
+    """
+    _, ht, _, _, _ = _geom(body, theta)
+    return np.abs(Omega) * np.sqrt(body.A / (body.A + ht**2))
+
+
+@finite_result
+def slow_rates(body: Body, theta, Omega):
+    """(dOmega/dT, dtheta/dT, Vhat_P, Vbar_P) of (3.16) at the mean state.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [round(float(v), 6) for v in pk.theory.slow_rates(pk.Spheroid(1.5), 1.0, 10.0)]
+    [-0.748378, -0.179737, -1.0, -2.432228]
+    """
+    h, ht, _, _, _ = _geom(body, theta)
+    VP = mean_slip(body, theta, Omega)
+    v = np.sign(VP)
+    return -ht * v / body.A, h * v / (body.A * Omega), v, VP
+
+
+@finite_result
+def lam(body: Body, theta, Omega):
+    """(3.35)."""
+    h, ht, _, s, c = _geom(body, theta)
+    A = body.A
+    dOm, dth, v, _ = slow_rates(body, theta, Omega)
+    w2 = omega2(body, theta, Omega)
+    return (ht * v / A + dOm + (Omega * c / s + ht / (A * Omega * s**2)) * dth) / w2 - h * ht * v / A
+
+
+@finite_result
+def zeta(body: Body, theta, Omega):
+    """(3.38), with h^2/|Vbar_P| as the last term (see the module notes)."""
+    h, ht, htt, s, c = _geom(body, theta)
+    A = body.A
+    dOm, dth, v, VP = slow_rates(body, theta, Omega)
+    w2 = omega2(body, theta, Omega)
+    L = lam(body, theta, Omega)
+    return ((A * Omega + ht * c / (s * Omega)) * L + (2 * ht * htt - ht / h * (htt / w2 - ht**2)) * dth + h**2 / np.abs(VP)) / (A + ht**2)
+
+
+def _zeta_gyro_terms(body: Body, theta, Omega):
+    """The three terms of (3.48) before the factor dtheta/dT (the integrands of I1, I2, I3)."""
+    h, ht, _, s, c = _geom(body, theta)
+    A, C, a = body.A, body.C, body.shape_params[0]
+    return (-A * ht / (A + ht**2) * Omega**2, -(a * a - 1) / (A - a * a * C) * A * C / (A + ht**2) * h / ht, c / s)
+
+
+@finite_result
+def zeta_gyro(body: Body, theta, Omega):
+    """(3.48) (spheroid: the second term uses a)."""
+    _, dth, _, _ = slow_rates(body, theta, Omega)
+    return sum(_zeta_gyro_terms(body, theta, Omega)) * dth
+
+
+def _along_rise(body, J, theta0, theta):
+    """Omega-bar on the gyroscopic solution at theta-bar: Omega = J / (A h)."""
+    return J / (body.A * body.h(theta)[0])
+
+
+@finite_result
+def I_quadrature(body: Body, J: float, theta0: float, theta, *, form: str = "gyro", parts: bool = False):
+    """(3.45) by adaptive quadrature in theta-bar along the gyroscopic solution.
+
+    ``form`` "gyro" integrates (3.48) (whose three terms give I1, I2, I3 of (3.50)-(3.52);
+    ``parts=True`` returns them separately), "full" integrates (3.38) with (3.30).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.I_quadrature(pk.Spheroid(1.5), 6.83, 1.5607963, [1.2, 1.0]).round(6)
+    array([0.747044, 3.404539])
+    """
+    from scipy.integrate import quad
+
+    J = float(_rate("J", J))
+    theta0 = float(_angle("theta0", theta0))
+    theta = np.atleast_1d(_angle("theta", theta))
+
+    def integrands(th):
+        # -1/2 zeta / (dtheta/dT): the dtheta/dT factor of (3.48) cancels
+        return tuple(-0.5 * term for term in _zeta_gyro_terms(body, th, _along_rise(body, J, theta0, th)))
+
+    if form == "gyro":
+        fns = [lambda x, k=k: integrands(x)[k] for k in range(3)]
+    elif form == "full":
+        def f_full(x):
+            om = _along_rise(body, J, theta0, x)
+            return -0.5 * zeta(body, x, om) / slow_rates(body, x, om)[1]
+
+        fns = [f_full]
+    else:
+        raise ValueError(f"`form` must be gyro or full, got {form!r}.")
+    # cumulative: integrate between consecutive targets (ordered away from theta0) and add up
+    order = np.argsort(np.abs(theta - theta0))
+    acc = np.zeros(len(fns))
+    prev = theta0
+    res = np.zeros((theta.size, len(fns)))
+    for idx in order:
+        th = theta[idx]
+        acc = acc + np.array([quad(f, prev, th, epsabs=1e-15, epsrel=1e-13, limit=200)[0] for f in fns])
+        res[idx] = acc
+        prev = th
+    if form == "gyro" and parts:
+        return res
+    return res.sum(axis=1)
+
+
+@finite_result
+def alpha_beta(body: Body):
+    """(3.54), (3.55)."""
+    A, a = body.A, body.shape_params[0]
+    root = np.sqrt((A + (a - 1) ** 2) * (A + (a + 1) ** 2))
+    return np.sqrt(0.5 * (A + a * a + 1 + root)), np.sqrt(0.5 * (A + a * a + 1 - root))
+
+
+@finite_result
+def I1_closed(body: Body, J: float, theta0: float, theta):
+    """(3.53)."""
+    al, be = alpha_beta(body)
+    h, h0 = body.h(theta)[0], body.h(theta0)[0]
+    g = (1 / al) * np.log((al + h) / (al - h) * (al - h0) / (al + h0)) + (1 / be) * np.log((h - be) / (h + be) * (h0 + be) / (h0 - be))
+    return J**2 / (4 * body.A * (al**2 - be**2)) * g
+
+
+@finite_result
+def I2_dominant(body: Body, theta0: float, theta):
+    """(3.57): the dominant part of I2 near theta-bar = 0 or pi/2 only."""
+    A, C, a = body.A, body.C, body.shape_params[0]
+    return C / (2 * (a * a * C - A)) * np.log((np.sin(theta) / np.sin(theta0)) ** (a * a) * np.cos(theta0) / np.cos(theta))
+
+
+@finite_result
+def I3_closed(theta0: float, theta):
+    """(3.52)."""
+    return 0.5 * np.log(np.sin(theta0) / np.sin(theta))
+
+
+@finite_result
+def Gamma(body: Body, J: float, theta0: float, theta, *, form: str = "gyro"):
+    """(3.44) with I by quadrature and omega from (3.47) ("gyro") or (3.30) ("full")."""
+    theta = np.atleast_1d(np.asarray(theta, dtype=float))
+    om = _along_rise(body, J, theta0, theta)
+    w = omega_gyro(body, theta, om) if form == "gyro" else np.sqrt(omega2(body, theta, om))
+    return w ** (-0.5) * np.exp(I_quadrature(body, J, theta0, theta, form=form))
+
+
+@finite_result
+def Gamma_closed(body: Body, J: float, theta0: float, theta):
+    """(3.58)-(3.60): omega^(-1/2) sigma gamma^(J^2/(4 A (alpha^2 - beta^2))); sigma uses the
+    dominant-part I2 of (3.57).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> round(float(pk.theory.Gamma_closed(pk.Spheroid(1.5), 6.83, 1.5607963, 1.0)), 6)
+    8.619004
+    """
+    A, C, a = body.A, body.C, body.shape_params[0]
+    theta = np.asarray(theta, dtype=float)
+    al, be = alpha_beta(body)
+    h, h0 = body.h(theta)[0], body.h(theta0)[0]
+    gam = ((al + h) / (al - h) * (al - h0) / (al + h0)) ** (1 / al) * ((h - be) / (h + be) * (h0 + be) / (h0 - be)) ** (1 / be)
+    sig = ((np.sin(theta) / np.sin(theta0)) ** A * (np.cos(theta0) / np.cos(theta)) ** C) ** (0.5 / (C * a * a - A))
+    om = _along_rise(body, J, theta0, theta)
+    return omega_gyro(body, theta, om) ** (-0.5) * sig * gam ** (J**2 / (4 * A * (al**2 - be**2)))
+
+
+@finite_result
+def Sigma(body: Body, J: float, theta0: float, theta, c: float, *, form: str = "closed"):
+    """(3.64): 1 - |h_theta omega^2 c Gamma|, the envelope of the minima of R.
+
+    ``form``: "closed" uses (3.47) and (3.58) (the paper's Fig. 2); "gyro" and "full" use
+    (3.44) with I by quadrature of (3.48) or (3.38).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.theory.Sigma(pk.Spheroid(1.5), 6.83, 1.5607963, [1.2, 1.0], -0.00054).round(6)
+    array([0.98966 , 0.865734])
+    """
+    theta = np.atleast_1d(np.asarray(theta, dtype=float))
+    om = _along_rise(body, J, theta0, theta)
+    _, ht, _, _, _ = _geom(body, theta)
+    if form == "closed":
+        w2 = omega_gyro(body, theta, om) ** 2
+        G = Gamma_closed(body, J, theta0, theta)
+    else:
+        w2 = omega_gyro(body, theta, om) ** 2 if form == "gyro" else omega2(body, theta, om)
+        G = Gamma(body, J, theta0, theta, form=form)
+    return 1 - np.abs(ht * w2 * c * G)
+
+
+@finite_result
+def c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, dtheta0: float, dthetadot0: float):
+    """(3.46) inverted: amplitude c and phase xi of the initial nutation (theta', d theta'/dt).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [round(float(v), 6) for v in pk.theory.c_xi(pk.Spheroid(1.5), 1.5607963, 10.5, 0.1, 1e-3, 0.0)]
+    [0.003456, -0.343063]
+    """
+    theta_bar0, Omega_bar0 = float(_angle("theta_bar0", theta_bar0)), float(_rate("Omega_bar0", Omega_bar0))
+    mu, dtheta0, dthetadot0 = (float(check_array(n, v)) for n, v in (("mu", mu), ("dtheta0", dtheta0), ("dthetadot0", dthetadot0)))
+    w = np.sqrt(omega2(body, theta_bar0, Omega_bar0))
+    Idot = -0.5 * mu * zeta(body, theta_bar0, Omega_bar0)  # dI/dt = -mu zeta / 2
+    # theta' = c cos(xi) w^-1/2;  theta'dot = c (-w^1/2 sin xi + Idot cos xi)
+    cc = dtheta0 * np.sqrt(w)  # c cos xi
+    cs = -(dthetadot0 - Idot * cc) / np.sqrt(w)  # c sin xi
+    return float(np.hypot(cc, cs)) * (1 if cc >= 0 else -1), float(np.arctan2(cs, cc) if cc >= 0 else np.arctan2(-cs, -cc))
+
+
+@finite_result
+def perturbation_from_c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, c: float, xi: float):
+    """Initial fluctuation (theta', Lambda', Omega') for amplitude c and phase xi: (3.46) for
+    theta' and its rate, (3.27) for Omega' (with Psi' = -Omega theta' (3.28), n' = 0 (3.31)).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> [round(float(v), 8) for v in pk.theory.perturbation_from_c_xi(pk.Spheroid(1.5), 1.5607963, 10.5, 0.1, -0.00054, 0.0)]
+    [-0.00016594, 0.00062767, 1.773e-05]
+    """
+    w = np.sqrt(omega2(body, theta_bar0, Omega_bar0))
+    Idot = -0.5 * mu * zeta(body, theta_bar0, Omega_bar0)
+    th_p = c * np.cos(xi) / np.sqrt(w)
+    lam_p = c * (-np.sqrt(w) * np.sin(xi) + Idot * np.cos(xi))
+    _, ht, _, s, c_ = _geom(body, theta_bar0)
+    om_p = (-Omega_bar0 * c_ / s + ht / (body.A * Omega_bar0 * s * s)) * th_p
+    return float(th_p), float(lam_p), float(om_p)
+
+
+def mean_over_periods(ts, values, marks):
+    """(3.6) with the averaging window set to the fast period itself: the mean of ``values``
+    over each interval [marks[k], marks[k+1]] (e.g. between successive located minima of R),
+    returned at the interval midpoints as (t_mid, mean).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> ts = np.linspace(0.0, 4 * np.pi, 401)
+    >>> t_mid, means = pk.theory.mean_over_periods(ts, 1.0 + np.sin(ts), [0.0, 2 * np.pi, 4 * np.pi])
+    >>> t_mid.round(4), means.round(4)
+    (array([3.1416, 9.4248]), array([1., 1.]))
+    """
+    ts = np.asarray(ts, dtype=float)
+    v = np.asarray(values, dtype=float)
+    marks = np.asarray(marks, dtype=float)
+    if ts.size < 2 or v.shape != ts.shape:
+        raise ParameterError("values", "must be one value per time, at two or more times", show_value=False)
+    marks = marks[(marks >= ts[0]) & (marks <= ts[-1])]
+    if marks.size < 2:
+        return np.empty(0), np.empty(0)
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(ts))])
+    area = np.diff(np.interp(marks, ts, cum))
+    return 0.5 * (marks[1:] + marks[:-1]), area / np.diff(marks)
