@@ -34,7 +34,7 @@ def main(argv=None):
             f"{fp.eigenvalues.real.max():+.5f}"
         )
 
-    model, x0, fp = pk.unstable_manifold_start(body, law, state="horizontal", delta=1e-6, omega0=10.0)
+    model, x0, fp = pk.steady.unstable_manifold_start(body, law, state="horizontal", delta=1e-6, omega0=10.0)
     lam = fp.eigenvalues.real.max()
     traj = pk.simulate(model, x0, 12.0 / lam, rtol=1e-12)
     df = traj.sample(np.linspace(0.0, traj.t, 400))

@@ -84,7 +84,7 @@ def main(argv=None) -> dict:
     law, exact = pk.RegularisedCoulomb(0.1, args.eps), pk.Coulomb(0.1)
     model, x52 = pk.paper_start("5.2", friction=law)
     model_exact = model.with_chart("euler").__class__(model.body, exact, "euler")
-    _, xe, _ = pk.unstable_manifold_start(model.body, law, state="horizontal", delta=0.02, omega0=10.5)
+    _, xe, _ = pk.steady.unstable_manifold_start(model.body, law, state="horizontal", delta=0.02, omega0=10.5)
     rows = []
 
     def record(kind, label, x):
@@ -114,7 +114,7 @@ def main(argv=None) -> dict:
             off = {k: float(rng.uniform(*interval(off_p[k]))) for k in ("U", "V", "Lambda")}
             record("box", f"theta {th:.4g}, n {n:.4g}", with_offsets(x52, {**off, "theta": float(th), "n": float(n)}))
     for d in (0.018, 0.019, 0.021, 0.022):
-        _, xd, _ = pk.unstable_manifold_start(model.body, law, state="horizontal", delta=d, omega0=10.5)
+        _, xd, _ = pk.steady.unstable_manifold_start(model.body, law, state="horizontal", delta=d, omega0=10.5)
         record("delta", f"eigenvector delta={d:g}", xd)
     _write(out, rows, args)
     _figure(out, rows, args)

@@ -28,12 +28,10 @@ from .core import (
     SolverOptions,
     gyroscopic_start,
     simulate,
-    simulate_batch,
-    vertical_spin_start,
 )
 from .friction import Coulomb, RegularisedCoulomb, Viscous
 from .io import read_table, write_table
-from .steady import fixed_points, linearise, steady_structure, unstable_manifold_start
+from .steady import fixed_points, steady_structure
 from .sweep import ensemble, rerun
 from .theory.paper import paper_start
 from .theory.surface import Scene, compute_scene
@@ -57,10 +55,10 @@ __all__ = [
     # bodies and friction laws
     "Spheroid", "EccentricSphere", "Egg", "CustomBody", "Coulomb", "RegularisedCoulomb", "Viscous",
     # the model, simulations and their starts
-    "Model", "Event", "SolverOptions", "simulate", "simulate_batch", "ensemble", "rerun",
-    "gyroscopic_start", "vertical_spin_start", "paper_start",
+    "Model", "Event", "SolverOptions", "simulate", "ensemble", "rerun",
+    "gyroscopic_start", "paper_start",
     # steady states, thresholds, scenes, real units, tables
-    "fixed_points", "linearise", "unstable_manifold_start", "steady_structure", "Definition", "find_threshold",
+    "fixed_points", "steady_structure", "Definition", "find_threshold",
     "Scene", "compute_scene", "Scale", "read_table", "write_table",
     # errors and statuses
     "PhasekitError", "ConvergenceError", "ParameterError", "WorkerError", "Status", "SearchStatus",

@@ -11,7 +11,7 @@ Friction: exact Coulomb, mu = 0.1 (the paper's value, an assumption for an egg o
 1. Which end rises. Starts on the gyroscopic-balance (sliding) branch at theta0 on both sides
    of pi/2, precession rate Omega0. Outcome: the end the egg comes to spin on (theta < pi/2:
    fat end down; > pi/2: thin end down), the angle reached and the time. Prediction
-   (phasekit.steady.fixedpoints): the separatrix is the horizontal-like steady precession theta_h(Omega0),
+   (phasekit.steady.precessions): the separatrix is the horizontal-like steady precession theta_h(Omega0),
    which tends as Omega0 -> infinity to theta_2, where (A - C) cos(theta) x_P + C h_theta = 0 (the
    zero-slip angle of the gyroscopic theory; Sasaki 2004's critical angle is of this kind). Starts
    below theta_h rise toward the fat end, starts above it toward the thin end.

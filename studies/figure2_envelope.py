@@ -31,9 +31,9 @@ def main(argv=None) -> dict:
     fig, ax = plt.subplots(figsize=(9.2, 4.8))
     out = {}
     for k, J in enumerate(st.progress(J_VALUES, desc="Jellett constants")):
-        sig = pk.theory.Sigma(body, J, THETA0, theta, C_AMP, form="closed")
+        sig = pk.theory.reaction_envelope(body, J, THETA0, theta, C_AMP, form="closed")
         out[J] = (ps.sigma_zero(theta, sig),
-                  ps.sigma_zero(coarse, pk.theory.Sigma(body, J, THETA0, coarse, C_AMP, form="gyro")))
+                  ps.sigma_zero(coarse, pk.theory.reaction_envelope(body, J, THETA0, coarse, C_AMP, form="gyro")))
         plot_envelope(ax, theta, sig, color=plt.get_cmap("viridis")(k / (len(J_VALUES) - 1)), lw=2.2 if J >= 8.0 else 1.0,
                       label=f"({k + 1}) J = {J:g}")
     ax.axhline(0, color="0.5", lw=0.8)

@@ -23,7 +23,7 @@ import numpy as np
 def tippe_top(st) -> dict:
     top = pk.EccentricSphere(0.3, A=0.38, C=0.4)
     inverted = pk.Event("theta", math.pi - 0.05, direction=+1, name="inverted")
-    r = pk.simulate(pk.Model(top, pk.Coulomb(0.3)), pk.vertical_spin_start(0.1, 15.0), 300.0, rtol=1e-10,
+    r = pk.simulate(pk.Model(top, pk.Coulomb(0.3)), pk.core.vertical_spin_start(0.1, 15.0), 300.0, rtol=1e-10,
                     stop_at="none", events=[inverted], max_switches=200_000)
     title = f"tippe top: offset 0.3, A 0.38, C 0.4, mu 0.3, n0 15 ({len(r.events_named('lift-off'))} hops)"
     a = animate(r, st.path("tippe_top_inversion.gif"), frames=20 if st.quick else 48, fps=10, window_size=(340, 280),

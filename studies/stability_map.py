@@ -31,8 +31,8 @@ def main(argv=None) -> dict:
     wall = st.wall
     # agreement of the maps with the criteria
     bodies = [pk.Spheroid(a) for a in a_vals]
-    crit_v = np.array([[pk.theory.vertical_is_stable(b.A, b.C, b.a, s) for b in bodies] for s in n0_vals])
-    crit_h = np.array([[pk.theory.horizontal_is_unstable(b.A, b.C, b.a, s) for b in bodies] for s in om_vals])
+    crit_v = np.array([[ps.vertical_is_stable(b.A, b.C, b.a, s) for b in bodies] for s in n0_vals])
+    crit_h = np.array([[ps.horizontal_is_unstable(b.A, b.C, b.a, s) for b in bodies] for s in om_vals])
     disagree = int(np.sum(crit_v != (V == 0))) + int(np.sum(crit_h != (H > 0)))
     png = st.save(plot_stability_map(a_vals, om_vals, n0_vals, H, V, mu=args.mu), "stability_map.png", bbox_inches="tight")
     print(f"Figure {png.name}: {n}x{n} grids, mu = {args.mu:g}, {2 * n * n} linearisations in {wall:.1f} s.")

@@ -3,7 +3,7 @@
 For each aspect ratio, the smallest precession rate Omega0 (prolate, from the horizontal
 steady precession) or spin n0 (oblate, from the vertical spin) whose trajectory loses
 contact (R = 0, dR/dt < 0) before its rise completes, under three definitions side by side
-(see phasekit.thresholds.threshold): (i) viscous friction; (ii) exact Coulomb friction with starts on
+(see phasekit.thresholds.definition): (i) viscous friction; (ii) exact Coulomb friction with starts on
 the sliding (gyroscopic-balance) branch at d = 0.01 from the fixed point, the DEFAULT;
 (iii) the paper's literal recipe, the viscous unstable eigenvector (delta = 0.01)
 integrated with Coulomb friction regularised with eps = 1e-3, 1e-4, or exact.

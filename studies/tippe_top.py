@@ -78,7 +78,7 @@ def convergence(st) -> list[dict]:
     for eps in (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, None):
         law = pk.Coulomb(0.3) if eps is None else pk.RegularisedCoulomb(0.3, eps)
         for rtol in (1e-8, 1e-9, 1e-10, 1e-11, 1e-12):
-            r = pk.simulate(pk.Model(top, law), pk.vertical_spin_start(THETA0, 15.0), 30.0, rtol=rtol,
+            r = pk.simulate(pk.Model(top, law), pk.core.vertical_spin_start(THETA0, 15.0), 30.0, rtol=rtol,
                             events=[pk.Event("theta", 0.4, name="theta=0.4")])
             rows.append({"eps": eps, "rtol": rtol, "status": str(r.status), "t_stop": r.t,
                          "n_steps": r.n_steps})

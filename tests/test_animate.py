@@ -2,7 +2,7 @@
 
 import phasekit as pk
 from phasekit.core import pose
-from phasekit.viz.animate import BODY_COLORS
+from phasekit.viz.mesh import BODY_COLORS
 
 import numpy as np
 import pytest

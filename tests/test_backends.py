@@ -1,8 +1,7 @@
 """Integrators: the on-disk cache round trip, guards ~0 at located events, located minima."""
 
 import phasekit as pk
-from phasekit.core import engines
-from phasekit.core.engines import Budget, TaylorEngine
+from phasekit.core.engines import Budget, TaylorEngine, cache
 from phasekit.core.system import declare, watched
 
 import numpy as np
@@ -19,7 +18,7 @@ def test_taylor_cache_reload_keeps_the_monitor(tmp_path, monkeypatch, prolate, s
     cflow = model.compile_flow(flow, events)
     counts = []
     for _ in range(2):
-        engines.forget()  # force a (re)load from the disk cache
+        cache.forget()  # force a (re)load from the disk cache
         prop = TaylorEngine(3e-9).propagate(cflow, standard_start, 0.0, 30.0, model.p, [e.level for e in events],
                                             budget=Budget(10**6, float("inf")))
         counts.append(len(prop.monitored))

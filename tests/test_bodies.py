@@ -5,10 +5,12 @@ and a user's CustomBody works for simulation, fixed points, thresholds and scene
 import math
 
 import phasekit as pk
-from phasekit.bodies.body import TIPPE_TOP_OFFSET_MAX, uniform_mass_properties
+from phasekit.bodies.body import uniform_mass_properties
 from phasekit.bodies.egg import Egg
-from phasekit.steady.fixedpoints import fixed_points, horizontal_state, vertical_state
-from phasekit.thresholds.threshold import Definition, find_threshold
+from phasekit.bodies.spheroid import TIPPE_TOP_OFFSET_MAX
+from phasekit.steady.fixedpoints import fixed_points
+from phasekit.steady.precessions import horizontal_state, vertical_state
+from phasekit.thresholds import Definition, find_threshold
 
 import casadi as ca
 import numpy as np

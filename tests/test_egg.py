@@ -6,8 +6,8 @@ parametrisation, so that the two can disagree."""
 import time
 
 from phasekit._runtime.errors import ParameterError
-from phasekit.bodies.body import Spheroid
 from phasekit.bodies.egg import W_GUARANTEED, Egg, clenshaw, mass_properties
+from phasekit.bodies.spheroid import Spheroid
 
 import casadi as ca
 import numpy as np

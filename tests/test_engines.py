@@ -32,7 +32,7 @@ def test_an_egg_runs_on_the_batch_engine_compiled_as_the_scalar_one_with_the_sam
     starts = [pk.gyroscopic_start(egg, np.pi / 2 - 0.01, omega0=w) for w in (6.0, 12.0, 20.0)]
     kw = dict(events=[rise], track_minima=False, dense=False)
     stats = ps.BatchStats()
-    runs = pk.simulate_batch(model, starts, 60.0, stats=stats, **kw)
+    runs = pk.core.simulate_batch(model, starts, 60.0, stats=stats, **kw)
     assert stats.batched == 3 and stats.scalar == 0
     for b, x0 in zip(runs, starts):
         s = pk.simulate(model, x0, 60.0, **kw)
@@ -64,7 +64,7 @@ def test_an_unknown_engine_is_an_error_and_a_registered_one_needs_nothing_else()
         got = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), x0, 200.0, backend="cvodes-counting")
         assert calls and got.t_jump == ref.t_jump  # pointwise (its stick guard) because CVODES is
     finally:
-        del engines.ENGINES["cvodes-counting"]
+        del engines.registry.ENGINES["cvodes-counting"]
     with pytest.raises(pk.ParameterError):
         engines.register_engine("taylor", engines.TaylorEngine)
 

@@ -1,19 +1,13 @@
 """Issue 4: fixed points, exact linearisation, stability, unstable-manifold seeds."""
 
 import phasekit as pk
-from phasekit.steady.fixedpoints import (
-    continue_family,
-    find_fixed_point,
-    fixed_points,
-    horizontal_state,
-    intermediate_state,
-    linearise,
-    vertical_state,
-)
+from phasekit.steady.fixedpoints import continue_family, find_fixed_point, fixed_points
+from phasekit.steady.linearisation import linearise
 from phasekit.steady.manifolds import unstable_manifold_start, unstable_seeds
+from phasekit.steady.precessions import horizontal_state, intermediate_state, vertical_state
+from phasekit.studies.linear_stability import vertical_is_stable
 from phasekit.theory.criteria import (
     horizontal_stability_threshold,
-    vertical_is_stable,
     vertical_stability_threshold,
 )
 

@@ -4,17 +4,17 @@ closed-form criteria (general pole criterion; equator criterion and where it sto
 
 import phasekit as pk
 from phasekit.bodies.egg import Egg
-from phasekit.steady.fixedpoints import (
-    fixed_points,
+from phasekit.steady.fixedpoints import fixed_points
+from phasekit.steady.linearisation import linearise
+from phasekit.steady.manifolds import unstable_manifold_start
+from phasekit.steady.precessions import (
     horizontal_state,
     inverted_state,
-    linearise,
     precession_angles,
     precession_residual,
     side_equilibrium,
     vertical_state,
 )
-from phasekit.steady.manifolds import unstable_manifold_start
 from phasekit.theory.criteria import (
     equator_stability_threshold,
     horizontal_stability_threshold,

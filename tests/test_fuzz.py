@@ -464,7 +464,7 @@ def test_api_fixed_points(model, which, value):
 @fuzz_settings(100)
 @given(models(), st.one_of(states(), states(8)), st.sampled_from(["state", "horizontal", "", None]))
 def test_api_linearise(model, x, kind):
-    outcome, fp = classify_api({"model", "x", "kind"}, lambda: pk.linearise(model, x, kind=kind))
+    outcome, fp = classify_api({"model", "x", "kind"}, lambda: pk.steady.linearise(model, x, kind=kind))
     if outcome == "valid":
         outcome = check_fixed_point(fp)
     record("api linearise", outcome)

@@ -1,4 +1,4 @@
-"""Stability labels backed by error bounds (phasekit.steady.fixedpoints.FixedPoint): each eigenvalue's
+"""Stability labels backed by error bounds (phasekit.steady.linearisation.FixedPoint): each eigenvalue's
 real part is classified against a first-order bound (condition number x error of the
 Jacobian); labels agree with closed-form criteria, and a state labelled unstable grows at the
 rate of its eigenvalue."""
@@ -32,7 +32,7 @@ def test_pole_labels_follow_the_pole_criterion(alpha, A, C):
         crit = pk.theory.pole_stability_threshold(body, pole)
         for n0 in (0.9 * crit.threshold, 1.1 * crit.threshold):
             x = state(n0)
-            fp = pk.steady.find_fixed_point(model, x, kind="vertical", value=n0) if pole == "upright" else pk.linearise(model, x)
+            fp = pk.steady.find_fixed_point(model, x, kind="vertical", value=n0) if pole == "upright" else pk.steady.linearise(model, x)
             assert fp.stable == crit.stable(n0)
 
 

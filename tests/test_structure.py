@@ -8,7 +8,10 @@ import phasekit as pk
 import phasekit.studies as ps
 from phasekit.core import charts
 from phasekit.core.hybrid import Mode
-from phasekit.steady.structure import linearise_precession, precession_on_branch, steady_structure
+from phasekit.steady.branch_stability import linearise_precession
+from phasekit.steady.branches import precession_on_branch
+from phasekit.steady.rolling import rolling_state
+from phasekit.steady.structure import steady_structure
 from phasekit.theory import tippetop
 from tests.helpers import run_cli
 
@@ -179,7 +182,7 @@ def test_stability_along_branches_matches_the_pointwise_linearisation(body, law)
             om, n = precession_on_branch(body, np.array([t]))
             fps = [p for p in pk.fixed_points(model, omega0=float(om[0])) if abs(p.x[4] - t) < 1e-8]
             if body.flip_symmetric and t > np.pi / 2:
-                fps = [pk.linearise(model, [0, 0, om[0], 0, t, n[0]])]
+                fps = [pk.steady.linearise(model, [0, 0, om[0], 0, t, n[0]])]
             [fp] = fps
             assert fp.n_unstable == b.n_unstable_at(t)
             compared += 1
@@ -191,9 +194,9 @@ def test_stability_along_branches_matches_the_pointwise_linearisation(body, law)
             om_hi, n_hi = (float(v[0]) for v in precession_on_branch(body, np.array([hi])))
             # pointwise, in the paper's chart (the structure bisected with linearise_precession)
             chart = "euler" if min(lo, np.pi - hi) >= 0.05 else "rotating"
-            f_lo = pk.linearise(model, [0, 0, om_lo, 0, lo, n_lo]) if chart == "euler" else \
+            f_lo = pk.steady.linearise(model, [0, 0, om_lo, 0, lo, n_lo]) if chart == "euler" else \
                 linearise_precession(s.model, lo, om_lo, n_lo, chart=chart)
-            f_hi = pk.linearise(model, [0, 0, om_hi, 0, hi, n_hi]) if chart == "euler" else \
+            f_hi = pk.steady.linearise(model, [0, 0, om_hi, 0, hi, n_hi]) if chart == "euler" else \
                 linearise_precession(s.model, hi, om_hi, n_hi, chart=chart)
             assert f_lo.n_unstable != f_hi.n_unstable
             assert (f_lo.n_unstable, f_hi.n_unstable) == (c.below, c.above)
@@ -252,11 +255,11 @@ def test_part_one_four_classes_with_their_stability(a):
     [roll] = [f for f in s.families if f.kind == "rolling"]
     assert roll.theta == np.pi / 2 and roll.criticals
     for n in (0.3, 3.0, 30.0):
-        x = pk.structure.rolling_state(body, roll.theta, n)
+        x = rolling_state(body, roll.theta, n)
         assert np.max(np.abs(model.rhs(x, Mode.SLIDING))) < 1e-14 * n * n + 1e-15
     for c in roll.criticals:
-        lo = pk.linearise(model, pk.structure.rolling_state(body, roll.theta, c * (1 - 1e-8)))
-        hi = pk.linearise(model, pk.structure.rolling_state(body, roll.theta, c * (1 + 1e-8)))
+        lo = pk.steady.linearise(model, rolling_state(body, roll.theta, c * (1 - 1e-8)))
+        hi = pk.steady.linearise(model, rolling_state(body, roll.theta, c * (1 + 1e-8)))
         assert lo.n_unstable != hi.n_unstable
 
 
@@ -277,7 +280,7 @@ def test_cli_steady_states_json_and_bad_input():
         model = pk.Model(pk.Spheroid(1.5, offset=0.2, A=0.61, C=0.4), pk.Viscous(0.1))
         for s in b["samples"][5::20]:  # the stability reported is the pointwise linearisation's
             if min(s["theta"], np.pi - s["theta"]) >= 0.05:
-                assert s["stable"] == pk.linearise(model, [0, 0, s["Omega"], 0, s["theta"], s["n"]]).stable
+                assert s["stable"] == pk.steady.linearise(model, [0, 0, s["Omega"], 0, s["theta"], s["n"]]).stable
     assert [s["kind"] for s in d["static_equilibria"]] == ["pole", "tilted", "pole"]
     code, out, err = run_cli("steady-states", "--a", "1.5", "--offset", "1.6", "--mu", "0.1")
     assert code == 2 and "--offset" in err and len(err.strip().splitlines()) == 1

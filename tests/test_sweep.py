@@ -12,7 +12,7 @@ import phasekit.studies as ps
 from phasekit.core.batch import BatchStats, simulate_batch
 from phasekit.studies import SearchRow
 from phasekit.sweep import ResultStore, TaskSpec, run_tasks
-from phasekit.thresholds.threshold import (
+from phasekit.thresholds import (
     Definition,
     Outcome,
     ThresholdSearch,
@@ -229,7 +229,7 @@ def test_dask_k_section_round_and_grouped_searches_equal_the_serial_ones(tmp_pat
     pack = pk.sweep.ModelPack.build(lambda: defn.prepare(1.5, engine="batch"))
     client, cluster = pk.sweep.make_client(workers=2)
     try:
-        ev = pk.sweep.client_evaluator(client, pack=pack)
+        ev = cluster.client_evaluator(client, pack=pack)
         far = find_threshold(defn, 1.5, hi=120.0, levels=3, evaluate=ev)
         near = find_threshold(defn, 1.5, hi=120.0, levels=3, engine="batch")
         assert far.bracket == near.bracket and far.n_rounds == near.n_rounds

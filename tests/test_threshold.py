@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import phasekit as pk
 from phasekit.sweep import ModelPack, ResultStore, TaskSpec, run_tasks
-from phasekit.thresholds.threshold import Definition, Outcome, find_threshold
+from phasekit.thresholds import Definition, Outcome, find_threshold
 
 import pytest
 
@@ -140,7 +140,7 @@ def test_store_drops_a_torn_last_row_and_appends_on_a_new_line(tmp_path, tail):
 
 
 def _pack_task(prev, a):
-    from phasekit.core import model as M
+    from phasekit.core import fields as M
 
     return Row(f"a{a}", float(len(M._CACHE)))
 

@@ -9,7 +9,9 @@ import subprocess
 import sys
 
 import phasekit as pk
-from phasekit.steady.fixedpoints import fixed_points, inverted_state, linearise, vertical_state
+from phasekit.steady.fixedpoints import fixed_points
+from phasekit.steady.linearisation import linearise
+from phasekit.steady.precessions import inverted_state, vertical_state
 from phasekit.theory import tippetop as tt
 
 import numpy as np
@@ -33,7 +35,7 @@ def top():
 
 def run(top, law, chart="euler", t_end=12.2, **kw):
     m = pk.Model(top, law, chart)
-    y0 = pk.vertical_spin_start(THETA0, N0)
+    y0 = pk.core.vertical_spin_start(THETA0, N0)
     return pk.simulate(m, pk.core.to_chart(chart, y0), t_end, rtol=1e-12, dense=True, **kw)
 
 
@@ -86,7 +88,7 @@ def test_both_charts_agree_on_event_times(top):
 # -- the README example ----------------------------------------------------------------------------
 def example_t_stop(top, eps, rtol):
     law = pk.Coulomb(MU) if eps is None else pk.RegularisedCoulomb(MU, eps)
-    r = pk.simulate(pk.Model(top, law), pk.vertical_spin_start(THETA0, N0), 30.0, rtol=rtol,
+    r = pk.simulate(pk.Model(top, law), pk.core.vertical_spin_start(THETA0, N0), 30.0, rtol=rtol,
                     events=[pk.Event("theta", 0.4, name="theta=0.4")], dense=False)
     assert r.status is pk.Status.STOPPED
     return r.events[-1].t

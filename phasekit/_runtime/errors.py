@@ -16,6 +16,11 @@ __all__ = ["PhasekitError", "ConvergenceError", "ParameterError", "WorkerError",
 class PhasekitError(Exception):
     """Base class of phasekit's own errors (bad input is :class:`ParameterError` instead).
 
+    Parameters
+    ----------
+    *args
+        The message, as for :class:`Exception`.
+
     Examples
     --------
     >>> import phasekit as pk
@@ -26,6 +31,18 @@ class PhasekitError(Exception):
 
 class ConvergenceError(PhasekitError):
     """A Newton solve or an integration did not converge; ``result`` holds what was obtained.
+
+    Parameters
+    ----------
+    message : str
+        What did not converge, and why.
+    result : object, optional
+        What was obtained (e.g. the failed Trajectory); default None.
+
+    Attributes
+    ----------
+    result : object
+        As given.
 
     Examples
     --------
@@ -45,6 +62,18 @@ class WorkerError(PhasekitError):
     """A worker process died while it computed (killed, out of memory, a crash in compiled
     code); ``result`` holds what was obtained (e.g. the rows of an ensemble that finished).
 
+    Parameters
+    ----------
+    message : str
+        What happened to the worker.
+    result : object, optional
+        What was obtained before it died; default None.
+
+    Attributes
+    ----------
+    result : object
+        As given.
+
     Examples
     --------
     >>> import phasekit as pk
@@ -61,6 +90,22 @@ class ParameterError(ValueError):
     """An invalid argument. ``param`` is its name as the Python API spells it, ``expected`` the
     valid range in words and ``value`` what was given, so that a front end (the CLI) can
     re-word the message with its own flag name.
+
+    Parameters
+    ----------
+    param : str
+        The parameter's name as the Python API spells it.
+    expected : str
+        The valid range in words, e.g. "must lie in [0, 1000]".
+    value : object, optional
+        What was given (default None).
+    show_value : bool, optional
+        Whether the message ends with ", got <value>" (default True).
+
+    Attributes
+    ----------
+    param, expected, value, show_value
+        As given; the message is "`param` expected, got value.".
 
     Examples
     --------
@@ -122,6 +167,24 @@ class _Vocabulary(str, enum.Enum):
 class Status(_Vocabulary):
     """How a simulation (or another computation, e.g. a steady structure) ended.
 
+    Each member is a string (its value, what JSON and tables print) with a ``message`` saying
+    it in words, and ``ok`` (False only for FAILED).
+
+    Attributes
+    ----------
+    JUMPED
+        "jumped": R reached 0 with dR/dt < 0: the body lost contact.
+    TOUCHDOWN
+        "touchdown": stopped at the first re-contact after a flight.
+    STOPPED
+        "stopped": a stop condition was met.
+    COMPLETED
+        "completed": reached the end time.
+    SETTLED
+        "settled": the body settled: it rolls in a steady state (the option settle).
+    FAILED
+        "failed": the computation could not continue; see the reason.
+
     Examples
     --------
     >>> import phasekit as pk
@@ -139,6 +202,24 @@ class Status(_Vocabulary):
 
 class SearchStatus(_Vocabulary):
     """How a search for a threshold or a boundary (a bisection) ended.
+
+    Each member is a string (its value) with a ``message`` saying it in words, and ``ok``
+    (False only for FAILED).
+
+    Attributes
+    ----------
+    CONVERGED
+        "converged": the bracket is narrower than the tolerance.
+    NON_MONOTONE
+        "non_monotone": more than one jump / no-jump transition.
+    BRACKET_ONLY
+        "bracket_only": a run failed inside the bracket; the bracket is as far as it was narrowed.
+    NO_JUMP_IN_RANGE
+        "no_jump_in_range": no run in the searched range jumped.
+    JUMPS_AT_LOWER_BOUND
+        "jumps_at_lower_bound": every run in the searched range jumped.
+    FAILED
+        "failed": the search could not continue; see the reason.
 
     Examples
     --------

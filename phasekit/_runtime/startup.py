@@ -2,7 +2,7 @@
 
 The CLI (``phasekit``, ``python -m phasekit``) and the studies (``python studies/NAME.py``)
 spend their first second importing numpy, CasADi, heyoka and matplotlib, before their own
-handler (:func:`phasekit.cli.main`, :func:`phasekit.viz.run_study`) is in place. This module is
+handler (:func:`phasekit.cli.main`, :func:`phasekit.sweep.run_study`) is in place. This module is
 the first thing ``import phasekit`` runs; when the program is one of those, importing it installs a SIGINT
 handler that prints one line and exits with 130 until :func:`started` hands Ctrl-C back to
 Python's default (KeyboardInterrupt, which those handlers turn into their own one line). Any
@@ -30,7 +30,7 @@ def _is_ours() -> bool:
     if os.path.basename(script) == "phasekit":  # the console script
         return True
     if script.endswith(".py"):
-        here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+        here = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # the repository
         return os.path.dirname(os.path.abspath(script)) == os.path.join(here, "studies")
     return False
 

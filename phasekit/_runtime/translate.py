@@ -1,6 +1,6 @@
 """Translate CasADi SX functions into heyoka expressions.
 
-The equations are written once, as CasADi SX (:mod:`phasekit.core.model`); this walks a
+The equations are written once, as CasADi SX (:mod:`phasekit.core.fields`); this walks a
 function's instruction list (its algorithm, with common subexpressions already shared)
 and rebuilds each instruction with heyoka's expression system, so the Taylor integrator
 runs exactly the compiled model and nothing is transcribed twice.

@@ -3,7 +3,7 @@ with (6.1) as a plain NumPy right-hand side for scipy, and the bare heyoka integ
 
 Used by the benchmarks and the work-precision study as the reference points for cost ("scipy
 on a NumPy right-hand side", "heyoka without phasekit's loop"), and the NumPy form as a third,
-independent transcription of the equations (it shares no code with :mod:`phasekit.core.model`).
+independent transcription of the equations (it shares no code with :mod:`phasekit.core.fields`).
 Coulomb friction while sliding; nothing is done about zero slip (the pitfall the rest of
 phasekit treats).
 """
@@ -16,7 +16,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..bodies.body import Spheroid
+from ..bodies.spheroid import Spheroid
 from ..core.simulate import taylor_integrator
 
 __all__ = ["numpy_rhs", "numpy_normal_reaction", "solve_ivp_to_jump", "BaselineRun", "taylor_integrator", "JUMP_METHODS",
@@ -34,6 +34,22 @@ def _geometry(a, th):
 
 def numpy_normal_reaction(y, a, A, C, mu):
     """(6.1) for Coulomb friction while sliding.
+
+    Parameters
+    ----------
+    y : array_like
+        The paper's state (U, V, Omega, Lambda, theta, n): 6 numbers.
+    a : float
+        Aspect ratio of the uniform spheroid (its h(theta)).
+    A, C : float
+        Transverse and axial moments of inertia about G, units M b^2.
+    mu : float
+        Coulomb friction coefficient.
+
+    Returns
+    -------
+    float
+        The normal reaction R, units M g.
 
     Examples
     --------
@@ -54,6 +70,24 @@ def numpy_normal_reaction(y, a, A, C, mu):
 
 def numpy_rhs(t, y, a, A, C, mu):
     """Equations (2.7a-f) with Coulomb friction (2.6) and R from (6.1).
+
+    Parameters
+    ----------
+    t : float
+        Time (unused: the equations are autonomous; the signature is scipy's).
+    y : array_like
+        The paper's state (U, V, Omega, Lambda, theta, n): 6 numbers.
+    a : float
+        Aspect ratio of the uniform spheroid (its h(theta)).
+    A, C : float
+        Transverse and axial moments of inertia about G, units M b^2.
+    mu : float
+        Coulomb friction coefficient.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (6,): the time derivative of the state.
 
     Examples
     --------
@@ -89,6 +123,19 @@ class BaselineRun(NamedTuple):
     the end of the run (the jump; None when capped), the right-hand side evaluations, the wall time
     and a status ("ok", "capped" or "no jump" with scipy's message).
 
+    Parameters
+    ----------
+    t_jump : float or None
+        The jump time, units sqrt(b/g); None without a jump.
+    y : numpy.ndarray or None
+        The state at the end of the run (the jump); None when capped.
+    n_rhs : int
+        Right-hand side evaluations.
+    wall_s : float
+        Wall time, seconds.
+    status : str
+        "ok", "capped" or "no jump (<scipy's message>)".
+
     Examples
     --------
     >>> import numpy as np, phasekit as pk, phasekit.studies as ps
@@ -115,10 +162,42 @@ def solve_ivp_to_jump(y0, t_end, *, a, A, C, mu, method="BDF", rtol=1e-9, atol=N
     """scipy.integrate.solve_ivp on a sliding uniform spheroid under Coulomb friction, stopping
     at R = 0 with dR/dt < 0.
 
-    ``rhs="numpy"``: the hand-written :func:`numpy_rhs`; ``rhs="casadi"``: phasekit's compiled
-    right-hand side, with its exact Jacobian for the implicit methods (BDF, Radau, LSODA).
-    ``max_wall`` (seconds, checked every 200 evaluations) ends a run that takes longer with
-    status "capped"; ``atol`` defaults to rtol / 100.
+    Parameters
+    ----------
+    y0 : array_like
+        The start, the paper's state (U, V, Omega, Lambda, theta, n): 6 numbers.
+    t_end : float
+        End time, units sqrt(b/g).
+    a : float
+        Aspect ratio of the spheroid.
+    A, C : float
+        Transverse and axial moments of inertia about G, units M b^2.
+    mu : float
+        Coulomb friction coefficient.
+    method : str, optional
+        The method of scipy's solve_ivp (default "BDF").
+    rtol : float, optional
+        Relative tolerance (default 1e-9).
+    atol : float, optional
+        Absolute tolerance; defaults to rtol / 100.
+    rhs : {"numpy", "casadi"}, optional
+        ``rhs="numpy"`` (the default): the hand-written :func:`numpy_rhs`; ``rhs="casadi"``:
+        phasekit's compiled right-hand side, with its exact Jacobian for the implicit methods
+        (BDF, Radau, LSODA).
+    max_wall : float, optional
+        Seconds, checked every 200 evaluations: ends a run that takes longer with status
+        "capped" (default None: no limit).
+
+    Returns
+    -------
+    BaselineRun
+        Status "ok" with the jump time and the state there; "capped" (no time, no state); or
+        "no jump (<scipy's message>)" with the last state.
+
+    Raises
+    ------
+    ParameterError
+        With ``rhs="casadi"``, if the spheroid (``a``, ``A``, ``C``) or ``mu`` is invalid.
 
     Examples
     --------
@@ -131,19 +210,8 @@ def solve_ivp_to_jump(y0, t_end, *, a, A, C, mu, method="BDF", rtol=1e-9, atol=N
     """
     from scipy.integrate import solve_ivp
 
-    t_start, calls, jac = time.perf_counter(), [0], None
-    if rhs == "casadi":
-        from ..core.model import Model
-        from ..friction.laws import Coulomb
-
-        m = Model(Spheroid(a, A=A, C=C), Coulomb(mu))
-        f, jf, Rf, p = m.function("rhs_sliding"), m.function("rhs_jac_sliding"), m.function("R_sliding"), m.p
-        field = lambda t, y: np.asarray(f(y, p)).ravel()  # noqa: E731
-        event = lambda t, y: float(Rf(y, p))  # noqa: E731
-        jac = (lambda t, y: np.asarray(jf(y, p))) if method in ("BDF", "Radau", "LSODA") else None
-    else:
-        field = lambda t, y: numpy_rhs(t, y, a, A, C, mu)  # noqa: E731
-        event = lambda t, y: numpy_normal_reaction(y, a, A, C, mu)  # noqa: E731
+    t_start, calls = time.perf_counter(), [0]
+    field, event, jac = _field_and_event(rhs, method, a, A, C, mu)
 
     def fun(t, y):
         calls[0] += 1
@@ -161,6 +229,25 @@ def solve_ivp_to_jump(y0, t_end, *, a, A, C, mu, method="BDF", rtol=1e-9, atol=N
     if not sol.t_events[0].size:
         return BaselineRun(None, sol.y[:, -1], int(sol.nfev), wall, f"no jump ({sol.message})")
     return BaselineRun(float(sol.t_events[0][0]), sol.y_events[0][0], int(sol.nfev), wall, "ok")
+
+
+def _field_and_event(rhs: str, method: str, a, A, C, mu) -> tuple:
+    """:func:`solve_ivp_to_jump`'s right-hand side f(t, y), its event R(t, y) and the Jacobian
+    (None but for phasekit's compiled field with an implicit method)."""
+    jac = None
+    if rhs == "casadi":
+        from ..core.model import Model
+        from ..friction.laws import Coulomb
+
+        m = Model(Spheroid(a, A=A, C=C), Coulomb(mu))
+        f, jf, Rf, p = m.function("rhs_sliding"), m.function("rhs_jac_sliding"), m.function("R_sliding"), m.p
+        field = lambda t, y: np.asarray(f(y, p)).ravel()  # noqa: E731
+        event = lambda t, y: float(Rf(y, p))  # noqa: E731
+        jac = (lambda t, y: np.asarray(jf(y, p))) if method in ("BDF", "Radau", "LSODA") else None
+    else:
+        field = lambda t, y: numpy_rhs(t, y, a, A, C, mu)  # noqa: E731
+        event = lambda t, y: numpy_normal_reaction(y, a, A, C, mu)  # noqa: E731
+    return field, event, jac
 
 
 #: what a sweep needs of a run (t_jump only); simulate's defaults add dense output and the minima of R
@@ -190,8 +277,35 @@ def jump_time(method: str, body, y0, mu: float, rtol: float, cap: float | None =
     """The time of the jump of a sliding spheroid under Coulomb friction ``mu`` from ``y0`` (the
     paper's state), by one of :data:`JUMP_METHODS`: phasekit's engines through
     :func:`phasekit.simulate` (the wall time measured around it) or scipy through
-    :func:`solve_ivp_to_jump` (capped at ``cap`` seconds). A :class:`BaselineRun` whose ``y``
-    is the state at the jump (None without one) and status "ok" with a jump.
+    :func:`solve_ivp_to_jump` (capped at ``cap`` seconds).
+
+    Parameters
+    ----------
+    method : str
+        One of :data:`JUMP_METHODS`.
+    body : Spheroid
+        The body.
+    y0 : array_like
+        The start, the paper's state (U, V, Omega, Lambda, theta, n).
+    mu : float
+        Coulomb friction coefficient.
+    rtol : float
+        Relative tolerance.
+    cap : float, optional
+        Wall-time limit of a scipy run, seconds (default None: no limit).
+    t_end : float, optional
+        End time, units sqrt(b/g) (default 200).
+
+    Returns
+    -------
+    BaselineRun
+        A :class:`BaselineRun` whose ``y`` is the state at the jump (None without one) and
+        status "ok" with a jump (otherwise scipy's status, or phasekit's status and reason).
+
+    Raises
+    ------
+    ParameterError
+        If ``method`` is not one of :data:`JUMP_METHODS`, or an argument of the run is invalid.
 
     Examples
     --------
@@ -251,11 +365,37 @@ def _timed(method, body, y0, mu, rtol, cap, repeats) -> tuple[BaselineRun, float
 def work_precision(workloads: dict, rtols, *, mu: float, cap: float, repeats: int = 1, methods=JUMP_METHODS, bar=None):
     """Every method at every tolerance on every workload (name -> (body, paper state)): the
     relative error of the jump time against a reference (phasekit's Taylor integrator at tol
-    1e-15) and the median wall time of ``repeats`` runs. Returns (rows, refs): one row (a dict:
-    workload, method, rtol, error, state_error, wall_s, n_rhs, default, status) per run, a run
-    past ``cap`` seconds kept with status "capped"; per workload (t_ref, relative difference of
-    scipy DOP853 at rtol 1e-13 in t_jump, its largest difference in the state). ``bar``: a tqdm
-    progress bar, advanced per reference and per run.
+    1e-15) and the median wall time of ``repeats`` runs.
+
+    Parameters
+    ----------
+    workloads : dict
+        Name -> (body, paper state): the spheroid and its start.
+    rtols : sequence of float
+        The relative tolerances.
+    mu : float
+        Coulomb friction coefficient.
+    cap : float
+        Wall-time limit of a scipy run, seconds.
+    repeats : int, optional
+        Runs per method and tolerance, of which the median wall time is kept (default 1).
+    methods : sequence of str, optional
+        Names from :data:`JUMP_METHODS` (default: all of them).
+    bar : tqdm.tqdm, optional
+        A tqdm progress bar, advanced per reference and per run.
+
+    Returns
+    -------
+    tuple
+        (rows, refs): one row (a dict: workload, method, rtol, error, state_error, wall_s,
+        n_rhs, default, status) per run, a run past ``cap`` seconds kept with status "capped";
+        per workload (t_ref, relative difference of scipy DOP853 at rtol 1e-13 in t_jump, its
+        largest difference in the state).
+
+    Raises
+    ------
+    ParameterError
+        If a name in ``methods`` is not one of :data:`JUMP_METHODS`.
 
     Examples
     --------
@@ -283,37 +423,3 @@ def work_precision(workloads: dict, rtols, *, mu: float, cap: float, repeats: in
                 rows.append(dict(workload=wl, method=name, rtol=rt, error=err, state_error=serr, wall_s=wall, n_rhs=res.n_rhs,
                                  default=name == JUMP_METHODS[0], status=res.status))
     return rows, refs
-
-
-def work_precision_summary(rows, refs: dict, targets=(1e-6, 1e-9)) -> str:
-    """What a work-precision comparison (:func:`work_precision`) found, as text: each
-    workload's reference and its check by scipy, the cheapest run of each method reaching each
-    error level in ``targets``, and the log-log slope of the error against rtol of CVODES and
-    phasekit's Taylor integrator on the first workload.
-
-    Examples
-    --------
-    >>> import phasekit as pk, phasekit.studies as ps
-    >>> rows = [dict(workload="w", method=m, rtol=r, error=r, wall_s=r * 1e4, status="ok")
-    ...         for m in pk.baseline.JUMP_METHODS for r in (1e-4, 1e-7, 1e-10)]
-    >>> print(ps.work_precision_summary(rows, {"w": (45.256, 1e-12, 1e-10)}).splitlines()[-1])
-    error against rtol, phasekit Taylor/heyoka (sweep path): log-log slope 1.00
-    """
-    out = [f"{wl}: reference t* = {t_ref:.12f} (Taylor tol 1e-15); scipy DOP853 rtol 1e-13 on the NumPy rhs differs by "
-           f"{chk:.1e} relative in t*, {schk:.1e} in the state" for wl, (t_ref, chk, schk) in refs.items()]
-    for wl in refs:
-        out += [f"\n{wl}: cheapest run reaching each error level",
-                f"{'method':<42s} " + " ".join(f"{'error <= ' + f'{t:.0e}'.replace('e-0', 'e-'):>22s}" for t in targets)]
-        for name in JUMP_METHODS:
-            cells = []
-            for target in targets:
-                ok = [r for r in rows if r["workload"] == wl and r["method"] == name and r["error"] is not None and r["error"] <= target]
-                best = min(ok, key=lambda r: r["wall_s"]) if ok else None
-                cells.append(f"{best['wall_s'] * 1e3:9.2f} ms @ {best['rtol']:.0e}" if best else "not reached")
-            out.append(f"{name:<42s} " + " ".join(f"{c:>22s}" for c in cells))
-    for name in ("CVODES BDF (CasADi)", "CVODES Adams (CasADi)", JUMP_METHODS[0]):
-        pts = [(r["rtol"], r["error"]) for r in rows if r["workload"] == next(iter(refs)) and r["method"] == name and r["error"]]
-        if len(pts) > 2:
-            slope = np.polyfit(np.log10([p[0] for p in pts]), np.log10([max(p[1], 1e-16) for p in pts]), 1)[0]
-            out.append(f"error against rtol, {name}: log-log slope {slope:.2f}")
-    return "\n".join(out)

@@ -10,7 +10,9 @@ Examples
 (0.65, 0.4)
 """
 
-from .body import Body, CustomBody, EccentricSphere, Spheroid
+from .body import Body
+from .custom import CustomBody
 from .egg import Egg
+from .spheroid import EccentricSphere, Spheroid
 
 __all__ = ["Body", "Spheroid", "EccentricSphere", "Egg", "CustomBody"]

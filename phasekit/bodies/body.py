@@ -1,4 +1,6 @@
-"""Bodies: a convex body of revolution given by its support function and its moments.
+"""The base class of bodies, :class:`Body`: a convex body of revolution given by its support
+function and its moments, and what is derived from the support function alone (its derivatives,
+radii of curvature, convexity, the uniform solid's mass properties).
 
 The paper's equations (2.7) use the body only through h(theta), the height of the centre
 of mass G above the table when the symmetry axis k is inclined at theta to the vertical,
@@ -13,14 +15,14 @@ for a body without flip symmetry these are different states.
 
 To define a body, subclass :class:`Body` and implement :meth:`Body.height` (a CasADi
 expression in c and the shape parameters) and :attr:`Body.shape_params`, or use
-:class:`CustomBody` with a function of theta or of cos(theta). Units: mass M, length b
-(the equatorial radius, or the sphere's radius), so A and C are in M b^2.
+:class:`~phasekit.bodies.custom.CustomBody` with a function of theta or of cos(theta). The
+built-in bodies: :mod:`phasekit.bodies.spheroid`, :mod:`phasekit.bodies.egg`. Units: mass M,
+length b (the equatorial radius, or the sphere's radius), so A and C are in M b^2.
 """
 
 from __future__ import annotations
 
 import hashlib
-import math
 import threading
 from typing import NamedTuple
 
@@ -28,12 +30,9 @@ import casadi as ca
 import numpy as np
 
 from .._runtime.errors import ParameterError
-from .._runtime.validate import check_nonnegative, check_positive, check_range
+from .._runtime.validate import check_positive
 
-__all__ = ["TIPPE_TOP_OFFSET_MAX", "Body", "CustomBody", "EccentricSphere", "MassProperties", "Spheroid", "uniform_mass_properties"]
-
-#: aspect ratios outside this range give moments of inertia that overflow or vanish
-ASPECT_RANGE = (1e-4, 1e4)
+__all__ = ["Body", "MassProperties", "uniform_mass_properties"]
 
 
 class Body:
@@ -56,6 +55,11 @@ class Body:
     ``describe()`` (optional) -> str
         A one-line description for reports.
 
+    Raises
+    ------
+    ParameterError
+        If ``A`` or ``C`` is not a finite number > 0, or C > 2 A.
+
     Examples
     --------
     >>> import phasekit as pk
@@ -77,7 +81,25 @@ class Body:
         raise NotImplementedError(f"{type(self).__name__} must define `shape_params` (see phasekit.bodies.body.Body)")
 
     def height(self, c, shape):
-        """H(c) as a CasADi expression in ``c`` and the symbols ``shape``."""
+        """H(c) as a CasADi expression in ``c`` and the symbols ``shape``.
+
+        Parameters
+        ----------
+        c : casadi.SX
+            The symbol c = cos(theta).
+        shape : casadi.SX
+            The symbols of the shape parameters, one per entry of :attr:`shape_params`.
+
+        Returns
+        -------
+        casadi.SX
+            The height of G above the table, units b.
+
+        Raises
+        ------
+        NotImplementedError
+            If a subclass does not define it.
+        """
         raise NotImplementedError(f"{type(self).__name__} must define `height(c, shape)` (see phasekit.bodies.body.Body)")
 
     # -- derived ----------------------------------------------------------------------------
@@ -105,7 +127,13 @@ class Body:
         """Raise ParameterError naming `A` or `C` if a moment exceeds M r_max^2: all the mass
         lies within r_max = max |GP| of G (called when a Model is built: the shape is set
         after the moments in some bodies' constructors); once per body, as Models are built
-        on the sweeps' hot path."""
+        on the sweeps' hot path.
+
+        Raises
+        ------
+        ParameterError
+            If ``A`` or ``C`` exceeds M r_max^2.
+        """
         if getattr(self, "_inertia_checked", False):
             return
         h, h1, _ = (np.asarray(v, dtype=float).ravel() for v in self.h(np.linspace(0.0, np.pi, 181)))
@@ -117,18 +145,53 @@ class Body:
         self._inertia_checked = True
 
     def h(self, theta):
-        """(h, h_theta, h_thetatheta) at theta (float or array), exact derivatives via CasADi."""
+        """(h, h_theta, h_thetatheta) at theta (float or array), exact derivatives via CasADi.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Inclination of the symmetry axis from the vertical, radians.
+
+        Returns
+        -------
+        tuple
+            (h, h_theta, h_thetatheta), units b: floats for a number, arrays of the shape of
+            ``theta`` otherwise.
+        """
         return _theta_functions(self)(np.asarray(theta, dtype=float), self.shape_params)
 
     def height_slope(self, c: float) -> tuple[float, float]:
-        """(H(c), H'(c)) with c = cos(theta): the height and its slope, regular at the poles."""
+        """(H(c), H'(c)) with c = cos(theta): the height and its slope, regular at the poles.
+
+        Parameters
+        ----------
+        c : float
+            c = cos(theta), in [-1, 1].
+
+        Returns
+        -------
+        tuple of float
+            (H(c), dH/dc), units b.
+        """
         H, dH = _slope_function(self)(float(c), self.shape_params)
         return float(H), float(dH)
 
     def radii_of_curvature(self, theta):
         """Principal radii of curvature of the surface at the contact point for inclination
         theta: meridional h + h_tt and azimuthal x_P / sin(theta) (x_P = h sin + h_t cos,
-        the distance of P from the axis). Both are > 0 on a strictly convex body."""
+        the distance of P from the axis). Both are > 0 on a strictly convex body.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Inclination of the symmetry axis from the vertical, radians.
+
+        Returns
+        -------
+        tuple
+            (meridional, azimuthal) radii, units b, of the shape of ``theta``; where
+            abs(sin(theta)) <= 1e-6 (at a pole) the azimuthal radius is its limit, h + h_tt.
+        """
         theta = np.asarray(theta, dtype=float)
         h, h1, h2 = self.h(theta)
         s = np.sin(theta)
@@ -139,7 +202,23 @@ class Body:
 
     def check_convex(self, param: str = "height", theta_range: tuple[float, float] = (0.0, np.pi), n: int = 721) -> None:
         """Raise ParameterError (naming ``param``) unless the surface is smooth and strictly
-        convex over ``theta_range``: finite h > 0 and both radii of curvature > 0."""
+        convex over ``theta_range``: finite h > 0 and both radii of curvature > 0.
+
+        Parameters
+        ----------
+        param : str, optional
+            The parameter the error names (default "height").
+        theta_range : tuple of float, optional
+            The interval of theta checked, radians (default (0, pi)).
+        n : int, optional
+            The number of angles sampled, uniformly, in ``theta_range`` (default 721).
+
+        Raises
+        ------
+        ParameterError
+            If, at a sampled angle, h is not finite or not > 0, or a radius of curvature is
+            not > 0.
+        """
         th = np.linspace(*theta_range, n)
         h = self.h(th)
         r1, r2 = self.radii_of_curvature(th)
@@ -239,6 +318,19 @@ def uniform_mass_properties(body: Body, n: int = 400) -> MassProperties:
     to the pole at +k). Discs of radius x_P give V = pi int x_P^2 dz, C = (pi/2V) int x_P^4 dz and
     A = (pi/V) int x_P^2 (x_P^2/4 + (z - z_c)^2) dz. Gauss-Legendre quadrature in theta with
     ``n`` nodes (spectrally accurate for a smooth support function: 1e-14 for the spheroid).
+
+    Parameters
+    ----------
+    body : Body
+        The body whose surface bounds the solid.
+    n : int, optional
+        The number of Gauss-Legendre nodes (default 400).
+
+    Returns
+    -------
+    MassProperties
+        Volume (b^3), centroid along k from G (b), and A (about the centroid) and C per unit
+        mass (b^2).
     """
     x, wq = np.polynomial.legendre.leggauss(int(n))
     th = 0.5 * np.pi * (x + 1.0)
@@ -253,258 +345,3 @@ def uniform_mass_properties(body: Body, n: int = 400) -> MassProperties:
     C = 0.5 * np.pi * np.sum(r2 * r2 * dz) / V
     A = np.pi * np.sum(r2 * (0.25 * r2 + (z - zc) ** 2) * dz) / V
     return MassProperties(float(V), float(zc), float(A), float(C))
-
-
-class Spheroid(Body):
-    """Spheroid with semi-axes (1, 1, a): prolate for a > 1, oblate for a < 1; its centre of
-    mass G at the centre O, or displaced along the axis (part III of the series).
-
-    Parameters
-    ----------
-    a : float
-        Aspect ratio (polar over equatorial semi-axis), in [1e-4, 1e4].
-    A, C : float, optional
-        Moments about G (units M b^2). Defaults: with G at O those of the uniform solid,
-        A = (1 + a^2)/5, C = 2/5; with an offset, the same inertia about O moved to G by
-        the parallel-axis theorem, A = (1 + a^2)/5 - offset^2, C = 2/5 (see Notes).
-    offset : float in [0, a), keyword-only
-        Distance OG (units b) from the centre of volume O to G, toward the end at -k (the end
-        the body rests on at theta = 0): the tippe top's convention
-        (:class:`EccentricSphere`). Support function h = sqrt(a^2 cos^2 + sin^2) - offset cos.
-
-    Notes
-    -----
-    Part III of the series (Branicki, Moffatt & Shimomura, *Geometry of steady state
-    structures for convex bodies*, Proc. R. Soc. A, 2006) treats A and C as free parameters. The default keeps the
-    uniform spheroid's inertia about O, i.e. a density redistributed along the axis; it
-    exists for offset^2 <= a^2/5 (Cauchy-Schwarz: (int z dm)^2 <= M int z^2 dm = M a^2/5, the
-    same bound as C <= 2A); larger offsets need explicit A and C.
-
-    Examples
-    --------
-    >>> Spheroid(1.5).A
-    0.65
-    >>> Spheroid(1.5, offset=0.2).flip_symmetric
-    False
-    """
-
-    def __init__(self, a: float, A: float | None = None, C: float | None = None, *, offset: float = 0.0):
-        self.a = check_range("a", a, *ASPECT_RANGE, closed="lr", label=f"[{ASPECT_RANGE[0]:g}, {ASPECT_RANGE[1]:g}]")
-        self.offset = check_nonnegative("offset", offset)
-        if self.offset >= self.a:
-            raise ParameterError("offset", f"must lie in [0, a) = [0, {self.a:g}) (G inside the spheroid)", offset)
-        if (A is None or C is None) and self.offset > self.a / math.sqrt(5.0):
-            raise ParameterError("offset", f"must be <= a/sqrt(5) = {self.a / math.sqrt(5.0):.6g} for the default moments "
-                                           "(no density with the uniform spheroid's inertia about its centre has a larger "
-                                           "offset); give A and C", offset)
-        A0 = (1.0 + self.a * self.a) / 5.0 - self.offset**2
-        super().__init__(A0 if A is None else A, 0.4 if C is None else C)
-        self.check_convex("a")
-
-    @property
-    def shape_params(self) -> tuple[float, ...]:
-        # the centred spheroid keeps its one-parameter form, so its compiled models (and every
-        # number computed with them) are those it always had
-        return (self.a, self.offset) if self.offset else (self.a,)
-
-    def height(self, c, shape):
-        # (2.10): h = (a^2 cos^2 + sin^2)^(1/2) = (1 + (a^2 - 1) c^2)^(1/2), minus offset cos for G below O
-        a = shape[0]
-        h = ca.sqrt(1 + (a * a - 1) * c * c)
-        return h - shape[1] * c if self.offset else h
-
-    @property
-    def uniform(self) -> bool:
-        return not self.offset and abs(self.A - (1 + self.a**2) / 5) < 1e-15 and abs(self.C - 0.4) < 1e-15
-
-    @property
-    def is_prolate(self) -> bool:
-        return self.a > 1.0 if not self.offset else super().is_prolate
-
-    @property
-    def flip_symmetric(self) -> bool:
-        return not self.offset
-
-    def to_dict(self) -> dict:
-        d = {"body": "spheroid", "a": self.a, "A": self.A, "C": self.C, "description": self.describe()}
-        if self.offset:
-            d["offset"] = self.offset
-        return d
-
-    def __repr__(self) -> str:
-        if self.uniform:
-            return f"Spheroid(a={self.a:g})"
-        off = f", offset={self.offset:g}" if self.offset else ""
-        return f"Spheroid(a={self.a:g}{off}, A={self.A:g}, C={self.C:g})"
-
-
-#: the largest offset for the default tippe-top moments: an isotropic inertia 2/5 about the
-#: ball's centre O allows offset^2 <= 1/5 (Cauchy-Schwarz; the same bound as C <= 2A)
-TIPPE_TOP_OFFSET_MAX = math.sqrt(0.2)
-
-
-class EccentricSphere(Body):
-    """A sphere of radius 1 whose centre of mass G lies ``offset`` below its centre O along the
-    axis k (the tippe top). theta = 0: resting on the ball with G below O (axis up);
-    theta = pi: inverted, resting on the other side with G above O.
-
-    Support function: h = 1 - offset cos(theta), so h_t = offset sin(theta) and both radii of
-    curvature equal 1 everywhere.
-
-    Parameters
-    ----------
-    offset : float in [0, 1)
-        Distance OG over the radius (alpha in the tippe-top literature).
-    A, C : float, optional
-        Moments about G in M b^2 (b the radius). Default: C = 2/5 and A = 2/5 - offset^2.
-
-    Notes
-    -----
-    Default moments. They are those of a ball whose inertia about its centre O is the uniform
-    ball's, 2/5 about every axis, moved to G by the parallel-axis theorem. The standard physical
-    example is a ball made of two solid hemispheres of different uniform densities rho_1 (the
-    lower half when upright) and rho_2: each hemisphere has moment 2/5 m_i about every axis
-    through O, and G lies (3/8)(rho_1 - rho_2)/(rho_1 + rho_2) below O, so offset <= 3/8 covers
-    all such balls. No density >= 0 gives these moments beyond offset^2 = 1/5 (Cauchy-Schwarz:
-    (int z dm)^2 <= M int z^2 dm = M A_O / 2), which is also where C <= 2A fails; such offsets
-    need explicit A and C. The default gamma = A/C = 1 - 5 offset^2/2 lies inside the classical
-    inversion interval (1 - offset, 1 + offset) for every offset < 2/5, so every default top
-    inverts when spun fast enough (phasekit.theory.tippetop.classical_inversion). Commercial tippe tops
-    (a truncated ball with a stem) have gamma closer to 1; the example in the README uses
-    offset 0.3, A = 0.38, C = 0.4 (gamma = 0.95).
-
-    Examples
-    --------
-    >>> import phasekit as pk
-    >>> top = pk.EccentricSphere(0.3, A=0.38, C=0.4)
-    >>> top
-    EccentricSphere(offset=0.3, A=0.38, C=0.4)
-    >>> round(float(top.h(0.0)[0]), 6)
-    0.7
-    """
-
-    def __init__(self, offset: float, A: float | None = None, C: float | None = None):
-        self.offset = check_nonnegative("offset", offset)
-        if self.offset >= 1.0:
-            raise ParameterError("offset", "must lie in [0, 1) (G inside the ball)", offset)
-        if A is None and self.offset > TIPPE_TOP_OFFSET_MAX:
-            raise ParameterError("offset", f"must be <= {TIPPE_TOP_OFFSET_MAX:.6g} (sqrt(1/5)) for the default moments "
-                                           "(no ball with inertia 2/5 about its centre has a larger offset); give A and C",
-                                 offset)
-        super().__init__(0.4 - self.offset**2 if A is None else A, 0.4 if C is None else C)
-        self.check_convex("offset")
-
-    @property
-    def shape_params(self) -> tuple[float, ...]:
-        return (self.offset,)
-
-    def height(self, c, shape):
-        return 1 - shape[0] * c
-
-    @property
-    def is_prolate(self) -> bool:
-        return False
-
-    def to_dict(self) -> dict:
-        return {"body": "tippe-top", "offset": self.offset, "A": self.A, "C": self.C, "description": self.describe()}
-
-    def __repr__(self) -> str:
-        return f"EccentricSphere(offset={self.offset:g}, A={self.A:g}, C={self.C:g})"
-
-
-class CustomBody(Body):
-    """A body from a user's support function, in a few lines::
-
-        body = pk.CustomBody(lambda th: ca.sqrt(4 * ca.cos(th) ** 2 + ca.sin(th) ** 2))  # = Spheroid(2)
-
-    Parameters
-    ----------
-    height : callable
-        The height of G above the table as a CasADi expression: a function of theta
-        (``variable="theta"``), or of c = cos(theta) (``variable="cos"``). Given in theta,
-        the vector chart evaluates it at theta = acos(k_Z), whose derivative is singular
-        exactly at theta = 0 and pi: give it in cos(theta) to work at the poles.
-    A, C : float, optional
-        Moments about G (units M b^2). Default: those of the uniform solid bounded by the
-        surface (:func:`uniform_mass_properties`); this needs G at that solid's centroid
-        (otherwise the density is not uniform and A, C must be given).
-    name : str
-        Shown in reports.
-
-    The profile is checked for smoothness and convexity over [0, pi] (both radii of
-    curvature > 0); a bad one raises ParameterError naming `height`.
-
-    Examples
-    --------
-    >>> import phasekit as pk
-    >>> import casadi as ca
-    >>> b = pk.CustomBody(lambda c: ca.sqrt(2.25 * c**2 + 1 - c**2), A=0.65, C=0.4, variable='cos')
-    >>> round(float(b.h(0.3)[0]), 6) == round(float(pk.Spheroid(1.5).h(0.3)[0]), 6)
-    True
-    """
-
-    def __init__(self, height, A: float | None = None, C: float | None = None, *, variable: str = "theta",
-                 name: str = "custom"):
-        if not callable(height):
-            raise ParameterError("height", "must be a function of theta (or of cos(theta)) returning a CasADi expression", height)
-        if variable not in ("theta", "cos"):
-            raise ParameterError("variable", "must be one of theta, cos", variable)
-        self._fn, self.variable, self.name, self._key = height, variable, str(name), None
-        try:
-            self.structure_key
-            scalar = ca.SX(self.height(ca.SX.sym("c"), ca.SX.sym("shape", 0))).numel() == 1
-        except Exception as exc:  # the function is not CasADi-expressible
-            raise ParameterError("height", f"must return a CasADi expression ({type(exc).__name__}: {exc})", show_value=False) from None
-        if not scalar:
-            raise ParameterError("height", "must return one scalar CasADi expression (the height of G)", show_value=False)
-        self._check_operations()
-        interior = (1e-6, np.pi - 1e-6) if variable == "theta" else (0.0, np.pi)
-        self.check_convex("height", interior)
-        if A is None or C is None:
-            props = uniform_mass_properties(self)
-            if abs(props.z_centroid) > 1e-9 * max(1.0, abs(self.h(0.0)[0])):
-                raise ParameterError("A", f"and `C` are required: G is not the centroid of the solid (centroid at "
-                                          f"{props.z_centroid:.6g} along k), so the density is not uniform",
-                                     show_value=False)
-            A = props.A if A is None else A
-            C = props.C if C is None else C
-        super().__init__(A, C)
-
-    def _check_operations(self) -> None:
-        """A profile with a kink (fabs, fmax, if_else, ...) is not smooth, whatever its values
-        say at the sample points; one the Taylor integrator cannot compile is refused here,
-        not at the first simulation."""
-        from .._runtime.translate import operations
-
-        c = ca.SX.sym("c")
-        ops = operations(ca.Function("h", [c], [ca.SX(self.height(c, ca.SX.sym("shape", 0)))]))
-        if ops["non_smooth"]:
-            raise ParameterError("height", f"must be smooth: it uses {', '.join(sorted(ops['non_smooth']))} (kinks or jumps); "
-                                           "write the profile with smooth functions", show_value=False)
-        if ops["untranslated"]:
-            raise ParameterError("height", f"uses {', '.join(sorted(ops['untranslated']))}, which the Taylor integrator cannot "
-                                           "compile (use sqrt, exp, log, sin, cos, tan, their inverses, sinh, cosh, tanh, erf, "
-                                           "powers)", show_value=False)
-
-    @property
-    def shape_params(self) -> tuple[float, ...]:
-        return ()
-
-    def height(self, c, shape):
-        if self.variable == "cos":
-            return self._fn(c)
-        return self._fn(ca.acos(c))
-
-    @property
-    def structure_key(self) -> str:
-        if getattr(self, "_key", None) is None:
-            c = ca.SX.sym("c")
-            f = ca.Function("H", [c], [self.height(c, ca.SX.sym("shape", 0))])
-            self._key = "CustomBody:" + hashlib.sha256(f.serialize().encode()).hexdigest()[:16]
-        return self._key
-
-    def describe(self) -> str:
-        return f"{self.name} body (custom support function, A={self.A:g}, C={self.C:g})"
-
-    def __repr__(self) -> str:
-        return f"CustomBody({self.name!r}, A={self.A:g}, C={self.C:g})"

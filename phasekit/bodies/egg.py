@@ -173,6 +173,17 @@ def support(theta, a: float, w: float, x_G: float = 0.0):
     x_G : float
         Axial coordinate of the centre of mass (0 = the middle of the axis).
 
+    Returns
+    -------
+    tuple
+        (h, h_theta, h_thetatheta), units b: floats for a number, arrays of the shape of
+        ``theta`` otherwise.
+
+    Raises
+    ------
+    RuntimeError
+        If the Newton iteration for the contact point does not converge.
+
     Notes
     -----
     h_theta follows from the envelope theorem, h_thetatheta = -h - F_theta^2 / F_u from the
@@ -212,6 +223,19 @@ def mass_properties(a: float, w: float) -> EggMassProperties:
     (1 + 4 w s + 4 w^2) does not depend on a, so that the integrands are O(1) and an absolute
     tolerance of 1e-14 is meaningful (a purely relative one is unreachable for the
     vanishing first moment at w = 0 and makes QUADPACK warn).
+
+    Parameters
+    ----------
+    a : float
+        Aspect ratio L/B.
+    w : float
+        Asymmetry w/L.
+
+    Returns
+    -------
+    EggMassProperties
+        Volume, centroid on the axis, and the moments A (about the centroid) and C per unit
+        mass.
     """
 
     from scipy.integrate import quad  # imported here: scipy.integrate costs 0.3 s at import
@@ -312,7 +336,20 @@ def _fit(a: float, w: float) -> tuple[tuple[float, ...], int, float, float]:
 
 def clenshaw(c, coef):
     """sum_k coef[k] T_k(c) by Clenshaw's recurrence, with + - * only (so that the expression
-    translates to every backend). ``c`` and ``coef`` may be CasADi SX or numbers."""
+    translates to every backend).
+
+    Parameters
+    ----------
+    c : float or casadi.SX
+        The argument of the Chebyshev polynomials T_k.
+    coef : sequence of float or casadi.SX
+        The coefficients, coef[k] of T_k, at least one.
+
+    Returns
+    -------
+    float or casadi.SX
+        The sum, of the kind of ``c`` and ``coef``.
+    """
     n = coef.shape[0] if hasattr(coef, "shape") else len(coef)
     if n == 1:
         return coef[0]
@@ -348,7 +385,7 @@ class Egg(Body):
         tip is at -a, the thin tip at +a). Default: the uniform solid's centroid. When G is
         moved and A is not given, A is the uniform solid's transverse moment about its
         centroid reduced by the parallel-axis term (x_G - centroid)^2, the convention of
-        :class:`~phasekit.bodies.body.EccentricSphere` (second moments about the centroid kept).
+        :class:`~phasekit.bodies.spheroid.EccentricSphere` (second moments about the centroid kept).
 
     Attributes
     ----------
@@ -364,6 +401,15 @@ class Egg(Body):
     fit_error, fit_error_curvature : float
         Max errors of the series in h and in h + h_thetatheta over the check grid, against a
         direct Newton solve.
+
+    Raises
+    ------
+    ParameterError
+        If ``a`` is outside [0.3, 3]; ``w`` is outside [0, 0.5), or too large for this ``a``
+        (the support function needs a Chebyshev series of degree > 256, or its fit misses
+        1e-12); ``centre_of_mass`` is outside (-a, a), or too far from the centroid for the
+        default A (C <= 2A fails); ``A`` or ``C`` is not a finite number > 0, or C > 2 A; or
+        the surface is not smooth and strictly convex (the error names ``w``).
 
     Examples
     --------
@@ -405,7 +451,20 @@ class Egg(Body):
         return self._coef
 
     def height(self, c, shape):
-        """H(c) = sum_k shape[k] T_k(c), by Clenshaw's recurrence."""
+        """H(c) = sum_k shape[k] T_k(c), by Clenshaw's recurrence.
+
+        Parameters
+        ----------
+        c : casadi.SX
+            The symbol c = cos(theta).
+        shape : casadi.SX
+            The Chebyshev coefficients (symbols), as many as :attr:`shape_params`.
+
+        Returns
+        -------
+        casadi.SX
+            The height of G above the table, units b.
+        """
         return clenshaw(c, shape)
 
     @property
@@ -438,7 +497,23 @@ class Egg(Body):
         """Which end is the lower one at inclination theta in [0, pi]: ``"fat"`` (the end at
         -k) for theta < pi/2, so theta = 0 rests on the fat end, and ``"thin"`` (the end at +k)
         for theta > pi/2, so theta = pi rests on the thin end. At pi/2 the axis is horizontal
-        (ParameterError). For w = 0 the two ends are alike; the names still tell -k from +k."""
+        (ParameterError). For w = 0 the two ends are alike; the names still tell -k from +k.
+
+        Parameters
+        ----------
+        theta : float
+            Inclination of k from the vertical, radians, in [0, pi], not pi/2.
+
+        Returns
+        -------
+        {"fat", "thin"}
+            The lower end.
+
+        Raises
+        ------
+        ParameterError
+            If ``theta`` is outside [0, pi] or is pi/2.
+        """
         theta = check_range("theta", theta, 0.0, math.pi, closed="lr", label="[0, pi]")
         if theta == 0.5 * math.pi:
             raise ParameterError("theta", "must differ from pi/2 (axis horizontal: neither end is lower)", theta)
@@ -446,13 +521,37 @@ class Egg(Body):
 
     def meridian(self, x):
         """Radius y(x) of the cross-section at axial coordinate x in [-a, a] (Narushin's
-        formula with L = 2a, B = 2 and w*L)."""
+        formula with L = 2a, B = 2 and w*L).
+
+        Parameters
+        ----------
+        x : float or array_like
+            Axial coordinates from the middle of the axis, units b, in [-a, a] (the radius is 0
+            outside).
+
+        Returns
+        -------
+        numpy.ndarray
+            The radius y(x), units b, of the shape of ``x``.
+        """
         x = np.asarray(x, dtype=float)
         L, wa = 2.0 * self.a, 2.0 * self.a * self.w
         return np.sqrt(np.clip(L * L - 4.0 * x * x, 0.0, None) / (L * L + 8.0 * wa * x + 4.0 * wa * wa))
 
     def support_direct(self, theta):
-        """(h, h_theta, h_thetatheta) by a direct Newton solve (no fit); see :func:`support`."""
+        """(h, h_theta, h_thetatheta) by a direct Newton solve (no fit); see :func:`support`.
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Inclination of k from the vertical, radians, in [0, pi].
+
+        Returns
+        -------
+        tuple
+            (h, h_theta, h_thetatheta), units b: floats for a number, arrays of the shape of
+            ``theta`` otherwise.
+        """
         return support(theta, self.a, self.w, self.x_G)
 
     def describe(self) -> str:

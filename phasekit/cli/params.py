@@ -11,10 +11,12 @@ import numpy as np
 
 from .._runtime.errors import ParameterError
 from .._runtime.validate import check_choice, check_finite
-from ..bodies.body import Body, Spheroid
+from ..bodies.body import Body
+from ..bodies.spheroid import Spheroid
 from ..core.charts import choose_chart
 from ..core.hybrid import Event
-from ..core.model import OBSERVABLES, Model
+from ..core.model import Model
+from ..core.observables import OBSERVABLES
 from ..core.simulate import simulate
 from ..core.starts import RATE_MAX, gyroscopic_start, raw_start, to_chart, vertical_spin_start
 from ..friction.laws import friction_law
@@ -178,7 +180,7 @@ def steady_structure_report(*, body: Body, mu, friction="coulomb", slip_eps=None
     return out
 
 
-#: what "stable" means for each linearisation (see phasekit.steady.fixedpoints)
+#: what "stable" means for each linearisation (see phasekit.steady.linearisation)
 STABILITY_MEANING = {
     "coulomb-rolling": "exact Coulomb friction: the rolling (no-slip) linearisation, in which zero-slip states are "
                        "neutral; the viscous law gives the friction-driven instabilities of part I",

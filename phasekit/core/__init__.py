@@ -16,7 +16,8 @@ from .batch import simulate_batch
 from .charts import PAPER_NAMES, choose_chart
 from .hybrid import Event, Mode
 from .impact import ImpactResult, impact
-from .model import OBSERVABLES, Model
+from .model import Model
+from .observables import OBSERVABLES
 from .options import SolverOptions
 from .pose import Pose
 from .sections import poincare

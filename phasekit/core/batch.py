@@ -235,12 +235,24 @@ def simulate_batch(models, starts, t_end, *, events=(), lanes: int = LANES, opti
     stats : BatchStats, optional
         Filled with what was batched and what was handed back.
 
+    Returns
+    -------
+    list of Trajectory
+        One per start, in the order of ``starts``.
+
+    Raises
+    ------
+    ParameterError
+        If ``lanes`` is not an integer in [1, 64], ``models`` is neither one Model nor one
+        per start, a start does not have the model's number of states, or an option is
+        invalid; a start run by :func:`simulate` raises as it does.
+
     Examples
     --------
     >>> import numpy as np, phasekit as pk, phasekit.studies as ps
     >>> body = pk.Spheroid(1.5)
     >>> starts = [pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=w) for w in (9.0, 10.5)]
-    >>> runs = pk.simulate_batch(pk.Model(body, pk.Coulomb(0.1)), starts, 300.0, track_minima=False, dense=False)
+    >>> runs = pk.core.simulate_batch(pk.Model(body, pk.Coulomb(0.1)), starts, 300.0, track_minima=False, dense=False)
     >>> [r.status.value for r in runs]
     ['completed', 'jumped']
     """

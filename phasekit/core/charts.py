@@ -3,7 +3,7 @@
 A chart gives, in CasADi SX, the state derivative as an *affine* function of the contact
 force Fc = (F_1, F_2, R), the vertical velocity W of the centre of mass G (so that the
 contact constraint is R = 1 + dW/dt, (2.8)), the slip velocity u of the contact point P and
-the monitored quantities. :mod:`phasekit.core.model` turns these into one smooth vector field per
+the monitored quantities. :mod:`phasekit.core.fields` turns these into one smooth vector field per
 mode; free flight is the same equations with Fc = 0 (:data:`FLIGHT`).
 
 :data:`EULER`
@@ -287,6 +287,23 @@ def choose_chart(theta0: float, requested: str = "auto") -> str:
     """The chart to start at inclination ``theta0`` in: ``euler`` away from the poles (fewer
     steps, smaller errors), ``vector`` within POLE_MARGIN (1e-5) of them; ``requested`` other
     than "auto" is returned as it is.
+
+    Parameters
+    ----------
+    theta0 : float
+        The inclination of the symmetry axis at the start, radians.
+    requested : {"auto", "euler", "vector"}
+        The chart asked for; "auto" (default) picks one by ``theta0``.
+
+    Returns
+    -------
+    str
+        "euler" or "vector".
+
+    Raises
+    ------
+    ParameterError
+        If ``requested`` is not "auto", "euler" or "vector".
 
     Examples
     --------

@@ -27,13 +27,16 @@ __all__ = ["Mode", "Flow", "Event", "Reset", "Record", "Transition", "HybridSyst
 class Mode(str, enum.Enum):
     """Contact modes; the simulator switches between them only at located events.
 
-    SLIDING
-        smooth while the slip u != 0 (Coulomb), or everywhere (viscous, regularised).
-    ROLLING
-        zero slip held by static friction: exact Coulomb's no-slip mode, or, for a
-        regularised law, the stretch where the slip is below 10 eps (same field).
-    FLIGHT
-        no contact: gravity and torque-free rotation, until the gap closes.
+    Attributes
+    ----------
+    SLIDING : Mode
+        Value "sliding": smooth while the slip u != 0 (Coulomb), or everywhere (viscous,
+        regularised).
+    ROLLING : Mode
+        Value "rolling": zero slip held by static friction: exact Coulomb's no-slip mode, or,
+        for a regularised law, the stretch where the slip is below 10 eps (same field).
+    FLIGHT : Mode
+        Value "flight": no contact: gravity and torque-free rotation, until the gap closes.
 
     Examples
     --------
@@ -58,7 +61,7 @@ class Flow:
     in that direction without stopping (the minima of R, the maximum of the gap).
     ``engine`` forces an integrator for this flow; ``stiff`` makes "auto" pick CVODES.
     ``contact``: the body touches the table (a run that stops at the first lift-off, as
-    :func:`phasekit.simulate_batch`'s do, stays in the contact flows).
+    :func:`phasekit.core.simulate_batch`'s do, stays in the contact flows).
     """
 
     mode: Mode
@@ -76,7 +79,7 @@ class Event:
     Parameters
     ----------
     on : str
-        What to watch: any observable of :data:`phasekit.core.model.OBSERVABLES` ("theta", "R",
+        What to watch: any observable of :data:`phasekit.core.observables.OBSERVABLES` ("theta", "R",
         "Lambda", "energy", ...) or an internal guard function.
     level : float
         The value at which it fires (a run-time parameter: changing it never recompiles).
@@ -87,6 +90,13 @@ class Event:
         the run ends with status ``stop``. False: recorded, and the run goes on.
     name : str, optional
         How it is recorded (default "<on>=<level>").
+    reset : Reset, optional
+        The reset map of a terminal event: called with the model, the event, the mode and
+        the state where it fired, it returns the :class:`Transition` to the next mode
+        (default None: the run ends with status ``stop``).
+    stop : Status
+        The status a terminal event without a ``reset`` ends the run with (default
+        ``Status.STOPPED``, "stopped").
     modes : iterable of Mode, optional
         The modes that watch it (default: all).
     rate : str, optional
@@ -95,6 +105,14 @@ class Event:
     arm_after : float
         The guard is not watched until this long after its mode starts; if it is already
         past its zero then, it fires at once.
+
+    Raises
+    ------
+    ParameterError
+        If ``on`` is not a non-empty string, ``level`` is not finite, ``direction`` is not
+        -1, 0 or +1, ``terminal`` is not a bool, ``arm_after`` is negative or not finite,
+        ``modes`` holds something that is not a mode, ``rate`` is neither None nor a non-empty
+        string, or ``stop`` is not a :class:`phasekit.Status`.
 
     Examples
     --------

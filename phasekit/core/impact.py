@@ -89,6 +89,24 @@ class ImpactResult:
     """What :func:`impact` returns: the velocities after the impact, the impulse, the normal
     speed of the contact point before and after, and the kinetic energy before and after.
 
+    Attributes
+    ----------
+    w : numpy.ndarray
+        Post-impact angular velocity (3,), units sqrt(g/b).
+    v : numpy.ndarray
+        Post-impact velocity of O (3,), units sqrt(g b).
+    impulse : numpy.ndarray
+        The impulse at the contact point, (P_t1, P_t2, P_n), units M sqrt(g b).
+    v_normal_before, v_normal_after : float
+        The normal (vertical) velocity of the contact point before and after the impact,
+        units sqrt(g b) (< 0: approaching the table).
+    energy_before, energy_after : float
+        Kinetic energy before and after the impact, units M g b.
+    sticking : bool
+        The tangential slip was stopped.
+    energy_limited : bool
+        The friction impulse was reduced to avoid an energy gain.
+
     Examples
     --------
     >>> import numpy as np, phasekit as pk
@@ -119,9 +137,35 @@ def _kinetic(body, k, w, v) -> float:
 def impact(body, k, w, v, *, e: float, mu: float) -> ImpactResult:
     """Apply the impact law at touchdown to the rigid-body velocities (k, w, v = velocity of O).
 
-    ``k`` is the unit symmetry axis, ``w`` the angular velocity (3 finite numbers each), ``e``
-    Newton's restitution in [0, 1], ``mu`` the friction coefficient >= 0.
-    Returns the post-impact (w, v) in ``ImpactResult.w``, ``ImpactResult.v``.
+    Parameters
+    ----------
+    body : Body
+        The body (its support function places the contact point; A, C its inertia).
+    k : array_like
+        The unit symmetry axis: 3 finite numbers of length 1 (within 1e-3; normalised before
+        use).
+    w : array_like
+        The angular velocity before the impact: 3 finite numbers, units sqrt(g/b).
+    v : array_like
+        The velocity of O before the impact: 3 finite numbers, units sqrt(g b).
+    e : float
+        Newton's restitution, in [0, 1].
+    mu : float
+        The friction coefficient, finite and >= 0.
+
+    Returns
+    -------
+    ImpactResult
+        The post-impact (w, v) in ``ImpactResult.w``, ``ImpactResult.v``, with the impulse,
+        the normal speeds and the energies. A contact point that is not approaching the
+        table (normal velocity >= 0) is left as it is: zero impulse.
+
+    Raises
+    ------
+    ParameterError
+        If ``body`` is not a Body, ``k`` is not a unit vector of 3 finite numbers, ``w`` or
+        ``v`` is not 3 finite numbers, ``e`` is outside [0, 1], ``mu`` is negative or not
+        finite, or the result is not finite (naming the argument of largest magnitude).
 
     Examples
     --------

@@ -1,256 +1,29 @@
-"""The model builder: one smooth CasADi vector field per mode, compiled once and cached.
-
-Given a chart (:mod:`phasekit.core.charts`), the state derivative is affine in the contact
-force Fc = (F_1, F_2, R). Each mode adds the equations that fix Fc:
-
-* every contact mode: the contact constraint R = 1 + dW/dt, (2.8);
-* SLIDING: the friction law, Fc = Fc0(u) + R d(u) (:mod:`phasekit.friction.laws`), which
-  leaves one linear equation for R; for Coulomb friction this is (6.1);
-* ROLLING (exact Coulomb): the no-slip constraint du/dt = 0, which with (2.8) is a 3x3
-  linear system for Fc (solved symbolically);
-* FLIGHT: Fc = 0, in the flight chart (the vector chart's state plus the gap), built from
-  the same rigid-body equations.
-
-All equations are symbolic in the parameter vector p = (shape..., A, C, mu, eps), so a
-model compiled for one body structure and law serves every aspect ratio and coefficient:
-sweeps never recompile. Observables (R, energy, the paper's variables, ...) are compiled
-per chart; :meth:`Model.evaluate` lists them.
+"""The :class:`Model`: a body, a friction law and a chart with numeric parameters bound, over
+the fields compiled once per body structure, law class and chart (:mod:`phasekit.core.fields`);
+it evaluates the observables (:mod:`phasekit.core.observables`), gives the integrators their
+guards and flows, and is rebuilt from its description (:func:`make_body`: the built-in bodies
+by name).
 """
 
 from __future__ import annotations
 
 import hashlib
-import threading
-from dataclasses import dataclass, field
 
 import casadi as ca
 import numpy as np
 
 from .._runtime.errors import ParameterError
 from .._runtime.validate import check_array, check_choice
-from ..bodies.body import Body, EccentricSphere, Spheroid
+from ..bodies.body import Body
 from ..bodies.egg import Egg
+from ..bodies.spheroid import EccentricSphere, Spheroid
 from ..friction.laws import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous
-from .charts import FLIGHT, PAPER_NAMES, POLE_GUARD, Chart, get_chart
+from .charts import FLIGHT, POLE_GUARD, get_chart
+from .fields import compiled_model
 from .hybrid import CompiledFlow, CompiledGuard, Mode
+from .observables import OBSERVABLES, evaluate_function
 
-__all__ = ["Model", "CompiledModel", "compiled_model", "evaluate_function", "OBSERVABLES", "STICK_SLIP", "STICK_SLIP_POINTWISE",
-           "make_body", "BODIES", "snapshot", "install"]
-
-#: slip speed (units sqrt(g b)) at which exact Coulomb sliding is taken to have stuck;
-#: the stick time is then extrapolated to the exact zero of the slip
-STICK_SLIP = 1e-10
-#: the same for integrators that evaluate the field pointwise (CVODES), which chatter at u = 0
-STICK_SLIP_POINTWISE = 1e-7
-
-#: observables every mode provides, for :meth:`Model.evaluate`, events and trajectory samples
-OBSERVABLES = {
-    **{name: f"the paper's state variable {name}" for name in PAPER_NAMES},
-    "R": "normal reaction of the mode in force (0 in flight), units M g",
-    "Rdot": "dR/dt in the mode in force",
-    "friction": "horizontal friction force (F_1, F_2) of the mode in force, units M g",
-    "slip": "slip velocity of the contact point (2-vector)",
-    "slip_speed": "|slip velocity| of the contact point",
-    "energy": "total energy (kinetic + potential), units M g b",
-    "jellett": "Jellett's integral -L.GP (angular momentum about G dotted with P->G; A Omega h in the gyroscopic limit (3.17))",
-    "L_Z": "vertical angular momentum about G",
-    "spin": "spin n = w.k",
-    "h": "height of G above the table, units b (in flight: h(theta), the gap excluded)",
-    "W": "vertical velocity of G",
-    "cos_theta": "cos(theta)",
-    "gap": "height of the lowest point above the table (0 in contact)",
-    "gap_rate": "rate of the gap (0 in contact)",
-}
-
-
-@dataclass
-class CompiledModel:
-    """CasADi functions of (x, p) for one (body structure, law class, chart).
-
-    ``contact`` holds functions of a state of the contact chart, ``flight`` of a flight
-    state; names of mode fields are ``rhs_<mode>``, ``rhs_jac_<mode>``, ``R_<mode>``,
-    ``Rdot_<mode>``, ``Fc_<mode>``."""
-
-    chart: Chart
-    n_params: int
-    modes: tuple[Mode, ...]
-    contact: dict[str, ca.Function] = field(default_factory=dict)
-    flight: dict[str, ca.Function] = field(default_factory=dict)
-    key: tuple = ()
-    signature: str = ""  # changes whenever the equations change (keys on-disk caches)
-    guards: dict = field(default_factory=dict)  # (on, mode) -> g(x, p, level)
-    flows: dict = field(default_factory=dict)  # (Flow, events) -> CompiledFlow
-
-    def functions_of(self, mode: Mode) -> dict[str, ca.Function]:
-        return self.flight if mode is Mode.FLIGHT else self.contact
-
-
-_CACHE: dict[tuple, CompiledModel] = {}
-_LOCK = threading.Lock()
-
-
-def snapshot() -> dict:
-    """The compiled models of this process (for :class:`phasekit.sweep.ModelPack`)."""
-    with _LOCK:
-        return dict(_CACHE)
-
-
-def install(models: dict) -> None:
-    """Add a :func:`snapshot` of another process to this one's compiled models."""
-    with _LOCK:
-        for k, v in models.items():
-            _CACHE.setdefault(k, v)
-
-
-def compiled_model(body: Body, law: FrictionLaw, chart: Chart) -> CompiledModel:
-    """Build (or fetch from the cache) the compiled model of a body structure, law class and chart."""
-    key = (body.structure_key, type(law), chart.name)
-    with _LOCK:
-        if key not in _CACHE:
-            _CACHE[key] = _build(body, type(law), chart, key)
-        return _CACHE[key]
-
-
-def _function(name, x, p, expr) -> ca.Function:
-    return ca.Function(name, [x, p], [expr], ["x", "p"], [name])
-
-
-def _common(fn: dict, T: dict, x, p) -> None:
-    """Observables shared by every chart, from its terms."""
-    for name in ("energy", "L_Z", "spin", "jellett", "h", "W", "cos_theta"):
-        fn[name] = _function(name, x, p, T[name])
-    for i, name in enumerate(PAPER_NAMES):
-        fn[name] = _function(name, x, p, T["paper"][i])
-    fn["paper"] = _function("paper", x, p, T["paper"])
-
-
-def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key) -> CompiledModel:
-    nx, ns = chart.n_states, body.n_shape
-    x = ca.SX.sym("x", nx)
-    p = ca.SX.sym("p", ns + 4)
-    Fc = ca.SX.sym("Fc", 3)
-    shape, A, C, mu, eps = p[:ns], p[ns], p[ns + 1], p[ns + 2], p[ns + 3]
-
-    def H(c):
-        return body.height(c, shape)
-
-    T = chart.terms(x, H, A, C, Fc)
-    xdot, slip = T["xdot"], T["slip"]
-    modes = [Mode.SLIDING, Mode.ROLLING] if law_cls.can_stick else [Mode.SLIDING]
-    out = CompiledModel(chart=chart, n_params=ns + 4, modes=(*modes, Mode.FLIGHT), key=key)
-    fn = out.contact
-
-    # Contact constraint R - 1 - dW/dt = 0, affine in Fc: G.Fc + g0 = 0.
-    constraint = Fc[2] - 1 - ca.jtimes(T["W"], x, xdot)
-    G = ca.jacobian(constraint, Fc)
-    g0 = ca.substitute(constraint, Fc, ca.SX.zeros(3))
-
-    def add_mode(mode: Mode, Fc_mode):
-        tag = mode.value
-        rhs = ca.substitute(xdot, Fc, Fc_mode)
-        R = Fc_mode[2]
-        fn[f"rhs_{tag}"] = _function(f"rhs_{tag}", x, p, rhs)
-        # CasADi reserves the name "jac"; see the style guide.
-        fn[f"rhs_jac_{tag}"] = _function(f"rhs_jac_{tag}", x, p, ca.jacobian(rhs, x))
-        fn[f"R_{tag}"] = _function(f"R_{tag}", x, p, R)
-        fn[f"Rdot_{tag}"] = _function(f"Rdot_{tag}", x, p, ca.jtimes(R, x, rhs))
-        fn[f"Fc_{tag}"] = _function(f"Fc_{tag}", x, p, Fc_mode)
-        fn[f"friction_{tag}"] = _function(f"friction_{tag}", x, p, Fc_mode[0:2])
-        return rhs, Fc_mode
-
-    # SLIDING: Fc = Fc0 + R d, R from the constraint.
-    Fc0, d = law_cls.sliding_force(slip, mu, eps)
-    Fc0, d = ca.SX(Fc0), ca.SX(d)
-    R_sl = -(g0 + ca.mtimes(G, Fc0)) / ca.mtimes(G, d)
-    rhs_sl, _ = add_mode(Mode.SLIDING, Fc0 + R_sl * d)
-    speed2 = slip[0] ** 2 + slip[1] ** 2
-    fn["slip"] = _function("slip", x, p, slip)
-    fn["slip_speed2"] = _function("slip_speed2", x, p, speed2)
-    fn["slip_speed"] = _function("slip_speed", x, p, ca.sqrt(speed2))
-    # what picks the starting mode, in one call: the slip speed and R while sliding
-    fn["start_probe"] = _function("start_probe", x, p, ca.vertcat(ca.sqrt(speed2), R_sl))
-    # d|u|^2/dt while sliding: extrapolates a stick event to the exact zero of the slip.
-    fn["slip_speed2_rate"] = _function("slip_speed2_rate", x, p, 2 * ca.dot(slip, ca.jtimes(slip, x, rhs_sl)))
-    # Guards of the stick event: the slip speed falls to STICK_SLIP (exact Coulomb), or to
-    # 10 eps (regularised law, where the force then departs from Coulomb's by > 0.5%).
-    # The Taylor backend uses |u| itself: as the slip vanishes under Coulomb friction |u|
-    # is linear in time, and the Taylor expansion of sqrt(u.u) follows that line through
-    # zero, giving a simple root (the squared form has a near-double root it can miss).
-    # Pointwise integrators (CVODES) chatter at u = 0 instead, so they bracket the dip of
-    # |u|^2 below a larger threshold, using its rate for Hermite interpolation.
-    fn["stick_guard"] = _function("stick_guard", x, p, ca.sqrt(speed2) - (STICK_SLIP + 10 * eps))
-    fn["stick_guard_sq"] = _function("stick_guard_sq", x, p, speed2 - (STICK_SLIP_POINTWISE + 10 * eps) ** 2)
-    # Regularised law only: the slip has grown back above 100 eps (hysteresis against chatter).
-    fn["unstick_guard"] = _function("unstick_guard", x, p, 100 * eps - ca.sqrt(speed2))
-
-    if law_cls.has_rolling_mode:
-        _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu)
-    elif law_cls.can_stick:
-        # a regularised law has one field: its "rolling" mode (slip below 10 eps) reuses it
-        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction"):
-            fn[f"{name}_rolling"] = fn[f"{name}_sliding"]
-
-    _common(fn, T, x, p)
-    fn["gap"] = _function("gap", x, p, ca.SX(0))
-    fn["gap_rate"] = _function("gap_rate", x, p, ca.SX(0))
-    _build_flight(out.flight, body, ns)
-    blob = "".join(f.serialize() for d in (out.contact, out.flight) for _, f in sorted(d.items()))
-    out.signature = f"{key[0]}|{law_cls.__qualname__}|{chart.name}|" + hashlib.sha256(blob.encode()).hexdigest()
-    return out
-
-
-def _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu) -> None:
-    """ROLLING (exact Coulomb): the constraint and du/dt = 0 fix all three components of Fc."""
-    rows = ca.vertcat(constraint, ca.jtimes(slip, x, xdot))
-    M = ca.jacobian(rows, Fc)
-    b = ca.substitute(rows, Fc, ca.SX.zeros(3))
-    _, Fc_roll = add_mode(Mode.ROLLING, -ca.solve(M, b))
-    # >= 0 while static friction can hold the no-slip constraint.
-    fn["margin_rolling"] = _function("margin_rolling", x, p, mu * mu * Fc_roll[2] ** 2 - Fc_roll[0] ** 2 - Fc_roll[1] ** 2)
-    # Slip acceleration when sliding starts from zero slip in direction e = (cos phi, sin phi):
-    # fixes the direction in which slip develops where rolling is infeasible.
-    phi = ca.SX.sym("phi")
-    e = ca.vertcat(ca.cos(phi), ca.sin(phi))
-    d_e = ca.vertcat(-mu * e, 1)
-    R_e = -g0 / ca.mtimes(G, d_e)
-    rhs_e = ca.substitute(xdot, Fc, R_e * d_e)
-    fn["slip_onset"] = ca.Function("slip_onset", [x, p, phi], [ca.jtimes(slip, x, rhs_e), R_e],
-                                   ["x", "p", "phi"], ["slip_acc", "R"])
-
-
-def _build_flight(fn: dict, body: Body, ns: int) -> None:
-    """FLIGHT: the same rigid-body equations with no contact force, in the flight chart."""
-    x = ca.SX.sym("x", FLIGHT.n_states)
-    p = ca.SX.sym("p", ns + 4)
-    shape, A, C = p[:ns], p[ns], p[ns + 1]
-    T = FLIGHT.terms(x, lambda c: body.height(c, shape), A, C, None)
-    rhs = T["xdot"]
-    fn["rhs_flight"] = _function("rhs_flight", x, p, rhs)
-    fn["rhs_jac_flight"] = _function("rhs_jac_flight", x, p, ca.jacobian(rhs, x))
-    zero = ca.SX(0)
-    for name in ("R_flight", "Rdot_flight"):
-        fn[name] = _function(name, x, p, zero)
-    fn["Fc_flight"] = _function("Fc_flight", x, p, ca.SX.zeros(3))
-    fn["friction_flight"] = _function("friction_flight", x, p, ca.SX.zeros(2))
-    _common(fn, T, x, p)
-    for name in ("gap", "gap_rate", "gap_acc", "Hdot"):
-        fn[name] = _function(name, x, p, T[name])
-    fn["L"] = _function("L", x, p, T["L"])
-    slip = (ca.vertcat(x[6], x[7], 0) + ca.cross(x[3:6], T["rP"]))[0:2]  # of the lowest point
-    fn["slip"] = _function("slip", x, p, slip)
-    fn["slip_speed"] = _function("slip_speed", x, p, ca.norm_2(slip))
-
-
-def evaluate_function(f: ca.Function, p: np.ndarray, x):
-    """f(x, p) for one state (d,) -> float or (k,), or for many states (m, d) -> (m,) or (m, k)."""
-    X = np.asarray(x, dtype=float)
-    if X.ndim == 1:
-        r = np.asarray(f(X, p))
-        return float(r.item()) if r.size == 1 else r.ravel()
-    if X.shape[0] == 0:
-        return np.empty((0,) if f.numel_out(0) == 1 else (0, f.numel_out(0)))
-    r = np.asarray(f.map(X.shape[0])(X.T, np.tile(p[:, None], (1, X.shape[0]))))
-    return r.ravel() if r.shape[0] == 1 else r.T
+__all__ = ["Model", "make_body", "BODIES"]
 
 
 class Model:
@@ -264,6 +37,13 @@ class Model:
         ``Coulomb(mu)`` (exact stick-slip), ``RegularisedCoulomb(mu, eps)`` or ``Viscous(mu)``.
     chart : "euler", "vector" or a Chart
         Coordinates: the paper's (2.7), or the singularity-free Newton-Euler form.
+
+    Raises
+    ------
+    ParameterError
+        If ``body`` is not a Body, ``friction`` is not a FrictionLaw, a moment of the body
+        (``A`` or ``C``) exceeds M r_max^2, or ``chart`` is not "euler", "vector" or a contact
+        chart.
 
     Examples
     --------
@@ -303,14 +83,57 @@ class Model:
 
     def function(self, name: str, mode: Mode | None = None) -> ca.Function:
         """A compiled function by name: of a contact state, or of a flight state when
-        ``mode`` is FLIGHT."""
+        ``mode`` is FLIGHT.
+
+        Parameters
+        ----------
+        name : str
+            The name of one of the model's compiled functions (the observables and the mode
+            fields, e.g. "rhs_sliding", "R_rolling", "energy").
+        mode : Mode or str, optional
+            FLIGHT for the functions of a flight state; otherwise (default) those of the
+            contact chart.
+
+        Returns
+        -------
+        casadi.Function
+            The function of (x, p).
+
+        Raises
+        ------
+        ParameterError
+            If ``name`` is not one of the model's functions.
+        ValueError
+            If ``mode`` is not a mode.
+        """
         fns = self.compiled.functions_of(Mode(mode) if mode is not None else Mode.SLIDING)
         if name not in fns:
             raise ParameterError("name", f"must be one of the model's functions ({', '.join(sorted(fns))})", name)
         return fns[name]
 
     def observable(self, name: str, mode: Mode = Mode.SLIDING) -> ca.Function:
-        """The compiled observable ``name`` (see :data:`OBSERVABLES`) in ``mode``."""
+        """The compiled observable ``name`` in ``mode``.
+
+        Parameters
+        ----------
+        name : str
+            A key of :data:`OBSERVABLES`.
+        mode : Mode or str
+            One of the model's :attr:`modes` (default SLIDING); R, Rdot and friction are
+            those of this mode.
+
+        Returns
+        -------
+        casadi.Function
+            The observable as a function of (x, p), x a state of the mode's chart.
+
+        Raises
+        ------
+        ParameterError
+            If ``name`` is not an observable, or ``mode`` is not one of the model's modes.
+        ValueError
+            If ``mode`` is not a mode.
+        """
         mode = Mode(mode)
         if name not in OBSERVABLES:
             raise ParameterError("name", f"must be one of {', '.join(OBSERVABLES)}", name)
@@ -325,11 +148,31 @@ class Model:
     def evaluate(self, name: str, x, mode: Mode = Mode.SLIDING):
         """Evaluate an observable at a state (d,) or at many states (m, d) of ``mode``'s chart.
 
-        Names (:data:`OBSERVABLES`): U, V, Omega, Lambda, theta, n (the paper's state), R,
-        Rdot, friction (of the mode), slip, slip_speed, energy, jellett, L_Z, spin, h, W,
-        cos_theta, gap, gap_rate. ``mode`` is "sliding" (default), "rolling" or "flight"
-        and matters for R, Rdot and friction (and sets the chart of ``x`` for flight).
-        States must be finite, of the chart's length, and off the poles in the Euler chart.
+        Parameters
+        ----------
+        name : str
+            An observable (:data:`OBSERVABLES`): U, V, Omega, Lambda, theta, n (the paper's
+            state), R, Rdot, friction (of the mode), slip, slip_speed, energy, jellett, L_Z,
+            spin, h, W, cos_theta, gap, gap_rate.
+        x : array_like
+            One state (d,) or many states (m, d) of ``mode``'s chart. States must be finite,
+            of the chart's length, and off the poles in the Euler chart.
+        mode : {"sliding", "rolling", "flight"} or Mode
+            "sliding" (default), "rolling" or "flight"; matters for R, Rdot and friction (and
+            sets the chart of ``x`` for flight).
+
+        Returns
+        -------
+        float or numpy.ndarray
+            For one state a float (a scalar observable) or a (k,) array (slip, friction);
+            for many states an (m,) or (m, k) array.
+
+        Raises
+        ------
+        ParameterError
+            If ``name`` is not an observable, ``mode`` is not a mode (or not one of the
+            model's), or ``x`` is not finite, not of the chart's length, or has theta at 0 or
+            pi in the Euler chart.
         """
         if not isinstance(name, str):
             raise ParameterError("name", f"must be one of {', '.join(OBSERVABLES)}", name)
@@ -350,7 +193,27 @@ class Model:
         return evaluate_function(self._function_of(name, Mode(mode)), self.p, x)
 
     def rhs(self, x, mode: Mode = Mode.SLIDING) -> np.ndarray:
-        """The vector field of ``mode`` at one state (d,)."""
+        """The vector field of ``mode`` at one state (d,).
+
+        Parameters
+        ----------
+        x : array_like
+            One state (d,) of ``mode``'s chart: finite, and off the poles in the Euler chart.
+        mode : {"sliding", "rolling", "flight"} or Mode
+            The mode whose field is evaluated (default "sliding"); "flight" takes a state of
+            the flight chart.
+
+        Returns
+        -------
+        numpy.ndarray
+            dx/dt, shape (d,).
+
+        Raises
+        ------
+        ParameterError
+            If ``mode`` is not a mode, or ``x`` is not one finite state of the chart's length
+            or has theta at 0 or pi in the Euler chart.
+        """
         mode = _mode_arg(mode)
         return self._rhs(self._states_arg(x, mode, many=False), mode)
 
@@ -359,7 +222,26 @@ class Model:
         return np.asarray(self.compiled.functions_of(mode)[f"rhs_{mode.value}"](x, self.p)).ravel()
 
     def jacobian(self, x, mode: Mode = Mode.SLIDING) -> np.ndarray:
-        """The exact Jacobian of :meth:`rhs` at one state (d,)."""
+        """The exact Jacobian of :meth:`rhs` at one state (d,).
+
+        Parameters
+        ----------
+        x : array_like
+            One state (d,) of ``mode``'s chart: finite, and off the poles in the Euler chart.
+        mode : {"sliding", "rolling", "flight"} or Mode
+            The mode whose field is differentiated (default "sliding").
+
+        Returns
+        -------
+        numpy.ndarray
+            d(dx/dt)/dx, shape (d, d).
+
+        Raises
+        ------
+        ParameterError
+            If ``mode`` is not a mode, or ``x`` is not one finite state of the chart's length
+            or has theta at 0 or pi in the Euler chart.
+        """
         mode = _mode_arg(mode)
         return self._jacobian(self._states_arg(x, mode, many=False), mode)
 
@@ -368,7 +250,25 @@ class Model:
         return np.asarray(self.compiled.functions_of(mode)[f"rhs_jac_{mode.value}"](x, self.p))
 
     def normal_reaction(self, x, mode: Mode = Mode.SLIDING):
-        """R (units M g) at a state (d,) or states (m, d) of a contact mode."""
+        """R (units M g) at a state (d,) or states (m, d) of a contact mode.
+
+        Parameters
+        ----------
+        x : array_like
+            One state (d,) or many states (m, d) of the model's chart.
+        mode : {"sliding", "rolling"} or Mode
+            The contact mode (default "sliding").
+
+        Returns
+        -------
+        float or numpy.ndarray
+            R at the state, or an (m,) array.
+
+        Raises
+        ------
+        ParameterError
+            As :meth:`evaluate`.
+        """
         return self.evaluate("R", x, mode)
 
     def _states_arg(self, x, mode: Mode, many: bool = True) -> np.ndarray:
@@ -386,16 +286,53 @@ class Model:
         return X
 
     def with_chart(self, chart) -> "Model":
-        """The same body and law in another chart."""
+        """The same body and law in another chart.
+
+        Parameters
+        ----------
+        chart : "euler", "vector" or a Chart
+            The chart of the new model.
+
+        Returns
+        -------
+        Model
+
+        Raises
+        ------
+        ParameterError
+            If ``chart`` is not "euler", "vector" or a contact chart.
+        """
         return Model(self.body, self.friction, chart)
 
     def to_dict(self) -> dict:
+        """The model's description, which :meth:`from_dict` reads.
+
+        Returns
+        -------
+        dict
+            The body's and the friction law's fields and the chart's name (``chart``).
+        """
         return {**self.body.to_dict(), **self.friction.to_dict(), "chart": self.chart.name}
 
     @classmethod
     def from_dict(cls, d: dict) -> "Model":
         """The model a :meth:`to_dict` describes (built-in bodies and laws only; a result's
         ``model``, which :func:`phasekit.rerun` rebuilds).
+
+        Parameters
+        ----------
+        d : dict
+            A model's description, as :meth:`to_dict` gives it.
+
+        Returns
+        -------
+        Model
+
+        Raises
+        ------
+        ParameterError
+            If the body or the friction law is not a built-in one (named ``model``), or the
+            description's values are invalid for the body, the law or the chart.
 
         Examples
         --------
@@ -429,7 +366,27 @@ class Model:
     def guard_function(self, on: str, mode: Mode) -> ca.Function:
         """g(x, p, level) for an event on ``on`` in ``mode``: the observable minus the level,
         except theta, watched as cos(level) - cos(theta) (the same zero and direction, and
-        smooth in the vector chart where theta = atan2(|k_h|, k_Z) is not)."""
+        smooth in the vector chart where theta = atan2(|k_h|, k_Z) is not).
+
+        Parameters
+        ----------
+        on : str
+            A scalar observable (:data:`OBSERVABLES`) or a scalar model function.
+        mode : Mode or str
+            The mode whose functions (and chart) the guard uses.
+
+        Returns
+        -------
+        casadi.Function
+            g(x, p, level), cached per (on, mode).
+
+        Raises
+        ------
+        ParameterError
+            If ``on`` names neither an observable nor a model function, or a vector one.
+        ValueError
+            If ``mode`` is not a mode.
+        """
         mode = Mode(mode)
         key = (on, mode)
         cache = self.compiled.guards
@@ -454,7 +411,25 @@ class Model:
         return cache[key]
 
     def compile_flow(self, flow, events) -> CompiledFlow:
-        """The integrators' view of one flow with the events it watches (cached)."""
+        """The integrators' view of one flow with the events it watches (cached).
+
+        Parameters
+        ----------
+        flow : Flow
+            The flow (its mode, field and monitor).
+        events : sequence of Event
+            The events the flow watches.
+
+        Returns
+        -------
+        CompiledFlow
+
+        Raises
+        ------
+        ParameterError
+            If an event's ``on`` is not a scalar observable or model function, or its
+            ``rate`` does not name a scalar model function.
+        """
         key = (flow, tuple((e.on, e.direction, e.rate) for e in events))
         cache = self.compiled.flows
         if key not in cache:

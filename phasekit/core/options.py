@@ -37,7 +37,7 @@ class SolverOptions:
         Absolute tolerance of CVODES/IDAS; None means ``rtol / 100``. The Taylor method has
         one mixed tolerance and does not use it.
     backend : {"auto", "taylor", "cvodes", "cvodes-adams", "idas"} or a registered engine, default "auto"
-        The engine (:data:`phasekit.core.engines.ENGINES`: heyoka's Taylor method; CVODES (BDF or
+        The engine (:data:`phasekit.core.engines.registry.ENGINES`: heyoka's Taylor method; CVODES (BDF or
         Adams) and IDAS through CasADi; any added by :func:`phasekit.core.engines.register_engine`).
         "auto" is the Taylor method, handing over to CVODES BDF only while a regularised
         Coulomb law holds the slip below ~10 eps with mu/eps > 2000 (the stiff regime).
@@ -69,6 +69,15 @@ class SolverOptions:
         Keep the integrator's dense output (heyoka's Taylor polynomials) so that
         :meth:`Trajectory.sample` can evaluate any instant without re-integration. Costs
         ~2.5x the integration time of a bare run; sweeps turn it off.
+
+    Raises
+    ------
+    ParameterError
+        If a field is outside its range: ``rtol`` outside [1e-16, 0.1], ``atol`` or
+        ``max_wall`` not a finite number > 0, ``backend`` not a registered engine,
+        ``max_steps``, ``max_switches`` or ``bounce_tail`` not an integer >= 1,
+        ``bounce_stop`` outside (0, 1], ``settle`` not None, a bool, a Settle or its dict, or
+        ``track_minima`` or ``dense`` not a bool.
 
     Examples
     --------
@@ -113,7 +122,18 @@ class SolverOptions:
         return tuple(f.name for f in fields(cls))
 
     def switch_limit(self, span: float) -> int:
-        """The mode-switch budget of a run over ``span`` time units."""
+        """The mode-switch budget of a run over ``span`` time units.
+
+        Parameters
+        ----------
+        span : float
+            The requested span of the run, t_end - t0 (units sqrt(b/g)).
+
+        Returns
+        -------
+        int
+            ``max_switches`` if set, else 100 per time unit of ``span``, at least 10 000.
+        """
         if self.max_switches is not None:
             return self.max_switches
         return int(max(MIN_SWITCHES, min(SWITCHES_PER_TIME * span, 1e15)))

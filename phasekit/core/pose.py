@@ -63,6 +63,11 @@ class Pose:
     X, Y : float, default 0
         Horizontal position of the centre of mass G (units b).
 
+    Raises
+    ------
+    ParameterError
+        If a field is not a finite real number (named ``pose0.psi``, ...).
+
     Examples
     --------
     >>> import phasekit as pk
@@ -81,7 +86,24 @@ class Pose:
 
     @classmethod
     def of(cls, value, name: str = "pose0") -> "Pose":
-        """A Pose from itself, None (all zero), a dict with keys psi, phi, X, Y, or 4 numbers."""
+        """A Pose from itself, None (all zero), a dict with keys psi, phi, X, Y, or 4 numbers.
+
+        Parameters
+        ----------
+        value : Pose, dict, sequence of 4 numbers or None
+            The pose: (psi, phi, X, Y) in that order for a sequence (list, tuple or array).
+        name : str
+            The argument's name in the messages (default "pose0").
+
+        Returns
+        -------
+        Pose
+
+        Raises
+        ------
+        ParameterError
+            If ``value`` is none of these, a dict has other keys, or a value is not finite.
+        """
         if value is None:
             return cls()
         if isinstance(value, cls):

@@ -24,9 +24,9 @@ import numpy as np
 
 from .._runtime.errors import Status
 from .charts import FLIGHT, VECTOR, euler_to_vector
+from .fields import STICK_SLIP
 from .hybrid import Mode, Record, Transition
 from .impact import _impact
-from .model import STICK_SLIP
 
 __all__ = [
     "SLIP_ONSET",

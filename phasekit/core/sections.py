@@ -26,6 +26,7 @@ def poincare(model, x0, t_end: float, *, on: str = "Lambda", value: float = 0.0,
     Parameters
     ----------
     model : Model
+        The body, friction law and chart to integrate.
     x0 : array
         A start in ``model.chart``, as for :func:`phasekit.simulate`.
     t_end : float
@@ -49,6 +50,13 @@ def poincare(model, x0, t_end: float, *, on: str = "Lambda", value: float = 0.0,
         One row per crossing in time order, with the columns of :meth:`Trajectory.sample`;
         ``(DataFrame, Trajectory)`` with ``return_trajectory=True``. A start that lies on the
         section, moving in ``direction``, is the first crossing (t = t0).
+
+    Raises
+    ------
+    ParameterError
+        If ``dense`` or ``t_eval`` is given (poincare sets them), ``value`` is not finite,
+        ``on`` or ``direction`` is invalid (as for :class:`phasekit.Event`), a user event is
+        named "section", or an argument of :func:`phasekit.simulate` is invalid.
 
     Examples
     --------

@@ -29,7 +29,7 @@ import numpy as np
 
 from .._runtime.validate import check_range
 from .hybrid import Mode
-from .model import evaluate_function
+from .observables import evaluate_function
 
 __all__ = ["Settle", "check_settle", "settled"]
 
@@ -49,6 +49,12 @@ class Settle:
         ``tol`` times ``1 + abs(Omega) + abs(n)``.
     R_floor : float, default 0.5
         Smallest normal reaction (units M g) allowed at the window's events.
+
+    Raises
+    ------
+    ParameterError
+        If ``window`` is outside (0, 1e6], ``tol`` outside (0, 1] or ``R_floor`` outside
+        [0, 1].
 
     Examples
     --------

@@ -73,14 +73,16 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     Parameters
     ----------
     model : Model
+        The body, friction law and chart to integrate.
     x0 : array
         A state of ``model.chart`` (6 numbers for "euler", 8 for "vector"); with
         ``mode="flight"``, a flight state (10) or a contact state lifted off with zero gap.
     t_end : float
         End time (> t0).
+    t0 : float
+        Start time, in [-1e6, 1e6] (default 0).
     stop_at : {"jump", "touchdown", "none"}
-        Stop at the first lift-off, at the first touchdown, or run to t_end through every
-        flight and impact.
+        Stop at the first lift-off or touchdown, or run to t_end through every flight and impact.
     restitution : float in [0, 1]
         Newton's coefficient e of the impact law (``stop_at="none"``).
     events : sequence of Event
@@ -91,21 +93,37 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     mode : "flight", optional
         Start in free flight instead of in contact.
     options : SolverOptions, optional
-        Tolerances, integrator, step and wall budgets; any field of :class:`SolverOptions`
-        may also be given as a keyword (``rtol=1e-12``, ``max_steps=...``).
+        Tolerances, integrator, step and wall budgets (its fields also as keywords: ``rtol=1e-12``).
     throw : bool
-        True: raise ConvergenceError (with the trajectory attached) if the run fails.
-        False (default): return it with status "failed" and the reason.
+        True: raise ConvergenceError if the run fails; False (default): return it, status "failed" and reason.
     pose0 : Pose, dict or 4 numbers, optional
-        Start values of psi, phi, X, Y (default 0), for :meth:`Trajectory.pose`: quadratures
-        after the run, on which no number of the run depends.
+        Start psi, phi, X, Y (default 0) of :meth:`Trajectory.pose`, after-run quadratures the run does not use.
     progress : bool or None
-        A progress bar of the simulated time on stderr for a run that lasts more than
-        PROGRESS_DELAY (2 s); None (default): only on a terminal or in a notebook.
+        A progress bar on stderr after PROGRESS_DELAY (2 s); None (default): on a terminal or in a notebook.
+    **option_fields
+        Fields of :class:`SolverOptions`, replacing those of ``options``.
 
     Returns
     -------
     Trajectory
+        The run: its ``status`` (and ``reason``), segments and event log.
+
+    Raises
+    ------
+    ParameterError
+        A bad argument, named: ``model`` not a Model; ``x0`` not a finite state of the
+        chart's length, with an entry beyond 1e5 in size, or with theta at 0 or pi in the
+        Euler chart; ``t0`` outside [-1e6, 1e6]; ``t_end`` not finite or not > t0; ``stop_at``
+        not one of its choices; ``restitution`` outside [0, 1]; ``events`` not a list of
+        Events; ``t_eval`` not finite times inside [t0, t_end]; ``mode`` neither None nor
+        "flight"; ``options`` not a SolverOptions, or an unknown or invalid option field.
+    ConvergenceError
+        With ``throw=True``, if the run fails (the trajectory attached).
+
+    Warns
+    -----
+    UserWarning
+        If ``t_end`` cannot be reached within ``max_wall`` seconds.
 
     Examples
     --------
@@ -119,6 +137,19 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     """
     opts = solver_options(options, **option_fields)
     pose0 = Pose.of(pose0)
+    x0, t0, t_end, start_mode, te = _checked_arguments(model, x0, t0, t_end, mode, throw, events, t_eval, opts.max_wall)
+    system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail))
+    run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
+    run.loop(system.initial(model, t0, x0, start_mode), progress)
+    traj = run.result(x0, stop_at, restitution, events, te, pose0)
+    if throw and traj.status is Status.FAILED:
+        raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
+    return traj
+
+
+def _checked_arguments(model, x0, t0, t_end, mode, throw, events, t_eval, max_wall):
+    """simulate's arguments other than the options and the pose, checked (and a warning when
+    ``t_end`` is out of reach of ``max_wall``): (x0, t0, t_end, start mode, t_eval)."""
     if not isinstance(model, Model):
         raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
     if mode is not None and mode not in ("flight", Mode.FLIGHT):
@@ -128,21 +159,15 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     if isinstance(events, Event) or not isinstance(events, (list, tuple)):
         raise ParameterError("events", "must be a list of phasekit Event objects, e.g. [pk.Event('theta', 0.4)]", events)
     x0, t0, t_end = _checked_span(model, x0, t0, t_end, start_mode)
-    if t_end - t0 > REACH_PER_S * opts.max_wall:  # said at once, not after max_wall seconds of silence
-        warnings.warn(f"`t_end` = {t_end:g} cannot be reached within `max_wall` = {opts.max_wall:g} s (no run covers "
+    if t_end - t0 > REACH_PER_S * max_wall:  # said at once, not after max_wall seconds of silence
+        warnings.warn(f"`t_end` = {t_end:g} cannot be reached within `max_wall` = {max_wall:g} s (no run covers "
                       f"more than {REACH_PER_S:g} time units per second): the run will end \"failed\" when its wall "
-                      "budget runs out", stacklevel=2)
+                      "budget runs out", stacklevel=3)  # the caller of simulate
     te = None if t_eval is None else check_times("t_eval", t_eval)
     if te is not None and te.size and (te[0] < t0 or te[-1] > t_end):
         raise ParameterError("t_eval", f"must lie in the requested span [t0, t_end] = [{t0:.10g}, {t_end:.10g}]",
                              float(te[0] if te[0] < t0 else te[-1]))
-    system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail))
-    run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
-    run.loop(system.initial(model, t0, x0, start_mode), progress)
-    traj = run.result(x0, stop_at, restitution, events, te, pose0)
-    if throw and traj.status is Status.FAILED:
-        raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
-    return traj
+    return x0, t0, t_end, start_mode, te
 
 
 def _checked_span(model, x0, t0, t_end, start_mode):
@@ -188,7 +213,7 @@ def _tracked(flow, track_minima: bool):
 
 class RunState:
     """One run of the hybrid loop, as :func:`simulate` runs it or as a lane of
-    :func:`phasekit.simulate_batch` does: the mode, time and state it has reached, its segments
+    :func:`phasekit.core.simulate_batch` does: the mode, time and state it has reached, its segments
     and event log, and its status once it ends. :meth:`end_segment` is the one place where the
     end of a propagation (a time, an event, a failure) becomes the next mode or the end of the run."""
 
@@ -382,8 +407,27 @@ def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump",
     who want to drive heyoka directly: returns (integrator, parameters). Its terminal events
     are the mode's guards (lift-off first, ...) with the levels of ``events`` appended; set
     ``integrator.pars[:] = parameters`` (done here) and ``integrator.state``/``.time``.
-    ``track_minima=False``: the integrator simulate uses with that option (no monitor of the
-    minima of R).
+
+    Parameters
+    ----------
+    model : Model
+        The model whose flow is compiled.
+    mode : Mode or str
+        The mode ("sliding", "rolling" or "flight") whose flow the integrator follows.
+    stop_at : str
+        The stop rule, as for :func:`phasekit.simulate` ("jump", "touchdown", "none", ...).
+    rtol : float
+        Relative tolerance of the Taylor method, in (0, 1).
+    events : sequence of Event
+        User events whose levels are appended to the mode's guards.
+    track_minima : bool
+        False gives the integrator simulate uses with that option (no monitor of the minima of R).
+
+    Returns
+    -------
+    tuple
+        (heyoka.taylor_adaptive, numpy.ndarray): the integrator with its parameters set, and those
+        parameters (the model's, then the event levels).
 
     Examples
     --------

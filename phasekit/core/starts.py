@@ -50,16 +50,37 @@ def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, 
     Parameters
     ----------
     body : Body
-    theta0 : float in (0, pi)
-        Initial inclination of the symmetry axis.
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+    theta0 : float
+        Initial inclination of the symmetry axis from the vertical, radians, in (0, pi);
+        in (0, pi/2) for a start given ``n0``.
     omega0 : float, optional
         Precession rate (prolate starts near the horizontal): n follows from the balance.
+        Units sqrt(g/b), nonzero with ``abs(omega0) <= 1e5``. Give exactly one of ``omega0``
+        and ``n0``.
     n0 : float, optional
         Spin (oblate starts near the vertical): Omega is the fast root of the balance.
+        Units sqrt(g/b), nonzero with ``abs(n0) <= 1e5``.
 
     Returns
     -------
-    array (6,): (U, V, Omega, Lambda, theta, n) = (0, 0, Omega0, 0, theta0, n).
+    numpy.ndarray
+        Shape (6,): (U, V, Omega, Lambda, theta, n) = (0, 0, Omega0, 0, theta0, n), the
+        paper's state.
+
+    Raises
+    ------
+    ParameterError
+        If ``body`` is not a Body, ``theta0`` is outside (0, pi), both or neither of
+        ``omega0`` and ``n0`` are given, the rate given is 0, not finite or beyond 1e5 in
+        size, or the balance has no solution within that bound: ``omega0`` too small (it
+        needs a spin ``abs(n) > 1e5``), ``theta0`` not in (0, pi/2) with ``n0``, ``n0`` too
+        small for a gyroscopic balance at ``theta0``, or a fast root ``abs(Omega) > 1e5``.
+
+    Warns
+    -----
+    UserWarning
+        If ``n0`` is given for a prolate body (whose start is normally given ``omega0``).
 
     Examples
     --------
@@ -112,10 +133,28 @@ def vertical_spin_start(theta0: float, n0: float) -> np.ndarray:
     inclination theta0, i.e. Omega = n0, Lambda = 0, n = n0 cos(theta0), U = V = 0 (the
     usual start of a tippe top).
 
+    Parameters
+    ----------
+    theta0 : float
+        Inclination of the symmetry axis from the vertical, radians, in [0, pi].
+    n0 : float
+        The rate of the spin about the vertical, units sqrt(g/b): nonzero, with
+        ``abs(n0) <= 1e5``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (6,): (U, V, Omega, Lambda, theta, n) = (0, 0, n0, 0, theta0, n0 cos(theta0)).
+
+    Raises
+    ------
+    ParameterError
+        If ``theta0`` is outside [0, pi], or ``n0`` is 0, not finite or ``abs(n0) > 1e5``.
+
     Examples
     --------
     >>> import phasekit as pk
-    >>> pk.vertical_spin_start(0.1, 15.0)
+    >>> pk.core.vertical_spin_start(0.1, 15.0)
     array([ 0.        ,  0.        , 15.        ,  0.        ,  0.1       ,
            14.92506248])
     """
@@ -139,8 +178,27 @@ def raw_start(state, *, chart="euler") -> np.ndarray:
 
 
 def to_chart(chart, y) -> np.ndarray:
-    """A state in the paper's variables expressed in the coordinates of ``chart``
-    ("euler", "vector" or a Chart); :func:`to_paper` is its inverse.
+    """A state in the paper's variables expressed in the coordinates of ``chart``;
+    :func:`to_paper` is its inverse.
+
+    Parameters
+    ----------
+    chart : {"euler", "vector"} or Chart
+        The chart: its name, or a contact chart object (:mod:`phasekit.core.charts`).
+    y : array_like
+        The paper's state (U, V, Omega, Lambda, theta, n): 6 finite numbers.
+
+    Returns
+    -------
+    numpy.ndarray
+        The state in the chart's coordinates: the same 6 numbers for "euler", (k, w, v)
+        (8 numbers, the axis in the X-Z plane) for "vector".
+
+    Raises
+    ------
+    ParameterError
+        If ``chart`` is not "euler", "vector" or a contact chart (the flight chart, by name
+        or object, is refused), or ``y`` is not 6 finite numbers.
 
     Examples
     --------
@@ -152,8 +210,26 @@ def to_chart(chart, y) -> np.ndarray:
 
 
 def to_paper(chart, x) -> np.ndarray:
-    """A state of ``chart`` ("euler", "vector", "flight" or a Chart) in the paper's variables
-    (U, V, Omega, Lambda, theta, n): the inverse of :func:`to_chart`.
+    """A state of ``chart`` in the paper's variables (U, V, Omega, Lambda, theta, n): the
+    inverse of :func:`to_chart`.
+
+    Parameters
+    ----------
+    chart : {"euler", "vector"} or Chart
+        The chart of ``x``: its name, or a contact chart object (:mod:`phasekit.core.charts`).
+    x : array_like
+        A state of the chart: 6 numbers for "euler", 8 for "vector".
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (6,): (U, V, Omega, Lambda, theta, n).
+
+    Raises
+    ------
+    ParameterError
+        If ``chart`` is not "euler", "vector" or a contact chart (the flight chart, by name
+        or object, is refused).
 
     Examples
     --------

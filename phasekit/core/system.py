@@ -16,8 +16,8 @@ import numpy as np
 
 from .._runtime.errors import ParameterError, Status
 from .._runtime.validate import check_choice, check_range
+from .fields import STICK_SLIP
 from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
-from .model import STICK_SLIP
 from .resets import (
     BOUNCE_STOP,
     BOUNCE_TAIL,

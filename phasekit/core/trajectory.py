@@ -3,7 +3,9 @@
 A :class:`Trajectory` is what :func:`phasekit.simulate` returns. It keeps the integrator's
 dense output (heyoka's Taylor polynomials) per segment, so :meth:`Trajectory.sample`
 evaluates the state and any observable at any instant without re-integrating, and it
-carries its inputs (model, start, options) so that it can be rerun from :meth:`to_dict`.
+carries its inputs (model, start, options) so that it can be rerun from :meth:`to_dict`. Its
+other forms (the JSON dict, tables, xarray, NetCDF, Parquet) are built in
+:mod:`phasekit.core.trajectory_io`.
 """
 
 from __future__ import annotations
@@ -15,15 +17,27 @@ import numpy as np
 
 from .._runtime.errors import ParameterError, Status
 from .._runtime.validate import check_times
-from .charts import FLIGHT, PAPER_NAMES
+from .charts import FLIGHT
+from .fields import STICK_SLIP
 from .hybrid import Mode
-from .model import STICK_SLIP, Model, evaluate_function
+from .model import Model
+from .observables import evaluate_function
 from .pose import POSE_COLUMNS, Pose
+from .trajectory_io import (
+    STATE_COLUMNS,
+    event_dict,
+    events_table,
+    flight_dict,
+    pose_table,
+    sample_table,
+    trajectory_dict,
+    trajectory_xarray,
+    write_netcdf,
+    write_parquet,
+)
 
-__all__ = ["EventRecord", "Segment", "Flight", "Trajectory", "SAMPLE_COLUMNS", "observable_table"]
+__all__ = ["EventRecord", "Segment", "Flight", "Trajectory", "SAMPLE_COLUMNS"]
 
-#: the observables of a state (columns of :func:`observable_table`)
-STATE_COLUMNS = (*PAPER_NAMES, "R", "energy", "jellett", "slip", "L_Z", "h", "gap")
 #: columns of :meth:`Trajectory.sample` after t and mode: the state's observables, then where
 #: the body is and how it is turned (:mod:`phasekit.core.pose`)
 SAMPLE_COLUMNS = (*STATE_COLUMNS, *POSE_COLUMNS)
@@ -31,9 +45,22 @@ SAMPLE_COLUMNS = (*STATE_COLUMNS, *POSE_COLUMNS)
 
 @dataclass(frozen=True)
 class EventRecord:
-    """A located event: ``name`` (stick, slip, lift-off, touchdown, impact, a stop or a user
-    event), its time, the modes before and after, the state (in the model's chart) and a
-    detail.
+    """A located event: its name, time, the modes before and after, the state and a detail.
+
+    Attributes
+    ----------
+    name : str
+        Stick, slip, lift-off, touchdown, impact, a stop or a user event.
+    t : float
+        Its time.
+    mode_before, mode_after : str
+        The modes before and after.
+    x : numpy.ndarray or None
+        The state, in the model's chart.
+    detail : str
+        A detail (e.g. an impact's bounce train resolved).
+    y : numpy.ndarray or None
+        The state in the paper's variables.
 
     Examples
     --------
@@ -58,20 +85,32 @@ class EventRecord:
         return self.name
 
     def to_dict(self) -> dict:
-        d = {"kind": self.name, "t": float(self.t), "mode_before": self.mode_before, "mode_after": self.mode_after}
-        if self.detail:
-            d["detail"] = self.detail
-        if self.y is not None:
-            d["state"] = {k: float(v) for k, v in zip(PAPER_NAMES, self.y)}
-        return d
+        return event_dict(self)
 
 
 @dataclass(frozen=True)
 class Segment:
     """A stretch of one mode: from (t0, x0) to (t1, x1), states in the mode's chart (the
-    model's chart in contact, the flight chart in flight). ``end`` names what ended it
-    (an event, "time" or "failed"); ``monitored``: the (t, x) where the flow's monitor
-    crossed zero (minima of R; the maximum of the gap in flight).
+    model's chart in contact, the flight chart in flight).
+
+    Attributes
+    ----------
+    mode : Mode
+        The mode.
+    t0, t1 : float
+        Start and end times.
+    x0, x1 : numpy.ndarray
+        Start and end states.
+    engine : str
+        The engine that integrated it.
+    end : str
+        What ended it (an event, "time" or "failed").
+    n_steps, n_rhs : int
+        Steps taken and evaluations of the field.
+    monitored : tuple
+        The (t, x) where the flow's monitor crossed zero (minima of R; the maximum of the gap in flight).
+    dense : tuple
+        The dense output, callables t -> states in time order (empty without ``dense=True``).
 
     Examples
     --------
@@ -96,7 +135,23 @@ class Segment:
     dense: tuple = field(default=(), repr=False)
 
     def states(self, ts) -> np.ndarray:
-        """States at times inside [t0, t1] from the dense output."""
+        """States at times inside [t0, t1] from the dense output.
+
+        Parameters
+        ----------
+        ts : array_like
+            The times; a time outside [t0, t1] is clipped into it.
+
+        Returns
+        -------
+        numpy.ndarray
+            One row per time, in the mode's chart.
+
+        Raises
+        ------
+        ValueError
+            If no dense output was kept.
+        """
         ts = np.asarray(ts, dtype=float)
         out = np.empty((ts.size, self.x0.size))
         if not self.dense:
@@ -114,9 +169,26 @@ class Segment:
 
 @dataclass(frozen=True)
 class Flight:
-    """One flight: from lift-off (t_liftoff) to touchdown (t_touchdown, None if it did not
-    end in one). ``gap_max``/``t_gap_max``: the located maximum of the gap; ``W_star`` and
-    ``Omega_star``: vertical velocity of G and precession rate at lift-off.
+    """One flight: from lift-off to touchdown.
+
+    Attributes
+    ----------
+    status : Status
+        ``touchdown``, ``failed``, or ``completed`` (it ended otherwise).
+    t_liftoff : float
+        Time of lift-off.
+    t_touchdown : float or None
+        Time of touchdown, None if it did not end in one.
+    x_liftoff, x_end : numpy.ndarray
+        The states at its start and end, in the flight chart.
+    gap_max, t_gap_max : float or None
+        The located maximum of the gap and its time.
+    W_star : float
+        Vertical velocity of G at lift-off.
+    Omega_star : float
+        Precession rate at lift-off.
+    n_steps : int
+        Steps taken.
 
     Examples
     --------
@@ -140,36 +212,12 @@ class Flight:
     n_steps: int = 0
 
     def to_dict(self) -> dict:
-        return {"t_liftoff": self.t_liftoff, "t_touchdown": self.t_touchdown, "gap_max": self.gap_max,
-                "t_gap_max": self.t_gap_max, "W_star": self.W_star, "Omega_star": self.Omega_star}
-
-
-def observable_table(model, parts):
-    """A :meth:`Trajectory.sample`-style DataFrame from ``parts``: (mode, times, states in
-    that mode's chart) in time order."""
-    import pandas as pd
-
-    n = sum(len(ts) for _, ts, _ in parts)
-    cols = {name: np.empty(n) for name in STATE_COLUMNS}
-    t_all, modes = np.empty(n), np.empty(n, dtype=object)
-    i = 0
-    for mode, ts, X in parts:
-        X = np.asarray(X, dtype=float).reshape(len(ts), -1)
-        sel = slice(i, i + len(ts))
-        t_all[sel], modes[sel] = ts, mode.value
-        P = evaluate_function(model.function("paper", mode), model.p, X)
-        for j, name in enumerate(PAPER_NAMES):
-            cols[name][sel] = np.reshape(P, (len(ts), -1))[:, j]
-        for name in ("R", "energy", "jellett", "L_Z", "h", "gap"):
-            cols[name][sel] = evaluate_function(model.observable(name, mode), model.p, X)
-        cols["slip"][sel] = evaluate_function(model.observable("slip_speed", mode), model.p, X)
-        i += len(ts)
-    return pd.DataFrame({"t": t_all, "mode": modes, **cols})
+        return flight_dict(self)
 
 
 @dataclass(frozen=True, eq=False, repr=False, kw_only=True)
 class Trajectory:
-    """The outcome of :func:`phasekit.simulate` (and of :func:`phasekit.simulate_batch`): frozen.
+    """The outcome of :func:`phasekit.simulate` (and of :func:`phasekit.core.simulate_batch`): frozen.
 
     Attributes
     ----------
@@ -451,17 +499,7 @@ class Trajectory:
         the order of the tolerance (CVODES segments use cubic Hermite interpolation on their
         output grid, whose error can be larger).
         """
-        ts = self._check_times(times)
-        idx = self._locate(ts)
-        parts = []
-        for k in np.unique(idx):
-            sel = idx == k
-            seg = self.segments[k]
-            parts.append((seg.mode, ts[sel], seg.states(ts[sel])))
-        df = observable_table(self.model, parts)
-        for name, values in self._pose(idx, ts).items():
-            df[name] = values
-        return df
+        return sample_table(self, self._check_times(times))
 
     def _pose(self, idx, ts) -> dict:
         return self._pose_track(idx, ts)
@@ -473,10 +511,7 @@ class Trajectory:
         Computed after the integration by quadrature of the dense output (the run's numbers
         are those of a run without them); raises ParameterError when no dense output was kept.
         """
-        import pandas as pd
-
-        ts = self._check_times(times)
-        return pd.DataFrame({"t": ts, **self._pose(self._locate(ts), ts)})
+        return pose_table(self, self._check_times(times))
 
     def at(self, t: float):
         """The row of :meth:`sample` at one instant ``t``, as a pandas Series
@@ -488,12 +523,7 @@ class Trajectory:
     def events_table(self, name: str | None = None):
         """The recorded events (or those called ``name``) as a DataFrame: ``t``, ``event``,
         ``mode_before``, ``mode_after`` and the paper's state at the event."""
-        import pandas as pd
-
-        rows = [{"t": e.t, "event": e.name, "mode_before": e.mode_before, "mode_after": e.mode_after,
-                 **dict(zip(PAPER_NAMES, e.y if e.y is not None else [np.nan] * len(PAPER_NAMES)))}
-                for e in self.events if name is None or e.name == name]
-        return pd.DataFrame(rows, columns=["t", "event", "mode_before", "mode_after", *PAPER_NAMES])
+        return events_table(self, name)
 
     @property
     def euler_end(self) -> np.ndarray:
@@ -510,92 +540,20 @@ class Trajectory:
         """The run sampled at ``times`` (default ``n`` instants uniform over it) as an xarray
         Dataset: coordinate ``t``, one variable per column of :meth:`sample`, and the model,
         start, options, pose0 and status as JSON-string attributes (needs ``phasekit[data]``)."""
-        from ..io.tables import _need, to_xarray
-
-        _need(".nc")
-        return to_xarray(self, times, n=n)
+        return trajectory_xarray(self, times, n=n)
 
     def to_netcdf(self, path, times=None, *, n: int = 2001):
         """Write :meth:`to_xarray` to a NetCDF file (``phasekit[data]``); returns the path."""
-        from ..io.tables import _check_path, write_trajectory
-
-        return write_trajectory(self, _check_path(path, (".nc",)), times, n=n)
+        return write_netcdf(self, path, times, n=n)
 
     def to_parquet(self, path, times=None, *, n: int = 2001):
         """Write the sampled table to a Parquet file, the run's inputs in its metadata
         (``phasekit[data]``); returns the path."""
-        from ..io.tables import _check_path, write_trajectory
-
-        return write_trajectory(self, _check_path(path, (".parquet",)), times, n=n)
+        return write_parquet(self, path, times, n=n)
 
     def to_dict(self, *, events: bool = True) -> dict:
         """JSON form in the paper's variables, with the inputs (model, start, options)."""
-        chart = self.model.chart
-        y_end = chart.to_paper(self.x)
-        xj = self.x_jump
-        d = {
-            "status": str(self.status),
-            "reason": self.reason,
-            "t_jump": self.t_jump,
-            "state_at_jump": None if xj is None else dict(zip(PAPER_NAMES, map(float, chart.to_paper(xj)))),
-            "Rdot_at_jump": self.Rdot_jump,
-            "R_min": self.R_min,
-            "t_end": float(self.t),
-            "theta_end": float(y_end[4]),
-            "state_end": dict(zip(PAPER_NAMES, map(float, y_end))),
-            "mode_end": self.mode,
-            "stuck": self.stuck,
-            "n_events": len(self.events),
-            "n_steps": int(self.n_steps),
-            "n_rhs": int(self.n_rhs),
-            "wall_s": float(self.wall_s),
-            "chart": chart.name,
-            "formulation": chart.name,  # the old name of "chart", kept for readers of older output
-            "backend": self.backend,
-            "rtol": self.options.rtol,
-        }
-        stops = [e for e in self.events if e.mode_after == "end" and e.name not in ("lift-off", "touchdown")]
-        if self.status is Status.STOPPED and stops:
-            d["t_stop"] = stops[-1].t
-            d["stopped_by"] = stops[-1].name
-        poses = self._event_poses() if events else None
-        if events:
-            d["events"] = [e.to_dict() for e in self.events]
-            if poses is not None:
-                for e, pose in zip(d["events"], poses[:-1]):
-                    e["pose"] = pose
-        if poses is not None:
-            d["pose_end"] = poses[-1]
-        fl = self.flights
-        if fl:
-            d["flight"] = fl[0].to_dict()
-            d["n_flights"] = len(fl)
-            d["hops"] = self.hops
-        d["model"] = self.model.to_dict()
-        d["start"] = dict(zip(PAPER_NAMES, map(float, chart.to_paper(self.x0) if self.x0.size == chart.n_states
-                                                   else FLIGHT.to_paper(self.x0))))
-        d["start_chart_state"] = self.x0.tolist()
-        d["t0"] = self.t0
-        d["t_end_requested"] = self.t_end
-        d["stop_at"] = self.stop_at
-        d["restitution"] = self.restitution
-        d["user_events"] = [e.to_dict() for e in self.user_events]
-        d["options"] = self.options.to_dict()
-        d["pose0"] = self.pose0.to_dict()
-        return d
-
-    def _event_poses(self) -> list[dict] | None:
-        """The pose at each event and at the end (None without dense output)."""
-        if not self.segments or not all(s.dense for s in self.segments):
-            return None
-        ts = np.array([e.t for e in self.events] + [self.t])
-        ts = np.clip(ts, self.t0, self.t)
-        order = np.argsort(ts, kind="stable")
-        cols = self._pose(self._locate(ts[order]), ts[order])
-        out = [None] * len(ts)
-        for rank, i in enumerate(order):
-            out[i] = {name: float(cols[name][rank]) for name in POSE_COLUMNS}
-        return out
+        return trajectory_dict(self, events=events)
 
     def __repr__(self) -> str:
         tj = f", t_jump={self.t_jump:.9g}" if self.t_jump is not None else ""

@@ -158,6 +158,13 @@ class Scale:
     time_unit : Quantity
         sqrt(b/g), phasekit's unit of time.
 
+    Raises
+    ------
+    ParameterError
+        If ``b`` is not a length > 0, ``g`` not an acceleration > 0 or ``mass`` (when given)
+        not a mass > 0: a quantity that does not parse, is not one finite real number, is in
+        hertz or has another dimension.
+
     Examples
     --------
     >>> import phasekit as pk
@@ -175,7 +182,25 @@ class Scale:
         self.time_unit = ((self.b / self.g) ** 0.5).to(DISPLAY_UNITS["time"])
 
     def unit(self, kind: str):
-        """phasekit's unit of ``kind`` (a key of :data:`KINDS`) as a Quantity."""
+        """phasekit's unit of ``kind`` as a Quantity.
+
+        Parameters
+        ----------
+        kind : str
+            A key of :data:`KINDS`: "length", "time", "rate", "speed", "acceleration", "mass",
+            "force", "energy", "inertia" or "angular_momentum".
+
+        Returns
+        -------
+        pint.Quantity
+            The unit as a product of powers of b, g and M (e.g. sqrt(b/g) for "time").
+
+        Raises
+        ------
+        ParameterError
+            If ``kind`` is not a key of :data:`KINDS`, or the kind involves the mass and the
+            Scale has none.
+        """
         _check_kind(kind)
         pb, pg, pm = KINDS[kind][1]
         if pm and self.mass is None:
@@ -185,7 +210,26 @@ class Scale:
 
     def quantity(self, value, kind: str):
         """A phasekit (dimensionless) value, or an array of them, as a Quantity of ``kind``, in
-        SI base units."""
+        SI base units.
+
+        Parameters
+        ----------
+        value : float or array_like
+            Finite values in phasekit's units (an empty array is allowed).
+        kind : str
+            A key of :data:`KINDS` ("time", "rate", "length", ...).
+
+        Returns
+        -------
+        pint.Quantity
+            ``value`` times the unit of ``kind``, in SI base units.
+
+        Raises
+        ------
+        ParameterError
+            If ``value`` is not finite real numbers, ``kind`` is not a key of :data:`KINDS`,
+            or the kind involves the mass and the Scale has none.
+        """
         value = check_finite("value", value) if np.ndim(value) == 0 else check_array("value", value, allow_empty=True)
         return (value * self.unit(kind)).to_base_units()
 
@@ -194,6 +238,29 @@ class Scale:
         (default the kind's :data:`DISPLAY_UNITS` entry, e.g. ms); a pandas Series gives a
         Series of the magnitudes (same name and index) with ``attrs["unit"]`` set.
 
+        Parameters
+        ----------
+        value : float, array_like or pandas.Series
+            Finite values in phasekit's units.
+        kind : str
+            A key of :data:`KINDS` ("time", "rate", "length", ...).
+        unit : str, optional
+            A unit of that kind's dimension, e.g. "ms" or "s" for a time.
+
+        Returns
+        -------
+        pint.Quantity or pandas.Series
+            The values in ``unit``: a Quantity, or for a Series a Series of the magnitudes.
+
+        Raises
+        ------
+        ParameterError
+            If ``kind`` is not a key of :data:`KINDS`, ``unit`` is not a unit of its
+            dimension, ``value`` is not finite real numbers, or the kind involves the mass and
+            the Scale has none.
+
+        Examples
+        --------
         >>> import phasekit as pk
         >>> print(f"{pk.Scale('21.5 mm').to_real(2.0, 'time'):.5~P}")
         93.63 ms
@@ -212,6 +279,19 @@ class Scale:
         :meth:`to_real` gives it; None where the flight has none: no touchdown, no located
         maximum), and ``theta_liftoff``, the axis angle at lift-off in radians.
 
+        Parameters
+        ----------
+        flight : Flight
+            One flight of a run, e.g. ``traj.flights[0]``.
+
+        Returns
+        -------
+        dict
+            The keys ``t_liftoff``, ``t_touchdown``, ``duration``, ``t_gap_max``, ``gap_max``
+            and ``theta_liftoff``, as floats or None.
+
+        Examples
+        --------
         >>> import numpy as np, phasekit as pk
         >>> egg, sc = pk.core.egg_of_size("57 mm", "43 mm")
         >>> y0 = pk.gyroscopic_start(egg, np.pi / 2 - 0.01, omega0=sc.dimensionless("50 rev/s"))
@@ -236,7 +316,23 @@ class Scale:
         those column names) in real units: each column of :data:`COLUMN_KINDS` converted to its
         display unit, angles in radians, other columns as they are; ``attrs["units"]`` maps
         each column to its unit (forces, energies and angular momenta need the Scale's mass:
-        without it they stay in units of M g, M g b and M sqrt(g b^3))."""
+        without it they stay in units of M g, M g b and M sqrt(g b^3)).
+
+        Parameters
+        ----------
+        df : pandas.DataFrame
+            The table in phasekit's units, e.g. ``traj.sample(times)``.
+
+        Returns
+        -------
+        pandas.DataFrame
+            A copy in real units, with ``attrs["units"]`` mapping each column to its unit.
+
+        Raises
+        ------
+        ParameterError
+            If ``df`` is not a DataFrame.
+        """
         if not (hasattr(df, "columns") and hasattr(df, "copy")):
             raise ParameterError("df", "must be a pandas DataFrame such as traj.sample(times)", type(df).__name__)
         out, units_of = df.copy(), {}
@@ -267,7 +363,28 @@ class Scale:
 
     def dimensionless(self, value, kind: str | None = None) -> float:
         """A quantity (Quantity or string such as "30 rev/s", "57 mm", "12 ms") in phasekit's
-        units; its kind is read from its dimensionality (or checked against ``kind``)."""
+        units; its kind is read from its dimensionality (or checked against ``kind``).
+
+        Parameters
+        ----------
+        value : pint.Quantity or str
+            One finite quantity with units, e.g. "30 rev/s" (not in hertz).
+        kind : str, optional
+            A key of :data:`KINDS` that the quantity must be of.
+
+        Returns
+        -------
+        float
+            The value in phasekit's units of its kind.
+
+        Raises
+        ------
+        ParameterError
+            If ``value`` does not parse, is not one finite real number with units, is in
+            hertz, has the dimension of no kind (or not that of ``kind``), its kind involves
+            the mass and the Scale has none, or it is too large to express in phasekit's
+            units; or if ``kind`` is not a key of :data:`KINDS`.
+        """
         return self._dimensionless(value, None if kind is None else _check_kind(kind), "value")
 
     def _dimensionless(self, value, kind: str | None, name: str) -> float:
@@ -298,7 +415,32 @@ def _unit_text(unit: str) -> str:
 
 def egg_of_size(length, breadth, *, w: float = 0.0, mass=None, g=STANDARD_GRAVITY):
     """An :class:`~phasekit.bodies.egg.Egg` of the given length and maximum breadth (uniform density)
-    and its :class:`Scale` (b = breadth / 2). ``w`` is the egg's asymmetry (w/L).
+    and its :class:`Scale` (b = breadth / 2).
+
+    Parameters
+    ----------
+    length, breadth : quantity
+        The egg's length and maximum breadth (lengths > 0): pint Quantities or strings
+        ("57 mm"). Their ratio is the egg's aspect ratio a, in [0.3, 3].
+    w : float
+        The egg's asymmetry (w/L), in [0, 0.5) (see :class:`~phasekit.bodies.egg.Egg`);
+        default 0.
+    mass : quantity, optional
+        The egg's mass, needed only for forces, energies and moments of inertia.
+    g : quantity
+        Gravity, default 9.81 m/s^2.
+
+    Returns
+    -------
+    tuple of (Egg, Scale)
+        The egg, in units of b, and its scale.
+
+    Raises
+    ------
+    ParameterError
+        If ``length`` or ``breadth`` is not a length > 0, their ratio is outside the egg's
+        range of aspect ratios (named ``length``), ``w`` is not a valid asymmetry, or ``mass``
+        or ``g`` is not a quantity of its kind > 0.
 
     Examples
     --------
@@ -323,9 +465,37 @@ def egg_of_size(length, breadth, *, w: float = 0.0, mass=None, g=STANDARD_GRAVIT
 
 
 def tippe_top_of_size(radius, offset, *, A=None, C=None, mass=None, g=STANDARD_GRAVITY):
-    """An :class:`~phasekit.bodies.body.EccentricSphere` of the given ball radius with its centre of
-    mass ``offset`` (a length) below the centre, and its :class:`Scale` (b = radius). ``A``
-    and ``C`` may be numbers (units M b^2) or quantities of a moment of inertia (need ``mass``).
+    """An :class:`~phasekit.bodies.spheroid.EccentricSphere` of the given ball radius with its centre of
+    mass ``offset`` (a length) below the centre, and its :class:`Scale` (b = radius).
+
+    Parameters
+    ----------
+    radius : quantity
+        The ball's radius (a length > 0): a pint Quantity or a string ("15 mm").
+    offset : quantity
+        The distance of the centre of mass below the ball's centre, a length; over
+        ``radius`` it is the body's offset, in [0, 1).
+    A, C : float or quantity, optional
+        Moments about G: numbers (units M b^2) or quantities of a moment of inertia (need
+        ``mass``). Default: those of :class:`~phasekit.bodies.spheroid.EccentricSphere`.
+    mass : quantity, optional
+        The top's mass, needed for forces, energies, moments of inertia and for ``A`` or
+        ``C`` given as quantities.
+    g : quantity
+        Gravity, default 9.81 m/s^2.
+
+    Returns
+    -------
+    tuple of (EccentricSphere, Scale)
+        The top, in units of b, and its scale.
+
+    Raises
+    ------
+    ParameterError
+        If ``radius`` is not a length > 0, ``offset`` is not a length or its ratio to the
+        radius is outside the body's range, ``A`` or ``C`` is neither a number nor a moment
+        of inertia (or is one without ``mass``), the moments are invalid for the body, or
+        ``mass`` or ``g`` is not a quantity of its kind > 0.
 
     Examples
     --------
@@ -336,7 +506,7 @@ def tippe_top_of_size(radius, offset, *, A=None, C=None, mass=None, g=STANDARD_G
     >>> str(sc.b)
     '15 millimeter'
     """
-    from ..bodies.body import EccentricSphere
+    from ..bodies.spheroid import EccentricSphere
 
     _of_kind(radius, "radius", "length", positive=True)
     sc = Scale(radius, g=g, mass=mass)

@@ -58,6 +58,11 @@ class FrictionLaw:
         True when zero slip is a separate mode (exact Coulomb): the law must then be of the
         form d = (-mu u/|u|, 1) so that the static friction cone is mu R.
 
+    Raises
+    ------
+    ParameterError
+        If ``mu`` is not a finite number in [0, 1e3].
+
     Examples
     --------
     >>> import phasekit as pk
@@ -86,11 +91,45 @@ class FrictionLaw:
 
     @staticmethod
     def sliding_force(u, mu, eps):
-        """Return (Fc0, d), each a CasADi 3-vector, with Fc = Fc0 + R d while sliding."""
+        """Return (Fc0, d), each a CasADi 3-vector, with Fc = Fc0 + R d while sliding.
+
+        Parameters
+        ----------
+        u : casadi.SX
+            The slip velocity of the contact point P, a 2-vector (units sqrt(g b)).
+        mu : float or casadi.SX
+            The friction coefficient.
+        eps : float or casadi.SX
+            The slip-speed regularisation (0 for laws without one).
+
+        Returns
+        -------
+        tuple
+            (Fc0, d): CasADi 3-vectors (horizontal friction, then normal reaction), so that
+            the contact force is Fc0 + R d while sliding.
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: a subclass must define it.
+        """
         raise NotImplementedError("a FrictionLaw subclass must define sliding_force(u, mu, eps)")
 
     def force(self, u: np.ndarray, R: float) -> np.ndarray:
-        """Numeric horizontal friction force for slip ``u`` (2,) and normal reaction ``R``."""
+        """Numeric horizontal friction force for slip ``u`` (2,) and normal reaction ``R``.
+
+        Parameters
+        ----------
+        u : array_like
+            The slip velocity of the contact point, shape (2,), units sqrt(g b).
+        R : float
+            The normal reaction, units M g.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (2,): the horizontal friction force (F_1, F_2), units M g.
+        """
         us = ca.SX.sym("u", 2)
         f0, d = self.sliding_force(us, self.mu, self.eps)
         f = ca.Function("F", [us], [(ca.SX(f0) + R * ca.SX(d))[:2]])
@@ -115,6 +154,16 @@ class FrictionLaw:
 class Coulomb(FrictionLaw):
     """Exact Coulomb friction: sliding with F = -mu R u/|u|, rolling when the slip vanishes.
 
+    Parameters
+    ----------
+    mu : float
+        Friction coefficient, in [0, 1e3].
+
+    Raises
+    ------
+    ParameterError
+        If ``mu`` is not a finite number in [0, 1e3].
+
     Examples
     --------
     >>> import phasekit as pk
@@ -134,6 +183,20 @@ class Coulomb(FrictionLaw):
 
 class RegularisedCoulomb(FrictionLaw):
     """Coulomb friction with the slip speed regularised as sqrt(|u|^2 + eps^2).
+
+    Parameters
+    ----------
+    mu : float
+        Friction coefficient, in [0, 1e3].
+    eps : float, optional
+        The regularisation, a slip speed in units sqrt(g b), in [1e-14, 1] (default 1e-8).
+
+    Raises
+    ------
+    ParameterError
+        If ``mu`` is not a finite number in [0, 1e3], or ``eps`` is not in [1e-14, 1] (below
+        1e-14 the slip relaxation rate mu/eps exceeds what a double-precision integrator can
+        follow).
 
     Examples
     --------
@@ -171,6 +234,16 @@ class RegularisedCoulomb(FrictionLaw):
 class Viscous(FrictionLaw):
     """Viscous ("wet") friction F = -mu u, independent of the normal reaction.
 
+    Parameters
+    ----------
+    mu : float
+        Drag coefficient, in [0, 1e3].
+
+    Raises
+    ------
+    ParameterError
+        If ``mu`` is not a finite number in [0, 1e3].
+
     Examples
     --------
     >>> import phasekit as pk
@@ -188,7 +261,34 @@ class Viscous(FrictionLaw):
 def friction_law(name: str, mu: float, eps: float | None = None) -> FrictionLaw:
     """Build a law from its CLI name: ``coulomb`` (exact stick-slip, or regularised when
     ``eps`` is given) or ``viscous`` (smooth at zero slip: an ``eps`` is checked, then ignored
-    with a warning)."""
+    with a warning).
+
+    Parameters
+    ----------
+    name : {"coulomb", "viscous"}
+        The law's CLI name.
+    mu : float
+        Friction (or drag) coefficient, in [0, 1e3].
+    eps : float, optional
+        Slip-speed regularisation of the Coulomb law, in [1e-14, 1]; None (default): exact
+        Coulomb friction.
+
+    Returns
+    -------
+    FrictionLaw
+        Coulomb, RegularisedCoulomb or Viscous.
+
+    Raises
+    ------
+    ParameterError
+        If ``name`` is not coulomb or viscous (the error names ``friction``), ``mu`` is not in
+        [0, 1e3], or ``eps`` is not in [1e-14, 1] (for viscous friction: in (0, 1]).
+
+    Warns
+    -----
+    UserWarning
+        If ``eps`` is given with viscous friction.
+    """
     if name == "coulomb":
         return Coulomb(mu) if eps is None else RegularisedCoulomb(mu, eps)
     if name == "viscous":

@@ -39,6 +39,16 @@ def atomic_path(path):
     ends without an exception, removed otherwise. A kill at any moment leaves either the old
     file or the new one, never a torn one.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write; its directory is created if missing.
+
+    Yields
+    ------
+    pathlib.Path
+        The temporary path, in the same directory and with the same suffix as ``path``.
+
     Examples
     --------
     >>> import tempfile, pathlib, phasekit as pk
@@ -83,7 +93,27 @@ def _check_path(path, suffixes) -> Path:
 def to_xarray(traj, times=None, *, n: int = 2001):
     """The trajectory sampled at ``times`` (default ``n`` instants uniform over the run) as an
     xarray Dataset: coordinate ``t``, one variable per column of :meth:`Trajectory.sample`
-    (``mode`` as strings) and the run's inputs as JSON-string attributes."""
+    (``mode`` as strings) and the run's inputs as JSON-string attributes.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run, with its dense output.
+    times : array_like, optional
+        The sampling times; default ``n`` instants uniform over the run.
+    n : int, optional
+        The number of instants without ``times``, in [2, 1e7] (default 2001).
+
+    Returns
+    -------
+    xarray.Dataset
+        The sampled trajectory.
+
+    Raises
+    ------
+    ParameterError
+        If ``times`` is None and ``n`` is not an integer in [2, 1e7].
+    """
     import xarray as xr
 
     df = traj.sample(_times(traj, times, n))
@@ -100,7 +130,33 @@ def to_xarray(traj, times=None, *, n: int = 2001):
 
 def write_trajectory(traj, path, times=None, *, n: int = 2001) -> Path:
     """Write the sampled trajectory to ``path``: .nc (NetCDF, the Dataset of :func:`to_xarray`),
-    .parquet (the table, the attributes in its metadata) or .csv."""
+    .parquet (the table, the attributes in its metadata) or .csv.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run, with its dense output.
+    path : str or os.PathLike
+        The file, ending in .csv, .parquet or .nc (written atomically).
+    times : array_like, optional
+        The sampling times; default ``n`` instants uniform over the run.
+    n : int, optional
+        The number of instants without ``times``, in [2, 1e7] (default 2001).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    ParameterError
+        If ``path`` is not a file path ending in .csv, .parquet or .nc, or ``times`` is None
+        and ``n`` is not an integer in [2, 1e7].
+    PhasekitError
+        If the optional packages of the file type are missing (.parquet: pyarrow; .nc: xarray,
+        h5netcdf, h5py): ``pip install "phasekit[data]"``.
+    """
     path = _check_path(path, TABLE_SUFFIXES)
     suffix = path.suffix.lower()
     _need(suffix)
@@ -158,6 +214,27 @@ def write_table(df, path) -> Path:
     """Write a study table (a DataFrame) as .csv (missing cells empty), .parquet or .nc, with
     honest dtypes (:func:`read_table`'s).
 
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table.
+    path : str or os.PathLike
+        The file, ending in .csv, .parquet or .nc (written atomically).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    ParameterError
+        If ``df`` is not a DataFrame, or ``path`` is not a file path ending in .csv, .parquet
+        or .nc.
+    PhasekitError
+        If the optional packages of the file type are missing (.parquet: pyarrow; .nc: xarray,
+        h5netcdf, h5py): ``pip install "phasekit[data]"``.
+
     Examples
     --------
     >>> import phasekit as pk
@@ -182,6 +259,25 @@ def write_table(df, path) -> Path:
 def read_table(path):
     """A study table (.csv, .parquet or .nc) as a DataFrame with honest dtypes: booleans as
     pandas' nullable "boolean", numbers as numbers, text as strings, every missing cell NA.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        An existing file ending in .csv, .parquet or .nc.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The table.
+
+    Raises
+    ------
+    ParameterError
+        If ``path`` is not a file path ending in .csv, .parquet or .nc, or the file does not
+        exist.
+    PhasekitError
+        If the optional packages of the file type are missing (.parquet: pyarrow; .nc: xarray,
+        h5netcdf, h5py): ``pip install "phasekit[data]"``.
 
     Examples
     --------

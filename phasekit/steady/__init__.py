@@ -9,25 +9,23 @@ Examples
 [0.0, 0.0, 10.0, 0.0]
 """
 
-from .fixedpoints import (
-    FixedPoint,
-    find_fixed_point,
-    fixed_points,
+from .fixedpoints import find_fixed_point, fixed_points
+from .linearisation import FixedPoint, linearise
+from .manifolds import unstable_manifold_start, unstable_seeds
+from .precessions import (
     horizontal_like_angle,
     horizontal_state,
-    intermediate_state,
     inverted_state,
-    linearise,
     precession_angles,
     side_equilibrium,
     vertical_state,
 )
-from .manifolds import unstable_manifold_start, unstable_seeds
-from .structure import RollingMotion, SteadyStructure, bifurcation_between, rolling_motion, steady_structure
+from .rolling import RollingMotion, rolling_motion
+from .structure import SteadyStructure, bifurcation_between, steady_structure
 
 __all__ = [
     "fixed_points", "find_fixed_point", "FixedPoint", "linearise",
-    "horizontal_state", "vertical_state", "inverted_state", "intermediate_state", "precession_angles",
+    "horizontal_state", "vertical_state", "inverted_state", "precession_angles",
     "side_equilibrium", "horizontal_like_angle",
     "unstable_manifold_start", "unstable_seeds",
     "steady_structure", "SteadyStructure", "bifurcation_between", "rolling_motion", "RollingMotion",

@@ -18,17 +18,16 @@ import numpy as np
 
 from .._runtime.errors import ParameterError
 from .._runtime.validate import check_choice, check_finite, check_positive
-from ..bodies.body import Spheroid
+from ..bodies.spheroid import Spheroid
 from ..core.model import Model
 from ..friction.laws import Viscous
 from ..theory.criteria import horizontal_stability_threshold, vertical_stability_threshold
-from .fixedpoints import (
-    FixedPoint,
-    find_fixed_point,
+from .fixedpoints import find_fixed_point
+from .linearisation import FixedPoint, linearise
+from .precessions import (
     horizontal_like_angle,
     horizontal_state,
     inverted_state,
-    linearise,
     precession_angles,
     precession_state,
     vertical_state,
@@ -40,10 +39,27 @@ __all__ = ["unstable_seeds", "unstable_manifold_start"]
 def unstable_seeds(fp: FixedPoint, delta: float) -> list[tuple[str, np.ndarray]]:
     """[(label, x0)] for each unstable direction and both signs; labels "+0", "-0", "+1", ...
 
+    Parameters
+    ----------
+    fp : FixedPoint
+        The linearised steady state.
+    delta : float
+        Distance of each seed from ``fp.x`` along a unit direction, > 0.
+
+    Returns
+    -------
+    list of (str, numpy.ndarray)
+        The label and the seed x0 = x* +/- delta v, in the chart of ``fp``; empty if ``fp`` is not unstable.
+
+    Raises
+    ------
+    ParameterError
+        If ``delta`` is not a positive finite number.
+
     Examples
     --------
     >>> import phasekit as pk
-    >>> fp = pk.linearise(pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1)), pk.steady.horizontal_state(10.0), kind='horizontal')
+    >>> fp = pk.steady.linearise(pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1)), pk.steady.horizontal_state(10.0), kind='horizontal')
     >>> [name for name, x in pk.steady.unstable_seeds(fp, 0.01)]
     ['+0', '-0']
     """
@@ -68,19 +84,42 @@ def unstable_manifold_start(body, friction, *, state: str, delta: float, omega0=
 
     Parameters
     ----------
-    state : "horizontal" or "horizontal-like" (need omega0), "vertical" (theta = 0) or
+    body : Body
+        The body.
+    friction : FrictionLaw
+        The law simulated (its ``mu`` also sets the viscous seed law).
+    state : {"horizontal", "horizontal-like", "vertical", "inverted"}
+        "horizontal" or "horizontal-like" (need omega0), "vertical" (theta = 0) or
         "inverted" (theta = pi) (need n0). "horizontal-like" is the precession continuing the
-        horizontal state of a body with h_theta(pi/2) != 0 (phasekit.steady.fixedpoints).
-    seed_law : "viscous" linearises with Viscous(mu) (part I; the paper's recipe, and the
+        horizontal state of a body with h_theta(pi/2) != 0 (phasekit.steady.precessions).
+    delta : float
+        Distance of the seed from the state along a unit direction, > 0 (:func:`unstable_seeds`).
+    omega0, n0 : float, optional
+        Precession rate Omega0 or spin n0 of the state: exactly the one ``state`` needs.
+    branch : str, optional
+        Sign and index of the unstable direction: "+0", "-0", "+1", ...
+    seed_law : {"viscous", "same"}, optional
+        "viscous" linearises with Viscous(mu) (part I; the paper's recipe, and the
         only choice that has an unstable direction under exact Coulomb), "same" with the
         simulated law itself.
 
-    Returns (model to simulate, x0 in its chart, the fixed point that gave the direction).
+    Returns
+    -------
+    tuple of (Model, numpy.ndarray, FixedPoint)
+        Model to simulate, x0 in its chart, the fixed point that gave the direction.
+
+    Raises
+    ------
+    ParameterError
+        For an invalid argument, a missing or extra rate, a state without an unstable direction, or a
+        ``branch`` that is not one of its seeds.
+    ConvergenceError
+        If Newton does not converge at the steady state.
 
     Examples
     --------
     >>> import phasekit as pk
-    >>> model, x0, fp = pk.unstable_manifold_start(pk.Spheroid(1.5), pk.Viscous(0.1), state='horizontal', delta=0.01, omega0=10.5)
+    >>> model, x0, fp = pk.steady.unstable_manifold_start(pk.Spheroid(1.5), pk.Viscous(0.1), state='horizontal', delta=0.01, omega0=10.5)
     >>> model.chart.name, fp.kind, x0.round(4)
     ('euler', 'horizontal', array([ 0.0000e+00,  0.0000e+00,  1.0500e+01, -1.0000e-04,  1.5702e+00,
             1.0000e-02]))
@@ -117,7 +156,8 @@ def unstable_manifold_start(body, friction, *, state: str, delta: float, omega0=
     if not isinstance(branch, str) or branch not in seeds:
         raise ParameterError("branch", f"must be one of {', '.join(seeds)} (sign and index of an unstable direction "
                                        f"of this {state} state)", branch)
-    return Model(body, friction, chart), seeds[branch], fp
+    # the seed's model is the one to simulate when the seed law is the simulated law
+    return (model if law == friction else Model(body, friction, chart)), seeds[branch], fp
 
 
 def _unstable_hint(body, state: str, seed_law: str, friction) -> str:
@@ -135,7 +175,7 @@ def _unstable_hint(body, state: str, seed_law: str, friction) -> str:
 
 
 def _horizontal_like(model: Model, omega0: float) -> FixedPoint:
-    """The precession with rate omega0 that continues the horizontal state (fixedpoints)."""
+    """The precession with rate omega0 that continues the horizontal state (precessions)."""
     body = model.body
     if body.flip_symmetric:
         raise ParameterError("unstable_manifold", "horizontal-like is for bodies without flip symmetry (use horizontal)",

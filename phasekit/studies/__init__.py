@@ -5,11 +5,9 @@ the studies. A study imports it as ``import phasekit.studies as ps`` (Dask worke
 name like any module).
 """
 
-from ..baseline import work_precision_summary
 from ..core.batch import BatchStats, compile_batch
-from ..steady.fixedpoints import intermediate_omega
-from ..steady.structure import manifold_runs, settled_motion
-from ..thresholds.threshold import Sensitivity, prepare_definitions, sensitivity_definitions, sensitivity_parent
+from ..steady.precessions import intermediate_omega
+from ..thresholds.result import Sensitivity
 from .atlas import (
     AtlasPanel,
     AtlasRow,
@@ -26,18 +24,8 @@ from .atlas import (
 )
 from .eggs import EggDefinition, EndRow, egg_separatrix, which_end, which_end_key, which_end_starts, which_end_summary
 from .figures_atlas import plot_atlas, plot_classes, signature_colours
-from .figures_maps import (
-    OUTCOME_COLOURS,
-    plot_flights,
-    plot_outcome_map,
-    plot_pair_scan,
-    plot_stability_map,
-    plot_threshold_against,
-    plot_threshold_curves,
-    plot_threshold_map,
-    plot_which_end,
-    render_jump_region,
-)
+from .figures_eggs import plot_flights, plot_threshold_against, plot_which_end
+from .figures_outcome_map import OUTCOME_COLOURS, plot_outcome_map, render_jump_region
 from .figures_paper import (
     plot_effective_friction,
     plot_envelope,
@@ -49,32 +37,25 @@ from .figures_paper import (
     render_jump_surface,
 )
 from .figures_structure import plot_branch_planes, render_structure
+from .figures_thresholds import (
+    DEFINITION_STYLES,
+    plot_pair_scan,
+    plot_stability_map,
+    plot_threshold_curves,
+    plot_threshold_map,
+)
 from .figures_tippe import OUTCOME_STYLE, plot_hopping, plot_inversion_map, render_inversion
-from .figures_work_precision import DEFINITION_STYLES, plot_cost_growth, plot_regularisation, plot_work_precision
-from .map_reports import threshold_map_report
-from .maps import (
+from .figures_work_precision import plot_cost_growth, plot_regularisation, plot_work_precision
+from .linear_stability import horizontal_is_unstable, stability_grid, vertical_is_stable
+from .outcome_maps import (
     OUTCOME_KINDS,
     OutcomeMapPlan,
     OutcomeRow,
-    SearchRow,
-    ThresholdRow,
-    definition_sensitivity_table,
-    group_search_tasks,
     outcome_class,
     outcome_key,
     outcome_map_report,
     outcome_map_summary,
     outcome_task,
-    search_job,
-    seed_sensitivity_table,
-    stability_grid,
-    threshold_against_d,
-    threshold_chain,
-    threshold_collapse,
-    threshold_grid_table,
-    threshold_key,
-    threshold_table,
-    threshold_task,
 )
 from .paper_checks import (
     EnvelopeCheck,
@@ -95,7 +76,28 @@ from .paper_checks import (
     surface_crossings,
 )
 from .paper_pairs import PairRow, as_printed, pair_key, pair_report, pair_run, pair_runs, pair_table
+from .sensitivity import prepare_definitions, sensitivity_definitions, sensitivity_parent
 from .stress import STRESS_COLUMNS, StressCase, invariant_drift, stress_report, stress_run
+from .structure_runs import manifold_runs, settled_motion
+from .threshold_reports import (
+    definition_sensitivity_table,
+    seed_sensitivity_table,
+    threshold_against_d,
+    threshold_collapse,
+    threshold_grid_table,
+    threshold_map_report,
+    threshold_table,
+)
+from .threshold_rows import (
+    SearchRow,
+    ThresholdRow,
+    group_search_tasks,
+    search_job,
+    threshold_chain,
+    threshold_key,
+    threshold_task,
+)
 from .tippe_inversion import InversionRun, inversion_run, inversion_summary, simulate_inversion
+from .work_precision import work_precision_summary
 
-__all__ = ['work_precision_summary', 'BatchStats', 'compile_batch', 'intermediate_omega', 'manifold_runs', 'settled_motion', 'Sensitivity', 'prepare_definitions', 'sensitivity_definitions', 'sensitivity_parent', 'AtlasPanel', 'AtlasRow', 'BoundaryRow', 'atlas_edge_key', 'atlas_edges', 'atlas_grid', 'atlas_point_key', 'atlas_representatives', 'axis_values', 'bifurcation_pairs', 'is_class', 'trace_boundary', 'EggDefinition', 'EndRow', 'egg_separatrix', 'which_end', 'which_end_key', 'which_end_starts', 'which_end_summary', 'plot_atlas', 'plot_classes', 'signature_colours', 'OUTCOME_COLOURS', 'plot_flights', 'plot_outcome_map', 'plot_pair_scan', 'plot_stability_map', 'plot_threshold_against', 'plot_threshold_curves', 'plot_threshold_map', 'plot_which_end', 'render_jump_region', 'plot_effective_friction', 'plot_envelope', 'plot_gap_flight', 'plot_gap_maxima', 'plot_mean_state', 'plot_minima_envelope', 'plot_reaction_to_jump', 'render_jump_surface', 'plot_branch_planes', 'render_structure', 'OUTCOME_STYLE', 'plot_hopping', 'plot_inversion_map', 'render_inversion', 'DEFINITION_STYLES', 'plot_cost_growth', 'plot_regularisation', 'plot_work_precision', 'threshold_map_report', 'OUTCOME_KINDS', 'OutcomeMapPlan', 'OutcomeRow', 'SearchRow', 'ThresholdRow', 'definition_sensitivity_table', 'group_search_tasks', 'outcome_class', 'outcome_key', 'outcome_map_report', 'outcome_map_summary', 'outcome_task', 'search_job', 'seed_sensitivity_table', 'stability_grid', 'threshold_against_d', 'threshold_chain', 'threshold_collapse', 'threshold_grid_table', 'threshold_key', 'threshold_table', 'threshold_task', 'EnvelopeCheck', 'FlightCheck', 'NutationCase', 'add_nutation', 'crossing_trend', 'envelope_check', 'envelope_report', 'first_flight', 'fit_gyroscopic_mu', 'flight_check', 'gap_ensemble', 'gap_ensemble_report', 'loglog_fit', 'rise_complete', 'sigma_zero', 'surface_crossings', 'PairRow', 'as_printed', 'pair_key', 'pair_report', 'pair_run', 'pair_runs', 'pair_table', 'STRESS_COLUMNS', 'StressCase', 'invariant_drift', 'stress_report', 'stress_run', 'InversionRun', 'inversion_run', 'inversion_summary', 'simulate_inversion']
+__all__ = ['work_precision_summary', 'BatchStats', 'compile_batch', 'intermediate_omega', 'manifold_runs', 'settled_motion', 'Sensitivity', 'prepare_definitions', 'sensitivity_definitions', 'sensitivity_parent', 'AtlasPanel', 'AtlasRow', 'BoundaryRow', 'atlas_edge_key', 'atlas_edges', 'atlas_grid', 'atlas_point_key', 'atlas_representatives', 'axis_values', 'bifurcation_pairs', 'is_class', 'trace_boundary', 'EggDefinition', 'EndRow', 'egg_separatrix', 'which_end', 'which_end_key', 'which_end_starts', 'which_end_summary', 'plot_atlas', 'plot_classes', 'signature_colours', 'OUTCOME_COLOURS', 'plot_flights', 'plot_outcome_map', 'plot_pair_scan', 'plot_stability_map', 'plot_threshold_against', 'plot_threshold_curves', 'plot_threshold_map', 'plot_which_end', 'render_jump_region', 'plot_effective_friction', 'plot_envelope', 'plot_gap_flight', 'plot_gap_maxima', 'plot_mean_state', 'plot_minima_envelope', 'plot_reaction_to_jump', 'render_jump_surface', 'plot_branch_planes', 'render_structure', 'OUTCOME_STYLE', 'plot_hopping', 'plot_inversion_map', 'render_inversion', 'DEFINITION_STYLES', 'plot_cost_growth', 'plot_regularisation', 'plot_work_precision', 'threshold_map_report', 'OUTCOME_KINDS', 'OutcomeMapPlan', 'OutcomeRow', 'SearchRow', 'ThresholdRow', 'definition_sensitivity_table', 'group_search_tasks', 'outcome_class', 'outcome_key', 'outcome_map_report', 'outcome_map_summary', 'outcome_task', 'search_job', 'seed_sensitivity_table', 'stability_grid', 'vertical_is_stable', 'horizontal_is_unstable', 'threshold_against_d', 'threshold_chain', 'threshold_collapse', 'threshold_grid_table', 'threshold_key', 'threshold_table', 'threshold_task', 'EnvelopeCheck', 'FlightCheck', 'NutationCase', 'add_nutation', 'crossing_trend', 'envelope_check', 'envelope_report', 'first_flight', 'fit_gyroscopic_mu', 'flight_check', 'gap_ensemble', 'gap_ensemble_report', 'loglog_fit', 'rise_complete', 'sigma_zero', 'surface_crossings', 'PairRow', 'as_printed', 'pair_key', 'pair_report', 'pair_run', 'pair_runs', 'pair_table', 'STRESS_COLUMNS', 'StressCase', 'invariant_drift', 'stress_report', 'stress_run', 'InversionRun', 'inversion_run', 'inversion_summary', 'simulate_inversion']

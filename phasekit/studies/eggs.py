@@ -24,8 +24,8 @@ from ..core.model import Model
 from ..core.simulate import simulate
 from ..core.starts import gyroscopic_start
 from ..friction.laws import Coulomb
-from ..steady.fixedpoints import horizontal_like_angle, precession_angles, side_equilibrium
-from ..thresholds.threshold import Definition
+from ..steady.precessions import horizontal_like_angle, precession_angles, side_equilibrium
+from ..thresholds.definition import Definition
 
 __all__ = ["EndRow", "which_end", "which_end_key", "egg_separatrix", "which_end_starts", "which_end_summary",
            "EggDefinition"]

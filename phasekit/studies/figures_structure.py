@@ -176,7 +176,7 @@ def _legend_and_title(pl, trajectories: bool, title, window_size) -> None:
 
 def _add_surface(pl, pv, f, body, bounds) -> int:
     """(6.3) over the box, cut at its n range; nothing where it does not exist."""
-    from ..theory.surface import surface_n
+    from ..theory.jump_surface import surface_n
 
     om = np.linspace(max(bounds[0], 1e-3 * bounds[1]), bounds[1], 60)
     th = np.linspace(0.02, np.pi - 0.02, 90)

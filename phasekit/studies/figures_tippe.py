@@ -121,7 +121,7 @@ def plot_hopping(traj, *, n: int = 20001, title: str = ""):
     --------
     >>> import math, phasekit as pk, phasekit.studies as ps
     >>> top = pk.EccentricSphere(0.3, A=0.38, C=0.4)
-    >>> traj = pk.simulate(pk.Model(top, pk.Coulomb(0.3), "vector"), pk.core.to_chart("vector", pk.vertical_spin_start(0.1, 15.0)),
+    >>> traj = pk.simulate(pk.Model(top, pk.Coulomb(0.3), "vector"), pk.core.to_chart("vector", pk.core.vertical_spin_start(0.1, 15.0)),
     ...                    20.0, rtol=1e-10, stop_at="none")
     >>> len(ps.plot_hopping(traj, n=2001, title="first hops").axes)
     3
@@ -174,7 +174,7 @@ def render_inversion(traj, path, *, title: str = "", n: int = 12000) -> dict:
     --------
     >>> import tempfile, pathlib, phasekit as pk, phasekit.studies as ps
     >>> top = pk.EccentricSphere(0.3, A=0.38, C=0.4)
-    >>> traj = pk.simulate(pk.Model(top, pk.Coulomb(0.3), "vector"), pk.core.to_chart("vector", pk.vertical_spin_start(0.1, 15.0)),
+    >>> traj = pk.simulate(pk.Model(top, pk.Coulomb(0.3), "vector"), pk.core.to_chart("vector", pk.core.vertical_spin_start(0.1, 15.0)),
     ...                    5.0, rtol=1e-10, stop_at="none")
     >>> info = ps.render_inversion(traj, pathlib.Path(tempfile.mkdtemp()) / "scene.png", n=500)
     >>> info["image_std"] > 0, len(info["theta_snapshots"])

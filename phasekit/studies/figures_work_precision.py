@@ -8,15 +8,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["plot_work_precision", "plot_regularisation", "plot_cost_growth", "DEFINITION_STYLES"]
-
-#: the line style of each threshold definition of :data:`phasekit.thresholds.DEFAULT_DEFINITIONS` (the
-#: default, "sliding", bold black), for :func:`phasekit.studies.plot_threshold_curves`
-DEFINITION_STYLES = {"sliding": dict(color="k", lw=2.2, marker="o", ms=4, zorder=5),
-                     "literal-eps1e-3": dict(color="C0", lw=1, marker="s", ms=3),
-                     "literal-eps1e-4": dict(color="C1", lw=1, marker="^", ms=3),
-                     "literal-exact": dict(color="C3", lw=1, marker="v", ms=3),
-                     "viscous": dict(color="C2", lw=1, marker="x", ms=3)}
+__all__ = ["plot_work_precision", "plot_regularisation", "plot_cost_growth"]
 
 #: the runs drawn at the bottom of a work-precision panel when they hit the wall-time cap
 CAPPED_ERROR = 1e-1

@@ -21,7 +21,14 @@ from ..bodies.body import Body
 from ..core.hybrid import Event
 from ..theory.flight import flight_constants, fly, gap_exact, gap_max_series, gap_series
 from ..theory.gyroscopic import gyroscopic_closed, jellett_constant
-from ..theory.multiscale import Gamma_closed, Sigma, mean_over_periods, omega_gyro, perturbation_from_c_xi, slow_rates
+from ..theory.multiscale import (
+    amplitude_growth_closed,
+    gyroscopic_nutation_frequency,
+    mean_over_periods,
+    nutation_perturbation,
+    reaction_envelope,
+    slow_rates,
+)
 
 __all__ = ["rise_complete", "add_nutation", "sigma_zero", "EnvelopeCheck", "envelope_check", "NutationCase", "envelope_report",
            "fit_gyroscopic_mu", "first_flight", "gap_ensemble", "gap_ensemble_report",
@@ -63,7 +70,7 @@ def add_nutation(body: Body, start, mu: float, c: float, xi: float = 0.0) -> np.
     ((6,), True)
     """
     theta0, om_bar0 = float(start[4]), float(start[2])
-    th_p, lam_p, om_p = perturbation_from_c_xi(body, theta0, om_bar0, mu, c, xi)
+    th_p, lam_p, om_p = nutation_perturbation(body, theta0, om_bar0, mu, c, xi)
     y = np.array(start, dtype=float)
     _, dth_dT, vhat, _ = slow_rates(body, theta0, om_bar0)
     y[0] += -mu * vhat / om_bar0
@@ -82,7 +89,7 @@ def sigma_zero(theta, sigma) -> float | None:
     --------
     >>> import numpy as np, phasekit as pk, phasekit.studies as ps
     >>> theta = np.linspace(1.5, 0.02, 500)
-    >>> z = ps.sigma_zero(theta, pk.theory.Sigma(pk.Spheroid(1.5), 8.45, 1.5, theta, -0.00054))
+    >>> z = ps.sigma_zero(theta, pk.theory.reaction_envelope(pk.Spheroid(1.5), 8.45, 1.5, theta, -0.00054))
     >>> 0.02 < z < 1.5
     True
     """
@@ -103,7 +110,7 @@ class EnvelopeCheck:
     ``Omega_bar`` (means over each fast period, between successive minima, (3.6)) and
     ``theta_gyro``, ``Omega_gyro`` ((3.18) at the same times); ``theta_at_min`` (theta-bar
     interpolated at each minimum), ``valid`` (the minima inside the averaged span), ``sigma``
-    (Sigma with the nominal ``c``) and ``sigma_fit`` (with ``c_eff``, fitted on the first 30%
+    (reaction_envelope with the nominal ``c``) and ``sigma_fit`` (with ``c_eff``, fitted on the first 30%
     of the valid minima). ``J`` = A Omega h (3.17) of the unperturbed start.
 
     Examples
@@ -136,8 +143,8 @@ class EnvelopeCheck:
     J: float
 
     def errors(self) -> tuple[float, float, float, float, float, float]:
-        """RMS and max of: the gyroscopic theta-bar - the period means of theta; Sigma(c) - the
-        minima of R; Sigma(c_eff) - the minima of R over the part of the rise not used to fit
+        """RMS and max of: the gyroscopic theta-bar - the period means of theta; reaction_envelope(c) - the
+        minima of R; reaction_envelope(c_eff) - the minima of R over the part of the rise not used to fit
         c_eff."""
         e_th = self.theta_bar - self.theta_gyro
         ok = self.valid & np.isfinite(self.sigma)
@@ -152,7 +159,7 @@ class EnvelopeCheck:
 
 def envelope_check(traj, start, c: float, *, dt: float) -> EnvelopeCheck:
     """Set a simulated rise of a spheroid (with dense output and its minima of R, the defaults
-    of :func:`phasekit.simulate`) beside the gyroscopic solution and the envelope Sigma of the
+    of :func:`phasekit.simulate`) beside the gyroscopic solution and the envelope reaction_envelope of the
     sliding-branch ``start`` (the paper's state, before :func:`add_nutation`) with nutation
     amplitude ``c``, sampled every ``dt``: see :class:`EnvelopeCheck`. The
     effective amplitude c_eff is fitted on the first 30% of the minima only, so that the rest of
@@ -178,21 +185,21 @@ def envelope_check(traj, start, c: float, *, dt: float) -> EnvelopeCheck:
     t_mid, th_bar = mean_over_periods(ts, theta, tm)
     _, om_bar = mean_over_periods(ts, Omega, tm)
     th_gyro, om_gyro = gyroscopic_closed(body.a, J, theta0, mu * t_mid)
-    # Sigma at the simulated mean inclination at each minimum of R
+    # reaction_envelope at the simulated mean inclination at each minimum of R
     th_at_min = np.interp(tm, t_mid, th_bar) if t_mid.size else np.full_like(tm, np.nan)
     valid = (tm >= t_mid[0]) & (tm <= t_mid[-1]) if t_mid.size else np.zeros_like(tm, bool)
     sig = np.full_like(tm, np.nan)
     sig_fit = np.full_like(tm, np.nan)
     c_eff = np.nan
     if valid.any():
-        sig[valid] = Sigma(body, J, theta0, th_at_min[valid], c, form="closed")
+        sig[valid] = reaction_envelope(body, J, theta0, th_at_min[valid], c, form="closed")
         idx = np.flatnonzero(valid)
         early = idx[: max(3, int(FIT_SHARE * idx.size))]
         th_e = th_at_min[early]
         om_e = J / (body.A * body.h(th_e)[0])
-        scale = np.abs(body.h(th_e)[1] * omega_gyro(body, th_e, om_e) ** 2 * Gamma_closed(body, J, theta0, th_e))
+        scale = np.abs(body.h(th_e)[1] * gyroscopic_nutation_frequency(body, th_e, om_e) ** 2 * amplitude_growth_closed(body, J, theta0, th_e))
         c_eff = float(np.median((1 - Rm[early]) / scale)) * np.sign(c)
-        sig_fit[valid] = Sigma(body, J, theta0, th_at_min[valid], c_eff, form="closed")
+        sig_fit[valid] = reaction_envelope(body, J, theta0, th_at_min[valid], c_eff, form="closed")
     return EnvelopeCheck(ts, theta, model.normal_reaction(ys), tm, Rm, t_mid, th_bar, om_bar, th_gyro, om_gyro, th_at_min,
                          valid, sig, sig_fit, c, c_eff, J)
 
@@ -224,7 +231,7 @@ class NutationCase:
     def run(self, t_max: float, *, dt: float, mu: float = 0.1):
         """The rise (to the jump, or until it is complete, :func:`rise_complete`, or ``t_max``)
         and, sampled every ``dt``, its :func:`envelope_check`: (Trajectory, EnvelopeCheck)."""
-        from ..bodies.body import Spheroid
+        from ..bodies.spheroid import Spheroid
         from ..core.model import Model
         from ..core.simulate import simulate
         from ..core.starts import gyroscopic_start
@@ -252,7 +259,7 @@ def envelope_report(runs) -> tuple[list[str], dict]:
     (3, 7)
     """
     lines = ["errors over the rise up to the jump: theta = gyroscopic theta-bar - simulated period means;"
-             " S(c) = minima of R - Sigma with the nominal c; S(c_eff) = the same with c fitted on the first 30% of the"
+             " S(c) = minima of R - reaction_envelope with the nominal c; S(c_eff) = the same with c fitted on the first 30% of the"
              " rise, over the other 70%"]
     lines += [f"{'case':<28s} {'status':<9s} {'t*':>7s} {'J=AOh':>7s} {'c_eff/c':>7s} {'theta RMS':>9s} {'max':>8s} "
              f"{'S(c) RMS':>9s} {'max':>8s} {'S(c_eff) RMS':>12s} {'max':>8s}"]
@@ -437,7 +444,7 @@ def gap_ensemble(model, omegas, n_each: int, seed: int, *, amplitude: float = 0.
     [(20.0, 0, 'touchdown'), (20.0, 1, 'touchdown')]
     """
     from .._runtime.errors import Status
-    from ..steady.fixedpoints import horizontal_state
+    from ..steady.precessions import horizontal_state
 
     rng = np.random.default_rng(seed)
     recs = []

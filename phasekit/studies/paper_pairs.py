@@ -24,7 +24,7 @@ from ..core.starts import to_chart
 from ..friction.laws import Coulomb, RegularisedCoulomb
 from ..sweep.tasks import each
 from ..theory.paper import PAPER_CASES, paper_start
-from .maps import outcome_class
+from .outcome_maps import outcome_class
 
 __all__ = ["PairRow", "pair_key", "pair_run", "pair_runs", "as_printed", "pair_table", "pair_report"]
 

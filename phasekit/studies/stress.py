@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..bodies.body import Spheroid
+from ..bodies.spheroid import Spheroid
 from ..core.charts import choose_chart
 from ..core.model import Model
 from ..core.simulate import simulate

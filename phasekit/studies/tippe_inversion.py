@@ -20,7 +20,7 @@ import numpy as np
 
 from .._runtime.errors import Status
 from .._runtime.validate import check_choice
-from ..bodies.body import EccentricSphere
+from ..bodies.spheroid import EccentricSphere
 from ..core.hybrid import Event
 from ..core.model import Model
 from ..core.simulate import simulate

@@ -13,24 +13,13 @@ Examples
 'k'
 """
 
+from .cluster import ModelPack, make_client
 from .ensemble import ensemble, rerun
+from .stores import ResultStore, provenance, stored_rows
 from .study import Study, run_study, write_csv, write_json
-from .tasks import (
-    ModelPack,
-    PendingRun,
-    ResultStore,
-    TaskSpec,
-    chunked,
-    client_evaluator,
-    each,
-    make_client,
-    provenance,
-    run_pending,
-    run_tasks,
-    stored_rows,
-)
+from .tasks import TaskSpec, chunked, each, run_pending, run_tasks
 
 __all__ = [
-    "TaskSpec", "run_tasks", "run_pending", "PendingRun", "ResultStore", "stored_rows", "each", "chunked", "ModelPack",
-    "make_client", "client_evaluator", "provenance", "ensemble", "rerun", "Study", "run_study", "write_csv", "write_json",
+    "TaskSpec", "run_tasks", "run_pending", "ResultStore", "stored_rows", "each", "chunked", "ModelPack",
+    "make_client", "provenance", "ensemble", "rerun", "Study", "run_study", "write_csv", "write_json",
 ]

@@ -39,7 +39,7 @@ from ..core.charts import FLIGHT, PAPER_NAMES
 from ..core.hybrid import Event
 from ..core.model import Model
 from ..core.simulate import simulate, solver_options
-from .tasks import make_client
+from .cluster import make_client
 
 __all__ = ["ensemble", "rerun", "summary_row", "ROW_COLUMNS"]
 

@@ -48,7 +48,8 @@ from pathlib import Path
 from .._runtime.errors import ParameterError, PhasekitError
 from .._runtime.interrupts import interrupt_guard
 from ..io.tables import atomic_path
-from .tasks import ResultStore, provenance, run_pending, stored_rows
+from .stores import ResultStore, provenance, stored_rows
+from .tasks import run_pending
 
 __all__ = ["Study", "study_parser", "StudyParser", "output_dir", "save_figure", "write_csv", "write_json", "atomic_path",
            "progress", "run_study"]
@@ -209,8 +210,23 @@ def output_dir(args) -> Path:
 
 
 def save_figure(fig, path, *, dpi: int = 130, **savefig_kwargs) -> Path:
-    """Save a matplotlib figure atomically (see :func:`atomic_path`) and close it;
-    ``savefig_kwargs`` go to ``Figure.savefig`` (e.g. ``bbox_inches="tight"``).
+    """Save a matplotlib figure atomically (see :func:`atomic_path`) and close it.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    path : path-like
+        The file; its suffix gives the format (png if it has none).
+    dpi : int, optional
+        Resolution, dots per inch.
+    **savefig_kwargs
+        Go to ``Figure.savefig`` (e.g. ``bbox_inches="tight"``).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
 
     Examples
     --------
@@ -231,9 +247,22 @@ def save_figure(fig, path, *, dpi: int = 130, **savefig_kwargs) -> Path:
 
 
 def write_csv(path, header, rows) -> Path:
-    """Write a whole table at once, atomically. ``rows`` are sequences in the order of
-    ``header``, or mappings (their keys outside ``header`` are left out, missing ones empty).
-    A missing value (None or NaN) is an empty cell.
+    """Write a whole table at once, atomically. A missing value (None or NaN) is an empty cell.
+
+    Parameters
+    ----------
+    path : path-like
+        The CSV file.
+    header : sequence of str
+        The column names.
+    rows : iterable
+        Sequences in the order of ``header``, or mappings (their keys outside ``header`` are left
+        out, missing ones empty).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
 
     Examples
     --------
@@ -265,7 +294,23 @@ def write_csv(path, header, rows) -> Path:
 
 
 def write_json(path, obj, *, indent: int = 1, default=str) -> Path:
-    """Write ``obj`` as JSON at once, atomically (``default`` turns what JSON cannot hold into text).
+    """Write ``obj`` as JSON at once, atomically.
+
+    Parameters
+    ----------
+    path : path-like
+        The JSON file.
+    obj : object
+        What to write.
+    indent : int, optional
+        Indentation of ``json.dumps``.
+    default : callable, optional
+        Turns what JSON cannot hold into text.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
 
     Examples
     --------
@@ -299,7 +344,9 @@ class Study:
     doc : str
         The study's ``__doc__`` (its ``--help``).
     quick_help : str, optional
-        What ``--quick`` reduces; ``quick=False``: the study has no quick mode.
+        What ``--quick`` reduces.
+    quick : bool
+        False: the study has no quick mode.
     resumable : bool
         It keeps finished rows (:meth:`store`): adds ``--fresh``.
     dask : bool
@@ -335,7 +382,15 @@ class Study:
     def parse(self, argv=None, check=None) -> argparse.Namespace:
         """Parse the command line (bad input: one line, exit code 2), call ``check(args)`` (the
         study's own checks of its flags through the API, before anything is made), and make
-        the output folder."""
+        the output folder.
+
+        Parameters
+        ----------
+        argv : list of str, optional
+            The arguments; by default ``sys.argv[1:]``.
+        check : callable, optional
+            ``check(args)``.
+        """
         self.args = self.parser.parse_args(argv)
         if check is not None:
             check(self.args)
@@ -363,7 +418,17 @@ class Study:
     def store(self, row_type, meta: dict | None = None, *, name: str | None = None):
         """The :class:`phasekit.sweep.ResultStore` ``<name>.csv`` (default: the study's name) of
         ``row_type`` rows in the output folder, its manifest carrying the provenance and ``meta``;
-        emptied first with ``--fresh``. Ctrl-C then says that its rows are kept."""
+        emptied first with ``--fresh``. Ctrl-C then says that its rows are kept.
+
+        Parameters
+        ----------
+        row_type : type
+            The dataclass of a row (:class:`phasekit.sweep.ResultStore`).
+        meta : dict, optional
+            Further manifest entries.
+        name : str, optional
+            The file name without suffix.
+        """
         stem = name or self.name
         store = ResultStore(self.out / f"{stem}.csv", self.out / f"{stem}.json", row_type,
                             provenance({"study": self.name, **(meta or {})}), fresh=bool(getattr(self.args, "fresh", False)))
@@ -374,7 +439,21 @@ class Study:
         """Run the tasks whose rows are not stored yet (:func:`phasekit.sweep.run_pending`: on Dask,
         or in this process with ``--serial`` or without the Dask flags), each finished row added to
         the store of its type at once. A task's rows are ``members[task key]`` (row keys), or the
-        one row keyed like the task. Returns the :class:`phasekit.sweep.PendingRun`."""
+        one row keyed like the task. Returns the :class:`phasekit.sweep.tasks.PendingRun`.
+
+        Parameters
+        ----------
+        specs : list of TaskSpec
+            The tasks.
+        *stores : ResultStore
+            The stores of the rows.
+        members : dict, optional
+            Task key -> row keys.
+        warm_up : callable, optional
+            Compiles the models (:func:`phasekit.sweep.run_pending`).
+        desc : str, optional
+            The progress bar's label.
+        """
         get, on_result = stored_rows(stores, members)
         a = self.args
         return run_pending(specs, store_get=get, on_result=on_result, warm_up=warm_up or (lambda: None),
@@ -384,7 +463,17 @@ class Study:
     def sweep(self, specs, store, *, members: dict | None = None, warm_up=None, desc: str = "tasks"):
         """Run the tasks (:meth:`run`) and return the rows they produce, as ``store`` holds them
         (in the order stored; a store may hold other runs' rows too), and the
-        :class:`phasekit.sweep.PendingRun`."""
+        :class:`phasekit.sweep.tasks.PendingRun`.
+
+        Parameters
+        ----------
+        specs : list of TaskSpec
+            The tasks.
+        store : ResultStore
+            The store of the rows.
+        members, warm_up, desc
+            As for :meth:`run`.
+        """
         ran = self.run(specs, store, members=members, warm_up=warm_up, desc=desc)
         keys = [k for ks in members.values() for k in ks] if members else [s.key for s in specs]
         return store.rows(keys), ran
@@ -437,13 +526,27 @@ def run_study(main, argv=None, *, resume: str | None = None, flags: Mapping[str,
     quietly.
 
     A :class:`phasekit.ParameterError` that escapes ``main`` ends it with one line naming the
-    flag the user typed (``flags`` maps API parameter names to flags where ``--name`` is not
-    it) and exit code 2; another :class:`phasekit.PhasekitError` with one line and exit code 1.
+    flag the user typed and exit code 2; another :class:`phasekit.PhasekitError` with one line
+    and exit code 1.
 
-    ``resume`` says how a rerun picks up (for a study that keeps finished work; the command
-    shown then leaves out ``--fresh``, which would discard it). By default it names the result
-    stores the study opened (:meth:`Study.store`); a study that opened none writes its files
-    whole at the end: nothing was changed, rerun.
+    Parameters
+    ----------
+    main : callable
+        ``main(argv)``, the study.
+    argv : list of str, optional
+        The arguments; by default ``sys.argv[1:]``.
+    resume : str, optional
+        Says how a rerun picks up (for a study that keeps finished work; the command
+        shown then leaves out ``--fresh``, which would discard it). By default it names the result
+        stores the study opened (:meth:`Study.store`); a study that opened none writes its files
+        whole at the end: nothing was changed, rerun.
+    flags : mapping of str to str, optional
+        Maps API parameter names to flags where ``--name`` is not it.
+
+    Raises
+    ------
+    SystemExit
+        With code 130 on Ctrl-C, 2 for a ParameterError, 1 for another PhasekitError or a closed stdout pipe.
 
     Examples
     --------

@@ -14,38 +14,42 @@ Examples
 2.236068
 """
 
-from . import tippetop
+from . import tippetop  # noqa: F401  (the tippe top's theory, pk.theory.tippetop)
 from .criteria import (
     PoleCriterion,
-    equator_stability_threshold,
-    horizontal_is_unstable,
     horizontal_stability_threshold,
     pole_stability_threshold,
-    vertical_is_stable,
     vertical_stability_threshold,
 )
 from .flight import FlightConstants, flight_constants, fly, gap_exact, gap_max_series, gap_series
-from .gyroscopic import gyroscopic_closed, gyroscopic_numeric, gyroscopic_solution, jellett_constant, rise_time
-from .multiscale import (
+from .gyroscopic import gyroscopic_closed, gyroscopic_solution, jellett_constant
+from .jump_surface import exact_boundary, surface_n
+from .multiscale import (  # noqa: F401  (the paper's symbols, aliases of the descriptive names)
     Gamma_closed,
     I_quadrature,
     Sigma,
+    amplitude_growth_closed,
     c_xi,
+    growth_integral,
+    gyroscopic_nutation_frequency,
     mean_over_periods,
+    nutation_amplitude_phase,
+    nutation_frequency_squared,
+    nutation_perturbation,
     omega2,
     omega_gyro,
     perturbation_from_c_xi,
+    reaction_envelope,
     slow_rates,
 )
 from .paper import PAPER_CASES, PaperCase
-from .surface import exact_boundary, surface_n
 
 __all__ = [
-    "vertical_stability_threshold", "vertical_is_stable", "horizontal_stability_threshold", "horizontal_is_unstable",
-    "pole_stability_threshold", "PoleCriterion", "equator_stability_threshold",
-    "jellett_constant", "gyroscopic_solution", "gyroscopic_closed", "gyroscopic_numeric", "rise_time",
-    "omega2", "omega_gyro", "slow_rates", "I_quadrature", "Gamma_closed", "Sigma", "c_xi", "perturbation_from_c_xi",
-    "mean_over_periods",
+    "vertical_stability_threshold", "horizontal_stability_threshold",
+    "pole_stability_threshold", "PoleCriterion",
+    "jellett_constant", "gyroscopic_solution", "gyroscopic_closed",
+    "nutation_frequency_squared", "gyroscopic_nutation_frequency", "slow_rates", "growth_integral",
+    "amplitude_growth_closed", "reaction_envelope", "nutation_amplitude_phase", "nutation_perturbation", "mean_over_periods",
     "flight_constants", "FlightConstants", "gap_exact", "gap_series", "gap_max_series", "fly",
-    "surface_n", "exact_boundary", "PAPER_CASES", "PaperCase", "tippetop",
+    "surface_n", "exact_boundary", "PAPER_CASES", "PaperCase",
 ]

@@ -14,9 +14,7 @@ from .._runtime.validate import check_choice, check_finite, check_positive
 
 __all__ = [
     "vertical_stability_threshold",
-    "vertical_is_stable",
     "horizontal_stability_threshold",
-    "horizontal_is_unstable",
     "PoleCriterion",
     "pole_stability_threshold",
     "equator_stability_threshold",
@@ -37,6 +35,26 @@ def vertical_stability_threshold(A: float, C: float, a: float) -> float | None:
     frictionless mode crosses it: (a^2 C - A) n^2 = a^3 (a^2 - 1). For the uniform spheroid
     this is n0 = sqrt(5 a^3). Returns None when there is no crossing.
 
+    Parameters
+    ----------
+    A : float
+        Transverse moment of inertia about the centre of mass G, units M b^2, finite > 0.
+    C : float
+        Axial moment of inertia about G, units M b^2, finite > 0.
+    a : float
+        Aspect ratio of the spheroid (polar over equatorial semi-axis), finite > 0.
+
+    Returns
+    -------
+    float or None
+        The spin n0, units sqrt(g/b): sqrt(a^3 (a^2 - 1) / (a^2 C - A)); None when
+        a^2 C = A or (a^2 - 1) / (a^2 C - A) <= 0.
+
+    Raises
+    ------
+    ParameterError
+        If ``A``, ``C`` or ``a`` is not a finite number > 0.
+
     Examples
     --------
     >>> import phasekit as pk
@@ -51,21 +69,6 @@ def vertical_stability_threshold(A: float, C: float, a: float) -> float | None:
     return float(np.sqrt(a**3 * (a * a - 1) / D))
 
 
-def vertical_is_stable(A: float, C: float, a: float, n0: float) -> bool:
-    """Linear stability of the vertical spin with friction: (a^2 C - A) n0^2 > a^3 (a^2 - 1).
-
-    Examples
-    --------
-    >>> import phasekit as pk
-    >>> b = pk.Spheroid(0.6)
-    >>> pk.theory.vertical_is_stable(b.A, b.C, b.a, 0.5), pk.theory.vertical_is_stable(b.A, b.C, b.a, 10.0)
-    (True, False)
-    """
-    A, C, a = _moments(A, C, a)
-    n0 = check_finite("n0", n0)
-    return (a * a * C - A) * n0 * n0 > a**3 * (a * a - 1)
-
-
 def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None:
     """Precession rate at which the horizontal steady precession changes stability under weak
     friction: (a^2 C - A) Omega0^2 = a^2 - 1 (Omega0 = sqrt(5) for every uniform spheroid).
@@ -74,6 +77,26 @@ def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None
     a coefficient of about 0.8 (a = 1.5, measured); above, a second mode goes unstable first and
     the threshold falls (mu = 1: 1.9652, mu = 5: 1.4710). :func:`equator_stability_threshold` is
     the same criterion for any flip-symmetric body. None when there is no crossing.
+
+    Parameters
+    ----------
+    A : float
+        Transverse moment of inertia about the centre of mass G, units M b^2, finite > 0.
+    C : float
+        Axial moment of inertia about G, units M b^2, finite > 0.
+    a : float
+        Aspect ratio of the spheroid (polar over equatorial semi-axis), finite > 0.
+
+    Returns
+    -------
+    float or None
+        The precession rate Omega0, units sqrt(g/b): sqrt((a^2 - 1) / (a^2 C - A)); None when
+        a^2 C = A or (a^2 - 1) / (a^2 C - A) <= 0.
+
+    Raises
+    ------
+    ParameterError
+        If ``A``, ``C`` or ``a`` is not a finite number > 0.
 
     Examples
     --------
@@ -89,25 +112,6 @@ def horizontal_stability_threshold(A: float, C: float, a: float) -> float | None
     return float(np.sqrt((a * a - 1) / D))
 
 
-def horizontal_is_unstable(A: float, C: float, a: float, omega0: float) -> bool:
-    """The horizontal steady precession has a (real, rising) unstable mode iff
-    (a^2 C - A) Omega0^2 > a^2 - 1 (weak friction; see horizontal_stability_threshold).
-
-    Examples
-    --------
-    >>> import phasekit as pk
-    >>> b = pk.Spheroid(1.5)
-    >>> pk.theory.horizontal_is_unstable(b.A, b.C, b.a, 2.0), pk.theory.horizontal_is_unstable(b.A, b.C, b.a, 10.0)
-    (False, True)
-    """
-    A, C, a = _moments(A, C, a)
-    omega0 = check_finite("omega0", omega0)
-    return (a * a * C - A) * omega0 * omega0 > a * a - 1
-
-
-# -- any body -------------------------------------------------------------------------------
-
-
 @dataclass(frozen=True)
 class PoleCriterion:
     """Stability of the spin about the vertical at a pole (theta = 0 "upright" or pi "inverted")
@@ -116,6 +120,24 @@ class PoleCriterion:
 
     The spin n0 state is stable iff n0^2 rho (A rho - C h0) < h2 h0^2; ``threshold`` is the
     abs(n0) where that changes (None: never), ``stable_above`` whether the fast side is stable.
+
+    Attributes
+    ----------
+    pole : {"upright", "inverted"}
+        The pole: theta = 0 ("upright") or pi ("inverted").
+    h0 : float
+        h at the pole, units b.
+    h2 : float
+        h_thetatheta at the pole, units b.
+    rho : float
+        Radius of curvature h0 + h2 of the surface at the contact point, units b.
+    A, C : float
+        The body's transverse and axial moments of inertia about G, units M b^2.
+    threshold : float or None
+        abs(n0) at which the stability changes, sqrt(h2 h0^2 / (rho (A rho - C h0))), units
+        sqrt(g/b); None when there is no such spin.
+    stable_above : bool
+        Whether the spins above ``threshold`` are the stable ones (A rho - C h0 < 0).
 
     Examples
     --------
@@ -174,7 +196,25 @@ def pole_stability_threshold(body, pole: str = "upright") -> PoleCriterion:
     every friction coefficient. Spheroid: h0 = a, h2 = (1 - a^2)/a, rho = 1/a gives
     (a^2 C - A) n^2 = a^3 (a^2 - 1). Eccentric sphere: rho = 1, h0 = 1 -+ alpha, h2 = +-alpha give
     phasekit.theory.tippetop's upright_unstable_spin and inverted_stable_spin. Under exact Coulomb
-    friction the zero-slip state rolls and the linearisation is neutral (phasekit.steady.fixedpoints).
+    friction the zero-slip state rolls and the linearisation is neutral (phasekit.steady.linearisation).
+
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(0.6)``.
+    pole : {"upright", "inverted"}, optional
+        The pole: theta = 0 ("upright", the default) or theta = pi ("inverted").
+
+    Returns
+    -------
+    PoleCriterion
+        The pole's h0, h2 and rho with the body's A and C; its ``threshold`` is the critical
+        abs(n0) and its ``stable(n0)`` the criterion at a spin n0.
+
+    Raises
+    ------
+    ParameterError
+        If ``pole`` is not "upright" or "inverted".
 
     Examples
     --------
@@ -199,10 +239,22 @@ def equator_stability_threshold(body) -> float | None:
     mu <= 0.8); above it a second mode goes unstable first and the threshold falls (mu = 1:
     1.9652, mu = 5: 1.4710). None when the body is not balanced at pi/2 or there is no crossing.
 
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+
+    Returns
+    -------
+    float or None
+        The precession rate Omega0, units sqrt(g/b): sqrt(h2 / (C rho_m / h_e - A)); None when
+        h_theta(pi/2) != 0 (to 1e-14) or there is no crossing.
+
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(pk.theory.equator_stability_threshold(pk.Spheroid(1.5)), 6)
+    >>> from phasekit.theory import criteria
+    >>> round(criteria.equator_stability_threshold(pk.Spheroid(1.5)), 6)
     2.236068
     """
     he, h1, h2 = body.h(np.pi / 2)

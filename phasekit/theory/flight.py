@@ -37,6 +37,33 @@ __all__ = [
 class FlightConstants:
     """Constants of the exact free motion (4.6)-(4.14), from the state at lift-off.
 
+    Attributes
+    ----------
+    theta : float
+        Inclination theta* at lift-off, radians.
+    thetadot : float
+        Its rate Lambda* = dtheta/dt at lift-off, units sqrt(g/b).
+    Omega : float
+        Precession rate Omega* at lift-off, units sqrt(g/b).
+    Psi : float
+        Psi* = (A Omega* cos(theta*) - C n*) sin(theta*) / A (3.1), units sqrt(g/b).
+    n : float
+        Spin n* at lift-off, units sqrt(g/b).
+    W : float
+        Vertical velocity W* of G at lift-off, units sqrt(g b).
+    h : float
+        Height h(theta*) of G at lift-off, units b.
+    C1 : float
+        C1 = Omega* - Psi* cot(theta*) (4.6).
+    C2 : float
+        C2 = sqrt(Psi*^2 + Lambda*^2) (4.7).
+    C1p : float
+        C1' = Psi* / sin(theta*) - Omega* cos(theta*).
+    C3 : float
+        C3 = sqrt(C1^2 + C2^2), the angular frequency of cos(theta(t)) in (4.12).
+    C4 : float
+        C4 = C1 C1' / C3^2, so that cos(theta(t)) oscillates about -C4 (4.12).
+
     Examples
     --------
     >>> import numpy as np, phasekit as pk
@@ -63,6 +90,28 @@ class FlightConstants:
 @finite_result
 def flight_constants(body: Body, euler_state, W: float) -> FlightConstants:
     """(4.5)-(4.14) from (U, V, Omega, Lambda, theta, n) at lift-off and the vertical velocity W*.
+
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+    euler_state : array_like
+        The paper's state (U, V, Omega, Lambda, theta, n) at lift-off: 6 finite numbers, theta
+        off the poles (abs(sin(theta)) >= 1e-12).
+    W : float
+        Vertical velocity W* of G at lift-off, units sqrt(g b), finite.
+
+    Returns
+    -------
+    FlightConstants
+        The state at lift-off with h(theta*) and the constants C1, C2, C1', C3, C4.
+
+    Raises
+    ------
+    ParameterError
+        If ``euler_state`` is not 6 finite numbers or has theta at a pole (where (4.5)-(4.14)
+        divide by sin(theta)), ``W`` is not finite, or the result is not finite (an overflow of
+        double precision or a singular configuration), naming the argument of largest magnitude.
 
     Examples
     --------
@@ -100,6 +149,26 @@ def cos_theta_exact(k: FlightConstants, t):
 def gap_exact(body: Body, k: FlightConstants, t):
     """(4.1) with (4.12): Delta(t) = h* + W* t - t^2/2 - h(theta(t)).
 
+    Parameters
+    ----------
+    body : Body
+        The body that lifted off (the one ``k`` was computed for).
+    k : FlightConstants
+        The constants of the flight, from :func:`flight_constants`.
+    t : float or array_like
+        Times since lift-off, units sqrt(b/g).
+
+    Returns
+    -------
+    numpy.ndarray
+        The gap Delta(t) between the body and the table, units b, of the shape of ``t``.
+
+    Raises
+    ------
+    ParameterError
+        If the result is not finite (an overflow of double precision or a singular configuration),
+        naming the argument of largest magnitude.
+
     Examples
     --------
     >>> import numpy as np, phasekit as pk
@@ -116,6 +185,26 @@ def gap_exact(body: Body, k: FlightConstants, t):
 def gap_series(Omega: float, W: float, t):
     """(4.22): Delta ~ Omega*^2 t^3 (4 W* - t) / 24.
 
+    Parameters
+    ----------
+    Omega : float
+        Precession rate Omega* at lift-off, units sqrt(g/b).
+    W : float
+        Vertical velocity W* of G at lift-off, units sqrt(g b).
+    t : float or array_like
+        Times since lift-off, units sqrt(b/g).
+
+    Returns
+    -------
+    numpy.ndarray
+        The gap Delta(t) of the gyroscopic limit near lift-off, units b, of the shape of ``t``.
+
+    Raises
+    ------
+    ParameterError
+        If the result is not finite (an overflow of double precision or a singular configuration),
+        naming the argument of largest magnitude.
+
     Examples
     --------
     >>> import phasekit as pk
@@ -129,6 +218,25 @@ def gap_series(Omega: float, W: float, t):
 @finite_result
 def gap_max_series(Omega: float, W: float) -> tuple[float, float]:
     """(4.23): (Delta_max, t at the maximum) = (9/8 Omega*^2 W*^4, 3 W*).
+
+    Parameters
+    ----------
+    Omega : float
+        Precession rate Omega* at lift-off, units sqrt(g/b).
+    W : float
+        Vertical velocity W* of G at lift-off, units sqrt(g b).
+
+    Returns
+    -------
+    tuple of float
+        (Delta_max, t_max): the largest gap of (4.22), units b, and its time since lift-off,
+        units sqrt(b/g).
+
+    Raises
+    ------
+    ParameterError
+        If the result is not finite (an overflow of double precision or a singular configuration),
+        naming the argument of largest magnitude.
 
     Examples
     --------
@@ -152,10 +260,34 @@ def flight_invariants(body: Body, euler_states) -> np.ndarray:
 
 
 def fly(model, x, t0: float, t_end: float, **options):
-    """The free flight from ``x`` (a contact state at lift-off, or a flight state) until
-    touchdown or ``t_end``: :func:`phasekit.simulate` started in the FLIGHT mode with
-    ``stop_at="touchdown"``. Returns the Trajectory; ``traj.flights[0]`` is the summary,
-    and ``traj.segments[0].states(ts)`` the flight states (with the gap) at times ts.
+    """The free flight from ``x`` until touchdown or ``t_end``: :func:`phasekit.simulate`
+    started in the FLIGHT mode with ``stop_at="touchdown"``.
+
+    Parameters
+    ----------
+    model : Model
+        The body, friction law and chart of the run.
+    x : array_like
+        A contact state at lift-off (in ``model.chart``, lifted off with zero gap), or a
+        flight state (10 numbers).
+    t0 : float
+        Time of ``x``, the start of the flight, in [-1e6, 1e6].
+    t_end : float
+        End time (> t0) if the body has not touched down before.
+    **options
+        Further keywords of :func:`phasekit.simulate` (``rtol=...``, ``events=...``, ...).
+
+    Returns
+    -------
+    Trajectory
+        The flight; ``traj.flights[0]`` is the summary, and ``traj.segments[0].states(ts)``
+        the flight states (with the gap) at times ts.
+
+    Raises
+    ------
+    ParameterError
+        A bad argument, as :func:`phasekit.simulate` names it (e.g. ``model`` not a Model,
+        ``x`` not a finite state, ``t_end`` not > ``t0``).
 
     Examples
     --------

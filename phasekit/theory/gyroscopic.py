@@ -25,7 +25,8 @@ import numpy as np
 
 from .._runtime.errors import ConvergenceError, ParameterError
 from .._runtime.validate import check_array, check_finite, check_instance, check_positive, check_range, finite_result
-from ..bodies.body import Body, Spheroid
+from ..bodies.body import Body
+from ..bodies.spheroid import Spheroid
 from ..core.starts import GYRO_RATE_MAX, balanced_state
 
 __all__ = ["mean_slip", "jellett_constant", "gyroscopic_numeric", "gyroscopic_closed", "gyroscopic_solution", "rise_time"]
@@ -56,6 +57,29 @@ def _mean_slip(body: Body, theta, omega):
 def jellett_constant(body: Body, theta, omega):
     """J = A Omega h (3.17).
 
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+    theta : float or array_like
+        Inclination of the symmetry axis from the vertical, radians: finite numbers.
+    omega : float or array_like
+        Precession rate Omega, units sqrt(g/b): finite numbers, of a shape that broadcasts with
+        that of ``theta``.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        J = A Omega h(theta), units M b^2 sqrt(g b), of the broadcast shape of ``theta`` and
+        ``omega``.
+
+    Raises
+    ------
+    ParameterError
+        If ``body`` is not a Body, ``theta`` or ``omega`` is not finite real numbers (or is empty),
+        or if the result is not finite (an overflow of double precision or a singular
+        configuration), naming the argument of largest magnitude.
+
     Examples
     --------
     >>> import phasekit as pk
@@ -81,10 +105,39 @@ def gyroscopic_numeric(body: Body, theta0: float, omega0: float, T, *, rtol: flo
     Stops where the mean slip vanishes (theta reaches 0 or pi/2, the end of the rise) and
     holds the state there.
 
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+    theta0 : float
+        Initial mean inclination of the symmetry axis from the vertical, radians, in (0, pi).
+    omega0 : float
+        Initial mean precession rate Omega, units sqrt(g/b): finite and nonzero.
+    T : float or array_like
+        Slow times T = mu t: finite numbers >= 0, at least one, in any order.
+    rtol : float, optional
+        Relative tolerance of scipy's DOP853, in [1e-14, 1e-3] (default 1e-13).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (theta(T), Omega(T)): two 1-d arrays, one value per slow time of ``T`` in its order.
+
+    Raises
+    ------
+    ParameterError
+        If ``body`` is not a Body, ``theta0`` is outside (0, pi), ``omega0`` is 0 or not finite,
+        ``T`` is not finite numbers >= 0 (or is empty), ``rtol`` is outside [1e-14, 1e-3], or if the
+        result is not finite (an overflow of double precision or a singular configuration), naming
+        the argument of largest magnitude.
+    ConvergenceError
+        If scipy cannot integrate the mean equations (3.16).
+
     Examples
     --------
     >>> import phasekit as pk
-    >>> theta, omega = pk.theory.gyroscopic_numeric(pk.Spheroid(1.5), 1.5607963, 10.5, [0.0, 5.0])
+    >>> from phasekit.theory import gyroscopic
+    >>> theta, omega = gyroscopic.gyroscopic_numeric(pk.Spheroid(1.5), 1.5607963, 10.5, [0.0, 5.0])
     >>> theta.round(6)
     array([1.560796, 0.63546 ])
     """
@@ -115,8 +168,35 @@ def gyroscopic_numeric(body: Body, theta0: float, omega0: float, T, *, rtol: flo
 def gyroscopic_closed(a: float, J: float, theta0: float, T, *, A: float | None = None):
     """Closed form (3.18)-(3.19) for a spheroid of aspect ratio a: returns (theta(T), Omega(T)).
 
-    theta0 may lie in (0, pi/2) or (pi/2, pi) (flip symmetry); after the rise ends
-    (q (T - T0) reaches 0 or -pi/2) the state is held at the end of the rise.
+    After the rise ends (q (T - T0) reaches 0 or -pi/2) the state is held at the end of the rise.
+
+    Parameters
+    ----------
+    a : float
+        Aspect ratio of the spheroid (polar over equatorial semi-axis), in [1e-4, 1e4], not 1
+        (a sphere does not rise).
+    J : float
+        The Jellett constant J = A Omega h (3.17), finite and nonzero.
+    theta0 : float
+        Initial mean inclination, radians: in (0, pi/2) or (pi/2, pi) (flip symmetry).
+    T : float or array_like
+        Slow times T = mu t: finite numbers, at least one.
+    A : float, optional
+        The spheroid's transverse moment of inertia about G, units M b^2 (C <= 2 A with
+        C = 2/5); default the uniform spheroid's, (1 + a^2)/5. Omega = J / (A h).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (theta(T), Omega(T)), each of the shape of ``T``.
+
+    Raises
+    ------
+    ParameterError
+        If ``a`` is not a finite number > 0, is 1 or is outside [1e-4, 1e4], ``J`` is 0 or not
+        finite, ``theta0`` is outside (0, pi), ``T`` is not finite numbers (or is empty), ``A`` is
+        not a valid moment, or if the result is not finite (an overflow of double precision or a
+        singular configuration), naming the argument of largest magnitude.
 
     Examples
     --------
@@ -153,7 +233,44 @@ def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()
     (Omega0 given, or n0 with Omega on the fast branch); the closed form for spheroids
     (a != 1), (3.16) numerically otherwise.
 
-    Returns {"theta", "Omega", "J", "Omega0", "method"}.
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+    theta0 : float
+        Initial inclination of the symmetry axis from the vertical, radians, in (0, pi); in
+        (0, pi/2) for a start given ``n0``.
+    omega0 : float, optional
+        Initial precession rate Omega0, units sqrt(g/b): nonzero, abs(omega0) <= 1e12; n
+        follows from the gyroscopic balance.
+    n0 : float, optional
+        Initial spin, units sqrt(g/b): nonzero, abs(n0) <= 1e12; Omega0 is the fast root of
+        the balance. Give exactly one of ``omega0`` and ``n0``.
+    T : array_like
+        Slow times T = mu t: finite numbers >= 0, at least one.
+
+    Returns
+    -------
+    dict
+        {"theta", "Omega", "J", "Omega0", "method"}: "theta" and "Omega" are 1-d arrays, one
+        value per slow time; "J" the Jellett constant A Omega0 h(theta0) (3.17); "Omega0"
+        the initial precession rate; "method" "closed form (3.18)" or "numerical (3.16)".
+
+    Raises
+    ------
+    ParameterError
+        If ``body`` is not a Body, ``theta0`` is outside (0, pi), both or neither of ``omega0`` and
+        ``n0`` are given, the rate given is 0, not finite or beyond 1e12 in size, the balance has no
+        solution within that bound (see :func:`phasekit.gyroscopic_start`), ``T`` is not finite
+        numbers >= 0 (or is empty), or if the result is not finite (an overflow of double precision
+        or a singular configuration), naming the argument of largest magnitude.
+    ConvergenceError
+        If the mean equations (3.16) cannot be integrated (bodies other than spheroids).
+
+    Warns
+    -----
+    UserWarning
+        If ``n0`` is given for a prolate body.
 
     Examples
     --------
@@ -181,10 +298,32 @@ def gyroscopic_solution(body: Body, theta0: float, *, omega0=None, n0=None, T=()
 def rise_time(a: float, J: float, theta0: float) -> float:
     """Slow time T at which the closed-form rise ends (theta reaches 0 or pi/2).
 
+    Parameters
+    ----------
+    a : float
+        Aspect ratio of the spheroid (polar over equatorial semi-axis): finite, > 0, not 1.
+    J : float
+        The Jellett constant J = A Omega h (3.17), finite and nonzero.
+    theta0 : float
+        Initial mean inclination, radians, in (0, pi).
+
+    Returns
+    -------
+    float
+        The slow time T = mu t of the end of the rise (3.18)-(3.19).
+
+    Raises
+    ------
+    ParameterError
+        If ``a`` is not a finite number > 0 or is 1, ``J`` is 0 or not finite, ``theta0`` is outside
+        (0, pi), or if the result is not finite (an overflow of double precision or a singular
+        configuration), naming the argument of largest magnitude.
+
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(pk.theory.rise_time(1.5, 6.83, 1.5607963), 6)
+    >>> from phasekit.theory import gyroscopic
+    >>> round(gyroscopic.rise_time(1.5, 6.83, 1.5607963), 6)
     7.084062
     """
     a = check_positive("a", a)

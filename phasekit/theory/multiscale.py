@@ -1,21 +1,23 @@
 """Multiple-scale quantities of section 3c-d: the fast oscillation and the envelope of R.
+The paper's symbols (omega2, Sigma, ...) are kept as aliases of the descriptive names.
 
 All functions take the mean state (theta-bar, Omega-bar) of the gyroscopic solution
 (:mod:`phasekit.theory.gyroscopic`) and a uniform spheroid or any Body. Time derivatives of the mean
 state are with respect to the slow time T = mu t and come from (3.16) (Coulomb friction).
 
-omega2        (3.30)  fast frequency squared;  omega_gyro (3.47) its gyroscopic limit
+nutation_frequency_squared (omega2, 3.30): fast frequency squared;
+              gyroscopic_nutation_frequency (omega_gyro, 3.47): its gyroscopic limit
 lam           (3.35)
 zeta          (3.38)  damping coefficient; the last term is printed h^2/|Vhat_P| but, from
                       (3.11) (F'_X = mu h/|Vbar_P| d theta'/d tau), it is h^2/|Vbar_P|: used so
 zeta_gyro     (3.48)
-I_quadrature  (3.45)  I = -1/2 int zeta dT, by quadrature along the rise (dT = dtheta/(dtheta/dT))
+growth_integral (I_quadrature, 3.45): I = -1/2 int zeta dT, by quadrature along the rise (dT = dtheta/(dtheta/dT))
 I1_closed     (3.53)  exact for the spheroid;  I3_closed (3.52) exact
 I2_dominant   (3.57)  ONLY the dominant part of I2 near theta-bar = 0 or pi/2; away from them
                       it differs from the quadrature of (3.51) (tested and reported)
-Gamma         (3.44)  omega^(-1/2) exp(I);  Gamma_closed (3.58) = omega^(-1/2) sigma gamma^(...)
-Sigma         (3.64)  envelope of the minima of R: 1 - |h_theta omega^2 c Gamma|
-c_xi / perturbation_from_c_xi  (3.46), and the accompanying Omega' (3.27), Psi' (3.28), n' = 0
+Gamma         (3.44)  omega^(-1/2) exp(I);  amplitude_growth_closed (Gamma_closed, 3.58) = omega^(-1/2) sigma gamma^(...)
+reaction_envelope (Sigma, 3.64): envelope of the minima of R: 1 - |h_theta omega^2 c Gamma|
+nutation_amplitude_phase / nutation_perturbation (c_xi / perturbation_from_c_xi, 3.46), and the accompanying Omega' (3.27), Psi' (3.28), n' = 0
 mean_over_periods (3.6) fast-time average over each period of a simulated signal
 """
 
@@ -29,22 +31,22 @@ from ..bodies.body import Body
 from .gyroscopic import mean_slip
 
 __all__ = [
-    "omega2",
-    "omega_gyro",
+    "nutation_frequency_squared",
+    "gyroscopic_nutation_frequency",
     "slow_rates",
     "lam",
     "zeta",
     "zeta_gyro",
-    "I_quadrature",
+    "growth_integral",
     "I1_closed",
     "I2_dominant",
     "I3_closed",
     "alpha_beta",
     "Gamma",
-    "Gamma_closed",
-    "Sigma",
-    "c_xi",
-    "perturbation_from_c_xi",
+    "amplitude_growth_closed",
+    "reaction_envelope",
+    "nutation_amplitude_phase",
+    "nutation_perturbation",
     "mean_over_periods",
 ]
 
@@ -71,13 +73,35 @@ def _rate(name: str, value):
 
 
 @finite_result
-def omega2(body: Body, theta, Omega):
+def nutation_frequency_squared(body: Body, theta, Omega):
     """(3.30): A/(A + h_t^2) [Omega^2 + (h_tt + h_t cot)/A + (h_t/(A Omega sin))^2].
+
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+    theta : float or array_like
+        Mean inclination theta-bar, radians: finite, off the poles (abs(sin(theta)) >= 1e-12).
+    Omega : float or array_like
+        Mean precession rate Omega-bar, units sqrt(g/b): finite and nonzero, of a shape that
+        broadcasts with that of ``theta``.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The squared frequency omega^2 of the fast nutation, units g/b.
+
+    Raises
+    ------
+    ParameterError
+        If ``theta`` is not finite or is at a pole, ``Omega`` is not finite or is 0, or the result
+        is not finite (an overflow of double precision or a singular configuration), naming the
+        argument of largest magnitude.
 
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(float(pk.theory.omega2(pk.Spheroid(1.5), 1.0, 10.0)), 6)
+    >>> round(float(pk.theory.nutation_frequency_squared(pk.Spheroid(1.5), 1.0, 10.0)), 6)
     73.238621
     """
     theta, Omega = _angle("theta", theta), _rate("Omega", Omega)
@@ -87,13 +111,34 @@ def omega2(body: Body, theta, Omega):
 
 
 @finite_result
-def omega_gyro(body: Body, theta, Omega):
+def gyroscopic_nutation_frequency(body: Body, theta, Omega):
     """(3.47): |Omega| (A/(A + h_t^2))^(1/2).
+
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+    theta : float or array_like
+        Mean inclination theta-bar, radians.
+    Omega : float or array_like
+        Mean precession rate Omega-bar, units sqrt(g/b), of a shape that broadcasts with that
+        of ``theta``.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The frequency omega of the fast nutation in the gyroscopic limit, units sqrt(g/b).
+
+    Raises
+    ------
+    ParameterError
+        If the result is not finite (an overflow of double precision or a singular configuration),
+        naming the argument of largest magnitude.
 
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(float(pk.theory.omega_gyro(pk.Spheroid(1.5), 1.0, 10.0)), 6)
+    >>> round(float(pk.theory.gyroscopic_nutation_frequency(pk.Spheroid(1.5), 1.0, 10.0)), 6)
     8.562205
     """
     _, ht, _, _, _ = _geom(body, theta)
@@ -103,6 +148,31 @@ def omega_gyro(body: Body, theta, Omega):
 @finite_result
 def slow_rates(body: Body, theta, Omega):
     """(dOmega/dT, dtheta/dT, Vhat_P, Vbar_P) of (3.16) at the mean state.
+
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+    theta : float or array_like
+        Mean inclination theta-bar, radians: finite numbers.
+    Omega : float or array_like
+        Mean precession rate Omega-bar, units sqrt(g/b): finite and nonzero, of a shape that
+        broadcasts with that of ``theta``.
+
+    Returns
+    -------
+    tuple
+        (dOmega/dT, dtheta/dT, Vhat_P, Vbar_P): the rates of (3.16) with respect to the slow
+        time T = mu t, dOmega/dT = -h_theta Vhat_P / A and dtheta/dT = h Vhat_P / (A Omega);
+        the sign Vhat_P (+1, -1, or 0 without slip) of the mean slip; and the leading-order
+        mean slip velocity Vbar_P (generalised (3.10)), units sqrt(g b).
+
+    Raises
+    ------
+    ParameterError
+        If ``theta`` or ``Omega`` is not finite real numbers (the error names ``omega``), or the
+        result is not finite (an overflow of double precision or a singular configuration), naming
+        the argument of largest magnitude.
 
     Examples
     --------
@@ -122,7 +192,7 @@ def lam(body: Body, theta, Omega):
     h, ht, _, s, c = _geom(body, theta)
     A = body.A
     dOm, dth, v, _ = slow_rates(body, theta, Omega)
-    w2 = omega2(body, theta, Omega)
+    w2 = nutation_frequency_squared(body, theta, Omega)
     return (ht * v / A + dOm + (Omega * c / s + ht / (A * Omega * s**2)) * dth) / w2 - h * ht * v / A
 
 
@@ -132,7 +202,7 @@ def zeta(body: Body, theta, Omega):
     h, ht, htt, s, c = _geom(body, theta)
     A = body.A
     dOm, dth, v, VP = slow_rates(body, theta, Omega)
-    w2 = omega2(body, theta, Omega)
+    w2 = nutation_frequency_squared(body, theta, Omega)
     L = lam(body, theta, Omega)
     return ((A * Omega + ht * c / (s * Omega)) * L + (2 * ht * htt - ht / h * (htt / w2 - ht**2)) * dth + h**2 / np.abs(VP)) / (A + ht**2)
 
@@ -157,16 +227,46 @@ def _along_rise(body, J, theta0, theta):
 
 
 @finite_result
-def I_quadrature(body: Body, J: float, theta0: float, theta, *, form: str = "gyro", parts: bool = False):
+def growth_integral(body: Body, J: float, theta0: float, theta, *, form: str = "gyro", parts: bool = False):
     """(3.45) by adaptive quadrature in theta-bar along the gyroscopic solution.
 
-    ``form`` "gyro" integrates (3.48) (whose three terms give I1, I2, I3 of (3.50)-(3.52);
-    ``parts=True`` returns them separately), "full" integrates (3.38) with (3.30).
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+    J : float
+        The Jellett constant J = A Omega h (3.17) of the rise: finite and nonzero; Omega-bar =
+        J / (A h(theta-bar)) along the gyroscopic solution.
+    theta0 : float
+        Mean inclination at the start of the rise, radians: finite, off the poles.
+    theta : float or array_like
+        Mean inclinations theta-bar along the rise, radians: finite, off the poles.
+    form : {"gyro", "full"}, optional
+        "gyro" (the default) integrates (3.48) (whose three terms give I1, I2, I3 of
+        (3.50)-(3.52)), "full" integrates (3.38) with (3.30).
+    parts : bool, optional
+        With ``form="gyro"``, ``parts=True`` returns I1, I2, I3 separately (default False).
+
+    Returns
+    -------
+    numpy.ndarray
+        The integral I from ``theta0`` to each theta-bar of ``theta``: a 1-d array, one value
+        per angle; with ``parts=True`` and ``form="gyro"``, shape (len(theta), 3), the columns
+        I1, I2, I3.
+
+    Raises
+    ------
+    ParameterError
+        If ``J`` is 0 or not finite, ``theta0`` or ``theta`` is not finite or is at a pole, or the
+        result is not finite (an overflow of double precision or a singular configuration), naming
+        the argument of largest magnitude.
+    ValueError
+        If ``form`` is neither "gyro" nor "full".
 
     Examples
     --------
     >>> import phasekit as pk
-    >>> pk.theory.I_quadrature(pk.Spheroid(1.5), 6.83, 1.5607963, [1.2, 1.0]).round(6)
+    >>> pk.theory.growth_integral(pk.Spheroid(1.5), 6.83, 1.5607963, [1.2, 1.0]).round(6)
     array([0.747044, 3.404539])
     """
     from scipy.integrate import quad
@@ -239,19 +339,41 @@ def Gamma(body: Body, J: float, theta0: float, theta, *, form: str = "gyro"):
     """(3.44) with I by quadrature and omega from (3.47) ("gyro") or (3.30) ("full")."""
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     om = _along_rise(body, J, theta0, theta)
-    w = omega_gyro(body, theta, om) if form == "gyro" else np.sqrt(omega2(body, theta, om))
-    return w ** (-0.5) * np.exp(I_quadrature(body, J, theta0, theta, form=form))
+    w = gyroscopic_nutation_frequency(body, theta, om) if form == "gyro" else np.sqrt(nutation_frequency_squared(body, theta, om))
+    return w ** (-0.5) * np.exp(growth_integral(body, J, theta0, theta, form=form))
 
 
 @finite_result
-def Gamma_closed(body: Body, J: float, theta0: float, theta):
+def amplitude_growth_closed(body: Body, J: float, theta0: float, theta):
     """(3.58)-(3.60): omega^(-1/2) sigma gamma^(J^2/(4 A (alpha^2 - beta^2))); sigma uses the
     dominant-part I2 of (3.57).
+
+    Parameters
+    ----------
+    body : Spheroid
+        The spheroid (its aspect ratio a and moments A, C enter the closed forms).
+    J : float
+        The Jellett constant J = A Omega h (3.17) of the rise; Omega-bar = J / (A h(theta-bar)).
+    theta0 : float
+        Mean inclination at the start of the rise, radians.
+    theta : float or array_like
+        Mean inclinations theta-bar along the rise, radians.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The amplitude factor Gamma of the nutation (3.58), of the shape of ``theta``.
+
+    Raises
+    ------
+    ParameterError
+        If the result is not finite (an overflow of double precision or a singular configuration),
+        naming the argument of largest magnitude.
 
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(float(pk.theory.Gamma_closed(pk.Spheroid(1.5), 6.83, 1.5607963, 1.0)), 6)
+    >>> round(float(pk.theory.amplitude_growth_closed(pk.Spheroid(1.5), 6.83, 1.5607963, 1.0)), 6)
     8.619004
     """
     A, C, a = body.A, body.C, body.shape_params[0]
@@ -261,47 +383,105 @@ def Gamma_closed(body: Body, J: float, theta0: float, theta):
     gam = ((al + h) / (al - h) * (al - h0) / (al + h0)) ** (1 / al) * ((h - be) / (h + be) * (h0 + be) / (h0 - be)) ** (1 / be)
     sig = ((np.sin(theta) / np.sin(theta0)) ** A * (np.cos(theta0) / np.cos(theta)) ** C) ** (0.5 / (C * a * a - A))
     om = _along_rise(body, J, theta0, theta)
-    return omega_gyro(body, theta, om) ** (-0.5) * sig * gam ** (J**2 / (4 * A * (al**2 - be**2)))
+    return gyroscopic_nutation_frequency(body, theta, om) ** (-0.5) * sig * gam ** (J**2 / (4 * A * (al**2 - be**2)))
 
 
 @finite_result
-def Sigma(body: Body, J: float, theta0: float, theta, c: float, *, form: str = "closed"):
+def reaction_envelope(body: Body, J: float, theta0: float, theta, c: float, *, form: str = "closed"):
     """(3.64): 1 - |h_theta omega^2 c Gamma|, the envelope of the minima of R.
 
-    ``form``: "closed" uses (3.47) and (3.58) (the paper's Fig. 2); "gyro" and "full" use
-    (3.44) with I by quadrature of (3.48) or (3.38).
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C); a :class:`~phasekit.Spheroid`
+        for ``form="closed"``.
+    J : float
+        The Jellett constant J = A Omega h (3.17) of the rise; Omega-bar = J / (A h(theta-bar)).
+    theta0 : float
+        Mean inclination at the start of the rise, radians.
+    theta : float or array_like
+        Mean inclinations theta-bar along the rise, radians.
+    c : float
+        Amplitude of the initial nutation (3.46), e.g. from :func:`nutation_amplitude_phase`.
+    form : {"closed", "gyro", "full"}, optional
+        "closed" (the default) uses (3.47) and (3.58) (the paper's Fig. 2); "gyro" and "full"
+        use (3.44) with I by quadrature of (3.48) or (3.38).
+
+    Returns
+    -------
+    numpy.ndarray
+        Sigma, the envelope of the minima of the normal reaction R (units M g): a 1-d array,
+        one value per angle of ``theta``.
+
+    Raises
+    ------
+    ParameterError
+        If an argument the quadrature checks (``form`` "gyro" or "full") is invalid, as for
+        :func:`growth_integral`, or the result is not finite (an overflow of double precision or a
+        singular configuration), naming the argument of largest magnitude.
+    ValueError
+        If ``form`` is not one of "closed", "gyro", "full".
 
     Examples
     --------
     >>> import phasekit as pk
-    >>> pk.theory.Sigma(pk.Spheroid(1.5), 6.83, 1.5607963, [1.2, 1.0], -0.00054).round(6)
+    >>> pk.theory.reaction_envelope(pk.Spheroid(1.5), 6.83, 1.5607963, [1.2, 1.0], -0.00054).round(6)
     array([0.98966 , 0.865734])
     """
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     om = _along_rise(body, J, theta0, theta)
     _, ht, _, _, _ = _geom(body, theta)
     if form == "closed":
-        w2 = omega_gyro(body, theta, om) ** 2
-        G = Gamma_closed(body, J, theta0, theta)
+        w2 = gyroscopic_nutation_frequency(body, theta, om) ** 2
+        G = amplitude_growth_closed(body, J, theta0, theta)
     else:
-        w2 = omega_gyro(body, theta, om) ** 2 if form == "gyro" else omega2(body, theta, om)
+        w2 = gyroscopic_nutation_frequency(body, theta, om) ** 2 if form == "gyro" else nutation_frequency_squared(body, theta, om)
         G = Gamma(body, J, theta0, theta, form=form)
     return 1 - np.abs(ht * w2 * c * G)
 
 
 @finite_result
-def c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, dtheta0: float, dthetadot0: float):
+def nutation_amplitude_phase(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, dtheta0: float, dthetadot0: float):
     """(3.46) inverted: amplitude c and phase xi of the initial nutation (theta', d theta'/dt).
+
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+    theta_bar0 : float
+        Initial mean inclination theta-bar, radians: finite, off the poles (abs(sin) >= 1e-12).
+    Omega_bar0 : float
+        Initial mean precession rate Omega-bar, units sqrt(g/b): finite and nonzero.
+    mu : float
+        Friction coefficient (the slow time is T = mu t): finite.
+    dtheta0 : float
+        Initial fluctuation theta' of the inclination about its mean, radians: finite.
+    dthetadot0 : float
+        Its initial rate d theta'/dt, units sqrt(g/b): finite.
+
+    Returns
+    -------
+    tuple of float
+        (c, xi): the amplitude c, of the sign of ``dtheta0``, and the phase xi in
+        [-pi/2, pi/2], radians.
+
+    Raises
+    ------
+    ParameterError
+        If ``theta_bar0`` is not finite or is at a pole, ``Omega_bar0`` is not finite or is 0,
+        ``mu``, ``dtheta0`` or ``dthetadot0`` is not finite, or the result is not finite (an
+        overflow of double precision or a singular configuration), naming the argument of largest
+        magnitude.
 
     Examples
     --------
     >>> import phasekit as pk
-    >>> [round(float(v), 6) for v in pk.theory.c_xi(pk.Spheroid(1.5), 1.5607963, 10.5, 0.1, 1e-3, 0.0)]
+    >>> [round(float(v), 6) for v in pk.theory.nutation_amplitude_phase(pk.Spheroid(1.5), 1.5607963, 10.5, 0.1, 1e-3, 0.0)]
     [0.003456, -0.343063]
     """
     theta_bar0, Omega_bar0 = float(_angle("theta_bar0", theta_bar0)), float(_rate("Omega_bar0", Omega_bar0))
     mu, dtheta0, dthetadot0 = (float(check_array(n, v)) for n, v in (("mu", mu), ("dtheta0", dtheta0), ("dthetadot0", dthetadot0)))
-    w = np.sqrt(omega2(body, theta_bar0, Omega_bar0))
+    w = np.sqrt(nutation_frequency_squared(body, theta_bar0, Omega_bar0))
     Idot = -0.5 * mu * zeta(body, theta_bar0, Omega_bar0)  # dI/dt = -mu zeta / 2
     # theta' = c cos(xi) w^-1/2;  theta'dot = c (-w^1/2 sin xi + Idot cos xi)
     cc = dtheta0 * np.sqrt(w)  # c cos xi
@@ -310,17 +490,45 @@ def c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, dtheta0: f
 
 
 @finite_result
-def perturbation_from_c_xi(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, c: float, xi: float):
+def nutation_perturbation(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, c: float, xi: float):
     """Initial fluctuation (theta', Lambda', Omega') for amplitude c and phase xi: (3.46) for
     theta' and its rate, (3.27) for Omega' (with Psi' = -Omega theta' (3.28), n' = 0 (3.31)).
+
+    Parameters
+    ----------
+    body : Body
+        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
+    theta_bar0 : float
+        Initial mean inclination theta-bar, radians: finite, off the poles (abs(sin) >= 1e-12).
+    Omega_bar0 : float
+        Initial mean precession rate Omega-bar, units sqrt(g/b): finite and nonzero.
+    mu : float
+        Friction coefficient (the slow time is T = mu t).
+    c : float
+        Amplitude of the nutation (3.46).
+    xi : float
+        Phase of the nutation (3.46), radians.
+
+    Returns
+    -------
+    tuple of float
+        (theta', Lambda', Omega'): the fluctuations of the inclination (radians), of its rate
+        Lambda and of the precession rate Omega (units sqrt(g/b)), to add to the mean state.
+
+    Raises
+    ------
+    ParameterError
+        If ``theta_bar0`` is at a pole or not finite (the error names ``theta``), ``Omega_bar0`` is
+        0 or not finite (named ``Omega``), or the result is not finite (an overflow of double
+        precision or a singular configuration), naming the argument of largest magnitude.
 
     Examples
     --------
     >>> import phasekit as pk
-    >>> [round(float(v), 8) for v in pk.theory.perturbation_from_c_xi(pk.Spheroid(1.5), 1.5607963, 10.5, 0.1, -0.00054, 0.0)]
+    >>> [round(float(v), 8) for v in pk.theory.nutation_perturbation(pk.Spheroid(1.5), 1.5607963, 10.5, 0.1, -0.00054, 0.0)]
     [-0.00016594, 0.00062767, 1.773e-05]
     """
-    w = np.sqrt(omega2(body, theta_bar0, Omega_bar0))
+    w = np.sqrt(nutation_frequency_squared(body, theta_bar0, Omega_bar0))
     Idot = -0.5 * mu * zeta(body, theta_bar0, Omega_bar0)
     th_p = c * np.cos(xi) / np.sqrt(w)
     lam_p = c * (-np.sqrt(w) * np.sin(xi) + Idot * np.cos(xi))
@@ -333,6 +541,26 @@ def mean_over_periods(ts, values, marks):
     """(3.6) with the averaging window set to the fast period itself: the mean of ``values``
     over each interval [marks[k], marks[k+1]] (e.g. between successive located minima of R),
     returned at the interval midpoints as (t_mid, mean).
+
+    Parameters
+    ----------
+    ts : array_like
+        Times of the samples, increasing: a 1-d array of two or more.
+    values : array_like
+        The signal at those times, one value per time (trapezoidal rule between them).
+    marks : array_like
+        Boundaries of the intervals, increasing; those outside [ts[0], ts[-1]] are dropped.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (t_mid, mean): the midpoint and the mean of ``values`` of each interval between
+        successive marks; both empty when fewer than two marks lie inside the sampled span.
+
+    Raises
+    ------
+    ParameterError
+        If there are fewer than two times or ``values`` is not one value per time.
 
     Examples
     --------
@@ -353,3 +581,13 @@ def mean_over_periods(ts, values, marks):
     cum = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(ts))])
     area = np.diff(np.interp(marks, ts, cum))
     return 0.5 * (marks[1:] + marks[:-1]), area / np.diff(marks)
+
+
+# The paper's symbols, kept as aliases of the descriptive names (equation numbers of the paper)
+omega2 = nutation_frequency_squared  # (3.30)
+omega_gyro = gyroscopic_nutation_frequency  # (3.47)
+I_quadrature = growth_integral  # (3.45)
+Gamma_closed = amplitude_growth_closed  # (3.58-3.60)
+Sigma = reaction_envelope  # (3.64)
+c_xi = nutation_amplitude_phase  # (3.46)
+perturbation_from_c_xi = nutation_perturbation  # (3.46, 3.27)

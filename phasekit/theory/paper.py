@@ -11,7 +11,7 @@ Shimomura, Branicki & Moffatt, section 5, Coulomb friction mu = 0.1:
     jumping, 10.5 jumps at t* ~ 111.
 
 Every component is printed with one significant figure. (5.2) is the horizontal steady
-precession plus 0.02 x the viscous unstable eigenvector (:func:`phasekit.unstable_manifold_start`
+precession plus 0.02 x the viscous unstable eigenvector (:func:`phasekit.steady.unstable_manifold_start`
 with ``delta=0.02``) to that digit, but the two starts are different states and their runs
 differ: see :func:`paper_start` and ``examples/paper_start_rounding.py``.
 """
@@ -24,7 +24,7 @@ import numpy as np
 
 from .._runtime.errors import ParameterError
 from .._runtime.validate import check_finite
-from ..bodies.body import Spheroid
+from ..bodies.spheroid import Spheroid
 from ..core.model import Model
 from ..core.starts import to_chart
 from ..friction.laws import Coulomb, FrictionLaw
@@ -35,6 +35,24 @@ __all__ = ["PaperCase", "PAPER_CASES", "paper_start"]
 @dataclass(frozen=True)
 class PaperCase:
     """A printed start: the body, the family parameter it takes, and the figure's values.
+
+    Attributes
+    ----------
+    label : {"5.1", "5.2"}
+        The equation number of the start.
+    a : float
+        Aspect ratio of the uniform spheroid (2/3 for (5.1), 3/2 for (5.2)).
+    parameter : {"n0", "omega0"}
+        The family parameter the start takes: the spin n0 (5.1) or the precession rate
+        Omega0 (5.2).
+    figure : str
+        The paper's figure of the case ("Fig. 3", "Fig. 4").
+    no_jump : float
+        The value printed as rising without a jump.
+    jump : float
+        The value printed as jumping.
+    t_jump : float
+        The printed (approximate) jump time of the jumping value, units sqrt(b/g).
 
     Examples
     --------
@@ -53,7 +71,24 @@ class PaperCase:
     t_jump: float  # the printed (approximate) jump time of the jumping value
 
     def state(self, value: float) -> np.ndarray:
-        """(U, V, Omega, Lambda, theta, n) for the family parameter ``value``."""
+        """(U, V, Omega, Lambda, theta, n) for the family parameter ``value``.
+
+        Parameters
+        ----------
+        value : float
+            The family parameter (n0 for (5.1), Omega0 for (5.2)), units sqrt(g/b): finite
+            and nonzero.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (6,): the printed start in the paper's variables.
+
+        Raises
+        ------
+        ParameterError
+            If ``value`` is 0 or not finite.
+        """
         value = check_finite("value", value, nonzero=True)
         body = Spheroid(self.a)
         if self.label == "5.1":

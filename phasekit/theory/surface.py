@@ -1,19 +1,10 @@
-"""The jump surface (6.3) in (Omega, theta, n), the exact boundary R = 0, and 3-D scenes.
+"""3-D scenes of the jump surface in (Omega, theta, n): which elements to draw, and their data.
 
-Section 6: in the gyroscopic region R = 0 is close to the 2-D surface (6.3),
-
-    n = (A/C) (Omega cos(theta) + 1 / (Omega h_theta sin(theta))),
-
-which is (6.1) with the Lambda^2 term dropped. The exact boundary is 5-dimensional; its section
-at given Lambda (and the gyroscopic slip direction, which only enters the denominator of (6.1))
-is n = (A/C) (Omega cos(theta) + (1 + h_tt Lambda^2) / (Omega h_theta sin(theta))).
-:func:`exact_boundary` finds it independently, by root finding on the model's normal reaction;
-at Lambda = 0 it coincides with (6.3), and trajectories cross R = 0 with Lambda != 0 (the fast
-nutation), which is where (6.3) and the crossings differ.
-
-A :class:`Scene` says which elements to draw; :func:`compute_scene` computes only the data
-those elements need (no simulation unless trajectories or crossings are asked for), and
-:func:`phasekit.viz.render_scene` draws it off-screen with PyVista (imported there only).
+A :class:`Scene` says which elements to draw (the surface (6.3) and the exact boundary R = 0 of
+:mod:`phasekit.theory.jump_surface`, trajectories, their crossings of R = 0, fixed points, axes);
+:func:`compute_scene` computes only the data those elements need (no simulation unless
+trajectories or crossings are asked for), and :func:`phasekit.viz.render_scene` draws it
+off-screen with PyVista (imported there only).
 """
 
 from __future__ import annotations
@@ -26,124 +17,21 @@ import numpy as np
 from .._runtime.errors import ParameterError
 from .._runtime.validate import (
     check_array,
-    check_finite,
     check_instance,
     check_int,
     check_nonnegative,
     check_positive,
     check_range,
 )
-from ..bodies.body import Body, Spheroid
+from ..bodies.body import Body
+from ..bodies.spheroid import Spheroid
 from ..core.model import Model
 from ..friction.laws import Coulomb, FrictionLaw
+from .jump_surface import _exact_boundary, _surface_n
 
-__all__ = ["surface_n", "exact_boundary", "Scene", "SceneData", "Crossing", "compute_scene", "ELEMENTS", "AXES"]
+__all__ = ["Scene", "SceneData", "Crossing", "compute_scene", "ELEMENTS", "AXES"]
 
 ELEMENTS = frozenset({"surface", "exact_boundary", "trajectories", "crossings", "fixed_points", "axes", "colorbar"})
-
-
-def _body(body) -> Body:
-    return check_instance("body", body, Body, "Spheroid(1.5)")
-
-
-def _check_grid(body: Body, Omega, theta) -> tuple[np.ndarray, np.ndarray]:
-    """Omega and theta as float arrays of shapes that broadcast together: finite, Omega != 0,
-    theta in (0, pi) and away from the angles where (6.3) is infinite (h_theta sin(theta) = 0)."""
-    Om = check_array("Omega", Omega)
-    Th = check_array("theta", theta)
-    if np.any(Om == 0.0):
-        raise ParameterError("Omega", "must be finite and nonzero ((6.3) divides by Omega)", Om)
-    if np.any((Th <= 0.0) | (Th >= np.pi)):
-        raise ParameterError("theta", "must lie in (0, pi)", Th)
-    try:
-        np.broadcast_shapes(Om.shape, Th.shape)
-    except ValueError:
-        raise ParameterError("theta", f"must have a shape that broadcasts with that of `Omega`, {Om.shape} (got shape "
-                                      f"{Th.shape})", show_value=False) from None
-    h, ht, _ = body.h(Th)
-    # (6.3) has 1 / (h_theta sin(theta)): infinite where it vanishes (at the roundoff level of h)
-    flat = np.atleast_1d(np.abs(ht * np.sin(Th)) <= 1e-15 * np.abs(h))
-    if np.any(flat):
-        raise ParameterError("theta", "must avoid the angles where h_theta(theta) sin(theta) = 0, at which (6.3) is "
-                                      "infinite (theta = pi/2 on a spheroid, every theta on a sphere)",
-                             float(np.atleast_1d(Th).ravel()[np.flatnonzero(flat)[0]]))
-    return Om, Th
-
-
-def surface_n(body, Omega, theta):
-    """(6.3): the spin n on the approximate jump surface at (Omega, theta).
-
-    ``Omega`` (finite, nonzero) and ``theta`` (in (0, pi), where h_theta sin(theta) != 0) are
-    numbers or arrays of shapes that broadcast together.
-
-    >>> import phasekit as pk
-    >>> round(float(pk.theory.surface_n(pk.Spheroid(1.5), 12.0, 1.0)), 6)
-    10.20507
-    """
-    body = _body(body)
-    Om, Th = _check_grid(body, Omega, theta)
-    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        out = _surface_n(body, Om, Th)
-    if not np.all(np.isfinite(out)):
-        raise ParameterError("Omega", "gives a non-finite n on (6.3) (|Omega| too small or too large)", Om)
-    return out
-
-
-def _surface_n(body, Omega, theta):
-    """(6.3) without checks (the scene's grids, which may touch the singular angles)."""
-    h, ht, _ = body.h(theta)
-    return body.A / body.C * (Omega * np.cos(theta) + 1.0 / (Omega * ht * np.sin(theta)))
-
-
-def exact_boundary(body, mu: float, Omega, theta, Lambda: float = 0.0, *, friction: FrictionLaw | None = None):
-    """n at which the model's normal reaction (6.1) vanishes, for U = V = 0 and the given Lambda.
-
-    Found by Brent's method on R(n) from the compiled model (Coulomb friction with ``mu``,
-    or the law ``friction``; slip direction of that state), independently of the closed
-    form (6.3). ``Omega`` and ``theta`` as for :func:`surface_n`; ``Lambda`` finite. Returns an
-    array of their broadcast shape (at least 1-d), NaN where no sign change of R(n) was found.
-
-    Examples
-    --------
-    >>> import phasekit as pk
-    >>> pk.theory.exact_boundary(pk.Spheroid(1.5), 0.1, [10.0, 12.0], [1.0, 1.0]).round(6)
-    array([ 8.382922, 10.20507 ])
-    """
-    body = _body(body)
-    if friction is not None:
-        check_instance("friction", friction, FrictionLaw, "Coulomb(0.1)")
-    if mu is not None or friction is None:
-        check_nonnegative("mu", mu)
-    Om, Th = _check_grid(body, Omega, theta)
-    Lambda = check_finite("Lambda", Lambda)
-    return _exact_boundary(body, mu, Om, Th, Lambda, friction=friction)
-
-
-def _exact_boundary(body, mu, Omega, theta, Lambda=0.0, *, friction=None):
-    from scipy.optimize import brentq
-
-    model = Model(body, Coulomb(mu) if friction is None else friction)
-    Rf = model.function("R_sliding")
-    Om = np.atleast_1d(np.asarray(Omega, dtype=float))
-    Th = np.atleast_1d(np.asarray(theta, dtype=float))
-    Om, Th = np.broadcast_arrays(Om, Th)
-    out = np.full(Om.shape, np.nan)
-    for idx in np.ndindex(Om.shape):
-        om, th = Om[idx], Th[idx]
-        guess = _surface_n(body, om, th)
-        f = lambda n: float(Rf(np.array([0.0, 0.0, om, Lambda, th, n]), model.p))  # noqa: E731
-        span = 1e-3 + 0.2 * abs(guess) + abs(Lambda) * 10
-        lo, hi = guess - span, guess + span
-        for _ in range(40):
-            if f(lo) * f(hi) < 0:
-                break
-            lo, hi = lo - span, hi + span
-            span *= 2
-        else:
-            continue
-        out[idx] = brentq(f, lo, hi, xtol=1e-14, rtol=1e-15)
-    return out if out.ndim else float(out)
-
 
 #: the scene's axes: (Omega, theta, n) with the paper's units (time unit sqrt(b/g))
 AXES = (("Omega", "sqrt(g/b)"), ("theta", "rad"), ("n", "sqrt(g/b)"))
@@ -195,6 +83,19 @@ class Scene:
         Any body (a user-defined :class:`phasekit.bodies.Body` subclass too); default Spheroid(a).
     friction : FrictionLaw, optional
         Any friction law; default Coulomb(mu).
+
+    Raises
+    ------
+    ParameterError
+        If ``show`` is not a subset of :data:`ELEMENTS`; ``branch`` is not "prolate" or
+        "oblate", or does not match the body (prolate: ``a`` > 1, or h(0) > h(pi/2) for a
+        given ``body``); ``body`` is not a Body or ``friction`` not a FrictionLaw; ``a`` is
+        outside [1e-4, 1e4] (without ``body``); ``mu`` is not a finite number >= 0; ``values``
+        is not a sequence of finite numbers > 0;
+        ``seed_distance`` is outside (0, pi/2); a range is not a pair (lo, hi) of finite
+        numbers with lo < hi (``theta_range`` inside [0, pi]); ``resolution`` is not an integer
+        in [2, 4000]; ``dt`` is not a finite number > 0; or ``exact_lambda`` is outside
+        (-1000, 1000).
 
     Examples
     --------
@@ -266,9 +167,30 @@ class Scene:
 
     def add_trajectory(self, traj, label: str | None = None, *, bodies=()) -> "Scene":
         """Draw ``traj`` (any :class:`phasekit.core.Trajectory` with dense output) too, and its
-        lift-off point as a crossing; ``bodies``: times of the run at which the body itself is
-        drawn on the trajectory, turned as it is then (its pose: psi, theta, phi). Returns the
-        scene, so calls chain."""
+        lift-off point as a crossing.
+
+        Parameters
+        ----------
+        traj : Trajectory
+            A run of :func:`phasekit.simulate` that kept its dense output (``dense=True``, the
+            default).
+        label : str, optional
+            Its label (None: "trajectory k", k its number among the drawn trajectories).
+        bodies : array_like, optional
+            Times of the run, inside [traj.t0, traj.t], at which the body itself is drawn on
+            the trajectory, turned as it is then (its pose: psi, theta, phi). Default: none.
+
+        Returns
+        -------
+        Scene
+            The scene, so calls chain.
+
+        Raises
+        ------
+        ParameterError
+            If ``traj`` is not a Trajectory or has no dense output, ``label`` is neither a
+            string nor None, or ``bodies`` is not finite times inside the run.
+        """
         from ..core.trajectory import Trajectory
 
         if not isinstance(traj, Trajectory):
@@ -293,7 +215,19 @@ class Scene:
 @dataclass(frozen=True)
 class Crossing:
     """Where a trajectory reached R = 0: its family value (None for a user's trajectory),
-    time and state, and n on (6.3) at the same (Omega, theta)."""
+    time and state, and n on (6.3) at the same (Omega, theta).
+
+    Attributes
+    ----------
+    value : float or None
+        Omega0 or n0 of the trajectory (None for a user's trajectory).
+    t : float
+        Time of the crossing (the lift-off), units sqrt(b/g).
+    Omega, theta, n, Lambda : float
+        The state there: precession rate, inclination (radians), spin and dtheta/dt.
+    n_surface : float
+        n on (6.3) at the crossing's (Omega, theta).
+    """
 
     value: float | None  # Omega0 or n0 of the trajectory
     t: float
@@ -312,7 +246,34 @@ class Crossing:
 @dataclass(frozen=True)
 class SceneData:
     """What :func:`compute_scene` computed: the grids, the trajectories' (Omega, theta, n)
-    points, the crossings, the fixed points and the box ``bounds`` (Omega, theta, n pairs)."""
+    points, the crossings, the fixed points and the box ``bounds`` (Omega, theta, n pairs).
+
+    Attributes
+    ----------
+    scene : Scene
+        The scene computed.
+    surface : tuple of numpy.ndarray or None
+        The Omega, theta and n grids of (6.3) (element "surface").
+    exact : tuple of numpy.ndarray or None
+        The Omega, theta and n grids of the exact boundary (element "exact_boundary"; NaN where
+        none was found).
+    exact_lambda : float or None
+        The Lambda of that section.
+    trajectories : list of numpy.ndarray
+        The drawn trajectories, each an (N, 3) array of (Omega, theta, n).
+    crossings : list of Crossing
+        Where the trajectories reached R = 0.
+    fixed_points : numpy.ndarray or None
+        The family's fixed points, rows (Omega, theta, n).
+    n_simulations : int
+        Simulations run for the scene.
+    bounds : tuple of float
+        The axes box (Omega lo, hi, theta lo, hi, n lo, hi).
+    labels : list
+        One label per trajectory (None for a simulated one).
+    bodies : list
+        The bodies to draw, each (body, (Omega, theta, n), rotation matrix).
+    """
 
     scene: Scene
     surface: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None  # Omega, theta, n grids
@@ -401,6 +362,23 @@ def _ranges(scene: Scene, data: SceneData, body) -> tuple:
 def compute_scene(scene: Scene) -> SceneData:
     """Compute exactly the data the scene's elements need (no simulation for a scene
     without trajectories or crossings).
+
+    Parameters
+    ----------
+    scene : Scene
+        What to draw: the branch, the family values, the user's trajectories, the elements.
+
+    Returns
+    -------
+    SceneData
+        The surface and exact-boundary grids, the trajectories' (Omega, theta, n) points, the
+        crossings of R = 0, the fixed points and the axes box, each computed only if an
+        element of ``scene.show`` needs it.
+
+    Raises
+    ------
+    ParameterError
+        If ``scene`` is not a Scene.
 
     Examples
     --------

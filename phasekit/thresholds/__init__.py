@@ -10,18 +10,11 @@ Examples
 'sliding'
 """
 
-from .threshold import (
-    DEFAULT_DEFINITIONS,
-    Definition,
-    Outcome,
-    Threshold,
-    ThresholdSearch,
-    continue_threshold,
-    evaluate_outcomes,
-    find_stick_boundary,
-    find_threshold,
-    run_searches,
-)
+from .continuation import continue_threshold
+from .definition import DEFAULT_DEFINITIONS, Definition, Outcome, evaluate_outcomes
+from .result import Threshold
+from .search import ThresholdSearch, find_threshold, run_searches
+from .stick import find_stick_boundary
 
 __all__ = [
     "Definition", "Threshold", "DEFAULT_DEFINITIONS", "find_threshold", "continue_threshold", "find_stick_boundary",

@@ -9,13 +9,14 @@ Examples
 'theta [rad]'
 """
 
-from .animate import AnimationInfo, animate, body_mesh, film_strip, render_body
-from .mpl import LABELS, label, plain_log_ticks, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
+from .animate import AnimationInfo, animate, film_strip, render_body
+from .mesh import body_mesh
+from .mpl import label, plain_log_ticks, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
 from .output import pyplot, save_figure
 from .pv import RenderInfo, render_scene
 
 __all__ = [
     "animate", "film_strip", "render_body", "body_mesh", "AnimationInfo", "render_scene", "RenderInfo",
-    "plot_timeseries", "plot_events", "plot_section", "plot_phase", "plot_minima", "plain_log_ticks", "label", "LABELS",
+    "plot_timeseries", "plot_events", "plot_section", "plot_phase", "plot_minima", "plain_log_ticks", "label",
     "pyplot", "save_figure",
 ]

@@ -1,13 +1,5 @@
-"""The moving body: movies (GIF, MP4), film strips (PNG) and single views, off-screen.
-
-The body is drawn from its own support function: the meridian of the surface relative to G
-is, for theta in [0, pi], the contact point of inclination theta, at z = h_t sin(theta) -
-h cos(theta) along the axis k and at distance x_P = h sin(theta) + h_t cos(theta) from it
-(section 2; a spheroid, an egg, the tippe top's ball and any user body alike). It is placed
-by the run's pose (:mod:`phasekit.core.pose`): G at (X, Y, h + gap) and the rotation
-R = Rz(psi) Ry(theta) Rz(phi), so one frame is one row of :meth:`Trajectory.sample`. The
-tippe top's stem is decoration (the model's body is the ball). Coloured sectors make the
-spin about the axis visible; the contact point's path is traced on the table.
+"""The moving body: movies (GIF, MP4), film strips (PNG) and single views, off-screen: the
+options checked, the frames (drawn by :mod:`phasekit.viz.frames`) written to a file.
 
 GIFs are written with Pillow (no ffmpeg); MP4 needs the optional extra ``phasekit[movie]``
 (imageio-ffmpeg, which ships an ffmpeg binary). PyVista is imported only when drawing.
@@ -23,16 +15,13 @@ import numpy as np
 
 from .._runtime.errors import ParameterError, PhasekitError
 from .._runtime.validate import check_array, check_finite, check_int, check_positive
-from .mesh import BODY_COLORS, body_mesh, decorations
+from .frames import _check_choice, _frames, _Style
 
-__all__ = ["AnimationInfo", "animate", "film_strip", "render_body", "body_mesh", "MOVIE_EXTRA"]
+__all__ = ["AnimationInfo", "animate", "film_strip", "render_body", "MOVIE_EXTRA"]
 
 #: what MP4 output needs: ``pip install "phasekit[movie]"``
 MOVIE_EXTRA = ("imageio_ffmpeg",)
 SUFFIXES = (".gif", ".mp4", ".png")
-PATH_COLOR, G_PATH_COLOR, TABLE_COLOR = "#08519c", "#969696", "#f0f0f0"
-CAMERAS = ("follow", "fixed")
-PANELS = ("none", "phase", "R")
 TIMINGS = ("body", "real")
 
 
@@ -40,6 +29,23 @@ TIMINGS = ("body", "real")
 class AnimationInfo:
     """What was written: the file, the frame count and times (body units), the frame size in
     pixels, the frames per second and, with a scale, the playback speed relative to real time.
+
+    Attributes
+    ----------
+    path : str
+        The file written.
+    n_frames : int
+        The number of frames.
+    times : numpy.ndarray
+        The frames' times, units sqrt(b/g).
+    frame_size : tuple of int
+        (width, height) of a frame (of the whole image for a film strip), pixels.
+    fps : float
+        Frames per second of a movie (0 for a PNG).
+    speed : float or None
+        The playback speed relative to real time (movies given a ``scale``), else None.
+    bytes : int
+        The size of the file written, bytes.
 
     Examples
     --------
@@ -96,214 +102,6 @@ def _check_span(traj, t_span):
         raise ParameterError("t_span", f"must satisfy {traj.t0:.10g} <= t_start < t_stop <= {traj.t:.10g} (the run)",
                              [lo, hi])
     return lo, hi
-
-
-def _check_choice(name, value, choices):
-    if not isinstance(value, str) or value not in choices:
-        raise ParameterError(name, f"must be one of {', '.join(choices)}", value)
-    return value
-
-
-def _check_window(value) -> tuple[int, int]:
-    what = "must be two integers (width, height) in [64, 4096] pixels"
-    try:
-        w, h = (int(v) for v in value)
-        ok = all(isinstance(v, (int, np.integer)) and not isinstance(v, bool) for v in value) and 64 <= w <= 4096 \
-            and 64 <= h <= 4096
-    except (TypeError, ValueError):
-        ok = False
-    if not ok:
-        raise ParameterError("window_size", what, value)
-    return w, h
-
-
-@dataclass(frozen=True)
-class _Style:
-    """The drawing options shared by animate, film_strip and render_body (validated)."""
-
-    gap_scale: float = 1.0
-    camera: str = "follow"
-    panel: str = "none"
-    window_size: tuple = (480, 360)
-    scale: object = None
-    title: str | None = None
-
-    @classmethod
-    def make(cls, *, gap_scale, camera, panel, window_size, scale, title) -> "_Style":
-        from ..core.units import Scale
-
-        gap_scale = check_positive("gap_scale", gap_scale)
-        if gap_scale < 1.0:
-            raise ParameterError("gap_scale", "must be >= 1 (the factor the gap is drawn larger by)", gap_scale)
-        if scale is not None and not isinstance(scale, Scale):
-            raise ParameterError("scale", "must be a phasekit Scale such as pk.Scale('21.5 mm'), or None", scale)
-        if title is not None and not isinstance(title, str):
-            raise ParameterError("title", "must be a string or None", title)
-        return cls(gap_scale, _check_choice("camera", camera, CAMERAS),
-                   _check_choice("panel", "none" if panel is None else panel, PANELS), _check_window(window_size),
-                   scale, title)
-
-
-class _Stage:
-    """One off-screen plotter with the table, the body, the traced paths and the captions;
-    :meth:`frame` moves them to a time and returns the image."""
-
-    def __init__(self, traj, style: _Style, span):
-        from .pv import _headless
-
-        _headless()
-        import pyvista as pv
-
-        self.pv, self.traj, self.style = pv, traj, style
-        self.body0 = body_mesh(traj.model.body)
-        self.deco0 = [d.triangulate() for d in decorations(traj.model.body)]
-        self.pl = pv.Plotter(off_screen=True, window_size=list(style.window_size))
-        self.pl.set_background("white")
-        # the traced paths: dense enough to follow the precession (30 points per turn at least)
-        rate = max(1.0, float(np.nanmax(np.abs(traj.sample(np.linspace(*span, 200))["Omega"]))))
-        n_trace = int(min(60000, max(400, 30 * rate * (span[1] - span[0]) / (2 * np.pi))))
-        self.trace = traj.sample(np.linspace(traj.t0, span[1], n_trace))
-        self.trace_t = self.trace["t"].to_numpy()
-        extent = np.ptp(self.trace[["X_P", "Y_P"]].to_numpy(), axis=0).max() + 4.0
-        centre = self.trace[["X", "Y"]].to_numpy().mean(axis=0)
-        self.pl.add_mesh(pv.Plane(center=(*centre, 0.0), direction=(0, 0, 1), i_size=2 * extent, j_size=2 * extent,
-                                  i_resolution=int(2 * extent), j_resolution=int(2 * extent)),
-                         color=TABLE_COLOR, show_edges=True, edge_color="#d9d9d9", lighting=False)
-        self.body = self.body0.copy()
-        self.deco = [d.copy() for d in self.deco0]
-        self.pl.add_mesh(self.body, scalars="sector", cmap=list(BODY_COLORS), show_scalar_bar=False,
-                         smooth_shading=True)
-        for d in self.deco:
-            self.pl.add_mesh(d, color="#7f2704", smooth_shading=True)
-        self._make_paths()
-        font = max(6, round(style.window_size[0] / 45))  # captions that fit the frame's width
-        self.text = self.pl.add_text("", position=(8, 6), font_size=font, color="k")
-        if style.title:
-            top = self.pl.add_text(style.title, position=(8, style.window_size[1] - 6), font_size=font, color="k")
-            top.GetTextProperty().SetVerticalJustificationToTop()
-        # camera distance and aim: the body's size (and, for a fixed camera, the extent of the path)
-        size = float(np.ptp(self.body0.points, axis=0).max())
-        self.lift = 0.4 * size
-        self.focal0 = np.array([*centre, self.lift])
-        self.reach = 2.9 * size + (0.0 if style.camera == "follow" else 1.5 * (extent - 4.0))
-
-    def _place(self, row) -> np.ndarray:
-        from ..core.pose import rotation_matrix
-
-        R = rotation_matrix(row["psi"], row["theta"], row["phi"])
-        G = np.array([row["X"], row["Y"], row["h"] + self.style.gap_scale * row["gap"]])
-        self.body.points = self.body0.points @ R.T + G
-        for d, d0 in zip(self.deco, self.deco0):
-            d.points = d0.points @ R.T + G
-        return G
-
-    def _make_paths(self) -> None:
-        """The traced paths of P and G as polylines over every trace point; each frame shows
-        the first k of them (by their connectivity, without re-adding actors)."""
-        self.paths = []
-        for cols, color, z, width in ((("X_P", "Y_P"), PATH_COLOR, 2e-3, 2.5), (("X", "Y"), G_PATH_COLOR, 3e-3, 1.5)):
-            pts = np.column_stack([self.trace[cols[0]].to_numpy(), self.trace[cols[1]].to_numpy(),
-                                   np.full(len(self.trace), z)])
-            mesh = self.pv.PolyData(pts, lines=np.array([2, 0, 1]))  # lines only: no vertex cells
-            self.pl.add_mesh(mesh, color=color, line_width=width, render=False)
-            self.paths.append(mesh)
-
-    def _paths(self, t: float) -> None:
-        k = max(2, int(np.searchsorted(self.trace_t, t, side="right")))
-        for mesh in self.paths:
-            mesh.lines = np.concatenate([[k], np.arange(k)])
-
-    def caption(self, row) -> str:
-        sc = self.style.scale
-        clock = f"t = {row['t']:.3f} sqrt(b/g)"
-        if sc is not None:
-            clock += f" = {sc.to_real(row['t'], 'time').magnitude:.1f} ms"
-        lines = [clock, f"{row['mode']}, theta = {row['theta']:.3f} rad"]
-        if row["mode"] == "flight":
-            gap = (f"gap {row['gap']:.3g} b" if sc is None
-                   else f"gap {sc.to_real(row['gap'], 'length').to('um').magnitude:.3g} um")
-            lines.append(gap)
-        if self.style.gap_scale != 1.0:
-            lines.append(f"gap drawn x{self.style.gap_scale:g}")
-        return "\n".join(lines)
-
-    def frame(self, row) -> np.ndarray:
-        G = self._place(row)
-        self._paths(float(row["t"]))
-        self.text.SetInput(self.caption(row))
-        focal = np.array([G[0], G[1], self.lift]) if self.style.camera == "follow" else self.focal0
-        eye = focal + self.reach * np.array([0.59, -0.76, 0.27])  # from the front right, a little above
-        self.pl.camera_position = [tuple(eye), tuple(focal), (0.0, 0.0, 1.0)]
-        self.pl.render()
-        return np.asarray(self.pl.screenshot(return_img=True))[..., :3]
-
-    def close(self) -> None:
-        self.pl.close()
-
-
-class _Panel:
-    """The side panel (matplotlib, Agg): R(t) or the trajectory in (Omega, theta, n), with a
-    marker at the frame's time."""
-
-    def __init__(self, traj, kind: str, span, height: int):
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
-
-        self.kind = kind
-        ts = np.linspace(*span, 3000)
-        df = traj.sample(ts)
-        dpi = 100
-        self.fig = Figure(figsize=(height / dpi, height / dpi), dpi=dpi)
-        self.canvas = FigureCanvasAgg(self.fig)
-        if kind == "R":
-            ax = self.fig.add_subplot(111)
-            ax.plot(ts, df["R"], lw=1, color="k")
-            ax.fill_between(ts, 0, 1, where=(df["mode"] == "flight").to_numpy(), color="#9ecae1", alpha=0.6,
-                            transform=ax.get_xaxis_transform(), label="flight")
-            ax.set_xlabel("t (units sqrt(b/g))")
-            ax.set_ylabel("R (units Mg)")
-            (self.marker,) = ax.plot([], [], "o", color="#e6550d")
-            self.xy = (ts, df["R"].to_numpy())
-        else:
-            ax = self.fig.add_subplot(111, projection="3d")
-            ax.plot(df["Omega"], df["theta"], df["n"], lw=0.8, color="k")
-            ax.set_xlabel("Omega")
-            ax.set_ylabel("theta")
-            ax.set_zlabel("n")
-            (self.marker,) = ax.plot([], [], [], "o", color="#e6550d")
-            self.xyz = (ts, df[["Omega", "theta", "n"]].to_numpy())
-        self.fig.tight_layout()
-
-    def frame(self, t: float) -> np.ndarray:
-        if self.kind == "R":
-            ts, R = self.xy
-            self.marker.set_data([t], [np.interp(t, ts, R)])
-        else:
-            ts, P = self.xyz
-            p = [np.interp(t, ts, P[:, j]) for j in range(3)]
-            self.marker.set_data_3d([p[0]], [p[1]], [p[2]])
-        self.canvas.draw()
-        return np.asarray(self.canvas.buffer_rgba())[..., :3].copy()
-
-
-def _frames(traj, times, style: _Style, span, progress: bool):
-    """Render one image per time (the 3-D view, with the side panel to its right)."""
-    from ..sweep.study import progress as bar
-
-    rows = traj.sample(times)
-    stage = _Stage(traj, style, span)
-    panel = None if style.panel == "none" else _Panel(traj, style.panel, span, style.window_size[1])
-    out = []
-    try:
-        for i in bar(range(len(rows)), desc="frames", enabled=progress and len(rows) > 10):
-            row = rows.iloc[i]
-            img = stage.frame(row)
-            if panel is not None:
-                img = np.hstack([img, panel.frame(float(row["t"]))[: img.shape[0]]])
-            out.append(img)
-    finally:
-        stage.close()
-    return out
 
 
 def _times(traj, frames, span, timing, scale):
@@ -384,7 +182,7 @@ def animate(traj, path, frames: int = 96, *, fps: float = 24.0, t_span=None, tim
     frames : int
         Number of frames, in [1, 10000], at times uniform over ``t_span``.
     fps : float
-        Frames per second of the movie.
+        Frames per second of the movie, in (0, 240].
     t_span : (float, float), optional
         The stretch of the run to show (default the whole run).
     timing : {"body", "real"}
@@ -410,6 +208,20 @@ def animate(traj, path, frames: int = 96, *, fps: float = 24.0, t_span=None, tim
     Returns
     -------
     AnimationInfo
+        The file, its frames and their times, and the playback speed (with ``scale``).
+
+    Raises
+    ------
+    ParameterError
+        A bad argument, named (before anything is drawn): ``traj`` not a Trajectory with
+        dense output, ``path`` not ending in .gif, .mp4 or .png or not in a writable
+        directory, ``frames`` or ``fps`` out of range, ``t_span`` not inside the run,
+        ``timing`` not "body" or "real" (or "real" without ``scale``), ``scale`` not a Scale,
+        ``gap_scale`` < 1, ``camera`` or ``panel`` not one of its choices, ``window_size`` not
+        two integers in [64, 4096], or ``title`` not a string.
+    PhasekitError
+        If an MP4 is asked for without ``phasekit[movie]``, or pyvista (the extra
+        ``phasekit[viz]``) is not installed.
 
     Examples
     --------
@@ -431,6 +243,15 @@ def animate(traj, path, frames: int = 96, *, fps: float = 24.0, t_span=None, tim
                         title=title)
     _check_movie_extra(path)
     times = _times(traj, frames, span, timing, scale)
+    style, speed = _playback(style, scale, span, frames, fps, timing)
+    imgs = _frames(traj, times, style, span, progress)
+    _write(imgs, path, fps)
+    return AnimationInfo(str(path), len(imgs), times, tuple(imgs[0].shape[:2][::-1]), fps, speed, path.stat().st_size)
+
+
+def _playback(style: _Style, scale, span, frames: int, fps: float, timing: str) -> tuple[_Style, float | None]:
+    """The playback speed of :func:`animate`'s movie relative to real time (None without a
+    scale), and the style with it added to the title when ``timing`` is "real"."""
     speed = None
     if scale is not None:
         real_s = float(scale.to_real(span[1] - span[0], "time").to("s").magnitude)
@@ -438,17 +259,53 @@ def animate(traj, path, frames: int = 96, *, fps: float = 24.0, t_span=None, tim
     if timing == "real" and speed is not None:
         style = _Style(style.gap_scale, style.camera, style.panel, style.window_size, style.scale,
                        ((style.title + "\n") if style.title else "") + f"playback {speed:.3g}x real time")
-    imgs = _frames(traj, times, style, span, progress)
-    _write(imgs, path, fps)
-    return AnimationInfo(str(path), len(imgs), times, tuple(imgs[0].shape[:2][::-1]), fps, speed, path.stat().st_size)
+    return style, speed
 
 
 def film_strip(traj, path, frames: int = 6, *, t_span=None, times=None, columns: int | None = None, scale=None,
                gap_scale: float = 1.0, camera: str = "follow", window_size=(360, 300), title: str | None = None):
     """A PNG of the body at several instants side by side (the same drawing as :func:`animate`).
 
-    ``times`` (inside the run) or ``frames`` instants uniform over ``t_span``; ``columns``
-    per row (default all in one row). Returns an :class:`AnimationInfo`.
+    Parameters
+    ----------
+    traj : Trajectory
+        A run with its dense output (the default of :func:`phasekit.simulate`).
+    path : str or Path
+        Ending in .png.
+    frames : int
+        Number of instants uniform over ``t_span``, in [1, 100] (default 6), when ``times``
+        is not given.
+    t_span : (float, float), optional
+        The stretch of the run to show (default the whole run).
+    times : array, optional
+        The instants instead: 1 to 100 times inside the run.
+    columns : int, optional
+        Images per row, in [1, 100] (default all in one row).
+    scale : Scale, optional
+        The body's size: the clock in ms and gaps in micrometres.
+    gap_scale : float >= 1
+        Draw the gap in flight this many times larger.
+    camera : {"follow", "fixed"}
+        Keep G in view, or one view of the whole path.
+    window_size : (int, int)
+        Pixels of each view, each in [64, 4096].
+    title : str, optional
+        A line above the strip.
+
+    Returns
+    -------
+    AnimationInfo
+        The PNG, with ``n_frames`` the number of instants.
+
+    Raises
+    ------
+    ParameterError
+        A bad argument, named: ``traj`` not a Trajectory with dense output, ``path`` not a
+        .png in a writable directory, ``frames``, ``times`` or ``columns`` out of range,
+        ``t_span`` not inside the run, ``scale`` not a Scale, ``gap_scale`` < 1, ``camera``
+        not one of its choices, or ``window_size`` not two integers in [64, 4096].
+    PhasekitError
+        If pyvista (the extra ``phasekit[viz]``) is not installed.
 
     Examples
     --------
@@ -499,7 +356,39 @@ def _with_title(img: np.ndarray, title: str) -> np.ndarray:
 
 def render_body(traj, t: float, path, *, scale=None, gap_scale: float = 1.0, window_size=(640, 480), title=None):
     """A PNG of the body at time ``t`` of ``traj`` (placed by its pose), with the path traced
-    up to then. Returns an :class:`AnimationInfo` with one frame.
+    up to then.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        A run with its dense output (the default of :func:`phasekit.simulate`).
+    t : float
+        The time, inside the run.
+    path : str or Path
+        Ending in .png.
+    scale : Scale, optional
+        The body's size: the clock in ms and gaps in micrometres.
+    gap_scale : float >= 1
+        Draw the gap in flight this many times larger.
+    window_size : (int, int)
+        Pixels of the image, each in [64, 4096].
+    title : str, optional
+        A line at the top of the image.
+
+    Returns
+    -------
+    AnimationInfo
+        With one frame.
+
+    Raises
+    ------
+    ParameterError
+        A bad argument, named: ``traj`` not a Trajectory with dense output, ``t`` not a
+        finite time inside the run, ``path`` not a .png in a writable directory, ``scale``
+        not a Scale, ``gap_scale`` < 1, ``window_size`` not two integers in [64, 4096], or
+        ``title`` not a string.
+    PhasekitError
+        If pyvista (the extra ``phasekit[viz]``) is not installed.
 
     Examples
     --------

@@ -19,6 +19,20 @@ def body_mesh(body, *, n_theta: int = 64, n_azimuth: int = 48):
     """The body's surface in body axes (G at the origin, axis k = e_z) as a PyVista PolyData
     with a ``sector`` scalar (0/1 in four azimuthal sectors).
 
+    Parameters
+    ----------
+    body : Body
+        The body, drawn from its support function.
+    n_theta : int
+        Points along the meridian, theta in [0, pi] (default 64).
+    n_azimuth : int
+        Intervals around the axis (default 48).
+
+    Returns
+    -------
+    pyvista.PolyData
+        The triangulated surface (units b).
+
     Examples
     --------
     >>> import phasekit as pk
@@ -47,7 +61,7 @@ def decorations(body):
     """Body-frame meshes drawn with the body: the tippe top's stem on +k (decoration only)."""
     import pyvista as pv
 
-    from ..bodies.body import EccentricSphere
+    from ..bodies.spheroid import EccentricSphere
 
     if isinstance(body, EccentricSphere):
         centre = body.offset  # the ball's centre is offset above G along k

@@ -50,6 +50,21 @@ EVENT_COLORS = {"lift-off": "C3", "touchdown": "C2", "impact": "C2", "stick": "C
 def label(name: str) -> str:
     """The axis label of a column (the name itself when it has none).
 
+    Parameters
+    ----------
+    name : str
+        A column name, e.g. "theta" or "R" (a key of :data:`LABELS`, or any other).
+
+    Returns
+    -------
+    str
+        The symbol and unit, e.g. "theta [rad]".
+
+    Raises
+    ------
+    ParameterError
+        If ``name`` is not a string.
+
     Examples
     --------
     >>> import phasekit as pk
@@ -134,12 +149,16 @@ def plot_timeseries(ax, traj, names, *, times=None, n: int = 4000, set_labels: b
     Parameters
     ----------
     ax : matplotlib.axes.Axes
+        The axes to draw on.
     traj : Trajectory
         With dense output (the default of :func:`phasekit.simulate`).
     names : str or sequence of str
         Columns of :meth:`Trajectory.sample` ("theta", "R", "energy", ...).
     times : array, optional
         Where to sample (default: ``n`` points spanning the run).
+    n : int
+        Number of points spanning the run when ``times`` is not given, in [2, 1e7]
+        (default 4000).
     set_labels : bool
         Label the axes (y: the name's symbol and unit when one name is plotted).
     **style
@@ -149,6 +168,13 @@ def plot_timeseries(ax, traj, names, *, times=None, n: int = 4000, set_labels: b
     -------
     list of matplotlib.lines.Line2D
         One line per name, labelled with the name.
+
+    Raises
+    ------
+    ParameterError
+        If ``ax`` is not matplotlib Axes, ``traj`` is not a Trajectory with dense output,
+        ``names`` holds no column or something that is not one, ``times`` or ``n`` is
+        invalid, ``set_labels`` is not a bool, or ``style`` is refused by ``ax.plot``.
 
     Examples
     --------
@@ -177,8 +203,31 @@ def plot_timeseries(ax, traj, names, *, times=None, n: int = 4000, set_labels: b
 def plot_events(ax, traj, names=None, *, text: bool = True, **style) -> list:
     """Mark the events of ``traj`` (all, or those in ``names``) as vertical lines.
 
-    Returns the artists: one line per event, and one text label per event name (at its
-    first occurrence) when ``text`` is True.
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    traj : Trajectory
+        A run (dense output is not needed).
+    names : str or sequence of str, optional
+        Event names (e.g. lift-off, touchdown, impact, stick, slip); None (default): all.
+    text : bool
+        Label each event name at its first occurrence (default True).
+    **style
+        Passed to ``ax.axvline`` (default: a dashed line, coloured by the event's name).
+
+    Returns
+    -------
+    list
+        The artists: one line per event, and one text label per event name (at its first
+        occurrence) when ``text`` is True.
+
+    Raises
+    ------
+    ParameterError
+        If ``ax`` is not matplotlib Axes, ``traj`` is not a Trajectory, ``text`` is not a
+        bool, ``names`` is not an event name, a list of them or None, or ``style`` is
+        refused by ``ax.axvline``.
 
     Examples
     --------
@@ -216,8 +265,33 @@ def plot_section(ax, df, x: str, y: str, *, c: str | None = None, set_labels: bo
     """Scatter two columns of a table: a Poincare section (:func:`phasekit.core.poincare`), a
     sample, or an ensemble (:func:`phasekit.ensemble`); ``c`` colours by a third column.
 
-    Returns the PathCollection (and adds a colour bar label to nothing: pass the returned
-    artist to ``fig.colorbar`` if you want one).
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    df : pandas.DataFrame
+        The table.
+    x, y : str
+        The columns on the horizontal and vertical axes.
+    c : str, optional
+        A column that colours the points.
+    set_labels : bool
+        Label the axes with the columns' symbols and units (default True).
+    **style
+        Passed to ``ax.scatter`` (default marker size 12).
+
+    Returns
+    -------
+    matplotlib.collections.PathCollection
+        The points (no colour bar is added: pass the returned artist to ``fig.colorbar`` if
+        you want one).
+
+    Raises
+    ------
+    ParameterError
+        If ``ax`` is not matplotlib Axes, ``df`` is not a DataFrame, ``x``, ``y`` or ``c`` is
+        not one of its columns, ``set_labels`` is not a bool, or ``style`` is refused by
+        ``ax.scatter``.
 
     Examples
     --------
@@ -252,6 +326,36 @@ def plot_section(ax, df, x: str, y: str, *, c: str | None = None, set_labels: bo
 def plot_phase(ax, traj, x: str, y: str, *, times=None, n: int = 4000, set_labels: bool = True, **style) -> list:
     """The trajectory as a curve in the plane of two columns (e.g. theta and Lambda).
 
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    traj : Trajectory
+        With dense output (the default of :func:`phasekit.simulate`).
+    x, y : str
+        Columns of :meth:`Trajectory.sample` on the horizontal and vertical axes.
+    times : array, optional
+        Where to sample (default: ``n`` points spanning the run).
+    n : int
+        Number of points spanning the run when ``times`` is not given, in [2, 1e7]
+        (default 4000).
+    set_labels : bool
+        Label the axes with the columns' symbols and units (default True).
+    **style
+        Passed to ``ax.plot``.
+
+    Returns
+    -------
+    list of matplotlib.lines.Line2D
+        The curve (one line).
+
+    Raises
+    ------
+    ParameterError
+        If ``ax`` is not matplotlib Axes, ``traj`` is not a Trajectory with dense output,
+        ``x`` or ``y`` is not a column, ``times`` or ``n`` is invalid, ``set_labels`` is not
+        a bool, or ``style`` is refused by ``ax.plot``.
+
     Examples
     --------
     >>> import numpy as np, phasekit as pk
@@ -276,6 +380,26 @@ def plot_phase(ax, traj, x: str, y: str, *, times=None, n: int = 4000, set_label
 def plot_minima(ax, traj, **style):
     """The located local minima of R, (t, R_min), as points; returns the PathCollection.
 
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    traj : Trajectory
+        A run (its ``minima``: located when ``track_minima=True``, the default).
+    **style
+        Passed to ``ax.scatter`` (default: size 10, colour C3).
+
+    Returns
+    -------
+    matplotlib.collections.PathCollection
+        The points.
+
+    Raises
+    ------
+    ParameterError
+        If ``ax`` is not matplotlib Axes, ``traj`` is not a Trajectory, or ``style`` is
+        refused by ``ax.scatter``.
+
     Examples
     --------
     >>> import numpy as np, phasekit as pk
@@ -295,7 +419,27 @@ def plot_minima(ax, traj, **style):
 def plain_log_ticks(ax, axis: str = "both", subs=(2, 3, 5)):
     """Label a log axis with plain numbers (6, 20, 0.002) instead of 6x10^0, at the
     decades and at the minor ticks with mantissa in ``subs``, so that values on a
-    log scale that spans less than a decade can still be read off. Returns ``ax``.
+    log scale that spans less than a decade can still be read off.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes whose log axis (or axes) to label.
+    axis : {"x", "y", "both"}
+        Which axis (default both).
+    subs : sequence of float
+        Mantissas in [1, 10) of the minor ticks to label (default (2, 3, 5)).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
+
+    Raises
+    ------
+    ParameterError
+        If ``ax`` is not matplotlib Axes, ``axis`` is not "x", "y" or "both", or ``subs`` is
+        not a sequence of numbers in [1, 10).
 
     Examples
     --------

@@ -10,6 +10,11 @@ __all__ = ["pyplot", "save_figure"]
 def pyplot():
     """matplotlib.pyplot with the off-screen Agg backend.
 
+    Returns
+    -------
+    module
+        ``matplotlib.pyplot``, after ``matplotlib.use("Agg")``.
+
     Examples
     --------
     >>> from phasekit.viz import pyplot

@@ -38,6 +38,22 @@ class RenderInfo:
     """What was drawn: the image path, point counts per element, data bounds, image statistics
     and the files exported.
 
+    Attributes
+    ----------
+    path : str
+        The PNG written.
+    n_points : dict
+        Counts per element drawn: points of the "surface", the "exact_boundary" and the
+        "trajectories", and the number of "bodies", "crossings" and "fixed_points".
+    bounds : tuple of float
+        The data's bounds, (Omega_min, Omega_max, theta_min, theta_max, n_min, n_max).
+    image_shape : tuple of int
+        The image's shape, (height, width, 3).
+    image_std : float
+        Standard deviation of the image's pixel values (0 for a blank image).
+    exported : tuple of str
+        The glTF and HTML files written.
+
     Examples
     --------
     >>> import phasekit as pk

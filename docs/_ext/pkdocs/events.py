@@ -15,7 +15,7 @@ STOPS = ("jump", "touchdown", "none")  # system.STOP_AT
 
 
 def _guards():
-    from phasekit.core import model as m
+    from phasekit.core import fields as m
 
     return {
         "stick_guard": f"|u| = {m.STICK_SLIP:g} + 10 eps (the slip speed; eps = 0 for exact Coulomb)",
@@ -87,7 +87,7 @@ ORDER = ("lift-off", "stick", "slip", "touchdown", "a user's event")
 
 
 def event_table() -> str:
-    from phasekit.core import model as m
+    from phasekit.core import observables as m
     from phasekit.core.hybrid import Mode
 
     guards = _guards()

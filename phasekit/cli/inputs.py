@@ -1,0 +1,162 @@
+"""A command's inputs from its parsed arguments: the body, the friction law, values typed with
+units, the start of a run and where the body stands on the table.
+
+Each check refuses with a :class:`~phasekit.cli.parser._UsageError` naming the flag typed.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import warnings
+
+from .flags import FLAGS
+from .parser import _UsageError, _WithUnits
+
+
+def _body(args):
+    from ..core.model import make_body
+
+    return make_body(args.body, a=args.a, offset=args.offset, w=args.w, A=args.A, C=args.C)
+
+
+def _law_args(args) -> tuple[str, float, float | None]:
+    """(friction, mu, slip_eps), warning (and dropping) --slip-eps where it does nothing."""
+    eps = args.slip_eps
+    if eps is not None and args.friction == "viscous":
+        from .._runtime.validate import check_positive
+
+        check_positive("eps", eps, upper=1.0)
+        warnings.warn("--slip-eps has no effect with --friction viscous (it regularises Coulomb friction only)")
+        eps = None
+    return args.friction, args.mu, eps
+
+
+#: options that take a value with units: dest -> kind (angles need no --size)
+UNIT_OPTIONS = {"theta0": "angle", "omega0": "rate", "n0": "rate", "spin_about_vertical": "rate", "t_end": "time",
+                "psi0": "angle", "phi0": "angle", "X0": "length", "Y0": "length"}
+
+
+def _scale_of(args):
+    """The Scale of --size and --g, or None without --size."""
+    from ..core.units import STANDARD_GRAVITY, Scale
+
+    if args.size is None:
+        if args.g is not None:
+            raise _UsageError(f"--g needs --size (the body's unit of length, e.g. --size '21.5 mm'), got {args.g!r}.",
+                              "--g")
+        return None
+    return Scale(args.size, g=STANDARD_GRAVITY if args.g is None else args.g)
+
+
+def _apply_units(args):
+    """Replace every value typed with units by its number in phasekit's units; returns the Scale."""
+    from ..core.units import as_quantity
+
+    scale = _scale_of(args)
+    for dest, kind in UNIT_OPTIONS.items():
+        value = getattr(args, dest, None)
+        if not isinstance(value, _WithUnits):
+            continue
+        flag = FLAGS[dest]
+        if kind == "angle":
+            q = as_quantity(str(value), dest)
+            if not q.dimensionless:
+                raise _UsageError(f"{flag} must be an angle in radians or with units such as '89.4 deg', got "
+                                  f"{str(value)!r}.", flag)
+            setattr(args, dest, float(q.to("rad").magnitude))
+        elif scale is None:
+            raise _UsageError(f"{flag} {str(value)!r} has units: give the body's size with --size (e.g. --size "
+                              f"'21.5 mm') to express it in units of b and sqrt(b/g), or type a plain number.", flag)
+        else:
+            setattr(args, dest, scale._dimensionless(str(value), kind, dest))
+    if getattr(args, "si", False) and scale is None:
+        raise _UsageError("--si needs --size (the body's unit of length, e.g. --size '21.5 mm').", "--si")
+    return scale
+
+
+def _pose_of(args) -> dict:
+    return {k: v for k, v in (("psi", args.psi0), ("phi", args.phi0), ("X", args.X0), ("Y", args.Y0)) if v is not None}
+
+
+def _refuse(args, names, why):
+    for name in names:
+        if getattr(args, name) is not None:
+            raise _UsageError(f"{FLAGS[name]} {why}", FLAGS[name])
+
+
+def _paper_body(args) -> None:
+    """The printed start fixes its body (a uniform spheroid of one aspect ratio): refuse, naming
+    it, a flag that says otherwise; --a defaults to the start's."""
+    from .._runtime.errors import plain
+    from ..theory.paper import PAPER_CASES
+
+    label = args.paper_start[1:-1] if re.fullmatch(r"\(.*\)", args.paper_start) else args.paper_start
+    if label not in PAPER_CASES:
+        raise _UsageError(f"--paper-start must be one of {', '.join(PAPER_CASES)} (the paper's printed starts), "
+                          f"got {plain(args.paper_start)}.", "--paper-start")
+    case = PAPER_CASES[label]
+    args.paper_start = label
+    which = f"with --paper-start {label} (its body is the uniform spheroid a = {case.a:.6g})"
+    if args.body != "spheroid":
+        raise _UsageError(f"--body must be spheroid {which}, got {plain(args.body)}.", "--body")
+    for name in ("A", "C", "offset", "w"):
+        if getattr(args, name) is not None:
+            raise _UsageError(f"{FLAGS[name]} must be left out {which}, got {plain(getattr(args, name))}.", FLAGS[name])
+    if args.a is None:
+        args.a = case.a
+    elif not abs(args.a - case.a) <= 1e-4 * case.a:  # the API's tolerance; also refuses nan
+        raise _UsageError(f"--a must be {case.a:.6g} {which}, got {plain(args.a)}.", "--a")
+
+
+def _manifold_states(body) -> tuple[str, ...]:
+    """The steady states of ``body`` that --unstable-manifold can start from (phasekit.steady.precessions:
+    horizontal only where h_theta(pi/2) = 0, horizontal-like only for a body without flip symmetry
+    that can lie on its side)."""
+    from ..steady.precessions import side_equilibrium
+
+    level = body.flip_symmetric or abs(body.h(math.pi / 2)[1]) < 1e-14
+    like = not body.flip_symmetric and math.isfinite(side_equilibrium(body)[0])
+    return ("horizontal",) * level + ("vertical", "inverted") + ("horizontal-like",) * like
+
+
+def _manifold_start(args, body) -> dict:
+    from .._runtime.errors import plain
+
+    _refuse(args, ["theta0"], "does not go with --unstable-manifold (the fixed point fixes theta)")
+    states = ("vertical", "inverted") if args.unstable_manifold in ("vertical", "inverted") else _manifold_states(body)
+    if args.unstable_manifold not in states:
+        why = {"horizontal": " (it has no horizontal state: with its axis level its centre of mass is not above the "
+                             "contact point" + ("; horizontal-like is the precession that continues it)"
+                                                if "horizontal-like" in states else ")"),
+               "horizontal-like": " (horizontal-like is for a body without flip symmetry that can lie on its side)"
+               }.get(args.unstable_manifold, "")
+        raise _UsageError(f"--unstable-manifold must be one of {', '.join(states)} for the {args.body} body{why}, "
+                          f"got {plain(args.unstable_manifold)}.", "--unstable-manifold")
+    return dict(kind="unstable-manifold", state=args.unstable_manifold,
+                delta=0.01 if args.delta is None else args.delta, omega0=args.omega0, n0=args.n0,
+                branch="+0" if args.branch is None else args.branch,
+                seed_law="viscous" if args.seed_law is None else args.seed_law)
+
+
+def _start_of(args, body) -> dict:
+    if args.unstable_manifold is not None:
+        return _manifold_start(args, body)
+    _refuse(args, ["delta", "branch", "seed_law"], "goes with --unstable-manifold only")
+    if args.gyroscopic:
+        if args.theta0 is None:
+            raise _UsageError("--theta0 is required with --gyroscopic (a number in (0, pi))", "--theta0")
+        if (args.omega0 is None) == (args.n0 is None):
+            raise _UsageError("--gyroscopic needs exactly one of --omega0 (prolate) or --n0 (oblate)", "--omega0")
+        return dict(kind="gyroscopic", theta0=args.theta0, omega0=args.omega0, n0=args.n0)
+    if args.spin_about_vertical is not None:
+        if args.theta0 is None:
+            raise _UsageError("--theta0 is required with --spin-about-vertical (a number in [0, pi])", "--theta0")
+        _refuse(args, ["omega0", "n0"], "does not go with --spin-about-vertical (it sets the spin)")
+        return dict(kind="spin-about-vertical", theta0=args.theta0, n0=args.spin_about_vertical)
+    if args.paper_start is not None:
+        _refuse(args, ["theta0"], "does not go with --paper-start (the printed start fixes theta)")
+        return dict(kind="paper", label=args.paper_start, n0=args.n0, omega0=args.omega0)
+    _refuse(args, ["theta0", "omega0", "n0"], "goes with --gyroscopic, --spin-about-vertical or --unstable-manifold, "
+                                              "not with --state")
+    return dict(kind="state", state=args.state)

@@ -1,0 +1,192 @@
+"""What the CLI prints: a result as text or as strict JSON, and the one-line errors and warnings.
+
+A result is made JSON-ready here (numpy types to Python's, a non-finite number found and
+replaced by null); while a command computes, stdout is sent to stderr so that it holds the
+result only.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+import os
+import sys
+
+from .flags import FLAGS, _flags_in
+
+
+def _fmt(v, spec: str = ".10g") -> str:
+    return format(v, spec) if isinstance(v, float) else "undefined" if v is None else str(v)
+
+
+def _print_structure(out: dict) -> None:
+    print(f"signature: {out['signature']}   (linearisation: {out['linearised_law']})")
+    for i, b in enumerate(out["branches"]):
+        ends = " -> ".join(f"{e['kind']} at theta = {_fmt(e['theta'], '.10f')}"
+                           + (f" (spin n = {_fmt(e['n'], '.8g')})" if e["kind"] == "pole" else "") for e in b["ends"])
+        n_stable = sum(s["stable"] for s in b["samples"])
+        print(f"branch {i + 1}: {ends}; {len(b['samples'])} samples, {n_stable} stable")
+        for c in b["stability_changes"]:
+            print(f"  stability changes at theta = {_fmt(c['theta'], '.9f')} ({c['kind']}; n_unstable "
+                  f"{c['n_unstable_below']} -> {c['n_unstable_above']}; Omega = {_fmt(c['Omega'], '.6g')}, "
+                  f"n = {_fmt(c['n'], '.6g')})")
+    for st in out["static_equilibria"]:
+        print(f"static equilibrium at theta = {_fmt(st['theta'], '.10f')} ({st['kind']}): {st['static_stability']}")
+    for f in out["families"]:
+        side = lambda v: "not computed" if v is None else "stable" if v else "unstable"  # noqa: E731
+        crit = ("no change of stability: " + side(f["stable_on_intervals"][0])) if not f["criticals"] else (
+            f"stability changes at |{f['parameter']}| = {', '.join(_fmt(c, '.10g') for c in f['criticals'])}; "
+            f"{side(f['stable_above_critical'])} above")
+        what = {"pole": "spin about the vertical", "precession": "precession", "rolling": "straight rolling"}[f["kind"]]
+        print(f"{what} family at theta = {_fmt(f['theta'], '.6f')} (any {f['parameter']}): {crit}"
+              + ("; a branch meets it there" if f["branch_meets"] else ""))
+    if out.get("states"):
+        for fp in out["states"]:
+            print(f"state at {out['states_at']}: {fp['kind']} theta = {_fmt(fp['state']['theta'], '.10f')}: "
+                  f"{fp['classification']}")
+
+
+def _print_human(out: dict, events: bool) -> None:
+    if "signature" in out:
+        _print_structure(out)
+        return
+    if "fixed_points" in out:
+        print(f"linearisation: {out['linearised_law']} ({out['stability']})")
+        for fp in out["fixed_points"]:
+            st = ", ".join(f"{k}={_fmt(v, '.8g')}" for k, v in fp["state"].items())
+            line = f"{fp['kind']:<15s} {fp['classification']}; residual {_fmt(fp['residual'], '.1e')}  [{st}]"
+            crit = (fp.get("parameter") or {}).get("stable_under_sliding_friction")
+            if crit is not None:
+                line += f"; closed-form criterion under sliding friction: {'stable' if crit else 'unstable'}"
+            print(line)
+        print(f"({out['note']})")
+        return
+    if "J" in out:
+        print(f"J = {_fmt(out['J'])} ({out['J_definition']}), {out['method']}")
+        for t, th, om in zip(out["t"], out["theta"], out["Omega"]):
+            print(f"t = {_fmt(t, '12.6g')}   theta = {_fmt(th, '.12f')}   Omega = {_fmt(om, '.12f')}")
+        return
+    print(f"status: {out['status']}" + (f" ({out['reason']})" if out.get("reason") else ""))
+    if out.get("animation"):
+        an = out["animation"]
+        speed = f", {an['playback_speed']:.3g}x real time" if an.get("playback_speed") else ""
+        print(f"wrote {an['path']}: {an['frames']} frames of {an['frame_size'][0]}x{an['frame_size'][1]} pixels"
+              f"{speed}, {an['bytes'] / 1e6:.2f} MB")
+    for key in ("t_jump", "t_stop", "t_end", "theta_end", "R_min", "stuck", "mode_end"):
+        if out.get(key) is not None:
+            print(f"{key}: {_fmt(out[key])}")
+    if out.get("flight"):
+        print("flight: " + ", ".join(f"{k}={_fmt(v)}" for k, v in out["flight"].items()))
+    if out.get("pose_end"):
+        print("pose at the end: " + ", ".join(f"{k}={_fmt(v, '.8g')}" for k, v in out["pose_end"].items()))
+    si = out.get("si")
+    if si:
+        u = si["units"]
+        print(f"in real units (b = {si['b']}, g = {si['g']}, time unit {si['time_unit']}):")
+        for key in ("t_jump", "t_stop", "t_end"):
+            if si.get(key) is not None:
+                print(f"  {key}: {_fmt(si[key], '.6g')} {u['time']}")
+        fl = si.get("flight")
+        if fl:
+            print(f"  first flight: from {_fmt(fl['t_liftoff'], '.6g')} {u['time']}, lasting "
+                  f"{_fmt(fl.get('duration'), '.4g')} {u['time']}, largest gap "
+                  f"{_fmt(fl['gap_max'], '.4g')} {u['length']}")
+        if si.get("state_end"):
+            st = si["state_end"]
+            print(f"  at the end: Omega={_fmt(st['Omega'], '.5g')} {u['rate']}, n={_fmt(st['n'], '.5g')} {u['rate']}")
+    print(f"{out['n_events']} events, {out['n_steps']} steps, {out['wall_s'] * 1e3:.1f} ms, "
+          f"{out['chart']} chart, {out['backend']}" + ("" if events else " (list the events with --events)"))
+    if events:
+        for e in out["events"]:
+            print(f"  {e['kind']:<12s} t = {_fmt(e['t'])}  {e['mode_before']} -> {e['mode_after']}"
+                  + (f"  ({e['detail']})" if e.get("detail") else ""))
+
+
+def _nonfinite(obj, path: str = "") -> str | None:
+    """The path of the first non-finite float in a JSON-ready object, or None."""
+    if isinstance(obj, float):
+        return None if math.isfinite(obj) else path or "(top)"
+    if isinstance(obj, dict):
+        items = obj.items()
+    elif isinstance(obj, (list, tuple)):
+        items = ((f"[{i}]", v) for i, v in enumerate(obj))
+    else:
+        return None
+    for k, v in items:
+        found = _nonfinite(v, f"{path}.{k}" if isinstance(obj, dict) and path else f"{path}{k}")
+        if found:
+            return found
+    return None
+
+
+def _finite_json(obj):
+    """Replace non-finite floats by None: JSON has no NaN, and we never pass one off as a number."""
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    if isinstance(obj, dict):
+        return {k: _finite_json(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_finite_json(v) for v in obj]
+    return obj
+
+
+def _plain_types(obj):
+    """numpy scalars and arrays -> Python floats, ints, lists (so that every check sees them)."""
+    import numpy as np
+
+    if isinstance(obj, dict):
+        return {k: _plain_types(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_plain_types(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return _plain_types(obj.tolist())
+    if isinstance(obj, (bool, np.bool_)):
+        return bool(obj)
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.floating):
+        return float(obj)
+    return obj
+
+
+def _json_default(obj):
+    return str(obj)
+
+
+@contextlib.contextmanager
+def _stdout_to_stderr():
+    """While computing, send everything written to stdout (Python or C++ libraries) to stderr,
+    so that stdout holds only the result."""
+    sys.stdout.flush()
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):  # no real file (e.g. captured in tests)
+        with contextlib.redirect_stdout(sys.stderr):
+            yield
+        return
+    saved = os.dup(fd)
+    try:
+        os.dup2(sys.stderr.fileno(), fd)
+        with contextlib.redirect_stdout(sys.stderr):
+            yield
+    finally:
+        sys.stdout.flush()
+        os.dup2(saved, fd)
+        os.close(saved)
+
+
+def _error(message: str, flag: str | None, as_json: bool, code: int = 2, names: dict = FLAGS) -> int:
+    """One line on stderr; with --json one object on stdout: status "error" (bad input) with the
+    flag, or "failed" / "interrupted" with its reason."""
+    message = " ".join(_flags_in(str(message), names).split())
+    print(f"phasekit: error: {message}", file=sys.stderr)
+    if as_json:
+        status = "error" if code == 2 else "interrupted" if code == 130 else "failed"
+        out = {"status": status, "parameter": flag, "message": message}
+        print(json.dumps(out if code == 2 else {**out, "reason": message}))
+    return code
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None, names: dict = FLAGS):
+    print(f"phasekit: warning: {' '.join(_flags_in(str(message), names).split())}", file=sys.stderr)

@@ -1,0 +1,145 @@
+"""The default engine (:class:`TaylorEngine`): heyoka's adaptive Taylor method, LLVM-compiled once per
+(flow, guards, tolerance) and cached (:mod:`phasekit.core.engines.cache`). Events are located by
+polynomial root finding on each step's Taylor expansion, i.e. to about machine precision in time;
+dense output is the steps' Taylor polynomials (:mod:`phasekit.core.engines.dense`).
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+import numpy as np
+
+from ..hybrid import CompiledFlow
+from .cache import _RECORDERS, compiled
+from .dense import _TaylorSteps
+from .protocol import Budget, End, Propagation
+from .taylor_build import _build_taylor, _heyoka, taylor_end
+
+#: steps per call of heyoka's propagate: between calls the wall clock is checked
+STEP_CHUNK = 20_000
+
+
+class TaylorEngine:
+    """heyoka Taylor integrator.
+
+    Parameters
+    ----------
+    rtol : float
+        heyoka's (mixed absolute/relative) tolerance.
+    atol : float, optional
+        Not used (accepted as every engine factory takes it).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> e = pk.core.engines.TaylorEngine(1e-9)
+    >>> e.name, e.pointwise, e.rtol
+    ('taylor', False, 1e-09)
+    """
+
+    name = "taylor"
+    pointwise = False
+
+    def __init__(self, rtol: float, atol: float | None = None):
+        self.rtol = float(rtol)
+
+    def integrator(self, flow: CompiledFlow, n_params: int):
+        """(heyoka integrator, monitor recorder or None, number of parameters), compiled once.
+
+        Parameters
+        ----------
+        flow : CompiledFlow
+            The flow integrated.
+        n_params : int
+            The number of model parameters.
+
+        Returns
+        -------
+        tuple
+            (integrator, recorder or None, number of parameters).
+        """
+        ta, npar = compiled((flow.signature, self.rtol), partial(_build_taylor, flow, n_params, self.rtol, None),
+                            disk="taylor")
+        if flow.monitor is None:
+            return ta, None, npar
+        # the recorder inside the integrator is the one that records (heyoka copied ours, and
+        # one loaded from disk or a snapshot is a new object): look it up in the integrator
+        recorder = _RECORDERS.get(id(ta))
+        if recorder is None:
+            recorder = _RECORDERS.setdefault(id(ta), ta.nt_events[0].callback)
+        return ta, recorder, npar
+
+    def propagate(self, flow: CompiledFlow, x0, t0, t_end, p, levels, *, budget: Budget, dense: bool = False,
+                  resume: bool = False) -> Propagation:
+        """Integrate ``flow`` from (t0, x0) to t_end or its first guard's zero.
+
+        Parameters
+        ----------
+        flow : CompiledFlow
+            The field, guards and monitor of one mode.
+        x0 : array_like
+            The start state (ignored with ``resume=True``).
+        t0, t_end : float
+            The start and end times.
+        p : array_like
+            The model's parameters.
+        levels : array_like
+            The guards' levels (run-time parameters).
+        budget : Budget
+            Steps and wall time left: running out ends the call with ``End.FAILED`` and a reason.
+        dense : bool, optional
+            Keep the steps' Taylor polynomials as dense output.
+        resume : bool, optional
+            True continues from where the last call on this flow stopped, keeping heyoka's event cooldowns so
+            that the event just located does not fire again.
+
+        Returns
+        -------
+        Propagation
+            The time and state reached, how the call ended, steps, monitor crossings and dense output.
+        """
+        hy = _heyoka()
+        ta, recorder, npar = self.integrator(flow, len(p))
+        if not resume:
+            ta.time = float(t0)
+            ta.state[:] = np.asarray(x0, dtype=float)
+            ta.pars[:] = np.concatenate([np.asarray(p, dtype=float), np.asarray(levels, dtype=float)])[:npar]
+            ta.reset_cooldowns()
+        if recorder is not None:
+            recorder.points = []
+        prop = Propagation(t=float(ta.time), x=np.array(ta.state), outcome=End.TIME)
+        while True:
+            record = _TaylorSteps(float(ta.time)) if dense else None
+            try:
+                res = ta.propagate_until(float(t_end), max_steps=int(max(1, min(budget.steps - prop.n_steps, STEP_CHUNK))),
+                                         write_tc=dense, callback=record)
+            except Exception as exc:  # heyoka raises on e.g. a non-finite state in an event
+                prop.outcome, prop.reason = End.FAILED, f"taylor: {exc}"
+                break
+            steps = int(res[3])
+            prop.n_steps += steps
+            if record is not None and steps > 0:
+                record.finish(ta)
+                prop.dense.append(record.span())
+            end, event = taylor_end(hy, res[0])
+            if end is None:  # the step chunk ran out
+                if prop.n_steps >= budget.steps:
+                    prop.outcome, prop.reason = End.FAILED, f"step limit ({prop.n_steps} steps) reached at t = {ta.time:.6g}"
+                    break
+                if budget.wall_exceeded():
+                    prop.outcome, prop.reason = End.FAILED, f"wall-time limit reached at t = {ta.time:.6g}"
+                    break
+                if budget.tick is not None:
+                    budget.tick(float(ta.time))
+                continue
+            prop.outcome, prop.event = end, event
+            if end is End.FAILED:
+                prop.reason = (f"non-finite state at t = {ta.time:.6g}" if res[0] == hy.taylor_outcome.err_nf_state
+                               else f"taylor integrator stopped: {res[0]}")
+            break
+        prop.t, prop.x = float(ta.time), np.array(ta.state, copy=True)
+        prop.n_rhs = prop.n_steps * (ta.order + 1)
+        if recorder is not None:
+            prop.monitored = list(recorder.points)
+        return prop

@@ -1,0 +1,99 @@
+"""heyoka's Taylor integrators of a flow: the field, guards and monitor translated from CasADi
+(:mod:`phasekit._runtime.translate`), every guard a terminal event with a fixed cooldown, compact
+mode for big flows, scalar or batch (:func:`_build_taylor`); and heyoka's outcome of a propagate
+call read as an :class:`~phasekit.core.engines.End` (:func:`taylor_end`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..hybrid import CompiledFlow
+from .protocol import End
+
+#: cooldown of every guard after it fires (a run resumed after a non-terminal event or a
+#: graze must not find the same root again). heyoka deduces one from the guard's rate at the
+#: root, which blows up at a tangential crossing: measured 8.6e8 for a section Lambda = 0 at a
+#: start with dLambda/dt = 1e-16, which silenced the event for the rest of the run.
+EVENT_COOLDOWN = 1e-9
+#: flows whose field and guards exceed this many CasADi instructions are compiled in heyoka's
+#: compact mode (loops instead of unrolled code). Measured on an egg (Chebyshev support function
+#: of degree 64, ~8000 instructions with its events): unrolled, the sliding and rolling
+#: integrators took 16 min and 1.7 GB to compile; compact, the sliding one 7 s. Every spheroid
+#: and tippe-top flow is below 2300 instructions and stays unrolled (fastest steps, numbers unchanged).
+COMPACT_ABOVE = 3000
+
+
+class _MonitorRecorder:
+    """Non-terminal event callback storing (t, x) at each crossing of the monitor.
+
+    heyoka deep-copies callbacks; returning self from __deepcopy__ keeps one shared list.
+    """
+
+    def __init__(self):
+        self.points: list = []
+
+    def __deepcopy__(self, memo):
+        return self
+
+    def __call__(self, ta, t, d_sgn):
+        ta.update_d_output(t)
+        self.points.append((float(t), np.array(ta.d_output, copy=True)))
+
+
+def _heyoka():
+    import heyoka as hy
+
+    # heyoka logs through spdlog to stdout; results go to stdout, so keep it quiet
+    hy.set_logger_level_critical()
+    return hy
+
+
+def _build_taylor(flow: CompiledFlow, n_params: int, rtol: float, lanes: int | None):
+    """heyoka's integrator of ``flow`` (``lanes`` None: scalar; else a batch of that many lanes):
+    the field and guards translated from CasADi, every guard a terminal event with the cooldown
+    EVENT_COOLDOWN, the monitor a non-terminal one (scalar only), compact mode for big flows.
+    Returns (integrator, number of parameters it reads)."""
+    from ..._runtime.translate import to_heyoka
+
+    hy = _heyoka()
+    batch = lanes is not None
+    xs = hy.make_vars(*[f"x{i}" for i in range(flow.n_states)])
+    ps = [hy.par[i] for i in range(n_params)]
+    rhs = to_heyoka(flow.field, [list(xs), ps])[0]
+    direction = {-1: hy.event_direction.negative, 1: hy.event_direction.positive, 0: hy.event_direction.any}
+    t_event = hy.t_event_batch if batch else hy.t_event
+    t_events = [t_event(to_heyoka(g.function, [list(xs), ps, [hy.par[n_params + i]]])[0][0], direction=direction[g.direction],
+                        cooldown=EVENT_COOLDOWN) for i, g in enumerate(flow.guards)]
+    nt_events = []
+    if flow.monitor is not None:
+        if batch:
+            raise ValueError("a batch integrator records no monitor: compile its flow without one")
+        m = flow.monitor
+        nt_events = [hy.nt_event(to_heyoka(m.function, [list(xs), ps, [hy.expression(0.0)]])[0][0],
+                                 callback=_MonitorRecorder(), direction=direction[m.direction])]
+    used = hy.get_params(list(rhs) + [e.expression for e in t_events] + [e.expression for e in nt_events])
+    npar = 1 + max((int(str(q)[1:]) for q in used), default=-1)
+    size = flow.field.n_instructions() + sum(g.function.n_instructions() for g in flow.guards)
+    size += flow.monitor.function.n_instructions() if flow.monitor else 0
+    if batch:
+        ta = hy.taylor_adaptive_batch(list(zip(xs, rhs)), np.zeros((flow.n_states, lanes)), pars=np.zeros((npar, lanes)),
+                                      tol=rtol, t_events=t_events, compact_mode=size > COMPACT_ABOVE)
+    else:
+        ta = hy.taylor_adaptive(list(zip(xs, rhs)), [0.0] * flow.n_states, pars=[0.0] * npar, tol=rtol,
+                                t_events=t_events, nt_events=nt_events, compact_mode=size > COMPACT_ABOVE)
+    return ta, npar
+
+
+def taylor_end(hy, outcome) -> tuple[End | None, int | None]:
+    """heyoka's outcome of a propagate call as (End, event index); (None, None) while it is under
+    way (a step limit, or a batch lane stopped by another lane's event); (End.FAILED, None) for
+    anything else (the caller words the reason)."""
+    code = int(outcome.value)
+    if outcome in (hy.taylor_outcome.step_limit, hy.taylor_outcome.success):
+        return None, None
+    if outcome == hy.taylor_outcome.time_limit:
+        return End.TIME, None
+    if -(2**31) < code < 0:  # terminal event i triggered: outcome -(i+1)
+        return End.EVENT, -code - 1
+    return End.FAILED, None

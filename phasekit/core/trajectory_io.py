@@ -1,0 +1,355 @@
+"""A :class:`~phasekit.core.trajectory.Trajectory` in other forms: the tables of its sampled
+observables and pose (:func:`sample_table`, :func:`pose_table`, built on :func:`observable_table`)
+and of its events, the JSON form in the paper's variables with the run's inputs
+(:func:`trajectory_dict`, which :func:`phasekit.rerun` reads back) and the xarray Dataset, NetCDF
+and Parquet files (written by :mod:`phasekit.io.tables`). The Trajectory's methods (``sample``,
+``pose``, ``events_table``, ``to_dict``, ``to_xarray``, ``to_netcdf``, ``to_parquet``, and its
+records' ``to_dict``) delegate here; each function takes the trajectory (or the record) first.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._runtime.errors import Status
+from .charts import FLIGHT, PAPER_NAMES
+from .observables import evaluate_function
+from .pose import POSE_COLUMNS
+
+__all__ = ["STATE_COLUMNS", "observable_table", "sample_table", "pose_table", "event_dict", "flight_dict",
+           "trajectory_dict", "event_poses", "events_table", "trajectory_xarray", "write_netcdf", "write_parquet"]
+
+#: the observables of a state (columns of :func:`observable_table`)
+STATE_COLUMNS = (*PAPER_NAMES, "R", "energy", "jellett", "slip", "L_Z", "h", "gap")
+
+
+def observable_table(model, parts):
+    """A :meth:`~phasekit.core.trajectory.Trajectory.sample`-style DataFrame from ``parts``.
+
+    Parameters
+    ----------
+    model : Model
+        The model the states belong to.
+    parts : sequence of (Mode, array_like, array_like)
+        (mode, times, states in that mode's chart) in time order.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``t``, ``mode`` and :data:`STATE_COLUMNS`, one row per time.
+    """
+    import pandas as pd
+
+    n = sum(len(ts) for _, ts, _ in parts)
+    cols = {name: np.empty(n) for name in STATE_COLUMNS}
+    t_all, modes = np.empty(n), np.empty(n, dtype=object)
+    i = 0
+    for mode, ts, X in parts:
+        X = np.asarray(X, dtype=float).reshape(len(ts), -1)
+        sel = slice(i, i + len(ts))
+        t_all[sel], modes[sel] = ts, mode.value
+        P = evaluate_function(model.function("paper", mode), model.p, X)
+        for j, name in enumerate(PAPER_NAMES):
+            cols[name][sel] = np.reshape(P, (len(ts), -1))[:, j]
+        for name in ("R", "energy", "jellett", "L_Z", "h", "gap"):
+            cols[name][sel] = evaluate_function(model.observable(name, mode), model.p, X)
+        cols["slip"][sel] = evaluate_function(model.observable("slip_speed", mode), model.p, X)
+        i += len(ts)
+    return pd.DataFrame({"t": t_all, "mode": modes, **cols})
+
+
+def sample_table(traj, ts):
+    """The rows of :meth:`~phasekit.core.trajectory.Trajectory.sample` at the checked times ``ts``:
+    the observables of each segment's states, then the pose.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run, with its dense output.
+    ts : numpy.ndarray
+        Times inside the run, already checked.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``t``, ``mode``, :data:`STATE_COLUMNS` and the pose columns.
+    """
+    idx = traj._locate(ts)
+    parts = []
+    for k in np.unique(idx):
+        sel = idx == k
+        seg = traj.segments[k]
+        parts.append((seg.mode, ts[sel], seg.states(ts[sel])))
+    df = observable_table(traj.model, parts)
+    for name, values in traj._pose(idx, ts).items():
+        df[name] = values
+    return df
+
+
+def pose_table(traj, ts):
+    """The rows of :meth:`~phasekit.core.trajectory.Trajectory.pose` at the checked times ``ts``.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run, with its dense output.
+    ts : numpy.ndarray
+        Times inside the run, already checked.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Column ``t`` and the pose columns.
+    """
+    import pandas as pd
+
+    return pd.DataFrame({"t": ts, **traj._pose(traj._locate(ts), ts)})
+
+
+def event_dict(event) -> dict:
+    """The JSON form of an :class:`~phasekit.core.trajectory.EventRecord` (its ``to_dict``).
+
+    Parameters
+    ----------
+    event : EventRecord
+        The event.
+
+    Returns
+    -------
+    dict
+        ``kind``, ``t``, ``mode_before``, ``mode_after``, and ``detail`` and ``state`` (paper's variables) when set.
+    """
+    d = {"kind": event.name, "t": float(event.t), "mode_before": event.mode_before, "mode_after": event.mode_after}
+    if event.detail:
+        d["detail"] = event.detail
+    if event.y is not None:
+        d["state"] = {k: float(v) for k, v in zip(PAPER_NAMES, event.y)}
+    return d
+
+
+def flight_dict(flight) -> dict:
+    """The JSON form of a :class:`~phasekit.core.trajectory.Flight` (its ``to_dict``).
+
+    Parameters
+    ----------
+    flight : Flight
+        The flight.
+
+    Returns
+    -------
+    dict
+        Its times, gap maximum, ``W_star`` and ``Omega_star``.
+    """
+    return {"t_liftoff": flight.t_liftoff, "t_touchdown": flight.t_touchdown, "gap_max": flight.gap_max,
+            "t_gap_max": flight.t_gap_max, "W_star": flight.W_star, "Omega_star": flight.Omega_star}
+
+
+def trajectory_dict(traj, *, events: bool = True) -> dict:
+    """JSON form in the paper's variables, with the inputs (model, start, options): what
+    :meth:`~phasekit.core.trajectory.Trajectory.to_dict` returns.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run.
+    events : bool, optional
+        Include the event log (with each event's pose when there is dense output).
+
+    Returns
+    -------
+    dict
+        The outcome, the end state, counts, flights and hops, and the inputs of the run.
+    """
+    chart = traj.model.chart
+    y_end = chart.to_paper(traj.x)
+    xj = traj.x_jump
+    d = {
+        "status": str(traj.status),
+        "reason": traj.reason,
+        "t_jump": traj.t_jump,
+        "state_at_jump": None if xj is None else dict(zip(PAPER_NAMES, map(float, chart.to_paper(xj)))),
+        "Rdot_at_jump": traj.Rdot_jump,
+        "R_min": traj.R_min,
+        "t_end": float(traj.t),
+        "theta_end": float(y_end[4]),
+        "state_end": dict(zip(PAPER_NAMES, map(float, y_end))),
+        "mode_end": traj.mode,
+        "stuck": traj.stuck,
+        "n_events": len(traj.events),
+        "n_steps": int(traj.n_steps),
+        "n_rhs": int(traj.n_rhs),
+        "wall_s": float(traj.wall_s),
+        "chart": chart.name,
+        "formulation": chart.name,  # the old name of "chart", kept for readers of older output
+        "backend": traj.backend,
+        "rtol": traj.options.rtol,
+    }
+    stops = [e for e in traj.events if e.mode_after == "end" and e.name not in ("lift-off", "touchdown")]
+    if traj.status is Status.STOPPED and stops:
+        d["t_stop"] = stops[-1].t
+        d["stopped_by"] = stops[-1].name
+    poses = event_poses(traj) if events else None
+    if events:
+        d["events"] = [e.to_dict() for e in traj.events]
+        if poses is not None:
+            for e, pose in zip(d["events"], poses[:-1]):
+                e["pose"] = pose
+    if poses is not None:
+        d["pose_end"] = poses[-1]
+    fl = traj.flights
+    if fl:
+        d["flight"] = fl[0].to_dict()
+        d["n_flights"] = len(fl)
+        d["hops"] = traj.hops
+    d["model"] = traj.model.to_dict()
+    d["start"] = dict(zip(PAPER_NAMES, map(float, chart.to_paper(traj.x0) if traj.x0.size == chart.n_states
+                                               else FLIGHT.to_paper(traj.x0))))
+    d["start_chart_state"] = traj.x0.tolist()
+    d["t0"] = traj.t0
+    d["t_end_requested"] = traj.t_end
+    d["stop_at"] = traj.stop_at
+    d["restitution"] = traj.restitution
+    d["user_events"] = [e.to_dict() for e in traj.user_events]
+    d["options"] = traj.options.to_dict()
+    d["pose0"] = traj.pose0.to_dict()
+    return d
+
+
+def event_poses(traj) -> list[dict] | None:
+    """The pose at each event and at the end (None without dense output).
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run.
+
+    Returns
+    -------
+    list of dict or None
+        One pose per event, then the pose at the end.
+    """
+    if not traj.segments or not all(s.dense for s in traj.segments):
+        return None
+    ts = np.array([e.t for e in traj.events] + [traj.t])
+    ts = np.clip(ts, traj.t0, traj.t)
+    order = np.argsort(ts, kind="stable")
+    cols = traj._pose(traj._locate(ts[order]), ts[order])
+    out = [None] * len(ts)
+    for rank, i in enumerate(order):
+        out[i] = {name: float(cols[name][rank]) for name in POSE_COLUMNS}
+    return out
+
+
+def events_table(traj, name: str | None = None):
+    """The recorded events (or those called ``name``) as a DataFrame: ``t``, ``event``,
+    ``mode_before``, ``mode_after`` and the paper's state at the event (what
+    :meth:`~phasekit.core.trajectory.Trajectory.events_table` returns).
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run.
+    name : str, optional
+        Only the events of this name.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per event.
+    """
+    import pandas as pd
+
+    rows = [{"t": e.t, "event": e.name, "mode_before": e.mode_before, "mode_after": e.mode_after,
+             **dict(zip(PAPER_NAMES, e.y if e.y is not None else [np.nan] * len(PAPER_NAMES)))}
+            for e in traj.events if name is None or e.name == name]
+    return pd.DataFrame(rows, columns=["t", "event", "mode_before", "mode_after", *PAPER_NAMES])
+
+
+def trajectory_xarray(traj, times=None, *, n: int = 2001):
+    """The run sampled at ``times`` (default ``n`` instants uniform over it) as an xarray
+    Dataset (:meth:`~phasekit.core.trajectory.Trajectory.to_xarray`).
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run, with its dense output.
+    times : array_like, optional
+        The sampling times, inside the run.
+    n : int, optional
+        The number of instants without ``times``, in [2, 1e7].
+
+    Returns
+    -------
+    xarray.Dataset
+        The sampled run, its inputs in the attributes.
+
+    Raises
+    ------
+    PhasekitError
+        If the packages for NetCDF files (``phasekit[data]``) are missing.
+    ParameterError
+        For an invalid ``n`` or a time outside the run.
+    """
+    from ..io.tables import _need, to_xarray
+
+    _need(".nc")
+    return to_xarray(traj, times, n=n)
+
+
+def write_netcdf(traj, path, times=None, *, n: int = 2001):
+    """Write :func:`trajectory_xarray` to a NetCDF file (``phasekit[data]``).
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run, with its dense output.
+    path : str or os.PathLike
+        The file, ending in .nc (written atomically).
+    times, n
+        As for :func:`trajectory_xarray`.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    ParameterError
+        For a path not ending in .nc, an invalid ``n`` or a time outside the run.
+    PhasekitError
+        If the packages of ``phasekit[data]`` are missing.
+    """
+    from ..io.tables import _check_path, write_trajectory
+
+    return write_trajectory(traj, _check_path(path, (".nc",)), times, n=n)
+
+
+def write_parquet(traj, path, times=None, *, n: int = 2001):
+    """Write the sampled table to a Parquet file, the run's inputs in its metadata
+    (``phasekit[data]``).
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run, with its dense output.
+    path : str or os.PathLike
+        The file, ending in .parquet (written atomically).
+    times, n
+        As for :func:`trajectory_xarray`.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    ParameterError
+        For a path not ending in .parquet, an invalid ``n`` or a time outside the run.
+    PhasekitError
+        If pyarrow (``phasekit[data]``) is missing.
+    """
+    from ..io.tables import _check_path, write_trajectory
+
+    return write_trajectory(traj, _check_path(path, (".parquet",)), times, n=n)

@@ -1,0 +1,163 @@
+"""The architecture as it is checked: subpackages in one layer order (an import-linter contract in
+pyproject.toml that names every subpackage), a top level of a few modules, modules of one idea
+(at most 600 lines), short functions, and no import cycle among the modules."""
+
+from __future__ import annotations
+
+import ast
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+PACKAGE = ROOT / "phasekit"
+LINT_IMPORTS = Path(sys.executable).with_name("lint-imports")
+
+
+def _contract() -> dict:
+    [contract] = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["importlinter"]["contracts"]
+    return contract
+
+
+def _layer_packages() -> list[str]:
+    return [p.strip() for layer in _contract()["layers"] for p in layer.split("|")]
+
+
+def _lint_imports(cwd: Path) -> subprocess.CompletedProcess:
+    env = {**os.environ, "PYTHONPATH": str(cwd)}
+    return subprocess.run([str(LINT_IMPORTS), "--no-cache"], cwd=cwd, env=env, capture_output=True, text=True,
+                          timeout=300)
+
+
+def test_the_layers_contract_names_every_subpackage_once():
+    subpackages = sorted(f"phasekit.{p.name}" for p in PACKAGE.iterdir() if (p / "__init__.py").is_file())
+    listed = _layer_packages()
+    assert sorted(listed) == subpackages and len(set(listed)) == len(listed)
+    assert _contract()["type"] == "layers"
+
+
+def test_the_package_keeps_its_layers():
+    p = _lint_imports(ROOT)
+    assert p.returncode == 0, p.stdout[-3000:]
+    assert "1 kept, 0 broken" in p.stdout
+
+
+def test_an_upward_import_breaks_the_contract(tmp_path):
+    shutil.copytree(PACKAGE, tmp_path / "phasekit", ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy(ROOT / "pyproject.toml", tmp_path / "pyproject.toml")
+    model = tmp_path / "phasekit" / "core" / "model.py"
+    model.write_text(model.read_text() + "\n\ndef _upward():\n    from ..viz import label\n\n    return label\n")
+    p = _lint_imports(tmp_path)
+    assert p.returncode != 0
+    assert "0 kept, 1 broken" in p.stdout
+    assert re.search(r"phasekit\.core\.model -> phasekit\.viz", p.stdout), p.stdout[-3000:]
+
+
+def _modules() -> list[Path]:
+    return sorted(PACKAGE.rglob("*.py"))
+
+
+def test_the_top_level_holds_at_most_eight_modules():
+    top = [p.name for p in PACKAGE.glob("*.py") if p.name not in ("__init__.py", "__main__.py")]
+    assert len(top) <= 8, top
+
+
+def test_no_module_over_600_lines():
+    long = {str(p.relative_to(ROOT)): n for p in _modules() if (n := len(p.read_text().splitlines())) > 600}
+    assert long == {}
+
+
+def test_no_function_over_80_lines():
+    long = [f"{f.relative_to(ROOT)}:{n.name} ({n.end_lineno - n.lineno + 1})"
+            for f in _modules() for n in ast.walk(ast.parse(f.read_text()))
+            if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef)) and n.end_lineno - n.lineno + 1 > 80]
+    assert long == []
+
+
+def _import_graph() -> dict[str, set[str]]:
+    """phasekit's modules and the phasekit modules each imports, imports inside functions included."""
+    mods = {}
+    for f in _modules():
+        rel = f.relative_to(ROOT).with_suffix("")
+        mods[".".join(rel.parts[:-1] if f.name == "__init__.py" else rel.parts)] = f
+    graph = {m: set() for m in mods}
+    for m, f in mods.items():
+        pkg = m if f.name == "__init__.py" else m.rsplit(".", 1)[0]
+        for n in ast.walk(ast.parse(f.read_text())):
+            if isinstance(n, ast.ImportFrom) and n.level:
+                base = ".".join(pkg.split(".")[: len(pkg.split(".")) - n.level + 1] + ([n.module] if n.module else []))
+                targets = [base] + [f"{base}.{a.name}" for a in n.names]
+            elif isinstance(n, ast.ImportFrom) and n.module:
+                targets = [n.module] + [f"{n.module}.{a.name}" for a in n.names]
+            elif isinstance(n, ast.Import):
+                targets = [a.name for a in n.names]
+            else:
+                continue
+            for t in targets:
+                while t and t not in mods:
+                    t = t.rsplit(".", 1)[0] if "." in t else ""
+                if t and t != m and t != "phasekit":  # the package itself: its __version__ only
+                    graph[m].add(t)
+    return graph
+
+
+def test_no_import_cycle_among_the_modules():
+    graph = _import_graph()
+    state: dict[str, int] = {}
+    cycles = []
+
+    def visit(m, path):
+        state[m] = 1
+        for t in sorted(graph[m]):
+            if state.get(t) == 1:
+                cycles.append(path[path.index(t):] + [t])
+            elif t not in state:
+                visit(t, path + [t])
+        state[m] = 2
+
+    for m in sorted(graph):
+        if m not in state:
+            visit(m, [m])
+    assert cycles == []
+
+
+@pytest.mark.parametrize("script", ["studies", "benchmarks"])
+def test_studies_and_benchmarks_use_the_public_api_and_the_studies_support(script):
+    """A study imports phasekit's public namespaces and phasekit.studies, never a private module."""
+    bad = []
+    for path in sorted((ROOT / script).glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = [a.name for a in node.names] if isinstance(node, ast.Import) else (
+                [node.module] if isinstance(node, ast.ImportFrom) and node.module else [])
+            bad += [f"{path.name}: {n}" for n in names if n.startswith("phasekit") and "._" in n]
+    assert bad == []
+
+
+@pytest.mark.parametrize("script", ["studies", "benchmarks"])
+def test_studies_and_benchmarks_name_only_public_names(script):
+    """``pk.X`` and ``pk.<package>.X`` in a study are names of the public API (``__all__``)."""
+    import importlib
+
+    import phasekit as pk
+
+    bad = []
+    for path in sorted((ROOT / script).glob("*.py")):
+        for a, b, c in re.findall(r"\bpk\.(\w+)(?:\.(\w+))?(?:\.(\w+))?", path.read_text()):
+            if a in pk.__all__ or a == "__version__":
+                continue
+            try:
+                ns = importlib.import_module(f"phasekit.{a}")
+            except ModuleNotFoundError:
+                bad.append(f"{path.name}: pk.{a}")
+                continue
+            if b and b not in ns.__all__ and hasattr(getattr(ns, b, None), "__all__"):  # a public subpackage
+                ns, b = getattr(ns, b), c
+            if a.startswith("_") or a in ("cli", "studies") or (b and b not in ns.__all__):
+                bad.append(f"{path.name}: pk.{a}.{b}")
+    assert bad == []
