@@ -1,6 +1,6 @@
 """Sphinx configuration of phasekit's documentation site.
 
-Build (warnings are errors, as in tests/test_docs.py):
+Build (warnings are errors, as in tests/contracts/test_docs_site.py):
 
     python -m sphinx -W --keep-going -b html docs docs/_build/html
 

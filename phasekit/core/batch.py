@@ -30,7 +30,7 @@ limit set to its time) until it is refilled; cooldowns are reset lane by lane, s
 that grazed a guard keeps its cooldown, as the scalar loop's ``resume`` does.
 
 Agreement with the scalar path: same steps, so states and event times agree to ~1e-12
-(tests/test_sweep.py). Runs that track the minima of R (``track_minima=True``) are not
+(tests/core/test_batch_propagation.py). Runs that track the minima of R (``track_minima=True``) are not
 batched: the non-terminal monitor changes heyoka's steps.
 """
 

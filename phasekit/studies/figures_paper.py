@@ -1,4 +1,4 @@
-"""The paper's figures of a rise, drawn with matplotlib: R(t) to the jump, the envelope reaction_envelope
+"""The paper's figures of a rise, drawn with matplotlib: R(t) to the jump, the envelope Sigma
 (Fig. 2), a simulated rise against the mean-state theory (Figs. 3, 4), the gap of a flight and
 its maximum over Omega0 (Fig. 5) and the effective friction of a bouncing rise; and the jump
 surface with trajectories (Fig. 6a), rendered off-screen with PyVista.
@@ -129,9 +129,9 @@ def plot_minima_envelope(ax, check, *, title: str = "") -> list:
     ok = np.isfinite(check.sigma)
     lines = ax.plot(check.t, check.R, color="0.5", lw=0.4, label="R simulated")
     lines += ax.plot(check.t_min, check.R_min, ".", ms=2, color="k", label="minima of R")
-    lines += ax.plot(check.t_min[ok], check.sigma[ok], color="C3", lw=2, label=fr"$\reaction_envelope$ (3.64), $c={check.c:g}$")
+    lines += ax.plot(check.t_min[ok], check.sigma[ok], color="C3", lw=2, label=fr"$\Sigma$ (3.64), $c={check.c:g}$")
     lines += ax.plot(check.t_min[ok], check.sigma_fit[ok], color="C1", lw=1.5, ls="--",
-                     label=fr"$\reaction_envelope$ with $c_{{eff}}={check.c_eff:.2g}$ (fit: first 30%)")
+                     label=fr"$\Sigma$ with $c_{{eff}}={check.c_eff:.2g}$ (fit: first 30%)")
     ax.set_title(title, fontsize=9)
     ax.set_ylabel(r"$R$ (units $Mg$)")
     ax.set_ylim(-0.1, 2.2)

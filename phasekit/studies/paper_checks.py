@@ -110,7 +110,7 @@ class EnvelopeCheck:
     ``Omega_bar`` (means over each fast period, between successive minima, (3.6)) and
     ``theta_gyro``, ``Omega_gyro`` ((3.18) at the same times); ``theta_at_min`` (theta-bar
     interpolated at each minimum), ``valid`` (the minima inside the averaged span), ``sigma``
-    (reaction_envelope with the nominal ``c``) and ``sigma_fit`` (with ``c_eff``, fitted on the first 30%
+    (Sigma with the nominal ``c``) and ``sigma_fit`` (with ``c_eff``, fitted on the first 30%
     of the valid minima). ``J`` = A Omega h (3.17) of the unperturbed start.
 
     Examples
@@ -143,8 +143,8 @@ class EnvelopeCheck:
     J: float
 
     def errors(self) -> tuple[float, float, float, float, float, float]:
-        """RMS and max of: the gyroscopic theta-bar - the period means of theta; reaction_envelope(c) - the
-        minima of R; reaction_envelope(c_eff) - the minima of R over the part of the rise not used to fit
+        """RMS and max of: the gyroscopic theta-bar - the period means of theta; Sigma(c) - the
+        minima of R; Sigma(c_eff) - the minima of R over the part of the rise not used to fit
         c_eff."""
         e_th = self.theta_bar - self.theta_gyro
         ok = self.valid & np.isfinite(self.sigma)
@@ -159,7 +159,7 @@ class EnvelopeCheck:
 
 def envelope_check(traj, start, c: float, *, dt: float) -> EnvelopeCheck:
     """Set a simulated rise of a spheroid (with dense output and its minima of R, the defaults
-    of :func:`phasekit.simulate`) beside the gyroscopic solution and the envelope reaction_envelope of the
+    of :func:`phasekit.simulate`) beside the gyroscopic solution and the envelope Sigma of the
     sliding-branch ``start`` (the paper's state, before :func:`add_nutation`) with nutation
     amplitude ``c``, sampled every ``dt``: see :class:`EnvelopeCheck`. The
     effective amplitude c_eff is fitted on the first 30% of the minima only, so that the rest of
@@ -185,7 +185,7 @@ def envelope_check(traj, start, c: float, *, dt: float) -> EnvelopeCheck:
     t_mid, th_bar = mean_over_periods(ts, theta, tm)
     _, om_bar = mean_over_periods(ts, Omega, tm)
     th_gyro, om_gyro = gyroscopic_closed(body.a, J, theta0, mu * t_mid)
-    # reaction_envelope at the simulated mean inclination at each minimum of R
+    # Sigma at the simulated mean inclination at each minimum of R
     th_at_min = np.interp(tm, t_mid, th_bar) if t_mid.size else np.full_like(tm, np.nan)
     valid = (tm >= t_mid[0]) & (tm <= t_mid[-1]) if t_mid.size else np.zeros_like(tm, bool)
     sig = np.full_like(tm, np.nan)
@@ -259,7 +259,7 @@ def envelope_report(runs) -> tuple[list[str], dict]:
     (3, 7)
     """
     lines = ["errors over the rise up to the jump: theta = gyroscopic theta-bar - simulated period means;"
-             " S(c) = minima of R - reaction_envelope with the nominal c; S(c_eff) = the same with c fitted on the first 30% of the"
+             " S(c) = minima of R - Sigma with the nominal c; S(c_eff) = the same with c fitted on the first 30% of the"
              " rise, over the other 70%"]
     lines += [f"{'case':<28s} {'status':<9s} {'t*':>7s} {'J=AOh':>7s} {'c_eff/c':>7s} {'theta RMS':>9s} {'max':>8s} "
              f"{'S(c) RMS':>9s} {'max':>8s} {'S(c_eff) RMS':>12s} {'max':>8s}"]

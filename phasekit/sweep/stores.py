@@ -131,8 +131,9 @@ class ResultStore:
     """Append-only CSV of finished typed rows (keyed by their ``key`` field) with a JSON
     manifest beside it. Safe against a kill at any moment: rows are appended whole (one
     write, flushed and fsynced) and every row is checked when the file is read back. The
-    manifest's ``runs`` lists every run that used the file (commit, command, rows added),
-    so resumed and re-plotted results still say what computed them.
+    manifest's ``runs`` lists every run that computed rows (commit, command, rows added), so
+    resumed results still say what computed them; a run that only reads stored rows (a redraw)
+    leaves the manifest untouched unless it annotates it with something new.
 
     Parameters
     ----------
@@ -183,7 +184,11 @@ class ResultStore:
         self.meta = dict(meta)
         self.meta["started"] = prev.get("started") or self.meta.get("started") or now
         self.meta["runs"] = [*runs, self._run]
-        self._write_manifest()
+        # only a run that computes something writes the manifest: redrawing from stored rows leaves
+        # it (and a committed result's provenance) as it is
+        self._stored = prev
+        if not prev:
+            self._write_manifest()
 
     def _read_manifest(self) -> dict:
         try:
@@ -285,7 +290,9 @@ class ResultStore:
             The entries to add.
         """
         self.meta.update(fields)
-        self._write_manifest()
+        changed = any(self._stored.get(k) != json.loads(json.dumps(v, default=str)) for k, v in fields.items())
+        if self._run["rows_added"] or not self._stored or changed:
+            self._write_manifest()
 
     def _write_manifest(self) -> None:
         self.meta["updated"] = _dt.datetime.now().isoformat(timespec="seconds")

@@ -2,7 +2,7 @@
 precession (weak sliding friction), for the spheroid and for any body at its poles.
 
 Each is derived where it is defined and checked against the exact linearisations in the tests
-(tests/test_fixedpoints.py, tests/test_fixedpoints_general.py)."""
+(tests/steady/test_stability_criteria.py, tests/steady/test_steady_states_of_any_body.py)."""
 
 from __future__ import annotations
 

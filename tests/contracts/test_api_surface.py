@@ -210,6 +210,13 @@ def test_every_phasekit_path_written_in_the_docs_and_docstrings_imports():
     assert broken == []
 
 
+def test_every_pk_name_written_in_the_readme_and_the_docs_exists():
+    """``pk.X.Y`` in prose and examples (``import phasekit as pk``) names something that exists."""
+    sources = [ROOT / "README.md", *(ROOT / "docs").glob("*.md"), *(ROOT / "docs" / "results").glob("*.md")]
+    names = {m for src in sources for m in re.findall(r"(?<![\w.])pk(?:\.[A-Za-z_]\w*)+", src.read_text())}
+    assert names and sorted(n for n in names if not _resolves("phasekit" + n[2:])) == []
+
+
 def test_every_phasekit_file_path_written_in_the_docs_exists():
     sources = [*(ROOT / "docs").rglob("*.md"), *(ROOT / "docs").rglob("*.rst"), ROOT / "README.md",
                *(ROOT / "phasekit").rglob("*.py")]

@@ -146,7 +146,7 @@ def _builder_inited(app):
         runs = gallery.build(DOCS, execute=False)
         app._pk_cli_runs = []
     for r in runs.values():
-        if r.missing:  # e.g. jq for the shell example: said on its page, as tests/test_examples.py skips it
+        if r.missing:  # e.g. jq for the shell example: said on its page, as tests/contracts/test_examples.py skips it
             LOG.info(f"gallery: examples/{r.name} not run: {r.missing} is not installed")
     failed = [r for r in runs.values() if r.returncode != 0 and not r.missing]
     for r in failed:

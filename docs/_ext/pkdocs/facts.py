@@ -3,7 +3,7 @@ build (``{pk}`group.name``` inline, ``{pk-table} group.name`` as a block).
 
 A *group* is a function of :class:`~sources.Sources` returning a dict of named values: strings
 (inline numbers, short phrases) or Markdown blocks (tables). Nothing here is typed from a
-previous run: change a number in ``figures/`` and the page changes with it (tests/test_docs.py
+previous run: change a number in ``figures/`` and the page changes with it (tests/contracts/test_docs_site.py
 does exactly that on a copy).
 """
 
@@ -755,7 +755,7 @@ def performance(src: Sources) -> dict:
     return out
 
 
-# -- robustness (tests/test_fuzz.py, tests/test_fuzz_api.py) -----------------------------------------
+# -- robustness (tests/cli/test_generated_command_lines.py, tests/contracts/test_generated_api_calls.py)
 
 OUTCOMES = [("valid", "valid result"), ("failed", "failed, with a reason"), ("error", "clear error")]
 
@@ -915,7 +915,7 @@ def repro(src: Sources) -> dict:
     return {"table": table(["quantity", "paper", "phasekit (measured)", "data"], rows), "n_rows": len(rows)}
 
 
-# -- blocks of the README (tests/test_readme.py checks that the README holds them as generated) ------
+# -- blocks of the README (tests/contracts/test_readme.py checks that the README holds them as generated) ------
 
 
 @group("readme")
@@ -936,8 +936,8 @@ def readme(src: Sources) -> dict:
     }
     rows = []
     for key, label in (
-        ("cli", "`tests/test_fuzz.py` (CLI and API inputs)"),
-        ("api", "`tests/test_fuzz_api.py` (long calls)"),
+        ("cli", "`tests/cli/test_generated_command_lines.py` (command lines)"),
+        ("api", "`tests/contracts/test_generated_api_calls.py` (API calls)"),
     ):
         rep = src.report("fuzz.json" if key == "cli" else "fuzz.api.json")["total"]
         rows.append([label, r[f"{key}_n"], *(rep.get(k, 0) for k, _ in OUTCOMES), r[f"{key}_other"]])

@@ -194,7 +194,7 @@ def index(paths: list[Path], runs: dict[str, Run] | None, image_dir: Path, docs_
         "Every script in `examples/`, run when these pages were built, as a user runs it: with no arguments, "
         "in its own process, writing into `examples/out/<name>/` (git-ignored; `--out DIR` elsewhere). "
         "Each page shows what the script printed, the figures and movies it wrote, and its source. "
-        "`tests/test_examples.py` checks what they compute.",
+        "`tests/contracts/test_examples.py` checks what they compute.",
         "",
     ]
     if runs:

@@ -15,7 +15,7 @@ Status of every result (read this before citing)
 Only the abstracts / introductions of the papers below could be consulted while writing
 this module (stored copies of arXiv / ar5iv / journal landing pages).
 "Quoted" means the formula was seen in that text; "derived here" means it was derived for
-this module and checked numerically in tests/test_tippetop_theory.py, not quoted.
+this module and checked numerically in tests/theory/test_tippe_top_closed_forms.py, not quoted.
 
 [RR14] S. Rauch-Wojciechowski and N. Rutstam, "Dynamics of an inverting tippe top",
        SIGMA 10 (2014) 017, 18 pp., doi:10.3842/SIGMA.2014.017, arXiv:1306.2470

@@ -1,0 +1,79 @@
+"""``phasekit steady-states``: its JSON against the API, bad input, and generated command lines
+that all end in a structure or one line naming a flag typed."""
+
+import json
+
+import phasekit as pk
+from phasekit.steady.branches import precession_on_branch
+
+import numpy as np
+import pytest
+
+from ..generated_inputs import generated, st
+from ..helpers import run_cli
+
+
+def test_cli_steady_states_json_and_bad_input():
+    code, out, err = run_cli("steady-states", "--body", "spheroid", "--a", "1.5", "--offset", "0.2", "--A", "0.61",
+                              "--C", "0.4", "--mu", "0.1", "--friction", "viscous", "--json")
+    assert code == 0 and err == ""
+    d = json.loads(out)
+    assert d["signature"] == "pole0-inf | static-polePi"
+    for b in d["branches"]:
+        kinds = [e["kind"] for e in b["ends"]]
+        assert all(k in ("pole", "static", "infinite-spin") for k in kinds)
+        assert b["ends"][0]["theta"] < b["ends"][1]["theta"]
+        th = np.array([s["theta"] for s in b["samples"]])
+        om, n = precession_on_branch(pk.Spheroid(1.5, offset=0.2, A=0.61, C=0.4), th)
+        assert np.array([s["Omega"] for s in b["samples"]]) == pytest.approx(om, rel=1e-14)
+        assert np.array([s["n"] for s in b["samples"]]) == pytest.approx(n, rel=1e-12, abs=1e-14)
+        model = pk.Model(pk.Spheroid(1.5, offset=0.2, A=0.61, C=0.4), pk.Viscous(0.1))
+        for s in b["samples"][5::20]:  # the stability reported is the pointwise linearisation's
+            if min(s["theta"], np.pi - s["theta"]) >= 0.05:
+                assert s["stable"] == pk.steady.linearise(model, [0, 0, s["Omega"], 0, s["theta"], s["n"]]).stable
+    assert [s["kind"] for s in d["static_equilibria"]] == ["pole", "tilted", "pole"]
+    code, out, err = run_cli("steady-states", "--a", "1.5", "--offset", "1.6", "--mu", "0.1")
+    assert code == 2 and "--offset" in err and len(err.strip().splitlines()) == 1
+
+
+def _numbers():
+    return st.one_of(st.floats(allow_nan=True, allow_infinity=True, width=32), st.sampled_from(["0", "-1", "1e9", "abc", ""]))
+
+
+def _structure_argv():
+    return st.composite(_draw_structure_argv)()
+
+
+def _draw_structure_argv(draw):
+    body = draw(st.sampled_from(["spheroid", "tippe-top", "egg"]))
+    argv = ["steady-states", "--body", body, "--mu", draw(st.sampled_from(["0.1", "0.3", "0", "-1", "nan"]))]
+    options = {"spheroid": ["--a", "--offset", "--A", "--C"], "tippe-top": ["--offset", "--A", "--C"], "egg": ["--a", "--w"]}
+    for flag in draw(st.lists(st.sampled_from(options[body] + ["--a", "--w"]), unique=True, max_size=4)):
+        value = draw(st.one_of(st.floats(0.05, 3.0).map(lambda v: f"{v:.4g}"), _numbers().map(str)))
+        argv += [flag, value]
+    argv += draw(st.sampled_from([[], ["--friction", "viscous"], ["--slip-eps", "1e-3"], ["--friction", "magic"]]))
+    argv += draw(st.sampled_from([[], ["--omega0", "2"], ["--n0", "3"]]))
+    return [*argv, "--json"]
+
+
+@generated(_structure_argv, max_examples=40, deadline=None, derandomize=True, suppress_health_check="all")
+def test_generated_steady_states_command_lines_end_in_a_result_or_one_line(argv):
+    """Every generated command line gives strict JSON: a structure (ends ordered and of the three
+    kinds, finite samples) with exit 0, or an error naming one of the flags typed with exit 2."""
+    code, out, err = run_cli(*argv)
+    d = json.loads(out, parse_constant=lambda name: (_ for _ in ()).throw(ValueError(name)))
+    if code == 0:
+        for b in d["branches"]:
+            assert b["ends"][0]["theta"] < b["ends"][1]["theta"]
+            assert {e["kind"] for e in b["ends"]} <= {"pole", "static", "infinite-spin"}
+            assert all(np.isfinite([s["theta"], s["Omega"], s["n"]]).all() for s in b["samples"])
+        assert d["signature"] == " | ".join(b["label"] for b in d["branches"]) or d["signature"] == "none"
+    else:
+        from phasekit import cli
+
+        flags = cli._build_parser().commands["steady-states"]._option_string_actions
+        # the flag typed, or a required one left out (e.g. --a for a spheroid)
+        assert code == 2 and d["status"] == "error" and d["parameter"] in flags, (argv, d)
+        required = {"spheroid": "--a", "tippe-top": "--offset"}.get(argv[argv.index("--body") + 1])
+        assert d["parameter"] in argv or (d["parameter"] == required and required not in argv), (argv, d)
+        assert len(err.strip().splitlines()) == 1

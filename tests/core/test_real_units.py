@@ -1,0 +1,141 @@
+"""Real units: Scale converts by dimension (values, arrays, columns, tables), bodies are made from
+their size, and bad quantities are refused naming the argument."""
+
+import math
+
+import phasekit as pk
+from phasekit.core import units
+
+import numpy as np
+import pytest
+
+B, G = 0.0215, 9.81  # 21.5 mm, standard gravity: the time unit is sqrt(b/g) seconds
+T = math.sqrt(B / G)
+NAN, INF = float("nan"), float("inf")
+
+
+def _raises(name, call):
+    with pytest.raises(pk.ParameterError, match=f"`{name}`") as info:
+        call()
+    assert info.value.param == name
+    return info.value
+
+
+# -- real units ----------------------------------------------------------------------------------
+def test_scale_converts_by_dimension():
+    """phasekit.Scale against hand conversion: time unit sqrt(b/g), rates, lengths, forces."""
+    sc = pk.Scale("21.5 mm", mass="57 g")
+    T = math.sqrt(0.0215 / 9.81)
+    assert sc.time_unit.to("s").magnitude == pytest.approx(T, rel=1e-14)
+    assert sc.dimensionless("30 rev/s") == pytest.approx(30 * 2 * math.pi * T, rel=1e-14)
+    assert sc.dimensionless("1800 rpm") == pytest.approx(sc.dimensionless("30 rev/s"), rel=1e-14)
+    assert sc.dimensionless("12 ms") == pytest.approx(0.012 / T, rel=1e-14)
+    assert sc.dimensionless("0.1 mm") == pytest.approx(0.1 / 21.5, rel=1e-14)
+    assert sc.quantity(9.7, "rate").to("rev/s").magnitude == pytest.approx(9.7 / T / (2 * math.pi), rel=1e-14)
+    assert sc.quantity(1.0, "force").to("N").magnitude == pytest.approx(0.057 * 9.81, rel=1e-14)
+    assert sc.quantity(0.4, "inertia").to("kg*m**2").magnitude == pytest.approx(0.4 * 0.057 * 0.0215**2, rel=1e-14)
+    for kind in ("time", "length", "rate", "speed", "energy"):
+        q = sc.quantity(0.37, kind)
+        assert sc.dimensionless(q, kind) == pytest.approx(0.37, rel=1e-14)
+
+
+def test_scale_converts_arrays_columns_and_tables():
+    import pandas as pd
+
+    sc = pk.Scale("21.5 mm")
+    assert f"{sc.time_unit:.4g~P}" == "46.81 ms" and "ms" in repr(sc) and "**" not in repr(sc)
+    q = sc.to_real(np.array([0.0, 1.0, 2.0]), "time")
+    assert str(q.units) == "millisecond"
+    np.testing.assert_allclose(q.magnitude, np.array([0.0, 1.0, 2.0]) * T * 1e3, rtol=1e-14)
+    np.testing.assert_allclose(sc.quantity([1.0, 2.0], "length").to("m").magnitude, [B, 2 * B], rtol=1e-14)
+    col = sc.to_real(pd.Series([1.0, 3.0], name="Omega"), "rate")
+    assert col.name == "Omega" and col.attrs["unit"] == "rev/s"
+    np.testing.assert_allclose(col.to_numpy(), np.array([1.0, 3.0]) / T / (2 * math.pi), rtol=1e-14)
+    body = pk.Spheroid(1.5)
+    traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, 1.5, omega0=10.5), 3.0)
+    df = traj.sample([0.0, 1.5, 3.0])
+    real = sc.table(df)
+    assert real.attrs["units"]["t"] == "ms" and real.attrs["units"]["X"] == "mm" and real.attrs["units"]["n"] == "rev/s"
+    assert real.attrs["units"]["theta"] == "rad" and real.attrs["units"]["R"] == "M g"  # no mass given
+    np.testing.assert_allclose(real["gap"], df["gap"] * B * 1e3)
+    np.testing.assert_allclose(real["t"], df["t"] * T * 1e3, rtol=1e-14)
+    np.testing.assert_array_equal(real["theta"], df["theta"])
+    heavy = pk.Scale("21.5 mm", mass="57 g").table(df)
+    np.testing.assert_allclose(heavy["R"], df["R"] * 0.057 * G, rtol=1e-12)
+    assert heavy.attrs["units"]["R"] == "N"
+    with pytest.raises(pk.ParameterError, match="`unit`"):
+        sc.to_real(1.0, "time", unit="mm")
+
+
+def test_bodies_of_a_given_size():
+    egg, sc = pk.core.egg_of_size("57 mm", "4.3 cm", w=0.05, mass="57 g")
+    assert egg.a == pytest.approx(57 / 43, rel=1e-14) and egg.w == 0.05
+    assert sc.b.to("mm").magnitude == pytest.approx(21.5, rel=1e-14)
+    top, sc = pk.core.tippe_top_of_size("15 mm", "4.5 mm", A=0.38, C=0.4)
+    assert top.offset == pytest.approx(0.3, rel=1e-14) and (top.A, top.C) == (0.38, 0.4)
+    top, sc = pk.core.tippe_top_of_size("15 mm", "4.5 mm", A="0.38 * 20 g * (15 mm)**2", C=0.4, mass="20 g")
+    assert top.A == pytest.approx(0.38, rel=1e-14)
+
+
+@pytest.mark.parametrize("call, param", [
+    (lambda: pk.Scale("3 s"), "b"),
+    (lambda: pk.Scale("21.5 mm", g="9.81 m/s"), "g"),
+    (lambda: pk.Scale("-1 mm"), "b"),
+    (lambda: pk.Scale("21.5 mm").dimensionless("30 Hz"), "value"),  # pint reads 1 Hz as 1 rad/s
+    (lambda: pk.Scale("21.5 mm").dimensionless("3 kg", "length"), "value"),  # the value is what does not fit the kind
+    (lambda: pk.Scale("21.5 mm").quantity(1.0, "force"), "mass"),
+    (lambda: pk.Scale("twenty mm"), "b"),
+])
+def test_scale_rejects_bad_quantities_by_name(call, param):
+    with pytest.raises(pk.ParameterError) as err:
+        call()
+    assert err.value.param == param
+
+
+@pytest.mark.parametrize("name, call", [
+    ("length", lambda: pk.core.egg_of_size("57 s", "43 mm")),
+    ("breadth", lambda: pk.core.egg_of_size("57 mm", "43 rev/s")),
+    ("breadth", lambda: pk.core.egg_of_size("57 mm", "-43 mm")),
+    ("length", lambda: pk.core.egg_of_size("nan mm", "43 mm")),
+    ("length", lambda: pk.core.egg_of_size(57, "43 mm")),
+    ("length", lambda: pk.core.egg_of_size("570 mm", "43 mm")),  # aspect ratio out of range
+    ("mass", lambda: pk.core.egg_of_size("57 mm", "43 mm", mass="57 mm")),
+    ("g", lambda: pk.core.egg_of_size("57 mm", "43 mm", g="9.81 m/s")),
+    ("w", lambda: pk.core.egg_of_size("57 mm", "43 mm", w=NAN)),
+    ("radius", lambda: pk.core.tippe_top_of_size("15 s", "3 mm")),
+    ("offset", lambda: pk.core.tippe_top_of_size("15 mm", "3 s")),
+    ("offset", lambda: pk.core.tippe_top_of_size("15 mm", "30 mm")),
+    ("A", lambda: pk.core.tippe_top_of_size("15 mm", "3 mm", A="2 g")),
+    ("A", lambda: pk.core.tippe_top_of_size("15 mm", "3 mm", A=True)),
+    ("C", lambda: pk.core.tippe_top_of_size("15 mm", "3 mm", C=NAN)),
+    ("b", lambda: pk.Scale("21.5 s")),
+    ("b", lambda: pk.Scale(21.5)),
+    ("b", lambda: pk.Scale("0 mm")),
+    ("g", lambda: pk.Scale("21.5 mm", g="9.81 m")),
+    ("mass", lambda: pk.Scale("21.5 mm", mass="inf g")),
+    ("kind", lambda: pk.Scale("21.5 mm").unit("foo")),
+    ("kind", lambda: pk.Scale("21.5 mm").unit(["rate"])),
+    ("kind", lambda: pk.Scale("21.5 mm").dimensionless("30 rev/s", "foo")),
+    ("value", lambda: pk.Scale("21.5 mm").dimensionless("30 rev/s", "speed")),
+    ("value", lambda: pk.Scale("21.5 mm").dimensionless("3")),
+    ("value", lambda: pk.Scale("21.5 mm").dimensionless("30 Hz")),
+    ("value", lambda: pk.Scale("21.5 mm").quantity(NAN, "rate")),
+    ("value", lambda: pk.Scale("21.5 mm").quantity("x", "rate")),
+    ("default_unit", lambda: units.as_quantity(3, "x", "foo")),
+    ("x", lambda: units.as_quantity("3j mm", "x")),
+    ("name", lambda: units.as_quantity("3 mm", 5)),
+])
+def test_units_reject(name, call):
+    _raises(name, call)
+
+
+def test_units_valid_by_hand():
+    sc = pk.Scale("21.5 mm")
+    # 30 rev/s in units sqrt(g/b): 30 * 2 pi * sqrt(b/g)
+    assert sc.dimensionless("30 rev/s") == pytest.approx(30 * 2 * math.pi * math.sqrt(0.0215 / 9.81), rel=1e-12)
+    assert sc.dimensionless("30 rev/s", "rate") == pytest.approx(30 * 2 * math.pi * math.sqrt(0.0215 / 9.81), rel=1e-12)
+    assert sc.quantity(1.0, "time").to("s").magnitude == pytest.approx(math.sqrt(0.0215 / 9.81), rel=1e-12)
+    egg, sc2 = pk.core.egg_of_size("57 mm", "43 mm", w=0.05, mass="57 g")
+    assert egg.a == pytest.approx(57 / 43, rel=1e-14) and sc2.b.to("mm").magnitude == pytest.approx(21.5, rel=1e-14)
+    top, sc3 = pk.core.tippe_top_of_size("15 mm", "3 mm")
+    assert top.offset == pytest.approx(0.2, rel=1e-14) and top.A == pytest.approx(0.4 - 0.2**2, rel=1e-14)

@@ -1,0 +1,49 @@
+"""Every long search reports and ends: wall budgets (``max_wall``) of searches, continuations and
+stick boundaries, and the default definition's settle rule, so that an egg that settles tilted
+ends its search with a threshold."""
+
+import phasekit as pk
+
+import pytest
+
+
+@pytest.fixture(scope="module")
+def egg():
+    return pk.core.egg_of_size("57 mm", "43 mm", w=0.05)[0]
+
+
+@pytest.mark.timeout(1200)  # a hang guard: the search takes seconds (without the settle rule, > 300 s)
+def test_an_egg_that_settles_tilted_ends_its_search_with_a_threshold(egg):
+    """A hen's-egg-sized egg, whose runs below the threshold roll tilted in a steady state: they
+    end as settled instead of stick-slipping to t_max, and the search converges."""
+    th = pk.find_threshold(pk.Definition("sliding", "sliding", mu=0.1), egg, guess=11.0, window=1.2, n_coarse=4, tol=2e-3)
+    assert th.status is pk.SearchStatus.CONVERGED and th.bracket[1] / th.bracket[0] - 1 < 2e-3
+    lo, hi = th.bracket
+    below = [o for o in th.outcomes if o.value <= lo]
+    assert all(not o.jumped for o in below) and all(o.jumped for o in th.outcomes if o.value >= hi)
+    settled = [o for o in below if o.how == "settled"]
+    assert settled and all(o.kind == "stuck" and o.t < 200.0 for o in settled)
+
+
+def test_the_default_settle_rule_keeps_the_keys_of_stored_results():
+    """Results stored before the rule existed are found again: its default is not in the key."""
+    d = pk.Definition("sliding", "sliding")
+    assert "settle" not in d.key() and d.key().startswith("amplitude=0.01;eps=None;max_steps=20000000;mu=0.1;")
+    assert "settle=None" in pk.Definition("sliding", "sliding", settle=None).key()
+
+
+@pytest.mark.timeout(1200)  # a hang guard; the budget itself is checked by the reason the search gives
+def test_a_search_with_a_wall_budget_returns_at_once_saying_so(prolate):
+    th = pk.find_threshold(pk.Definition("sliding", "sliding"), prolate, max_wall=0.05, progress=False)
+    assert th.status in (pk.SearchStatus.FAILED, pk.SearchStatus.BRACKET_ONLY) and "max_wall = 0.05 s" in th.reason
+
+
+def test_a_continuation_with_a_wall_budget_marks_the_bodies_it_did_not_reach():
+    defn = pk.Definition("sliding", "sliding")
+    out = pk.thresholds.continue_threshold(defn, [1.5, 1.75, 2.0], max_wall=0.05, progress=False)
+    assert len(out) == 3 and out[-1].status is pk.SearchStatus.FAILED and out[-1].reason.startswith("not searched")
+
+
+def test_a_stick_boundary_search_takes_a_wall_budget(prolate):
+    th = pk.thresholds.find_stick_boundary(pk.Definition("sliding", "sliding"), prolate, 10.0, max_wall=0.01, progress=False)
+    assert th.status in (pk.SearchStatus.FAILED, pk.SearchStatus.BRACKET_ONLY) and "max_wall" in th.reason
