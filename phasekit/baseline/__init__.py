@@ -53,7 +53,7 @@ def numpy_normal_reaction(y, a, A, C, mu):
 
     Examples
     --------
-    >>> import numpy as np, phasekit as pk, phasekit.studies as ps
+    >>> import numpy as np, phasekit as pk
     >>> body = pk.Spheroid(1.5)
     >>> y0 = pk.gyroscopic_start(body, 1.0, omega0=10.0)
     >>> round(float(pk.baseline.numpy_normal_reaction(y0, body.a, body.A, body.C, 0.1)), 6)
@@ -91,7 +91,7 @@ def numpy_rhs(t, y, a, A, C, mu):
 
     Examples
     --------
-    >>> import numpy as np, phasekit as pk, phasekit.studies as ps
+    >>> import numpy as np, phasekit as pk
     >>> body = pk.Spheroid(1.5)
     >>> y0 = pk.gyroscopic_start(body, 1.0, omega0=10.0)
     >>> np.allclose(pk.baseline.numpy_rhs(0.0, y0, body.a, body.A, body.C, 0.1), pk.Model(body, pk.Coulomb(0.1)).rhs(y0))
@@ -138,7 +138,7 @@ class BaselineRun(NamedTuple):
 
     Examples
     --------
-    >>> import numpy as np, phasekit as pk, phasekit.studies as ps
+    >>> import numpy as np, phasekit as pk
     >>> body = pk.Spheroid(1.5)
     >>> y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5)
     >>> run = pk.baseline.solve_ivp_to_jump(y0, 200.0, a=body.a, A=body.A, C=body.C, mu=0.1, method="DOP853")
@@ -201,7 +201,7 @@ def solve_ivp_to_jump(y0, t_end, *, a, A, C, mu, method="BDF", rtol=1e-9, atol=N
 
     Examples
     --------
-    >>> import numpy as np, phasekit as pk, phasekit.studies as ps
+    >>> import numpy as np, phasekit as pk
     >>> body = pk.Spheroid(1.5)
     >>> y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5)
     >>> sol = pk.baseline.solve_ivp_to_jump(y0, 200.0, a=body.a, A=body.A, C=body.C, mu=0.1, method='DOP853')
@@ -309,7 +309,7 @@ def jump_time(method: str, body, y0, mu: float, rtol: float, cap: float | None =
 
     Examples
     --------
-    >>> import numpy as np, phasekit as pk, phasekit.studies as ps
+    >>> import numpy as np, phasekit as pk
     >>> body = pk.Spheroid(1.5)
     >>> y0 = pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5)
     >>> run = pk.baseline.jump_time("CVODES BDF (CasADi)", body, y0, 0.1, 1e-8)
@@ -399,7 +399,7 @@ def work_precision(workloads: dict, rtols, *, mu: float, cap: float, repeats: in
 
     Examples
     --------
-    >>> import numpy as np, phasekit as pk, phasekit.studies as ps
+    >>> import numpy as np, phasekit as pk
     >>> body = pk.Spheroid(1.5)
     >>> wl = {"prolate": (body, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5))}
     >>> rows, refs = pk.baseline.work_precision(wl, [1e-6], mu=0.1, cap=5.0, methods=["scipy DOP853, NumPy rhs"])

@@ -70,8 +70,9 @@ class BatchStats:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
-    >>> stats = ps.BatchStats()
+    >>> import phasekit as pk
+    >>> from phasekit.core import batch
+    >>> stats = batch.BatchStats()
     >>> stats.handed_back("a reason"); (stats.scalar, stats.reasons)
     (1, {'a reason': 1})
     """
@@ -249,7 +250,7 @@ def simulate_batch(models, starts, t_end, *, events=(), lanes: int = LANES, opti
 
     Examples
     --------
-    >>> import numpy as np, phasekit as pk, phasekit.studies as ps
+    >>> import numpy as np, phasekit as pk
     >>> body = pk.Spheroid(1.5)
     >>> starts = [pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=w) for w in (9.0, 10.5)]
     >>> runs = pk.core.simulate_batch(pk.Model(body, pk.Coulomb(0.1)), starts, 300.0, track_minima=False, dense=False)
@@ -369,8 +370,9 @@ def compile_batch(model: Model, events=(), *, lanes: int = LANES, **option_field
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
-    >>> ps.compile_batch(pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)), track_minima=False, dense=False)
+    >>> import phasekit as pk
+    >>> from phasekit.core import batch
+    >>> batch.compile_batch(pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)), track_minima=False, dense=False)
     2
     """
     opts = solver_options(**option_fields)

@@ -161,7 +161,7 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> m = pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1))
     >>> fp = pk.steady.find_fixed_point(m, pk.steady.horizontal_state(10.0), kind='horizontal', value=10.0)
     >>> fp.kind, fp.n_unstable, fp.residual < 1e-10
@@ -246,7 +246,7 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> fps = pk.fixed_points(pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1)), omega0=10.0)
     >>> [(fp.kind, fp.n_unstable) for fp in fps]
     [('horizontal', 1)]

@@ -74,7 +74,7 @@ class FixedPoint:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> fp = pk.steady.linearise(pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1)), pk.steady.horizontal_state(10.0), kind='horizontal')
     >>> isinstance(fp, pk.steady.FixedPoint), fp.n_unstable, len(fp.unstable_directions())
     (True, 1, 1)
@@ -270,7 +270,7 @@ def linearise(model: Model, x, *, kind: str = "state") -> FixedPoint:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> fp = pk.steady.linearise(pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1)), pk.steady.horizontal_state(10.0), kind='horizontal')
     >>> fp.n_unstable, round(float(fp.eigenvalues[0].real), 6)
     (1, 0.089489)

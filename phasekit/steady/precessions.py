@@ -84,7 +84,7 @@ def horizontal_state(omega0: float) -> np.ndarray:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> pk.steady.horizontal_state(10.0).round(6)
     array([ 0.      ,  0.      , 10.      ,  0.      ,  1.570796,  0.      ])
     """
@@ -111,7 +111,7 @@ def vertical_state(n0: float) -> np.ndarray:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> pk.steady.vertical_state(10.0)
     array([ 0.,  0.,  1.,  0.,  0., 10.,  0.,  0.])
     """
@@ -139,7 +139,7 @@ def inverted_state(n0: float) -> np.ndarray:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> pk.steady.inverted_state(10.0).round(6)
     array([  0.,   0.,  -1.,   0.,   0., -10.,   0.,   0.])
     """
@@ -220,7 +220,7 @@ def precession_angles(body, *, omega0: float | None = None, n0: float | None = N
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> [round(t, 6) for t in pk.steady.precession_angles(pk.Egg(1.3, 0.05), omega0=6.0)]
     [0.51274, 1.756111]
     """
@@ -272,7 +272,7 @@ def side_equilibrium(body) -> tuple[float, float]:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> [round(t, 6) for t in pk.steady.side_equilibrium(pk.Egg(1.3, 0.05))]
     [1.676232, 1.74775]
     """
@@ -321,7 +321,7 @@ def horizontal_like_angle(body, thetas) -> float | None:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> egg = pk.Egg(1.3, 0.05)
     >>> round(pk.steady.horizontal_like_angle(egg, pk.steady.precession_angles(egg, omega0=6.0)), 6)
     1.756111
@@ -352,8 +352,9 @@ def intermediate_omega(body, theta: float) -> float | None:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
-    >>> round(ps.intermediate_omega(pk.Spheroid(1.5), 1.0), 6)
+    >>> import phasekit as pk
+    >>> from phasekit.steady import precessions
+    >>> round(precessions.intermediate_omega(pk.Spheroid(1.5), 1.0), 6)
     2.068755
     """
     h, ht, s, c, xP = _geometry(body, theta)
@@ -380,7 +381,7 @@ def intermediate_state(body, theta: float) -> np.ndarray | None:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> from phasekit.steady import precessions
     >>> precessions.intermediate_state(pk.Spheroid(1.5), 1.0).round(6)
     array([0.      , 0.      , 2.068755, 0.      , 1.      , 2.514945])

@@ -44,7 +44,7 @@ class RollingMotion:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> r = pk.steady.rolling_motion(pk.Spheroid(1.5), 1.0, 5.0)
     >>> isinstance(r, pk.steady.RollingMotion), round(r.needs_mu, 6)
     (True, 1.439896)
@@ -91,7 +91,7 @@ def rolling_motion(body, theta: float, Omega: float) -> RollingMotion:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> r = pk.steady.rolling_motion(pk.Spheroid(1.5), 1.0, 5.0)
     >>> round(r.n, 6), round(r.radius, 6)
     (5.678572, 0.057596)

@@ -115,7 +115,7 @@ class SteadyStructure:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> s = pk.steady_structure(pk.Spheroid(1.5, offset=0.2), pk.Viscous(0.1), samples=False)
     >>> isinstance(s, pk.steady.SteadyStructure), s.status.value, s.signature
     (True, 'completed', 'pole0-inf | static-polePi')
@@ -220,7 +220,7 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, sam
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> pk.steady_structure(pk.EccentricSphere(0.3, A=0.38, C=0.4), pk.Viscous(0.3)).signature
     'pole0-polePi'
     >>> pk.steady_structure(pk.Spheroid(1.5, offset=0.2), pk.Coulomb(0.1), samples=False).signature
@@ -345,7 +345,7 @@ def bifurcation_between(lo: SteadyStructure, hi: SteadyStructure) -> str:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> lo = pk.steady_structure(pk.EccentricSphere(0.3, A=0.3, C=0.4), pk.Viscous(0.1), samples=False)
     >>> hi = pk.steady_structure(pk.EccentricSphere(0.3, A=0.45, C=0.4), pk.Viscous(0.1), samples=False)
     >>> lo.signature != hi.signature, isinstance(pk.steady.bifurcation_between(lo, hi), str)

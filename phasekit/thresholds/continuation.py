@@ -45,7 +45,7 @@ def continue_threshold(defn: Definition, bodies, *, max_wall: float | None = Non
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> ths = pk.thresholds.continue_threshold(pk.Definition('sliding', 'sliding'), [1.75, 1.5], hi=120.0, tol=1e-2)
     >>> [th.status.value for th in ths]
     ['converged', 'converged']

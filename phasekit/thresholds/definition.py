@@ -105,7 +105,7 @@ class Definition:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> d = pk.Definition('sliding', 'sliding')
     >>> d.label
     'coulomb mu=0.1 exact; seed: sliding branch d=0.01'
@@ -377,7 +377,7 @@ def evaluate_outcomes(jobs, engine: str = "scalar", stats=None) -> list["Outcome
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> d = pk.Definition('sliding', 'sliding')
     >>> [o.kind for o in pk.thresholds.evaluate_outcomes([(d, 1.5, 12.0), (d, 1.5, 4.0)], engine='batch')]
     ['jump', 'stuck']
@@ -434,7 +434,7 @@ class Outcome:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> o = pk.thresholds.evaluate_outcomes([(pk.Definition('sliding', 'sliding'), 1.5, 12.0)])[0]
     >>> isinstance(o, pk.thresholds.Outcome), o.kind, o.how
     (True, 'jump', 'jumped')

@@ -40,9 +40,10 @@ class Sensitivity:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
+    >>> from phasekit.thresholds import result
     >>> th = pk.find_threshold(pk.Definition('sliding', 'sliding'), 1.5, hi=120.0, guess=9.74, tol=1e-2, sensitivity=True, engine='batch')
-    >>> isinstance(th.sensitivity, ps.Sensitivity), th.sensitivity.amplitudes
+    >>> isinstance(th.sensitivity, result.Sensitivity), th.sensitivity.amplitudes
     (True, (0.005, 0.01, 0.02))
     """
 
@@ -112,7 +113,7 @@ class Threshold:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> th = pk.find_threshold(pk.Definition('sliding', 'sliding'), 1.5, hi=120.0, guess=9.74, tol=1e-2)
     >>> isinstance(th, pk.thresholds.Threshold), th.status.value, round(th.value, 2)
     (True, 'converged', 9.78)

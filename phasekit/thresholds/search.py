@@ -101,7 +101,7 @@ class ThresholdSearch:
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> s = pk.thresholds.ThresholdSearch(pk.Definition('sliding', 'sliding'), pk.Spheroid(1.5), lo=5.0, hi=20.0, guess=None, n_coarse=4, window=1.5, tol=1e-2)
     >>> [round(v, 4) for v in s.ask()]
     [5.0, 7.937, 12.5992, 20.0]
@@ -286,7 +286,7 @@ def run_searches(searches, *, engine: str = "scalar", evaluate=None, stats=None,
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> searches = [pk.thresholds.ThresholdSearch(pk.Definition('sliding', 'sliding'), pk.Spheroid(a), lo=5.0, hi=20.0, guess=g, n_coarse=4, window=1.5, tol=1e-2) for a, g in ((1.5, 9.74), (1.75, 8.16))]
     >>> rounds = pk.thresholds.run_searches(searches, engine='batch')
     >>> [round(s.result().value, 2) for s in searches]
@@ -417,7 +417,7 @@ def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> th = pk.find_threshold(pk.Definition('sliding', 'sliding'), 1.5, hi=120.0, guess=9.74, tol=1e-2)
     >>> th.status.value, round(th.value, 2), th.bracket[0] < th.value < th.bracket[1]
     ('converged', 9.78, True)

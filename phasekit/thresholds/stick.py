@@ -77,7 +77,7 @@ def find_stick_boundary(defn: Definition, body, value: float, *, lo: float = 1e-
 
     Examples
     --------
-    >>> import phasekit as pk, phasekit.studies as ps
+    >>> import phasekit as pk
     >>> th = pk.thresholds.find_stick_boundary(pk.Definition('sliding', 'sliding', t_max=300.0), 1.5, 17.7, tol=0.1)
     >>> th.status.value, 1e-4 < th.value < 0.2
     ('converged', True)

@@ -161,3 +161,19 @@ def test_studies_and_benchmarks_name_only_public_names(script):
             if a.startswith("_") or a in ("cli", "studies") or (b and b not in ns.__all__):
                 bad.append(f"{path.name}: pk.{a}.{b}")
     assert bad == []
+
+
+def test_the_tests_mirror_the_package():
+    """tests/<subpackage>/ for every subpackage of phasekit, plus tests/contracts/."""
+    subpackages = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").is_file()}
+    folders = {p.name for p in (ROOT / "tests").iterdir() if (p / "__init__.py").is_file()}
+    assert subpackages | {"contracts"} == folders
+    flat = [p.name for p in (ROOT / "tests").glob("test_*.py")]
+    assert flat == []
+
+
+def test_no_test_names_an_issue_number():
+    pattern = re.compile(r"\bissues?[ -]?#?\d+|\bissue-\d+", re.I)
+    named = [f"{p.relative_to(ROOT)}:{i}" for p in (ROOT / "tests").rglob("*.py")
+             for i, line in enumerate(p.read_text().splitlines(), 1) if pattern.search(line) and p.name != Path(__file__).name]
+    assert named == [] and not any(pattern.search(p.name) for p in (ROOT / "tests").rglob("*.py"))

@@ -4,7 +4,6 @@ limit."""
 
 
 import phasekit as pk
-import phasekit.studies as ps
 from phasekit.steady import precessions
 from phasekit.steady.fixedpoints import continue_family, find_fixed_point, fixed_points
 from phasekit.steady.linearisation import linearise
@@ -47,7 +46,7 @@ def test_newton_from_a_rough_guess_and_intermediate_family_formula(prolate):
 def test_intermediate_states_found_by_newton_satisfy_the_closed_form_balance():
     body = pk.Spheroid(0.3)
     [inter] = [p for p in pk.fixed_points(pk.Model(body, pk.Viscous(0.1)), omega0=3.0) if p.kind == "intermediate"]
-    assert ps.intermediate_omega(body, inter.y[4]) == pytest.approx(3.0, rel=1e-12)
+    assert precessions.intermediate_omega(body, inter.y[4]) == pytest.approx(3.0, rel=1e-12)
     assert inter.residual < 1e-14
 
 

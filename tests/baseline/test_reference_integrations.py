@@ -1,0 +1,57 @@
+"""The reference implementations phasekit is measured against (phasekit.baseline) agree with it:
+the right-hand side and the normal reaction written by hand in NumPy equal the CasADi fields,
+scipy's integration of that NumPy field finds the same jump time, and the bare heyoka integrator
+stops at the same lift-off as the hybrid loop."""
+
+import phasekit as pk
+
+import numpy as np
+import pytest
+
+
+@pytest.fixture(scope="module")
+def coulomb(prolate):
+    return pk.Model(prolate, pk.Coulomb(0.1))
+
+
+def _states(body, n=20, seed=3):
+    """Sliding states away from the poles, with a slip large enough for Coulomb's law to be smooth."""
+    rng = np.random.default_rng(seed)
+    ys = []
+    for _ in range(n):
+        theta = rng.uniform(0.3, 2.8)
+        y = pk.gyroscopic_start(body, theta, omega0=rng.uniform(4.0, 12.0))
+        y[:2] += rng.uniform(-0.3, 0.3, 2)  # slip
+        y[3] = rng.uniform(-0.5, 0.5)        # Lambda
+        ys.append(y)
+    return ys
+
+
+def test_the_numpy_field_equals_the_casadi_field(prolate, coulomb):
+    for y in _states(prolate):
+        f_np = pk.baseline.numpy_rhs(0.0, y, prolate.a, prolate.A, prolate.C, 0.1)
+        f_ca = np.asarray(coulomb.rhs(y)).ravel()
+        np.testing.assert_allclose(f_np, f_ca, rtol=1e-11, atol=1e-12)
+
+
+def test_the_numpy_normal_reaction_equals_the_model_s(prolate, coulomb):
+    for y in _states(prolate, seed=5):
+        R_np = pk.baseline.numpy_normal_reaction(y, prolate.a, prolate.A, prolate.C, 0.1)
+        assert float(R_np) == pytest.approx(float(coulomb.evaluate("R", y)), rel=1e-11)
+
+
+def test_scipy_on_the_numpy_field_finds_phasekit_s_jump_time(prolate, coulomb, standard_start):
+    t_star = pk.simulate(coulomb, standard_start, 200.0, rtol=1e-12).t_jump
+    run = pk.baseline.solve_ivp_to_jump(standard_start, 200.0, a=prolate.a, A=prolate.A, C=prolate.C, mu=0.1,
+                                        method="DOP853", rtol=1e-11)
+    assert run.status == "ok"
+    assert run.t_jump == pytest.approx(t_star, abs=1e-6)
+
+
+def test_the_bare_taylor_integrator_stops_at_the_hybrid_loop_s_lift_off(coulomb, standard_start):
+    sweep = pk.simulate(coulomb, standard_start, 200.0, dense=False, track_minima=False)
+    ta, _ = pk.baseline.taylor_integrator(coulomb, rtol=1e-9, track_minima=False)
+    ta.state[:] = standard_start
+    ta.time = 0.0
+    ta.propagate_until(200.0)
+    assert ta.time == pytest.approx(sweep.t_jump, abs=1e-9)
