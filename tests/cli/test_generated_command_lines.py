@@ -240,19 +240,19 @@ def check_cli(suite: str, argv: list[str]) -> None:
     COUNTS[suite][classify_cli(argv, code, out, err)] += 1
 
 
-@hang_guard(600)
+@hang_guard(1800)
 @generated(simulate_argv, **fuzz(500))
 def test_cli_simulate(argv):
     check_cli("cli simulate", argv)
 
 
-@hang_guard(900)
+@hang_guard(2400)
 @generated(fixed_points_argv, **fuzz(250))
 def test_cli_fixed_points(argv):
     check_cli("cli fixed-points", argv)
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(gyroscopic_argv, **fuzz(200))
 def test_cli_gyroscopic(argv):
     check_cli("cli gyroscopic", argv)

@@ -118,7 +118,7 @@ SIM_NAMES = {"model", "x0", "t_end", "t0", "stop_at", "restitution", "events", "
              *pk.SolverOptions.names()}
 
 
-@hang_guard(300)
+@hang_guard(1200)
 @generated(models,
           states,
           lambda: st.fixed_dictionaries({}, optional={
@@ -146,7 +146,7 @@ def test_api_simulate(model, x0, kw, t_end):
     record("api simulate", outcome)
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(lambda: st.sampled_from(sorted(BODIES)),
           lambda: real_or_wrong(1.5, 0.1, 1.56, 0.0),
           lambda: st.sampled_from(["omega0", "n0", "both", "none"]),
@@ -168,7 +168,7 @@ def check_fixed_point(fp) -> str:
     return "valid"
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(models,
           lambda: st.one_of(states(), states(8)),
           lambda: st.sampled_from(["horizontal", "vertical", "intermediate", "xyz", None]),
@@ -183,7 +183,7 @@ def test_api_find_fixed_point(model, guess, kind, value, fixed):
     record("api find_fixed_point", outcome)
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(models,
           lambda: st.sampled_from(["omega0", "n0"]),
           lambda: mostly(reals(10.0, 2.0, 1e6, 12.0), st.sampled_from(["1.5", [1.0], True, 1j]), n_good=12),
@@ -199,7 +199,7 @@ def test_api_fixed_points(model, which, value):
     record("api fixed_points", outcome)
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(models,
           lambda: st.one_of(states(), states(8)),
           lambda: st.sampled_from(["state", "horizontal", "", None]),
@@ -214,7 +214,7 @@ def test_api_linearise(model, x, kind):
 DEF_NAMES = {"name", "seed", "mu", "amplitude", "eps", "rtol", "rise_margin", "t_max", "max_steps"}
 
 
-@hang_guard(300)
+@hang_guard(1200)
 @generated(lambda: st.fixed_dictionaries({"seed": st.sampled_from(["viscous", "sliding", "literal", "other"])}, optional={
     "mu": real_or_wrong(0.1, 0.3), "amplitude": real_or_wrong(0.01, 0.1), "eps": real_or_wrong(1e-3, 1e-20),
     "rtol": real_or_wrong(1e-9, 0.0), "rise_margin": real_or_wrong(0.1), "t_max": real_or_wrong(5.0, 20.0),
@@ -245,7 +245,7 @@ def test_api_find_threshold(defn_kw, search_kw, body):
     record("api find_threshold", outcome)
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(lambda: st.sampled_from(["spheroid", "eccentric", "custom"]),
           lambda: reals(1.5, 0.3, 0.6),
           lambda: st.one_of(st.none(), real_or_wrong(0.65, 0.4)),
@@ -267,7 +267,7 @@ def test_api_bodies(kind, p, A, C):
     record("api bodies", outcome)
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(lambda: st.sampled_from(["Coulomb", "Viscous", "RegularisedCoulomb", "friction_law"]),
           lambda: real_or_wrong(0.1, 0.0, 1e3),
           lambda: real_or_wrong(1e-3, 1e-15),
@@ -287,7 +287,7 @@ def test_api_friction_laws(kind, mu, eps, name):
     record("api friction laws", outcome)
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(lambda: st.fixed_dictionaries({}, optional={
     "rtol": real_or_wrong(1e-9, 1e-16, 0.1, 0.2), "atol": st.one_of(st.none(), real_or_wrong(1e-11)),
     "backend": st.sampled_from(["auto", "taylor", "cvodes", "idas", "rk4", None]),
@@ -302,7 +302,7 @@ def test_api_solver_options(kw):
     record("api SolverOptions", outcome)
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(lambda: mostly(st.sampled_from(["theta", "R", "Lambda", "energy"]), st.sampled_from(["", "nonsense"]), wrong(),
               n_good=10),
           lambda: real_or_wrong(0.4, 0.0, 1.0),
@@ -328,7 +328,7 @@ def trajectory():
                                                                                            omega0=10.0), 5.0)
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(lambda: st.one_of(st.lists(reals(0.0, 1.0, 2.5, 5.0, 6.0, -1.0), max_size=5), reals(2.0, 7.0), wrong()),
           **fuzz(120))
 def test_api_trajectory_sample(trajectory, times):
@@ -353,7 +353,7 @@ def starts():
 ENSEMBLE_NAMES = SIM_NAMES | {"starts", "scheduler", "processes", "progress", "max_wall_total"}
 
 
-@hang_guard(300)
+@hang_guard(1200)
 @generated(lambda: st.sampled_from(sorted(LAWS)),
           lambda: starts(),
           lambda: mostly(st.sampled_from([1.0, 3.0, 50.0]), st.sampled_from([0.0, -1.0, math.nan, math.inf, -1e300]), wrong(),
@@ -414,7 +414,7 @@ def _threshold_checks(th) -> str:
     return "failed" if th.status is pk.SearchStatus.FAILED else "valid"
 
 
-@hang_guard(300)
+@hang_guard(1200)
 @generated(lambda: definition_kwargs(),
           lambda: st.sampled_from([1.5, 0.6, 2.0]),
           lambda: st.fixed_dictionaries({}, optional={
@@ -436,7 +436,7 @@ def test_api_find_threshold_with_budgets(defn_kw, a, kw):
     record("api find_threshold budgets", outcome)
 
 
-@hang_guard(300)
+@hang_guard(1200)
 @generated(lambda: mostly(st.sampled_from([8.0, 12.0]), st.sampled_from([-1.0, math.nan]), n_good=6),
           lambda: st.fixed_dictionaries({}, optional={
            "max_wall": mostly(st.sampled_from([None, 2.0, 1e-3]), st.just(-1.0), n_good=6),
@@ -468,7 +468,7 @@ KIND_VALUES = {"length": "57 mm", "time": "12 ms", "rate": "30 rev/s", "speed": 
                "force": "0.5 N", "energy": "1 mJ"}
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(lambda: mostly(st.sampled_from(["21.5 mm", "0.02 m", "1 inch", "3 km", "1e-6 mm"]), lengths(), wrong(), st.just(21.5),
               n_good=12),
           lambda: mostly(st.sampled_from([None, "9.81 m/s**2", "1.62 m/s**2"]), st.sampled_from(["9.81 m", "-9.81 m/s**2"]), n_good=10),
@@ -493,7 +493,7 @@ def test_api_scale(b, g, mass, kind, x):
     record("api Scale", outcome)
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(lambda: mostly(st.sampled_from([("prolate", 1.5), ("prolate", 2.0), ("oblate", 0.6), ("oblate", 0.8)]),
               st.sampled_from([("prolate", 0.6), ("sideways", 1.5), ("prolate", 1.0)]), st.tuples(st.just("prolate"),
                                                                                                       reals(1.5)), n_good=10),
@@ -545,7 +545,7 @@ def runs():
     return out
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(lambda: st.sampled_from(["jump", "hops", "stuck", "vector", "regularised"]),
           lambda: st.one_of(st.lists(st.floats(-0.2, 1.2), min_size=0, max_size=6),
                  st.lists(reals(0.5, 0.0, 1.0), max_size=3), wrong()),
@@ -572,7 +572,7 @@ def test_api_sample_of_every_kind_of_run(runs, which, fractions):
     record("api Trajectory.sample (kinds)", outcome)
 
 
-@hang_guard(120)
+@hang_guard(1800)
 @generated(lambda: st.fixed_dictionaries({}, optional={
     "settle": st.sampled_from([None, True, False, pk.core.Settle(), {"window": 5.0, "tol": 0.1}, {"windows": 1}, "x",
                                {"window": math.nan}]),
@@ -592,7 +592,7 @@ def test_api_new_solver_options(kw):
     record("api SolverOptions (settle, bounces, switches)", outcome)
 
 
-@hang_guard(900)
+@hang_guard(2400)
 @generated(lambda: st.sampled_from([10.0, 20.0, 30.0]),
           lambda: real_or_wrong(0.5, 0.0, 0.95, 1.0),
           lambda: real_or_wrong(2.0, 5.0, 0.5),
