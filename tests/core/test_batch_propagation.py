@@ -34,7 +34,7 @@ def test_an_egg_runs_on_the_batch_engine_compiled_as_the_scalar_one_with_the_sam
     assert scalar.compact_mode and batch.compact_mode
     starts = [pk.gyroscopic_start(egg, np.pi / 2 - 0.01, omega0=w) for w in (6.0, 12.0, 20.0)]
     kw = dict(events=[rise], track_minima=False, dense=False)
-    stats = batch.BatchStats()
+    stats = BatchStats()
     runs = pk.core.simulate_batch(model, starts, 60.0, stats=stats, **kw)
     assert stats.batched == 3 and stats.scalar == 0
     for b, x0 in zip(runs, starts):
