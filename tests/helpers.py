@@ -3,12 +3,18 @@
 import contextlib
 import io
 import json
+import subprocess
+import sys
+from pathlib import Path
 
 import phasekit as pk
 from phasekit import cli
 
 import casadi as ca
 import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]  # the repository
 
 
 def central_jacobian(f, x, h=1e-6):
@@ -51,3 +57,18 @@ class UserSpheroid(pk.bodies.Body):
 
     def height(self, c, shape):
         return ca.sqrt(1 + (shape[0] ** 2 - 1) * c * c)
+
+
+def raises_param(name, call):
+    """``call()`` raises ParameterError naming the argument ``name``; returns the error."""
+    with pytest.raises(pk.ParameterError, match=f"`{name}`") as info:
+        call()
+    assert info.value.param == name
+    return info.value
+
+
+def run_module(*args):
+    """``python -m phasekit ARGS`` in a subprocess at the repository: (exit code, stdout, stderr)."""
+    p = subprocess.run([sys.executable, "-m", "phasekit", *map(str, args)], capture_output=True, text=True,
+                       timeout=300, cwd=ROOT)
+    return p.returncode, p.stdout, p.stderr

@@ -3,7 +3,6 @@ several flags feed one parameter, a flag belongs to another command or is given 
 
 import argparse
 import math
-import pathlib
 import subprocess
 import sys
 
@@ -11,9 +10,8 @@ from phasekit import cli
 
 import pytest
 
-from ..helpers import run_cli, strict_json
+from ..helpers import run_cli, run_module, strict_json
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
 SIM = ["simulate", "--a", "1.5", "--mu", "0.1"]
 TOP = ["simulate", "--body", "tippe-top", "--offset", "0.3", "--mu", "0.3"]
 GYRO = ["gyroscopic", "--a", "1.5", "--mu", "0.1", "--omega0", "10.5", "--theta0", "1.5607963"]
@@ -214,12 +212,6 @@ def test_gyroscopic_reports_the_times_in_the_order_given():
     assert d["theta"][1] == pytest.approx(1.5607963, abs=1e-12) and not math.isclose(d["theta"][0], d["theta"][1])
 
 
-def run_subprocess(*args):
-    p = subprocess.run([sys.executable, "-m", "phasekit", *map(str, args)], capture_output=True, text=True,
-                       timeout=300, cwd=ROOT)
-    return p.returncode, p.stdout, p.stderr
-
-
 def _refused(args, flag):
     code, out, err = run_cli(*args)
     assert code == 2 and out.count("\n") <= 1
@@ -291,7 +283,7 @@ def test_subprocess_names_the_flag_typed_in_one_line_and_strict_json():
 
 
 def test_unstable_manifold_start_beyond_a_simulation_is_one_line_not_a_traceback():
-    code, out, err = run_subprocess("simulate", "--a", 1.5, "--mu", 0.1, "--unstable-manifold", "horizontal",
+    code, out, err = run_module("simulate", "--a", 1.5, "--mu", 0.1, "--unstable-manifold", "horizontal",
                                     "--omega0", 1e6)
     assert code == 2 and out == ""
     assert err.strip().splitlines() == [err.strip()] and err.startswith("phasekit: error: --omega0 ")
@@ -301,7 +293,7 @@ def test_unstable_manifold_start_beyond_a_simulation_is_one_line_not_a_traceback
 def test_extreme_values_give_one_json_error_on_stdout_and_one_line_on_stderr(flag, value):
     args = ["simulate", "--a", "1.5", "--mu", "0.1", "--gyroscopic", "--theta0", "1.5", "--omega0", "10", "--json"]
     args[args.index(flag) + 1] = value
-    code, out, err = run_subprocess(*args)
+    code, out, err = run_module(*args)
     d = strict_json(out)
     assert code == 2 and d["status"] == "error" and d["parameter"] == flag
     assert err.strip() == f"phasekit: error: {d['message']}" and f"got {float(value)!r}" in d["message"]

@@ -4,9 +4,6 @@ API by default, and help text whose stability statements hold for the law they n
 import contextlib
 import io
 import json
-import pathlib
-import subprocess
-import sys
 
 import phasekit as pk
 from phasekit import cli
@@ -15,21 +12,13 @@ from phasekit.cli import main
 import numpy as np
 import pytest
 
-from ..helpers import run_cli, strict_json
-
-ROOT = pathlib.Path(__file__).resolve().parents[2]
+from ..helpers import run_cli, run_module, strict_json
 
 
 @pytest.fixture(autouse=True)
 def _bugs_raise(monkeypatch):
     """An unexpected exception inside the CLI is a test failure, not a one-line message."""
     monkeypatch.setenv(cli.DEBUG_ENV, "1")
-
-
-def run_subprocess(*args):
-    p = subprocess.run([sys.executable, "-m", "phasekit", *map(str, args)], capture_output=True, text=True,
-                       timeout=300, cwd=ROOT)
-    return p.returncode, p.stdout, p.stderr
 
 
 def run_json(args):
@@ -111,7 +100,7 @@ def test_cli_fixed_points_and_api_agree_by_default_on_coulomb():
 
 
 def test_help_says_for_which_law_each_stability_statement_holds():
-    code, out, _ = run_subprocess("fixed-points", "--help")
+    code, out, _ = run_module("fixed-points", "--help")
     assert code == 0
     text = " ".join(out.split())
     assert "--friction coulomb (default) exact stick-slip" in text and "rolling (no-slip) linearisation" in text

@@ -12,7 +12,7 @@ from phasekit import cli
 
 import pytest
 
-from ..helpers import run_cli, strict_json
+from ..helpers import run_cli, run_module, strict_json
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
@@ -21,12 +21,6 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 def _bugs_raise(monkeypatch):
     """An unexpected exception inside the CLI is a test failure, not a one-line message."""
     monkeypatch.setenv(cli.DEBUG_ENV, "1")
-
-
-def run_subprocess(*args):
-    p = subprocess.run([sys.executable, "-m", "phasekit", *map(str, args)], capture_output=True, text=True,
-                       timeout=300, cwd=ROOT)
-    return p.returncode, p.stdout, p.stderr
 
 
 REST = [0.0, 0.0, 0.0, 0.0, 1.0, 0.0]  # released from rest, tilted: `--state 0 0 0 0 1.0 0`
@@ -72,7 +66,7 @@ def test_solver_failure_is_one_line_with_exit_1(monkeypatch):
 @pytest.mark.parametrize("extra, flag", [(["--restitution", "0.5"], "--restitution"),
                                          (["--slip-eps", "1e-3", "--friction", "viscous"], "--slip-eps")])
 def test_options_without_effect_warn_in_one_line_on_stderr(extra, flag):
-    code, out, err = run_subprocess("simulate", "--a", 1.5, "--mu", 0.1, "--gyroscopic", "--theta0", 1.5,
+    code, out, err = run_module("simulate", "--a", 1.5, "--mu", 0.1, "--gyroscopic", "--theta0", 1.5,
                                     "--omega0", 10, "--t-end", 5, "--json", *extra)
     assert code == 0 and strict_json(out)["status"] == "completed"
     [line] = err.strip().splitlines()

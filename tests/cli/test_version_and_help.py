@@ -2,9 +2,6 @@
 commands accept."""
 
 import json
-import pathlib
-import subprocess
-import sys
 
 import phasekit as pk
 from phasekit import cli
@@ -12,21 +9,13 @@ from phasekit import cli
 import numpy as np
 import pytest
 
-from ..helpers import run_cli, strict_json
-
-ROOT = pathlib.Path(__file__).resolve().parents[2]
+from ..helpers import run_cli, run_module, strict_json
 
 
 @pytest.fixture(autouse=True)
 def _bugs_raise(monkeypatch):
     """An unexpected exception inside the CLI is a test failure, not a one-line message."""
     monkeypatch.setenv(cli.DEBUG_ENV, "1")
-
-
-def run_subprocess(*args):
-    p = subprocess.run([sys.executable, "-m", "phasekit", *map(str, args)], capture_output=True, text=True,
-                       timeout=300, cwd=ROOT)
-    return p.returncode, p.stdout, p.stderr
 
 
 SIM = ["simulate", "--a", "1.5", "--mu", "0.1", "--gyroscopic", "--theta0", "1.5607963", "--omega0", "10.5"]
@@ -52,7 +41,7 @@ def test_version_with_json_is_json_and_wins_over_the_rest():
 
 
 def test_version_flag():
-    code, out, _ = run_subprocess("--version")
+    code, out, _ = run_module("--version")
     assert code == 0 and out.strip() == f"phasekit {pk.__version__}"
 
 

@@ -7,16 +7,11 @@ from phasekit.core.impact import collision_matrix, contact_point, impact
 import numpy as np
 import pytest
 
+from ..helpers import raises_param
+
 NAN, INF = float("nan"), float("inf")
 B = pk.Spheroid(1.5)
 A_UNIFORM = (1 + 1.5**2) / 5  # the uniform spheroid's A (C = 2/5)
-
-
-def _raises(name, call):
-    with pytest.raises(pk.ParameterError, match=f"`{name}`") as info:
-        call()
-    assert info.value.param == name
-    return info.value
 
 
 @pytest.mark.parametrize("e, mu", [(0.0, 0.1), (0.5, 0.1), (0.9, 0.3), (1.0, 0.0)])
@@ -60,14 +55,14 @@ GOOD_IMPACT = dict(k=[0.0, 0.0, 1.0], w=[0.0, 0.0, 0.0], v=[0.0, 0.0, -1.0], e=0
 ])
 def test_impact_rejects(name, bad):
     args = dict(GOOD_IMPACT, body=B) | {name: bad}
-    _raises(name, lambda: pk.core.impact(args["body"], args["k"], args["w"], args["v"], e=args["e"], mu=args["mu"]))
+    raises_param(name, lambda: pk.core.impact(args["body"], args["k"], args["w"], args["v"], e=args["e"], mu=args["mu"]))
 
 
 @pytest.mark.parametrize("fn", [contact_point, collision_matrix])
 def test_impact_geometry_rejects(fn):
-    _raises("k", lambda: fn(B, [0.0, 0.0, 3.0]))
-    _raises("k", lambda: fn(B, [NAN, 0.0, 1.0]))
-    _raises("body", lambda: fn(None, [0.0, 0.0, 1.0]))
+    raises_param("k", lambda: fn(B, [0.0, 0.0, 3.0]))
+    raises_param("k", lambda: fn(B, [NAN, 0.0, 1.0]))
+    raises_param("body", lambda: fn(None, [0.0, 0.0, 1.0]))
 
 
 def test_impact_valid_upright_drop():

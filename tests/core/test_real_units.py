@@ -9,16 +9,11 @@ from phasekit.core import units
 import numpy as np
 import pytest
 
+from ..helpers import raises_param
+
 B, G = 0.0215, 9.81  # 21.5 mm, standard gravity: the time unit is sqrt(b/g) seconds
 T = math.sqrt(B / G)
 NAN, INF = float("nan"), float("inf")
-
-
-def _raises(name, call):
-    with pytest.raises(pk.ParameterError, match=f"`{name}`") as info:
-        call()
-    assert info.value.param == name
-    return info.value
 
 
 # -- real units ----------------------------------------------------------------------------------
@@ -126,7 +121,7 @@ def test_scale_rejects_bad_quantities_by_name(call, param):
     ("name", lambda: units.as_quantity("3 mm", 5)),
 ])
 def test_units_reject(name, call):
-    _raises(name, call)
+    raises_param(name, call)
 
 
 def test_units_valid_by_hand():

@@ -12,17 +12,10 @@ from phasekit.theory.surface import Scene, compute_scene
 import numpy as np
 import pytest
 
-from ..helpers import UserSpheroid
+from ..helpers import UserSpheroid, raises_param
 
 NAN, INF = float("nan"), float("inf")
 B = pk.Spheroid(1.5)
-
-
-def _raises(name, call):
-    with pytest.raises(pk.ParameterError, match=f"`{name}`") as info:
-        call()
-    assert info.value.param == name
-    return info.value
 
 
 def _closed_form_6_3(a, Om, th):
@@ -97,12 +90,12 @@ def test_scene_of_a_user_body_equals_the_built_in_one():
     ("Omega", (1e-320, 1.0)),  # overflows
 ])
 def test_surface_n_rejects(name, args):
-    _raises(name, lambda: pk.theory.surface_n(B, *args))
+    raises_param(name, lambda: pk.theory.surface_n(B, *args))
 
 
 def test_surface_n_rejects_a_non_body_and_a_sphere():
-    _raises("body", lambda: pk.theory.surface_n("spheroid", 12.0, 1.0))
-    _raises("theta", lambda: pk.theory.surface_n(pk.Spheroid(1.0), 12.0, 1.0))  # h_theta = 0 everywhere
+    raises_param("body", lambda: pk.theory.surface_n("spheroid", 12.0, 1.0))
+    raises_param("theta", lambda: pk.theory.surface_n(pk.Spheroid(1.0), 12.0, 1.0))  # h_theta = 0 everywhere
 
 
 def test_surface_n_valid_matches_closed_form():
@@ -124,7 +117,7 @@ def test_surface_n_valid_matches_closed_form():
 ])
 def test_exact_boundary_rejects(name, kwargs):
     args = dict(body=B, mu=0.1, Omega=12.0, theta=1.0, Lambda=0.0) | kwargs
-    _raises(name, lambda: pk.theory.exact_boundary(args.pop("body"), args.pop("mu"), args.pop("Omega"), args.pop("theta"),
+    raises_param(name, lambda: pk.theory.exact_boundary(args.pop("body"), args.pop("mu"), args.pop("Omega"), args.pop("theta"),
                                             **args))
 
 
@@ -144,12 +137,12 @@ def test_exact_boundary_valid_is_6_3_at_lambda_zero():
     ("mu", dict(mu=NAN)),
 ])
 def test_scene_rejects(name, kwargs):
-    _raises(name, lambda: Scene("prolate", 1.5, **({"show": frozenset({"surface"})} | kwargs)))
+    raises_param(name, lambda: Scene("prolate", 1.5, **({"show": frozenset({"surface"})} | kwargs)))
 
 
 def test_compute_scene_and_add_trajectory_reject():
-    _raises("scene", lambda: compute_scene("prolate"))
-    _raises("traj", lambda: Scene("prolate", 1.5, values=()).add_trajectory(None))
+    raises_param("scene", lambda: compute_scene("prolate"))
+    raises_param("traj", lambda: Scene("prolate", 1.5, values=()).add_trajectory(None))
 
 
 def test_scene_surface_unchanged_by_the_checks():

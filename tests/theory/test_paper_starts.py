@@ -8,14 +8,9 @@ import phasekit as pk
 import numpy as np
 import pytest
 
+from ..helpers import raises_param
+
 NAN, INF = float("nan"), float("inf")
-
-
-def _raises(name, call):
-    with pytest.raises(pk.ParameterError, match=f"`{name}`") as info:
-        call()
-    assert info.value.param == name
-    return info.value
 
 
 @pytest.mark.parametrize("name, call", [
@@ -31,7 +26,7 @@ def _raises(name, call):
     ("value", lambda: pk.theory.PAPER_CASES["5.2"].state(NAN)),
 ])
 def test_paper_start_rejects(name, call):
-    err = _raises(name, call)
+    err = raises_param(name, call)
     if name == "label":
         assert "5.1, 5.2" in str(err)
     if name == "foo":

@@ -5,15 +5,10 @@ import phasekit as pk
 import numpy as np
 import pytest
 
+from ..helpers import raises_param
+
 NAN, INF = float("nan"), float("inf")
 B = pk.Spheroid(1.5)
-
-
-def _raises(name, call):
-    with pytest.raises(pk.ParameterError, match=f"`{name}`") as info:
-        call()
-    assert info.value.param == name
-    return info.value
 
 
 @pytest.fixture(scope="module")
@@ -66,7 +61,7 @@ def test_plots_reject(k, ax, traj):
     calls = _mpl_bad_calls()
     assert len(calls) == 24
     name, call = calls[k]
-    _raises(name, lambda: call(ax, traj))
+    raises_param(name, lambda: call(ax, traj))
 
 
 def test_plots_valid_draw_the_sampled_data(ax, traj):

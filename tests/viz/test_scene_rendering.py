@@ -13,14 +13,9 @@ from phasekit.theory.surface import Scene, compute_scene
 import numpy as np
 import pytest
 
+from ..helpers import raises_param
+
 NAN = float("nan")
-
-
-def _raises(name, call):
-    with pytest.raises(pk.ParameterError, match=f"`{name}`") as info:
-        call()
-    assert info.value.param == name
-    return info.value
 
 
 @pytest.mark.render
@@ -141,16 +136,16 @@ def test_render_scene_rejects_before_drawing(name, kwargs, tmp_path, scene_data)
 
     kwargs = {k: v.format(tmp=tmp_path) if isinstance(v, str) else v for k, v in kwargs.items()}
     path = kwargs.pop("path", tmp_path / "x.png")
-    _raises(name, lambda: render_scene(scene_data, path, **kwargs))
+    raises_param(name, lambda: render_scene(scene_data, path, **kwargs))
     assert list(tmp_path.iterdir()) == []  # nothing written
 
 
 def test_render_scene_rejects_bad_data_and_exports_without_path(tmp_path, scene_data):
     from phasekit.viz import render_scene
 
-    _raises("data", lambda: render_scene("scene", tmp_path / "x.png"))
-    _raises("gltf", lambda: render_scene(scene_data, None, gltf=str(tmp_path / "x.gltf")))
-    err = _raises("gltf", lambda: render_scene(scene_data, tmp_path / "x.png", gltf=str(tmp_path / "m" / "x.gltf")))
+    raises_param("data", lambda: render_scene("scene", tmp_path / "x.png"))
+    raises_param("gltf", lambda: render_scene(scene_data, None, gltf=str(tmp_path / "x.gltf")))
+    err = raises_param("gltf", lambda: render_scene(scene_data, tmp_path / "x.png", gltf=str(tmp_path / "m" / "x.gltf")))
     assert isinstance(err, pk.PhasekitError)  # an unwritable target is a PhasekitError too, as before
 
 
