@@ -58,9 +58,12 @@ _BARS = re.compile(r"(?<![\\|`])\|(?=[^\s|])([^|`\n]*?[^\s|])\|(?![|_`])")
 
 def _escape_bars(app, what, name, obj, options, lines):
     for i, line in enumerate(lines):
-        if "``" in line or line.lstrip().startswith((">>>", "...")):
+        if line.lstrip().startswith((">>>", "...")):
             continue
-        lines[i] = _BARS.sub(lambda m: "\\|" + m.group(1) + "\\|", line)
+        # the pieces between ``inline literals`` (even places after a split on ``) are text
+        pieces = line.split("``")
+        lines[i] = "``".join(_BARS.sub(lambda m: "\\|" + m.group(1) + "\\|", p) if k % 2 == 0 else p
+                             for k, p in enumerate(pieces))
 
 
 def setup(app):

@@ -117,7 +117,7 @@ def scene(png: Path, quick: bool) -> dict:
     runs = ps.manifold_runs(s, omega_range=(2.0, 6.0), seed_delta=SCENE["seed_delta"], t_end=SCENE["t_end"])
     trs = runs["trajectories"]
     info = render_structure(s, png, trajectories=trs, omega_max=8.0,
-                            title=f"{body!r}, viscous mu = {LAW.mu:g}: its branches (green stable, red unstable) and\n"
+                            title=f"{body!r}, viscous mu = {LAW.mu:g}: its branches coloured by stability and\n"
                                   f"{len(trs)} trajectories from the unstable manifold of the branch state at theta = "
                                   f"{runs['state']['theta']:.3f}, run to the poles" + (" (quick run)" if quick else ""),
                             camera=[(2.9, -2.6, 1.4), (0.7, 0.5, 0.45), (0.0, 0.0, 1.0)])

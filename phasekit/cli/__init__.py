@@ -6,8 +6,11 @@ output is sent to stderr while it runs). Exit codes and what stderr holds:
 0    a result (stderr: at most one ``phasekit: warning:`` line per option that has no
      effect in the chosen mode, e.g. ``--restitution`` with ``--stop-at jump``);
 1    a run that failed (status "failed" and its reason), or a solver error in one line;
-2    bad input: one line naming the flag as typed, its valid range and the plain value;
+2    bad input: one line naming the flag as typed, its valid range and the value as typed
+     (a value typed with units also in phasekit's units); no warning line precedes it;
 130  interrupted.
+Warnings are held while the command computes and printed (before the result) only when the
+inputs were accepted, so a refused command line prints its one error line and nothing else.
 With ``--json`` an error is also one JSON object on stdout: status "error" with the flag
 (``parameter``) and the ``message``, or "failed" / "interrupted" with its ``reason`` too.
 A flag is named as typed (``--spin-about-vertical``, not the ``--n0`` it stands for); a
@@ -25,7 +28,7 @@ import sys
 import warnings
 
 from .commands import COMMANDS
-from .flags import _flag_names
+from .flags import FLAGS, _flag_names, _typed_value
 from .output import (
     _error,
     _finite_json,
@@ -86,10 +89,12 @@ def _main(argv, guard: dict) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     as_json = "--json" in argv
     names = _flag_names(argv)  # a parameter fed by several flags is named by the one typed
+    held: list = []  # the warnings, printed once the inputs are accepted (never before a refusal)
+    say = functools.partial(_say_held, held, names)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("default")
-            warnings.showwarning = functools.partial(_show_warning, names=names)
+            warnings.showwarning = lambda message, *a, **k: held.append(message)
             out, args = _run(argv, as_json)
     except _Exit as exc:
         return exc.code
@@ -98,14 +103,16 @@ def _main(argv, guard: dict) -> int:
     except ParameterError as exc:
         name = names.get(exc.param)  # None: a parameter the CLI does not set (named as in Python)
         flag = name and name.split(" (")[0]
-        message = exc.render(name or f"`{exc.param}`")
+        message = _as_typed(exc, name, _typed_value(argv, flag))
         if flag:  # "|n0| <= ..." in the range: the flag typed, not the Python name
             message = message.replace(f"|{exc.param}|", f"|{flag}|")
         return _error(message, flag, as_json, names=names)
     except PhasekitError as exc:
+        say()
         return _error(str(exc), None, as_json, code=1, names=names)
     except KeyboardInterrupt:
         guard["handled"] = True
+        say()
         return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
     except Exception as exc:  # a bug: one line, not a traceback (PHASEKIT_DEBUG=1 shows it)
         if guard.get("seen"):  # Ctrl-C that compiled code turned into an error of its own
@@ -115,6 +122,7 @@ def _main(argv, guard: dict) -> int:
         first = (str(exc).strip().splitlines() or [""])[0][:200]
         return _error(f"internal error: {type(exc).__name__}: {first} (please report it; set {DEBUG_ENV}=1 for the "
                       "traceback)", None, as_json, code=1)
+    say()
     if guard.get("seen"):  # a Ctrl-C that compiled code swallowed (the run went on): still an interrupted run
         return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
     if as_json:
@@ -122,6 +130,36 @@ def _main(argv, guard: dict) -> int:
     else:
         _print_human(out, getattr(args, "events", False))
     return 1 if out.get("status") == "failed" else 0
+
+
+def _say_held(held: list, names: dict) -> None:
+    """Print the warnings held while the command computed (each once, in order)."""
+    for message in dict.fromkeys(str(m) for m in held):
+        _show_warning(message, UserWarning, "", 0, names=names)
+    held.clear()
+
+
+#: what a number typed with units is converted to, by the kind of its flag
+CONVERTED = {"angle": "rad", "rate": "in units of sqrt(g/b)", "time": "in units of sqrt(b/g)", "length": "in units of b"}
+
+
+def _as_typed(exc, name: str | None, typed: str | None) -> str:
+    """The message of a refused value, ending with the value as typed: a value typed with units
+    ('200 deg') is shown so, with its number in phasekit's units (not that number alone)."""
+    from .inputs import UNIT_OPTIONS
+
+    message = exc.render(name or f"`{exc.param}`")
+    try:
+        float(typed)
+        return message  # a plain number: the value is what was typed (and None: nothing typed)
+    except (TypeError, ValueError):
+        if typed is None:
+            return message
+    kind = next((k for dest, k in UNIT_OPTIONS.items() if name and name.split(" (")[0] == FLAGS.get(dest)), None)
+    value = exc.value
+    converted = f" ({float(value)!r} {CONVERTED[kind]})" if kind and isinstance(value, (int, float)) and \
+        not isinstance(value, bool) else ""
+    return f"{name or f'`{exc.param}`'} {exc.expected}, got {typed!r}{converted}."
 
 
 def main_entry() -> None:

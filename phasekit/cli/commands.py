@@ -13,14 +13,23 @@ from .parser import _UsageError
 
 
 def _cmd_simulate(args) -> dict:
-    from .params import simulate_start
+    from .params import run_start
 
     scale = _apply_units(args)
-    out = _simulate_args(args, simulate_start)
+    traj, seed = _simulate_args(args, run_start, scale)
+    out = _run_output(traj, seed)
     if args.si:
+        from .._runtime.errors import ParameterError
         from .params import real_units_report
 
-        out["si"] = real_units_report(out, scale)
+        try:
+            out["si"] = real_units_report(out, scale)
+            out["si"]["flight_summary"] = _summary_in_real_units(out["flight_summary"], scale)
+        except ParameterError as exc:  # a number of the run overflows in ms, mm, ... (e.g. a huge --X0 with --size)
+            if exc.param != "value":
+                raise
+            raise _UsageError(f"--si cannot report this run in real units: one of its values {exc.expected} (beyond "
+                              f"double precision with --size {args.size!r}); leave out --si.", "--si") from None
     return out
 
 
@@ -35,8 +44,8 @@ def _cmd_animate(args) -> dict:
     size = (480, 360) if args.window_size is None else tuple(args.window_size)
     check_movie_options(args.out, frames=args.frames, fps=args.fps, timing=args.timing, gap_scale=args.gap_scale,
                         camera=args.camera, panel=args.panel, window_size=size, scale=scale)
-    traj, seed = _simulate_args(args, run_start)
-    out = traj.to_dict()
+    traj, seed = _simulate_args(args, run_start, scale)
+    out = _run_output(traj, seed)
     if traj.status.value == "failed":
         return out
     if str(args.out).lower().endswith(".png"):
@@ -51,38 +60,88 @@ def _cmd_animate(args) -> dict:
     return out
 
 
-def _simulate_args(args, runner):
-    """Build the body, start and options from ``args`` and call ``runner`` (simulate_start or
-    animate_start) with them."""
+def _run_output(traj, seed) -> dict:
+    """The JSON dict of a run: the Trajectory's, its start's seed, every flight and their summary
+    (the dict's ``flight`` is the first flight only)."""
+    out = traj.to_dict()
+    if seed is not None:
+        out["seed"] = seed
+    out["flights"] = [f.to_dict() for f in traj.flights]
+    out["flight_summary"] = traj.flight_summary()
+    return out
+
+
+def _summary_in_real_units(summary: dict, scale) -> dict:
+    """The flight summary's times and gap in ms and mm (its count and fraction as they are)."""
+    from ..core.units import DISPLAY_UNITS
+
+    kinds = {"t_first_liftoff": "time", "gap_max": "length", "t_gap_max": "time", "longest_flight": "time",
+             "t_longest_flight": "time", "t_airborne": "time"}
+    return {k: v if v is None or k not in kinds else
+            float(scale.quantity(v, kinds[k]).to(DISPLAY_UNITS[kinds[k]]).magnitude) for k, v in summary.items()}
+
+
+def _simulate_args(args, runner, scale=None):
+    """Build the body, start and options from ``args`` and call ``runner`` (run_start) with them.
+    Every value is checked before a warning about it is given (a refused flag is one line)."""
+    from .._runtime.validate import check_range
+    from ..core.simulate import solver_options
+
     if args.paper_start is not None:
         _paper_body(args)
     body = _body(args)
     start = _start_of(args, body)
+    friction, mu, eps = _law_args(args)
+    opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall)
+    solver_options(**opts)
+    _check_reach(args, scale)
+    restitution = 0.0 if args.restitution is None else check_range("restitution", args.restitution, 0.0, 1.0,
+                                                                     closed="lr")
     if args.restitution is not None and args.stop_at in ("jump", "touchdown"):
         warnings.warn(f"--restitution has no effect with --stop-at {args.stop_at} (impacts happen with --stop-at none "
                       "or --stop-at NAME=VALUE)")
     if args.atol is not None and args.backend == "taylor":
         warnings.warn("--atol has no effect with --backend taylor (the Taylor method has the one tolerance --rtol)")
-    friction, mu, eps = _law_args(args)
-    opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall)
     return runner(body=body, friction=friction, mu=mu, slip_eps=eps, start=start, t_end=args.t_end,
-                  stop_at=args.stop_at, restitution=0.0 if args.restitution is None else args.restitution,
-                  chart=args.chart, options=opts, pose0=_pose_of(args))
+                  stop_at=args.stop_at, restitution=restitution, chart=args.chart, options=opts, pose0=_pose_of(args))
+
+
+def _check_reach(args, scale) -> None:
+    """Refuse at once an end time that the wall budget cannot reach (rather than run for all of
+    --max-wall and fail): no run covers more than REACH_PER_S time units per wall-clock second."""
+    import math
+
+    from ..core.simulate import REACH_PER_S
+
+    reach = REACH_PER_S * args.max_wall
+    if not (isinstance(args.t_end, float) and math.isfinite(args.t_end) and args.t_end > reach):
+        return  # a non-finite end time is refused by the run's own checks, naming it
+    typed = getattr(args, "typed_units", {}).get("t_end")
+    shown = f"{typed!r} ({args.t_end:.6g} in units of sqrt(b/g))" if typed else f"{args.t_end:g}"
+    real = f" = {scale.quantity(reach, 'time').to('s').magnitude:.3g} s" if scale is not None else ""
+    raise _UsageError(f"--t-end {shown} cannot be reached within --max-wall {args.max_wall:g} s: no run covers more "
+                      f"than {REACH_PER_S:g} time units per second of wall-clock time, so --t-end must lie in (0, "
+                      f"{reach:g}]{real} (or give a larger --max-wall).", "--t-end")
 
 
 def _cmd_fixed_points(args) -> dict:
+    from .._runtime.validate import check_positive
     from .params import fixed_points_report
 
     friction, mu, eps = _law_args(args)
-    return fixed_points_report(body=_body(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0, n0=args.n0)
+    check_positive("max_wall", args.max_wall)  # as simulate's --max-wall
+    return fixed_points_report(body=_body(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0, n0=args.n0,
+                               max_wall=args.max_wall)
 
 
 def _cmd_steady_states(args) -> dict:
+    from .._runtime.validate import check_positive
     from .params import steady_structure_report
 
     friction, mu, eps = _law_args(args)
+    check_positive("max_wall", args.max_wall)  # as simulate's --max-wall
     return steady_structure_report(body=_body(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0,
-                                   n0=args.n0)
+                                   n0=args.n0, max_wall=args.max_wall)
 
 
 def _cmd_gyroscopic(args) -> dict:
@@ -100,6 +159,15 @@ def _cmd_gyroscopic(args) -> dict:
     return out
 
 
+def _cmd_cache(args) -> dict:
+    """The disk cache's directory and contents; with --clear, what was deleted."""
+    from ..core.engines.cache import clear_disk, disk_usage
+
+    if args.clear:
+        return {"cleared": True, **clear_disk()}
+    return {"cleared": False, **disk_usage()}
+
+
 COMMANDS = {"simulate": _cmd_simulate, "animate": _cmd_animate, "fixed-points": _cmd_fixed_points,
             "steady-states": _cmd_steady_states,
-            "gyroscopic": _cmd_gyroscopic}
+            "gyroscopic": _cmd_gyroscopic, "cache": _cmd_cache}

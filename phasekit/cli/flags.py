@@ -56,3 +56,12 @@ def _flags_in(text: str, names: dict = FLAGS) -> str:
     text = re.sub(r"`(\w+)`\s*=\s*'([^']*)'", lambda m: f"{names[m.group(1)]} {m.group(2)}" if m.group(1) in names
                   else m.group(0), text)
     return re.sub(r"`(\w+)`", lambda m: names.get(m.group(1), m.group(0)), text)
+
+
+def _typed_value(argv, flag: str | None) -> str | None:
+    """The text typed after ``flag`` (``--flag VALUE`` or ``--flag=VALUE``), or None."""
+    argv = list(argv)
+    for i, a in enumerate(argv):
+        if isinstance(a, str) and flag and a.split("=", 1)[0] == flag:
+            return a.split("=", 1)[1] if "=" in a else (argv[i + 1] if i + 1 < len(argv) else None)
+    return None

@@ -13,11 +13,50 @@ import warnings
 from .flags import FLAGS
 from .parser import _UsageError, _WithUnits
 
+#: the smallest --A and --C, units M b^2 (a body's own are ~0.1-0.5): rates of order 1/C follow
+#: from smaller ones, and the steady states' residuals grow as 1/C^2 (measured: 4e-8 at C = 1e-9,
+#: 4e+283 and an overflow at C = 1e-300), beyond what double precision resolves
+MOMENT_MIN = 1e-6
+
 
 def _body(args):
+    from .._runtime.errors import ParameterError, plain
     from ..core.model import make_body
 
-    return make_body(args.body, a=args.a, offset=args.offset, w=args.w, A=args.A, C=args.C)
+    try:
+        body = make_body(args.body, a=args.a, offset=args.offset, w=args.w, A=args.A, C=args.C)
+    except ParameterError as exc:
+        _moments_relation(args, exc)
+        raise
+    for name in ("A", "C"):  # after the library's checks: a relation of the two is said first
+        if getattr(args, name) is not None and getattr(body, name) < MOMENT_MIN:
+            raise _UsageError(f"--{name} must be at least {MOMENT_MIN:g} (units M b^2; a smaller moment gives rates of "
+                              f"order 1/{name} that double precision cannot follow), got {plain(getattr(args, name))}.",
+                              f"--{name}")
+    return body
+
+
+def _moments_relation(args, exc) -> None:
+    """C <= 2A fails: name the moment typed (the library names C, typed or not), and say which
+    value is the body's default."""
+    from .._runtime.errors import plain
+    from ..core.model import make_body
+
+    if exc.param != "C" or "C <= 2A" not in exc.expected or (args.A is None and args.C is None):
+        return
+    try:  # the body's own moments, where a flag leaves one out
+        own = make_body(args.body, a=args.a, offset=args.offset, w=args.w)
+    except ValueError:
+        return
+    A, C = (own.A if args.A is None else args.A), (own.C if args.C is None else args.C)
+    a_text = f"the default A = {A:.6g}" if args.A is None else f"--A {plain(args.A)}"
+    c_text = f"the default C = {C:.6g}" if args.C is None else f"--C {plain(args.C)}"
+    flag = "--A" if args.C is None else "--C"
+    first, second = (a_text, c_text) if flag == "--A" else (c_text, a_text)
+    fix = f"--A >= {C / 2:.6g}" if flag == "--A" else f"--C <= {2 * A:.6g}"
+    raise _UsageError(f"{first} with {second} violates C <= 2A (triangle inequality of principal moments): give "
+                      f"{fix}" + ("" if args.A is not None and args.C is not None else
+                                  f", or give {'--C' if flag == '--A' else '--A'} too") + ".", flag)
 
 
 def _law_args(args) -> tuple[str, float, float | None]:
@@ -54,10 +93,12 @@ def _apply_units(args):
     from ..core.units import as_quantity
 
     scale = _scale_of(args)
+    args.typed_units = {}  # the values as typed, for messages (the args then hold numbers)
     for dest, kind in UNIT_OPTIONS.items():
         value = getattr(args, dest, None)
         if not isinstance(value, _WithUnits):
             continue
+        args.typed_units[dest] = str(value)
         flag = FLAGS[dest]
         if kind == "angle":
             q = as_quantity(str(value), dest)
@@ -133,6 +174,14 @@ def _manifold_start(args, body) -> dict:
                }.get(args.unstable_manifold, "")
         raise _UsageError(f"--unstable-manifold must be one of {', '.join(states)} for the {args.body} body{why}, "
                           f"got {plain(args.unstable_manifold)}.", "--unstable-manifold")
+    rate, wrong = ("--n0", "--omega0") if args.unstable_manifold in ("vertical", "inverted") else ("--omega0", "--n0")
+    if getattr(args, wrong[2:]) is not None:
+        raise _UsageError(f"{wrong} does not go with --unstable-manifold {args.unstable_manifold}: its steady state is "
+                          f"given by {rate}", wrong)
+    if getattr(args, rate[2:]) is None:
+        raise _UsageError(f"--unstable-manifold {args.unstable_manifold} needs {rate} (the "
+                          f"{'spin n0' if rate == '--n0' else 'precession rate Omega0'} of its steady state)",
+                          "--unstable-manifold")
     return dict(kind="unstable-manifold", state=args.unstable_manifold,
                 delta=0.01 if args.delta is None else args.delta, omega0=args.omega0, n0=args.n0,
                 branch="+0" if args.branch is None else args.branch,
@@ -145,13 +194,14 @@ def _start_of(args, body) -> dict:
     _refuse(args, ["delta", "branch", "seed_law"], "goes with --unstable-manifold only")
     if args.gyroscopic:
         if args.theta0 is None:
-            raise _UsageError("--theta0 is required with --gyroscopic (a number in (0, pi))", "--theta0")
-        if (args.omega0 is None) == (args.n0 is None):
-            raise _UsageError("--gyroscopic needs exactly one of --omega0 (prolate) or --n0 (oblate)", "--omega0")
+            raise _UsageError("--gyroscopic needs --theta0 (a number in (0, pi))", "--gyroscopic")
+        if (args.omega0 is None) == (args.n0 is None):  # named: one typed (both), or --gyroscopic (neither)
+            raise _UsageError("--gyroscopic needs exactly one of --omega0 (prolate) or --n0 (oblate)",
+                              "--gyroscopic" if args.omega0 is None else "--n0")
         return dict(kind="gyroscopic", theta0=args.theta0, omega0=args.omega0, n0=args.n0)
     if args.spin_about_vertical is not None:
         if args.theta0 is None:
-            raise _UsageError("--theta0 is required with --spin-about-vertical (a number in [0, pi])", "--theta0")
+            raise _UsageError("--spin-about-vertical needs --theta0 (a number in [0, pi])", "--spin-about-vertical")
         _refuse(args, ["omega0", "n0"], "does not go with --spin-about-vertical (it sets the spin)")
         return dict(kind="spin-about-vertical", theta0=args.theta0, n0=args.spin_about_vertical)
     if args.paper_start is not None:

@@ -22,6 +22,8 @@ def _fmt(v, spec: str = ".10g") -> str:
 
 def _print_structure(out: dict) -> None:
     print(f"signature: {out['signature']}   (linearisation: {out['linearised_law']})")
+    if out.get("degenerate"):
+        print(f"({out['degenerate']})")
     for i, b in enumerate(out["branches"]):
         ends = " -> ".join(f"{e['kind']} at theta = {_fmt(e['theta'], '.10f')}"
                            + (f" (spin n = {_fmt(e['n'], '.8g')})" if e["kind"] == "pole" else "") for e in b["ends"])
@@ -47,7 +49,22 @@ def _print_structure(out: dict) -> None:
                   f"{fp['classification']}")
 
 
+def _print_cache(out: dict) -> None:
+    if out["directory"] is None:
+        print("the disk cache is off ($PHASEKIT_CACHE is empty): every process compiles its integrators")
+        return
+    verb = "deleted" if out["cleared"] else "holds"
+    mb = lambda part: f"{out[part]['files']} files, {out[part]['bytes'] / 1e6:.1f} MB"  # noqa: E731
+    print(f"{out['directory']} {verb}: compiled integrators {mb('integrators')}; heyoka's object code "
+          f"{mb('heyoka')} (kept under {out['heyoka_limit_bytes'] / 2**30:g} GiB)")
+
+
 def _print_human(out: dict, events: bool) -> None:
+    if "cleared" in out:
+        _print_cache(out)
+        return
+    if ("signature" in out or "fixed_points" in out) and out.get("status") == "failed":
+        print(f"status: failed ({out.get('reason') or 'the computation could not continue'})")
     if "signature" in out:
         _print_structure(out)
         return
@@ -77,7 +94,9 @@ def _print_human(out: dict, events: bool) -> None:
         if out.get(key) is not None:
             print(f"{key}: {_fmt(out[key])}")
     if out.get("flight"):
-        print("flight: " + ", ".join(f"{k}={_fmt(v)}" for k, v in out["flight"].items()))
+        print("first flight: " + ", ".join(f"{k}={_fmt(v)}" for k, v in out["flight"].items()))
+    if (out.get("flight_summary") or {}).get("n_flights"):
+        print(_flights_line(out["flight_summary"], out["t_end"] - out.get("t0", 0.0), "", "b"))
     if out.get("pose_end"):
         print("pose at the end: " + ", ".join(f"{k}={_fmt(v, '.8g')}" for k, v in out["pose_end"].items()))
     si = out.get("si")
@@ -92,15 +111,47 @@ def _print_human(out: dict, events: bool) -> None:
             print(f"  first flight: from {_fmt(fl['t_liftoff'], '.6g')} {u['time']}, lasting "
                   f"{_fmt(fl.get('duration'), '.4g')} {u['time']}, largest gap "
                   f"{_fmt(fl['gap_max'], '.4g')} {u['length']}")
+        if (si.get("flight_summary") or {}).get("n_flights"):
+            span = si["t_end"] - (si.get("t0") or 0.0)
+            print("  " + _flights_line(si["flight_summary"], span, f" {u['time']}", u["length"]))
         if si.get("state_end"):
             st = si["state_end"]
             print(f"  at the end: Omega={_fmt(st['Omega'], '.5g')} {u['rate']}, n={_fmt(st['n'], '.5g')} {u['rate']}")
-    print(f"{out['n_events']} events, {out['n_steps']} steps, {out['wall_s'] * 1e3:.1f} ms, "
-          f"{out['chart']} chart, {out['backend']}" + ("" if events else " (list the events with --events)"))
+    print(f"{out['n_events']} events, {out['n_steps']} steps, {out['chart']} chart, {out['backend']}"
+          + ("" if events else " (list the events with --events)"))
+    print(f"computed in {_wall_clock(out['wall_s'])} of wall-clock time")
     if events:
         for e in out["events"]:
             print(f"  {e['kind']:<12s} t = {_fmt(e['t'])}  {e['mode_before']} -> {e['mode_after']}"
                   + (f"  ({e['detail']})" if e.get("detail") else ""))
+
+
+def _flights_line(fs: dict, span: float, time_unit: str, length_unit: str) -> str:
+    """Every flight of a run on one line (Trajectory.flight_summary), times in ``time_unit``
+    (empty: phasekit's, written t = ...) and the gap in ``length_unit``."""
+    def at(t):
+        return f"{_fmt(t, '.6g')}{time_unit}" if time_unit else f"t = {_fmt(t, '.6g')}"
+
+    def dur(t):
+        return f"{_fmt(t, '.4g')}{time_unit}"
+
+    n, frac = fs["n_flights"], fs.get("airborne_fraction")
+    line = (f"flights: {n}, {'the first ' if n > 1 else ''}lifting off at {at(fs['t_first_liftoff'])}; airborne "
+            f"{dur(fs['t_airborne'])} of {dur(span)}" + (f" ({100 * frac:.3g}% of the run)" if frac is not None else "")
+            + f"; longest flight {dur(fs['longest_flight'])} (from {at(fs['t_longest_flight'])})")
+    if fs.get("gap_max") is not None:
+        line += f"; largest gap {_fmt(fs['gap_max'], '.4g')} {length_unit} at {at(fs['t_gap_max'])}"
+    return line
+
+
+def _wall_clock(seconds: float) -> str:
+    """A wall-clock duration in a unit that reads well: ms below a second, s above, minutes too
+    past two of them."""
+    if seconds * 1e3 < 999.5:  # (not "1e+03 ms")
+        return f"{seconds * 1e3:.3g} ms"
+    if seconds < 120.0:
+        return f"{seconds:.1f} s"
+    return f"{seconds:.0f} s ({seconds / 60:.1f} min)"
 
 
 def _nonfinite(obj, path: str = "") -> str | None:

@@ -11,6 +11,7 @@ import numpy as np
 
 from .._runtime.errors import ParameterError
 from .._runtime.validate import check_choice, check_finite
+from .._runtime.watch import check_max_wall, wall_deadline
 from ..bodies.body import Body
 from ..bodies.spheroid import Spheroid
 from ..core.charts import choose_chart
@@ -140,43 +141,63 @@ def real_units_report(out: dict, scale) -> dict:
     return rep
 
 
-def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, omega0=None, n0=None) -> dict:
-    """All steady states at the given Omega0 or n0 with their linear stability (JSON dict)."""
-    from ..steady.fixedpoints import fixed_points
+def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, omega0=None, n0=None,
+                        max_wall=None) -> dict:
+    """All steady states at the given Omega0 or n0 with their linear stability (JSON dict), with
+    status "completed", or "failed" and the reason when the wall budget ``max_wall`` (seconds)
+    runs out."""
+    from .._runtime.validate import check_range
+    from ..steady.branches import _degeneracy
+    from ..steady.fixedpoints import FAMILY_MAX, fixed_points
 
     if (omega0 is None) == (n0 is None):
         raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
-    from .._runtime.validate import check_range
-    from ..steady.fixedpoints import FAMILY_MAX
-
     law = friction_law(friction, mu, slip_eps)
     name, value = ("omega0", omega0) if omega0 is not None else ("n0", n0)
     check_range(name, value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")
-    pts = fixed_points(Model(body, law, "euler"), omega0=omega0, n0=n0)
+    max_wall = check_max_wall(max_wall)
+    status, reason = "completed", None
+    with wall_deadline(max_wall):
+        try:
+            pts = fixed_points(Model(body, law, "euler"), omega0=omega0, n0=n0)
+        except TimeoutError as exc:
+            pts, status, reason = [], "failed", f"not finished: {exc}"
     note = ("the inverted vertical (theta = pi) is the vertical with k reversed: the same state for a flip-symmetric body"
             if body.flip_symmetric else "theta = 0 and theta = pi are different states of this body")
+    degenerate = _degeneracy(body)
+    if degenerate:
+        note += "; " + degenerate
     linearised = "coulomb-rolling" if law.has_rolling_mode else law.name
-    return {"fixed_points": [p.to_dict() for p in pts], "model": Model(body, law).to_dict(), "note": note,
+    return {"status": status, **({"reason": reason} if reason else {}), "fixed_points": [p.to_dict() for p in pts],
+            "model": Model(body, law).to_dict(), "note": note, **({"degenerate": degenerate} if degenerate else {}),
             "linearised_law": linearised, "stability": STABILITY_MEANING.get(linearised, "the law's own field")}
 
 
-def steady_structure_report(*, body: Body, mu, friction="coulomb", slip_eps=None, omega0=None, n0=None) -> dict:
+def steady_structure_report(*, body: Body, mu, friction="coulomb", slip_eps=None, omega0=None, n0=None,
+                            max_wall=None) -> dict:
     """The steady-state structure of ``body`` (phasekit.steady.structure) as a JSON dict; with
-    ``omega0`` or ``n0`` also the states on it at that rate or spin."""
+    ``omega0`` or ``n0`` also the states on it at that rate or spin. Status "failed" and the
+    reason when the structure fails or the wall budget ``max_wall`` (seconds) runs out."""
     from .._runtime.validate import check_range
     from ..steady.fixedpoints import FAMILY_MAX
     from ..steady.structure import steady_structure
 
     law = friction_law(friction, mu, slip_eps)
-    structure = steady_structure(body, law)
-    out = structure.to_dict()
-    linearised = "coulomb-rolling" if law.has_rolling_mode else law.name
-    out.update(linearised_law=linearised, stability=STABILITY_MEANING.get(linearised, "the law's own field"))
     if omega0 is not None or n0 is not None:
         name, value = ("omega0", omega0) if omega0 is not None else ("n0", n0)
         check_range(name, value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")
-        out["states_at"] = f"{'Omega0' if omega0 is not None else 'n0'} = {value:g}"
-        out["states"] = [p.to_dict() for p in structure.at(omega0=omega0, n0=n0)]
+    max_wall = check_max_wall(max_wall)
+    with wall_deadline(max_wall):
+        structure = steady_structure(body, law)
+        out = structure.to_dict()
+        linearised = "coulomb-rolling" if law.has_rolling_mode else law.name
+        out.update(linearised_law=linearised, stability=STABILITY_MEANING.get(linearised, "the law's own field"))
+        if (omega0 is not None or n0 is not None) and out["status"] == "completed":
+            out["states_at"] = f"{'Omega0' if omega0 is not None else 'n0'} = {value:g}"
+            try:
+                out["states"] = [p.to_dict() for p in structure.at(omega0=omega0, n0=n0)]
+            except TimeoutError as exc:
+                out.update(status="failed", reason=f"not finished: {exc}", states=[])
     return out
 
 

@@ -68,7 +68,7 @@ class _Parser(argparse.ArgumentParser):
                 counts = {f: 0 if a.nargs == 0 else 1 if a.nargs is None else a.nargs
                           for f, a in self._option_string_actions.items()}
                 takes = {0: "no value", 1: "one value"}.get(counts.get(flag), f"exactly {counts.get(flag)} numbers")
-                message += f" (a value that follows no option: {flag} takes {takes})" if flag else \
+                message += f" (a value too many after {flag}, which takes {takes})" if flag else \
                     " (a value that follows no option)"
         raise _UsageError(message, flag)
 
@@ -86,12 +86,29 @@ class _Parser(argparse.ArgumentParser):
         return f"did you mean {close[0]}?" if close else f"not an option {where} (see --help)"
 
     def _owner_of(self, token: str) -> str | None:
-        """The option written last before a stray ``token`` on the command line."""
+        """The option a stray ``token`` follows: the command line read as argparse reads it
+        (each option takes its number of values, then this command's positionals theirs), the
+        first value taken by nothing that equals ``token`` (not merely the first equal text:
+        in ``--offset 0.3 --mu 0.3 0.3`` the stray 0.3 follows --mu)."""
         argv = list(self.argv)
-        if token not in argv:
-            return None
-        before = [a for a in argv[:argv.index(token)] if a.startswith("--")]
-        return before[-1] if before else None
+        argv = argv[:argv.index("--")] if "--" in argv else argv
+        if self.command is not None and self.command in argv:
+            argv = argv[argv.index(self.command) + 1:]
+        positionals = sum(1 for a in self._actions if not a.option_strings)
+        owner, left = None, 0
+        for tok in argv:
+            if tok.startswith("-") and len(tok) > 1 and not self._negative_number_matcher.match(tok):
+                owner = tok.split("=", 1)[0]
+                action = self._option_string_actions.get(owner)
+                n = 0 if action is None or "=" in tok else action.nargs
+                left = {None: 1, "?": 1, "+": math.inf, "*": math.inf}.get(n, n)
+            elif left:
+                left -= 1
+            elif positionals:
+                positionals -= 1
+            elif tok == token:
+                return owner
+        return owner if token in argv else None
 
 
 class _Version(argparse.Action):
@@ -131,15 +148,36 @@ class _WithUnits(str):
     phasekit's units once --size and --g are known (:func:`phasekit.cli.inputs._apply_units`)."""
 
 
+#: the powers in a unit ("m/s^2", "s**-1"): digits that are not the value's number
+_POWERS = re.compile(r"(\*\*|\^)\s*\(?\s*[-+]?[\d.]+\s*\)?")
+
+
+def _has_number(text: str) -> bool:
+    """Whether a value with units has a number of its own: pint reads a unit alone ("mm",
+    "rev/s") as one of it, which is never what a user typing a flag's value meant."""
+    return bool(re.search(r"\d|\b(inf|infinity|nan)\b", _POWERS.sub("", text), flags=re.I))
+
+
 def _real_or_units(text: str):
     """A plain number (phasekit's units), or a value with units such as '41 rev/s'."""
     try:
         return float(text)
     except ValueError:
         if re.search(r"[A-Za-z]", text):
+            if not _has_number(text):
+                raise argparse.ArgumentTypeError(f"must be a number, or a number with units such as '41 rev/s', got "
+                                                 f"{text!r} (a unit needs its number)") from None
             return _WithUnits(text.strip())
         raise argparse.ArgumentTypeError(f"must be a number or a value with units such as '41 rev/s', got {text!r}") \
             from None
+
+
+def _quantity_text(text: str) -> str:
+    """A quantity typed with its number and unit (--size '21.5 mm', --g '9.81 m/s^2')."""
+    if not _has_number(text):
+        raise argparse.ArgumentTypeError(f"must be a number with its unit such as '21.5 mm' or '9.81 m/s^2', got "
+                                         f"{text!r} (a unit needs its number)")
+    return text
 
 
 def _count(text: str) -> int:
@@ -199,11 +237,19 @@ def _add_solver(p):
                    help="the state's chart: euler | vector | auto (vector within 1e-5 of the poles; --formulation is "
                         "its old name) (default: %(default)s)")
     g.add_argument("--max-steps", type=_count, default=5_000_000,
-                   help="step budget of the run: Taylor steps (heyoka), or CVODES/IDAS internal steps, which are "
-                        "counted after each chunk of 100 output points, so those may pass it by one chunk (the reason "
-                        "gives the count) (default: %(default)s)")
+                   help="step budget of the run: Taylor steps (heyoka), or CVODES/IDAS internal steps (counted per "
+                        "chunk of 100 output points: a chunk that would pass the budget is not taken, so the run "
+                        "ends within it; the reason gives the count) (default: %(default)s)")
     g.add_argument("--max-wall", type=_real, default=600.0,
-                   help="wall-time budget in seconds; a --t-end it cannot reach is said at once (default: %(default)s)")
+                   help="wall-time budget in seconds; a --t-end it cannot reach is refused at once (default: "
+                        "%(default)s)")
+
+
+def _add_wall(p) -> None:
+    """--max-wall of the commands that search for steady states (the meaning and checks of simulate's)."""
+    p.add_argument("--max-wall", type=_real, default=600.0,
+                   help="wall-time budget in seconds, > 0: past it the command ends \"failed\" with the reason "
+                        "(default: %(default)s)")
 
 
 def _add_run_options(sim) -> None:
@@ -248,9 +294,11 @@ def _add_run_options(sim) -> None:
     r.add_argument("--restitution", type=_real, default=None, help="Newton's e in [0, 1] at impacts (with --stop-at none; "
                                                                      "default 0)")
     u = sim.add_argument_group("real units (see 'units' below)")
-    u.add_argument("--size", default=None, help="the body's unit of length b with its unit: the equatorial radius "
-                                                "(spheroid, egg) or the ball's radius (tippe top), e.g. '21.5 mm'")
-    u.add_argument("--g", default=None, help="gravity with its unit (default: 9.81 m/s^2; with --size)")
+    u.add_argument("--size", type=_quantity_text, default=None,
+                   help="the body's unit of length b with its unit: the equatorial radius (spheroid, egg) or the "
+                        "ball's radius (tippe top), e.g. '21.5 mm'")
+    u.add_argument("--g", type=_quantity_text, default=None,
+                   help="gravity with its unit (default: 9.81 m/s^2; with --size)")
     _add_solver(sim)
 
 
@@ -294,7 +342,7 @@ def _build_parser() -> _Parser:
     parser.add_argument("--version", action=_Version, nargs=0, version=__version__,
                         help="print the version and exit (a JSON object with --json)")
     sub = parser.add_subparsers(dest="command", parser_class=_Parser,
-                                metavar="{simulate,animate,fixed-points,steady-states,gyroscopic}")
+                                metavar="{simulate,animate,fixed-points,steady-states,gyroscopic,cache}")
 
     sim = sub.add_parser("simulate", help="integrate the exact equations from a start",
                          description="Integrate the contact dynamics (2.7) from a start, through stick, slip, "
@@ -323,6 +371,7 @@ def _build_parser() -> _Parser:
     grp = fx.add_mutually_exclusive_group(required=True)
     grp.add_argument("--omega0", type=_real, help="precession rate of the family")
     grp.add_argument("--n0", type=_real, help="spin of the family")
+    _add_wall(fx)
     fx.add_argument("--json", action="store_true", help="print one JSON object")
 
     ss = sub.add_parser("steady-states", help="the steady-state structure: branches, their ends, stability along them",
@@ -335,6 +384,7 @@ def _build_parser() -> _Parser:
     g3 = ss.add_mutually_exclusive_group()
     g3.add_argument("--omega0", type=_real, help="also list the states on the structure with this precession rate")
     g3.add_argument("--n0", type=_real, help="also list the states on the structure with this spin")
+    _add_wall(ss)
     ss.add_argument("--json", action="store_true", help="print one JSON object")
 
     gy = sub.add_parser("gyroscopic", help="gyroscopic mean solution theta-bar(t), Omega-bar(t) and J", epilog=EXAMPLES)
@@ -347,7 +397,13 @@ def _build_parser() -> _Parser:
     gy.add_argument("--theta0", type=_real, required=True, help="initial inclination, radians, in (0, pi)")
     gy.add_argument("--t", type=_real, nargs="+", required=True, help="times (units sqrt(b/g))")
     gy.add_argument("--json", action="store_true", help="print one JSON object")
-    commands = {"simulate": sim, "animate": anim, "fixed-points": fx, "steady-states": ss, "gyroscopic": gy}
+    ca = sub.add_parser("cache", help="show (or --clear) the compiled integrators kept on disk",
+                        description="The disk cache of compiled integrators ($PHASEKIT_CACHE, default "
+                                    "~/.cache/phasekit): phasekit's and heyoka's object code, in files and bytes.")
+    ca.add_argument("--clear", action="store_true", help="delete them (the next run of each model compiles again)")
+    ca.add_argument("--json", action="store_true", help="print one JSON object")
+    commands = {"simulate": sim, "animate": anim, "fixed-points": fx, "steady-states": ss, "gyroscopic": gy,
+                "cache": ca}
     for name, p in commands.items():
         p.command = name
     for p in (parser, *commands.values()):
@@ -358,8 +414,23 @@ def _build_parser() -> _Parser:
 
 def _refuse_repeats(parser: _Parser, argv) -> None:
     """An option given twice is refused: a value-taking one (argparse would keep the last
-    silently) and a switch too (``--json --json`` is a typing slip, as the README says)."""
+    silently) and a switch too (``--json --json`` is a typing slip, as the README says); an
+    option and its other name (``--chart`` and ``--formulation``) count as the same option."""
     typed = _typed(argv)
+    by_action: dict = {}
+    for flag in typed:
+        action = parser._option_string_actions.get(flag)
+        if action is not None:
+            by_action.setdefault(id(action), []).append(flag)
+    for flags in by_action.values():
+        if len(set(flags)) > 1:
+            values = [t.split("=", 1)[1] if "=" in t else nxt for t, nxt in zip(argv, [*argv[1:], ""])
+                      if t.split("=", 1)[0] in flags]
+            given = ", then ".join(f"{f} {v}" if parser._option_string_actions[f].nargs is None else f
+                                   for f, v in zip(flags, values))
+            names = " and ".join(dict.fromkeys(flags))
+            raise _UsageError(f"{names} are names of the same option, given {len(flags)} times ({given}): give it "
+                              "once", flags[1])
     for flag in dict.fromkeys(typed):
         action = parser._option_string_actions.get(flag)
         if action is None or typed.count(flag) < 2:

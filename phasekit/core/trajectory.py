@@ -34,6 +34,7 @@ from .trajectory_io import (
     trajectory_xarray,
     write_netcdf,
     write_parquet,
+    write_run_table,
 )
 
 __all__ = ["EventRecord", "Segment", "Flight", "Trajectory", "SAMPLE_COLUMNS"]
@@ -412,6 +413,38 @@ class Trajectory:
                 "gap_max": float(max(gaps)) if gaps else 0.0,
                 "n_trains_resolved": sum(1 for e in self.events if e.name == "impact" and "train resolved" in e.detail)}
 
+    def flight_summary(self) -> dict:
+        """Every flight of the run in one dict (``flights[0]`` is only the first of them).
+
+        Returns
+        -------
+        dict
+            ``n_flights``; ``t_first_liftoff`` (the start of the first flight); ``gap_max``
+            (the largest gap over all flights, units b) and ``t_gap_max``; ``longest_flight``
+            (a duration) and ``t_longest_flight`` (its start); ``t_airborne`` (the time spent
+            in flight) and ``airborne_fraction`` (of the simulated span). None where undefined:
+            no flight, no located maximum of the gap, a run of zero span.
+
+        Examples
+        --------
+        >>> import numpy as np, phasekit as pk
+        >>> body = pk.Spheroid(1.5)
+        >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 200.0, stop_at='touchdown')
+        >>> s = traj.flight_summary()
+        >>> s['n_flights'], f"{s['gap_max']:.2e}", s['t_first_liftoff'] == traj.t_jump
+        (1, '1.57e-07', True)
+        """
+        spans = [s for s in self.segments if s.mode is Mode.FLIGHT]
+        peaks = [max(s.monitored, key=lambda q: q[1][8]) for s in spans if s.monitored]  # (t, x) of each flight's top
+        top = max(peaks, key=lambda q: q[1][8], default=None)
+        longest = max(spans, key=lambda s: s.t1 - s.t0, default=None)
+        airborne, span = float(sum(s.t1 - s.t0 for s in spans)), self.t - self.t0
+        return {"n_flights": len(spans), "t_first_liftoff": float(spans[0].t0) if spans else None,
+                "gap_max": None if top is None else float(top[1][8]), "t_gap_max": None if top is None else float(top[0]),
+                "longest_flight": None if longest is None else float(longest.t1 - longest.t0),
+                "t_longest_flight": None if longest is None else float(longest.t0), "t_airborne": airborne,
+                "airborne_fraction": airborne / span if span > 0 else None}
+
     def _flight(self, s: Segment) -> Flight:
         m = self.model
         gmax = tg = None
@@ -538,8 +571,9 @@ class Trajectory:
     # -- export ----------------------------------------------------------------------------
     def to_xarray(self, times=None, *, n: int = 2001):
         """The run sampled at ``times`` (default ``n`` instants uniform over it) as an xarray
-        Dataset: coordinate ``t``, one variable per column of :meth:`sample`, and the model,
-        start, options, pose0 and status as JSON-string attributes (needs ``phasekit[data]``)."""
+        Dataset: coordinate ``t``, one variable per column of :meth:`sample` with its ``units``
+        and ``long_name``, the outcome as attributes, the inputs and the whole run as JSON in
+        ``phasekit_json`` (needs ``phasekit[data]``)."""
         return trajectory_xarray(self, times, n=n)
 
     def to_netcdf(self, path, times=None, *, n: int = 2001):
@@ -550,6 +584,11 @@ class Trajectory:
         """Write the sampled table to a Parquet file, the run's inputs in its metadata
         (``phasekit[data]``); returns the path."""
         return write_parquet(self, path, times, n=n)
+
+    def to_csv(self, path, times=None, *, n: int = 2001):
+        """Write the sampled table to CSV with its sidecar ``path.json`` (units, long names, the
+        run's inputs; :func:`phasekit.read_table` reads both); returns the path."""
+        return write_run_table(self, path, times, n=n, suffixes=(".csv",))
 
     def to_dict(self, *, events: bool = True) -> dict:
         """JSON form in the paper's variables, with the inputs (model, start, options)."""

@@ -1,10 +1,13 @@
 """A :class:`~phasekit.core.trajectory.Trajectory` in other forms: the tables of its sampled
-observables and pose (:func:`sample_table`, :func:`pose_table`, built on :func:`observable_table`)
-and of its events, the JSON form in the paper's variables with the run's inputs
-(:func:`trajectory_dict`, which :func:`phasekit.rerun` reads back) and the xarray Dataset, NetCDF
-and Parquet files (written by :mod:`phasekit.io.tables`). The Trajectory's methods (``sample``,
-``pose``, ``events_table``, ``to_dict``, ``to_xarray``, ``to_netcdf``, ``to_parquet``, and its
-records' ``to_dict``) delegate here; each function takes the trajectory (or the record) first.
+observables and pose (:func:`sample_table`, :func:`pose_table`, built on :func:`observable_table`;
+each column's unit and long name in ``attrs``) and of its events, the JSON form in the paper's
+variables with the run's inputs (:func:`trajectory_dict`, which :func:`phasekit.rerun` reads back)
+and the sampled table with those inputs (:func:`run_table`) as an xarray Dataset and as CSV,
+Parquet and NetCDF files (written by :mod:`phasekit.io.tables`, read back by
+:func:`phasekit.read_table`: ``pk.rerun(pk.read_table(path).attrs["run"])`` repeats the run). The
+Trajectory's methods (``sample``, ``pose``, ``events_table``, ``to_dict``, ``to_xarray``,
+``to_netcdf``, ``to_parquet``, and its records' ``to_dict``) delegate here; each function takes
+the trajectory (or the record) first.
 """
 
 from __future__ import annotations
@@ -12,15 +15,51 @@ from __future__ import annotations
 import numpy as np
 
 from .._runtime.errors import Status
+from .._runtime.validate import check_int
 from .charts import FLIGHT, PAPER_NAMES
 from .observables import evaluate_function
 from .pose import POSE_COLUMNS
+from .units import COLUMN_KINDS
 
-__all__ = ["STATE_COLUMNS", "observable_table", "sample_table", "pose_table", "event_dict", "flight_dict",
-           "trajectory_dict", "event_poses", "events_table", "trajectory_xarray", "write_netcdf", "write_parquet"]
+__all__ = ["STATE_COLUMNS", "UNITS", "LONG_NAMES", "observable_table", "sample_table", "pose_table", "event_dict",
+           "flight_dict", "trajectory_dict", "event_poses", "events_table", "run_table", "trajectory_xarray",
+           "write_run_table", "write_netcdf", "write_parquet"]
 
 #: the observables of a state (columns of :func:`observable_table`)
 STATE_COLUMNS = (*PAPER_NAMES, "R", "energy", "jellett", "slip", "L_Z", "h", "gap")
+#: phasekit's unit of each kind of quantity (mass M, length b, gravity g; units.KINDS)
+KIND_UNITS = {"length": "b", "time": "sqrt(b/g)", "rate": "sqrt(g/b)", "speed": "sqrt(g b)", "force": "M g",
+              "energy": "M g b", "angular_momentum": "M sqrt(g b^3)"}
+#: the unit of each column of a sampled table (CF attribute ``units``): angles in radians, the
+#: mode (text) none
+UNITS = {"t": KIND_UNITS["time"], "mode": "", **{c: KIND_UNITS[k] for c, k in COLUMN_KINDS.items()},
+         "theta": "rad", "psi": "rad", "phi": "rad"}
+#: what each column of a sampled table is (CF attribute ``long_name``), in the paper's words
+LONG_NAMES = {
+    "t": "time", "mode": "contact mode in force (sliding, rolling or flight)",
+    "U": "velocity of G along e_X, the horizontal projection of the axis",
+    "V": "velocity of G along e_Y = e_Z x e_X", "Omega": "precession rate of the axis, dpsi/dt",
+    "Lambda": "nutation rate, dtheta/dt", "theta": "inclination of the axis from the vertical",
+    "n": "spin n = w.k about the axis", "R": "normal reaction of the table (0 in flight)",
+    "energy": "total energy (kinetic + potential)", "jellett": "Jellett's integral -L.GP",
+    "slip": "slip speed |u_P| of the contact point", "L_Z": "vertical angular momentum about G",
+    "h": "height of G above the table (in flight h(theta), the gap excluded)",
+    "gap": "height of the lowest point above the table (0 in contact)", "psi": "azimuth of the axis",
+    "phi": "spin angle about the axis", "X": "position of G on the table, X", "Y": "position of G on the table, Y",
+    "X_P": "contact point on the table (in flight: below the lowest point), X",
+    "Y_P": "contact point on the table (in flight: below the lowest point), Y",
+}
+#: the scalars of a run's outcome and inputs that a run's table carries as attributes of their own
+RUN_SCALARS = ("status", "reason", "t_jump", "n_flights", "stop_at", "restitution", "t_end")
+#: its structured inputs, each an attribute (all of them, and more, are in the attribute "run")
+RUN_INPUTS = ("model", "start", "options", "pose0")
+
+
+def _describe(df):
+    """``df`` with the unit and long name of each of its columns in ``attrs``."""
+    df.attrs["units"] = {c: UNITS[c] for c in df.columns if c in UNITS}
+    df.attrs["long_names"] = {c: LONG_NAMES[c] for c in df.columns if c in LONG_NAMES}
+    return df
 
 
 def observable_table(model, parts):
@@ -72,7 +111,9 @@ def sample_table(traj, ts):
     Returns
     -------
     pandas.DataFrame
-        Columns ``t``, ``mode``, :data:`STATE_COLUMNS` and the pose columns.
+        Columns ``t``, ``mode``, :data:`STATE_COLUMNS` and the pose columns; ``attrs["units"]``
+        and ``attrs["long_names"]`` give each column's unit (:data:`UNITS`, phasekit's) and
+        what it is (:data:`LONG_NAMES`).
     """
     idx = traj._locate(ts)
     parts = []
@@ -83,7 +124,7 @@ def sample_table(traj, ts):
     df = observable_table(traj.model, parts)
     for name, values in traj._pose(idx, ts).items():
         df[name] = values
-    return df
+    return _describe(df)
 
 
 def pose_table(traj, ts):
@@ -99,11 +140,11 @@ def pose_table(traj, ts):
     Returns
     -------
     pandas.DataFrame
-        Column ``t`` and the pose columns.
+        Column ``t`` and the pose columns, their units and long names in ``attrs``.
     """
     import pandas as pd
 
-    return pd.DataFrame({"t": ts, **traj._pose(traj._locate(ts), ts)})
+    return _describe(pd.DataFrame({"t": ts, **traj._pose(traj._locate(ts), ts)}))
 
 
 def event_dict(event) -> dict:
@@ -265,9 +306,52 @@ def events_table(traj, name: str | None = None):
     return pd.DataFrame(rows, columns=["t", "event", "mode_before", "mode_after", *PAPER_NAMES])
 
 
+def _times(traj, times, n):
+    if times is not None:
+        return times
+    n = check_int("n", n, minimum=2, maximum=10_000_000)
+    return np.linspace(traj.t0, traj.t, n)
+
+
+def run_table(traj, times=None, *, n: int = 2001):
+    """The run sampled at ``times`` (default ``n`` instants uniform over it), with what repeats
+    it: the table its files hold.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run, with its dense output.
+    times : array_like, optional
+        The sampling times, inside the run.
+    n : int, optional
+        The number of instants without ``times``, in [2, 1e7].
+
+    Returns
+    -------
+    pandas.DataFrame
+        :func:`sample_table`'s table; in ``attrs`` each column's unit and long name, the
+        outcome (:data:`RUN_SCALARS` that are not None), the inputs (:data:`RUN_INPUTS`), the
+        event log (``events``) and the whole :func:`trajectory_dict` without events (``run``:
+        ``pk.rerun(df.attrs["run"])`` repeats the run).
+
+    Raises
+    ------
+    ParameterError
+        For an invalid ``n`` or a time outside the run.
+    """
+    df = traj.sample(_times(traj, times, n))
+    d = trajectory_dict(traj, events=False)
+    df.attrs.update({k: d[k] for k in RUN_SCALARS if d.get(k) is not None})
+    df.attrs.update({k: d[k] for k in RUN_INPUTS})
+    df.attrs["events"] = [e.to_dict() for e in traj.events]
+    df.attrs["run"] = d
+    return df
+
+
 def trajectory_xarray(traj, times=None, *, n: int = 2001):
     """The run sampled at ``times`` (default ``n`` instants uniform over it) as an xarray
-    Dataset (:meth:`~phasekit.core.trajectory.Trajectory.to_xarray`).
+    Dataset (:meth:`~phasekit.core.trajectory.Trajectory.to_xarray`): :func:`run_table` as its
+    NetCDF file holds it (:mod:`phasekit.io.netcdf`).
 
     Parameters
     ----------
@@ -281,7 +365,9 @@ def trajectory_xarray(traj, times=None, *, n: int = 2001):
     Returns
     -------
     xarray.Dataset
-        The sampled run, its inputs in the attributes.
+        The sampled run: coordinate ``t``, one variable per column (with ``units`` and
+        ``long_name``); the outcome as global attributes, the inputs and the whole result as
+        JSON in ``phasekit_json``.
 
     Raises
     ------
@@ -290,14 +376,46 @@ def trajectory_xarray(traj, times=None, *, n: int = 2001):
     ParameterError
         For an invalid ``n`` or a time outside the run.
     """
-    from ..io.tables import _need, to_xarray
+    from ..io.tables import table_dataset
 
-    _need(".nc")
-    return to_xarray(traj, times, n=n)
+    return table_dataset(run_table(traj, times, n=n))
+
+
+def write_run_table(traj, path, times=None, *, n: int = 2001, suffixes=(".csv", ".parquet", ".nc")):
+    """Write :func:`run_table` to ``path`` (:func:`phasekit.write_table`).
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run, with its dense output.
+    path : str or os.PathLike
+        The file, ending in one of ``suffixes`` (written atomically).
+    times, n
+        As for :func:`run_table`.
+    suffixes : tuple of str, optional
+        The file types allowed.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    ParameterError
+        For a path not ending in one of ``suffixes``, an invalid ``n`` or a time outside the run.
+    PhasekitError
+        If the packages of the file type (``phasekit[data]``) are missing.
+    """
+    from ..io.tables import _check_path, write_table
+
+    path = _check_path(path, suffixes)
+    return write_table(run_table(traj, times, n=n), path)
 
 
 def write_netcdf(traj, path, times=None, *, n: int = 2001):
-    """Write :func:`trajectory_xarray` to a NetCDF file (``phasekit[data]``).
+    """Write :func:`run_table` to a NetCDF file (``phasekit[data]``): the Dataset of
+    :func:`trajectory_xarray`.
 
     Parameters
     ----------
@@ -320,13 +438,11 @@ def write_netcdf(traj, path, times=None, *, n: int = 2001):
     PhasekitError
         If the packages of ``phasekit[data]`` are missing.
     """
-    from ..io.tables import _check_path, write_trajectory
-
-    return write_trajectory(traj, _check_path(path, (".nc",)), times, n=n)
+    return write_run_table(traj, path, times, n=n, suffixes=(".nc",))
 
 
 def write_parquet(traj, path, times=None, *, n: int = 2001):
-    """Write the sampled table to a Parquet file, the run's inputs in its metadata
+    """Write :func:`run_table` to a Parquet file, units and inputs in its metadata
     (``phasekit[data]``).
 
     Parameters
@@ -350,6 +466,4 @@ def write_parquet(traj, path, times=None, *, n: int = 2001):
     PhasekitError
         If pyarrow (``phasekit[data]``) is missing.
     """
-    from ..io.tables import _check_path, write_trajectory
-
-    return write_trajectory(traj, _check_path(path, (".parquet",)), times, n=n)
+    return write_run_table(traj, path, times, n=n, suffixes=(".parquet",))

@@ -13,8 +13,9 @@ converts both ways by dimensional analysis, so that a user never converts by han
     sc.table(traj.sample(ts))                 # a whole sampled table in ms, mm, rev/s, m/s
     egg, sc = pk.core.egg_of_size("57 mm", "43 mm", w=0.05, mass="57 g")
 
-Every quantity is shown in one simple unit per kind (:data:`DISPLAY_UNITS`: ms, mm, rev/s, ...),
-never as pint's unsimplified product of the inputs' units.
+Every quantity a Scale returns is in one simple unit per kind (:data:`DISPLAY_UNITS`: ms, mm,
+rev/s, ...), never in pint's unsimplified product of the inputs' units (``mm ** 0.5 * s / m ** 0.5``),
+and prints in pint's short form ("46.81 ms", "m/s²", "cm²·g"), which pint also reads back.
 
 Angles: pint takes the radian as dimensionless, so 1 rev/s = 2 pi rad/s = 2 pi (1/s). A rate
 in hertz is refused: pint converts 1 Hz to 1 rad/s, which is a factor 2 pi away from one
@@ -27,6 +28,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 
 import numpy as np
 
@@ -60,8 +62,8 @@ DISPLAY_UNITS = {"length": "mm", "time": "ms", "rate": "rev/s", "speed": "m/s", 
 #: columns not listed (mode) are left as they are
 COLUMN_KINDS = {"t": "time", "U": "speed", "V": "speed", "slip": "speed", "Omega": "rate", "Lambda": "rate",
                 "n": "rate", "X": "length", "Y": "length", "X_P": "length", "Y_P": "length", "h": "length",
-                "gap": "length",
-                "R": "force", "energy": "energy", "jellett": "angular_momentum", "L_Z": "angular_momentum"}
+                "gap": "length", "t_jump": "time", "t_end": "time", "t_flight": "time", "longest_flight": "time",
+                "gap_max": "length", "R": "force", "R_min": "force", "energy": "energy", "jellett": "angular_momentum", "L_Z": "angular_momentum"}
 #: an example of each kind, for the messages
 EXAMPLES = {"length": "21.5 mm", "time": "12 ms", "rate": "30 rev/s", "speed": "0.5 m/s", "acceleration": "9.81 m/s**2",
             "mass": "57 g", "force": "0.5 N", "energy": "1 mJ", "inertia": "2 g*cm**2", "angular_momentum": "1e-4 kg*m**2/s"}
@@ -74,6 +76,8 @@ def units():
 
     ureg = pint.UnitRegistry()
     ureg.define("rev = revolution")  # "30 rev/s", as people write it
+    # print "46.81 ms", not "46.81 millisecond": the symbols people write (and pint parses back)
+    ureg.formatter.default_format = "~P"
     return ureg
 
 
@@ -81,10 +85,21 @@ def _is_number(value) -> bool:
     return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
 
 
+def _is_unit(text: str) -> bool:
+    """Is ``text`` a unit with no number ("mm", "m/s**2", ""), which pint would read as one of it?"""
+    if re.search(r"\d", re.sub(r"(\*\*|\^)\s*[-+]?[\d.]+", "", text)):
+        return False  # a number outside the exponents
+    try:
+        units().Unit(text)
+    except Exception:
+        return False
+    return True
+
+
 def as_quantity(value, name: str, default_unit: str | None = None):
     """A pint Quantity from a Quantity, a string such as "21.5 mm", or a number in
-    ``default_unit``. ParameterError naming ``name`` if it does not parse, is not one finite
-    real number, or is in hertz."""
+    ``default_unit``. ParameterError naming ``name`` if it does not parse, is a unit with no
+    number ("mm"), is not one finite real number, or is in hertz."""
     import pint
 
     if not isinstance(name, str) or not name:
@@ -103,6 +118,9 @@ def as_quantity(value, name: str, default_unit: str | None = None):
         except Exception:
             raise ParameterError(name, "must be a quantity in units phasekit's pint registry knows", str(value)) from None
     elif isinstance(value, str):
+        if _is_unit(value):  # pint reads "mm" as 1 mm: a unit alone is no value
+            raise ParameterError(name, "must be a number with units, such as '21.5 mm' (a unit alone is no value)",
+                                 value)
         try:
             q = ureg.Quantity(value)
         except Exception:
@@ -134,6 +152,36 @@ def _of_kind(value, name: str, kind: str, *, positive: bool = False):
     return q
 
 
+#: the sizes, accelerations and masses a Scale takes, in SI units: wide enough for any body, narrow
+#: enough that every unit derived from them (up to M b^2) is a normal float
+SCALE_RANGE = (1e-30, 1e30)
+
+
+def _scale_of(value, name: str, kind: str, si: str):
+    """One scale of a Scale: a quantity of ``kind`` > 0 within :data:`SCALE_RANGE` (in ``si``),
+    in its own unit if that is one unit per dimension with whole powers ("21.5 mm", "9.81 m/s**2"),
+    else in the kind's display unit ("(2 mm * 8 mm)**0.5" -> 4 mm)."""
+    q = _of_kind(value, name, kind, positive=True)
+    if not SCALE_RANGE[0] <= float(q.to(si).magnitude) <= SCALE_RANGE[1]:
+        raise ParameterError(name, f"must lie between {SCALE_RANGE[0]:g} and {SCALE_RANGE[1]:g} {si}",
+                             value if isinstance(value, str) else str(q))
+    powers = dict(q._units).values()
+    simple = len(powers) <= len(units().get_dimensionality(KINDS[kind][0])) and all(float(p).is_integer() for p in powers)
+    return q if simple else q.to(DISPLAY_UNITS[kind])
+
+
+def _representable(q, value, name: str, where: str):
+    """``q`` (``value`` converted) if its magnitudes are finite and no nonzero value became
+    subnormal or zero: a conversion that overflows or underflows is refused, not returned wrong."""
+    mag, value = np.asarray(q.magnitude, dtype=float), np.asarray(value, dtype=float)
+    with np.errstate(invalid="ignore"):
+        if np.any(np.isinf(mag) & np.isfinite(value)):
+            raise ParameterError(name, f"is too large to express {where}", show_value=False)
+        if np.any((np.abs(mag) < np.finfo(float).tiny) & (value != 0) & np.isfinite(value)):
+            raise ParameterError(name, f"is too small to express {where}", show_value=False)
+    return q
+
+
 def _check_kind(kind, name: str = "kind") -> str:
     if not isinstance(kind, str) or kind not in KINDS:
         raise ParameterError(name, f"must be one of {', '.join(KINDS)}", kind)
@@ -155,31 +203,37 @@ class Scale:
 
     Attributes
     ----------
+    b, g, mass : Quantity
+        The scales as given (in their own unit when it is a simple one, such as "21.5 mm",
+        else in the kind's :data:`DISPLAY_UNITS` entry); ``mass`` is None when not given.
     time_unit : Quantity
-        sqrt(b/g), phasekit's unit of time.
+        sqrt(b/g), phasekit's unit of time, in milliseconds.
 
     Raises
     ------
     ParameterError
         If ``b`` is not a length > 0, ``g`` not an acceleration > 0 or ``mass`` (when given)
         not a mass > 0: a quantity that does not parse, is not one finite real number, is in
-        hertz or has another dimension.
+        hertz or has another dimension; or if one lies outside :data:`SCALE_RANGE` (1e-30 to
+        1e30 in SI units).
 
     Examples
     --------
     >>> import phasekit as pk
     >>> sc = pk.Scale('21.5 mm')
-    >>> str(sc.quantity(1.0, 'time').to('ms').round(2))
-    '46.81 millisecond'
+    >>> str(sc.quantity(1.0, 'time').round(2))
+    '46.81 ms'
+    >>> str(sc.unit('speed').round(4))
+    '0.4593 m/s'
     >>> round(sc.dimensionless('50 rev/s'), 4)
     14.7074
     """
 
     def __init__(self, b, g=STANDARD_GRAVITY, mass=None):
-        self.b = _of_kind(b, "b", "length", positive=True)
-        self.g = _of_kind(g, "g", "acceleration", positive=True)
-        self.mass = None if mass is None else _of_kind(mass, "mass", "mass", positive=True)
-        self.time_unit = ((self.b / self.g) ** 0.5).to(DISPLAY_UNITS["time"])
+        self.b = _scale_of(b, "b", "length", "m")
+        self.g = _scale_of(g, "g", "acceleration", "m/s**2")
+        self.mass = None if mass is None else _scale_of(mass, "mass", "mass", "kg")
+        self.time_unit = self.unit("time")
 
     def unit(self, kind: str):
         """phasekit's unit of ``kind`` as a Quantity.
@@ -193,7 +247,8 @@ class Scale:
         Returns
         -------
         pint.Quantity
-            The unit as a product of powers of b, g and M (e.g. sqrt(b/g) for "time").
+            The unit, a product of powers of b, g and M (e.g. sqrt(b/g) for "time"), in the
+            kind's :data:`DISPLAY_UNITS` entry (e.g. ms).
 
         Raises
         ------
@@ -206,11 +261,11 @@ class Scale:
         if pm and self.mass is None:
             raise ParameterError("mass", f"is needed to express a {kind} (give Scale(..., mass=...))", show_value=False)
         q = self.b**pb * self.g**pg
-        return q * self.mass**pm if pm else q
+        return (q * self.mass**pm if pm else q).to(DISPLAY_UNITS[kind])
 
     def quantity(self, value, kind: str):
         """A phasekit (dimensionless) value, or an array of them, as a Quantity of ``kind``, in
-        SI base units.
+        the kind's :data:`DISPLAY_UNITS` entry (ms, mm, rev/s, ...).
 
         Parameters
         ----------
@@ -222,16 +277,17 @@ class Scale:
         Returns
         -------
         pint.Quantity
-            ``value`` times the unit of ``kind``, in SI base units.
+            ``value`` times the unit of ``kind``, in the kind's display unit.
 
         Raises
         ------
         ParameterError
-            If ``value`` is not finite real numbers, ``kind`` is not a key of :data:`KINDS`,
-            or the kind involves the mass and the Scale has none.
+            If ``value`` is not finite real numbers (or too large to express in real units),
+            ``kind`` is not a key of :data:`KINDS`, or the kind involves the mass and the
+            Scale has none.
         """
         value = check_finite("value", value) if np.ndim(value) == 0 else check_array("value", value, allow_empty=True)
-        return (value * self.unit(kind)).to_base_units()
+        return _representable(value * self.unit(kind), value, "value", f"in {_unit_text(DISPLAY_UNITS[kind])}")
 
     def to_real(self, value, kind: str, unit: str | None = None):
         """phasekit values in real units: a number or array gives a Quantity in ``unit``
@@ -256,8 +312,8 @@ class Scale:
         ------
         ParameterError
             If ``kind`` is not a key of :data:`KINDS`, ``unit`` is not a unit of its
-            dimension, ``value`` is not finite real numbers, or the kind involves the mass and
-            the Scale has none.
+            dimension, ``value`` is not finite real numbers (or too large to express in
+            ``unit``), or the kind involves the mass and the Scale has none.
 
         Examples
         --------
@@ -268,10 +324,11 @@ class Scale:
         unit = self._display(_check_kind(kind), unit)
         if hasattr(value, "to_numpy") and hasattr(value, "index") and not hasattr(value, "columns"):
             out = value.copy()
-            out[:] = self.quantity(value.to_numpy(dtype=float), kind).to(unit).magnitude
+            values = value.to_numpy(dtype=float)
+            out[:] = _representable(self.quantity(values, kind).to(unit), values, "value", f"in {_unit_text(unit)}").magnitude
             out.attrs["unit"] = _unit_text(unit)
             return out
-        return self.quantity(value, kind).to(unit)
+        return _representable(self.quantity(value, kind).to(unit), value, "value", f"in {_unit_text(unit)}")
 
     def flight(self, flight) -> dict:
         """A flight (:class:`phasekit.core.Flight`) in real units, as numbers: ``t_liftoff``,
@@ -331,7 +388,8 @@ class Scale:
         Raises
         ------
         ParameterError
-            If ``df`` is not a DataFrame.
+            If ``df`` is not a DataFrame, or a column to convert does not hold numbers or
+            holds one too large to express in real units. Missing values (NaN) stay missing.
         """
         if not (hasattr(df, "columns") and hasattr(df, "copy")):
             raise ParameterError("df", "must be a pandas DataFrame such as traj.sample(times)", type(df).__name__)
@@ -339,10 +397,20 @@ class Scale:
         for col in df.columns:
             kind = COLUMN_KINDS.get(col)
             if kind is None or KINDS[kind][1][2] and self.mass is None:
-                units_of[col] = {"theta": "rad", "psi": "rad", "phi": "rad", "R": "M g", "energy": "M g b",
-                                 "jellett": "M sqrt(g b^3)", "L_Z": "M sqrt(g b^3)"}.get(col, "")
+                units_of[col] = {"theta": "rad", "theta_end": "rad", "psi": "rad", "phi": "rad", "R": "M g", "R_min": "M g",
+                                 "energy": "M g b", "jellett": "M sqrt(g b^3)", "L_Z": "M sqrt(g b^3)"}.get(col, "")
                 continue
-            out[col] = self.quantity(df[col].to_numpy(dtype=float), kind).to(DISPLAY_UNITS[kind]).magnitude
+            try:
+                values = df[col].to_numpy(dtype=float)
+            except (TypeError, ValueError):
+                raise ParameterError("df", f"column {col!r} must hold numbers (a {kind} in phasekit's units)",
+                                     show_value=False) from None
+            with np.errstate(over="ignore", under="ignore", invalid="ignore"):  # a missing value (NaN) stays missing
+                real = self.unit(kind) * values
+            try:
+                out[col] = _representable(real, values, "df", f"in {_unit_text(DISPLAY_UNITS[kind])}").magnitude
+            except ParameterError as err:
+                raise ParameterError("df", f"column {col!r} {err.expected}", show_value=False) from None
             units_of[col] = _unit_text(DISPLAY_UNITS[kind])
         out.attrs["units"] = units_of
         return out
@@ -398,9 +466,9 @@ class Scale:
         if kind is not None and kind not in found:
             raise ParameterError(name, f"must be a {kind.replace('_', ' ')} (dimension {KINDS[kind][0]}, e.g. "
                                        f"'{EXAMPLES[kind]}')", typed)
-        out = float((q / self.unit(found[0])).to("dimensionless").magnitude)
-        if not math.isfinite(out):
-            raise ParameterError(name, "is too large to express in phasekit's units", str(q))
+        with np.errstate(over="ignore", under="ignore"):
+            out = float((q / self.unit(found[0])).to("dimensionless").magnitude)
+        _representable(units().Quantity(out), float(q.magnitude), name, "in phasekit's units")
         return out
 
     def __repr__(self) -> str:
@@ -449,7 +517,7 @@ def egg_of_size(length, breadth, *, w: float = 0.0, mass=None, g=STANDARD_GRAVIT
     >>> egg
     Egg(a=1.32558, w=0.05)
     >>> str(sc.b)
-    '21.5 millimeter'
+    '21.5 mm'
     """
     from ..bodies.egg import Egg
 
@@ -504,7 +572,7 @@ def tippe_top_of_size(radius, offset, *, A=None, C=None, mass=None, g=STANDARD_G
     >>> top
     EccentricSphere(offset=0.3, A=0.31, C=0.4)
     >>> str(sc.b)
-    '15 millimeter'
+    '15 mm'
     """
     from ..bodies.spheroid import EccentricSphere
 

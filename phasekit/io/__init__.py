@@ -1,14 +1,17 @@
-"""Tables on disk (``phasekit.io``): CSV, Parquet and NetCDF with units and run inputs, and the
-atomic writers every result file goes through (a kill at any moment leaves the old file or the
-new one, never half of one).
+"""Tables on disk (``phasekit.io``): CSV, Parquet and NetCDF files that give back what was
+written (values, dtypes, each column's units and long name, typed attributes such as a run's
+inputs), and the atomic writes every result file goes through (a kill at any moment leaves the old
+file or the new one, never half of one).
 
 Examples
 --------
 >>> import pandas as pd, tempfile, pathlib, phasekit as pk
 >>> path = pathlib.Path(tempfile.mkdtemp()) / "t.csv"
->>> _ = pk.io.write_table(pd.DataFrame({"t": [0.0, 1.0]}), path)
->>> list(pk.io.read_table(path)["t"])
-[0.0, 1.0]
+>>> df = pd.DataFrame({"t": [0.0, 1.0]})
+>>> df.attrs = {"units": {"t": "ms"}}
+>>> back = pk.io.read_table(pk.io.write_table(df, path))
+>>> list(back["t"]), back.attrs["units"]
+([0.0, 1.0], {'t': 'ms'})
 """
 
 from .tables import atomic_path, read_table, write_table

@@ -1,73 +1,42 @@
-"""Data out: trajectories as xarray Datasets, Parquet and NetCDF files; study tables with honest dtypes.
+"""Tables in and out: :func:`write_table` and :func:`read_table` for CSV, Parquet and NetCDF files.
 
-A trajectory becomes a table by sampling its dense output (:meth:`Trajectory.sample`): one row
-per time, every observable a column (the state, R, energy, ..., the pose). As an xarray
-Dataset the time is the coordinate ``t``, each column a variable, and the inputs that make the
-run repeatable (model, start, options, pose0, status) are attributes holding JSON strings
-(NetCDF attributes cannot hold nested objects). Study tables (the CSVs in figures/) are read
-back by :func:`read_table` with booleans as booleans (pandas' nullable "boolean"), numbers as
-numbers and one spelling for missing (an empty cell), and written as CSV, Parquet or NetCDF.
+What is written is read back as it was: the values, the dtypes, each column's ``units`` and
+``long_name`` (``df.attrs["units"]``, ``df.attrs["long_names"]``: the CF attributes of each
+variable) and the table's other attributes, typed (numbers as numbers, text as text, nested
+structures such as a run's inputs as they were). Each format keeps them its own way: CSV in a
+JSON sidecar ``x.csv.json`` (:mod:`phasekit.io.csvfile`), Parquet in its Arrow metadata
+(:mod:`phasekit.io.parquet`), NetCDF as variable and global attributes
+(:mod:`phasekit.io.netcdf`); what a table may hold is in :mod:`phasekit.io.schema`. A run's
+sampled table is written with its inputs by :meth:`phasekit.core.Trajectory.to_netcdf` and
+``to_parquet`` (:mod:`phasekit.core.trajectory_io`), so that ``pk.rerun(df.attrs["run"])``
+repeats the run from the table read back.
+
+Files another program wrote (the study tables in figures/ are plain CSVs) are read by inference:
+booleans as booleans (pandas' nullable "boolean"), numbers as numbers, one spelling for missing.
 
 Parquet needs pyarrow, NetCDF xarray with h5netcdf (or netCDF4): ``pip install "phasekit[data]"``.
 """
 
 from __future__ import annotations
 
-import contextlib
 import importlib.util
-import json
 import os
 from pathlib import Path
 
-import numpy as np
-
 from .._runtime.errors import ParameterError, PhasekitError
-from .._runtime.validate import check_int
+from .atomic import atomic_path
+from .csvfile import read_csv, write_csv
+from .netcdf import dataset, read_netcdf, write_netcdf
+from .parquet import read_parquet, write_parquet
+from .schema import describe
 
-__all__ = ["to_xarray", "write_trajectory", "write_table", "read_table", "atomic_path", "DATA_EXTRA", "TABLE_SUFFIXES"]
+__all__ = ["write_table", "read_table", "table_dataset", "atomic_path", "DATA_EXTRA", "TABLE_SUFFIXES"]
 
 #: the optional packages of each file type
 DATA_EXTRA = {".parquet": ("pyarrow",), ".nc": ("xarray", "h5netcdf", "h5py")}
 TABLE_SUFFIXES = (".csv", ".parquet", ".nc")
-#: the attributes of a trajectory's Dataset (JSON strings)
-ATTRS = ("model", "start", "options", "pose0", "status", "reason", "t_jump", "stop_at", "restitution")
-
-
-@contextlib.contextmanager
-def atomic_path(path):
-    """A temporary path next to ``path`` to write to; renamed onto ``path`` when the block
-    ends without an exception, removed otherwise. A kill at any moment leaves either the old
-    file or the new one, never a torn one.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        The file to write; its directory is created if missing.
-
-    Yields
-    ------
-    pathlib.Path
-        The temporary path, in the same directory and with the same suffix as ``path``.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib, phasekit as pk
-    >>> target = pathlib.Path(tempfile.mkdtemp()) / "note.txt"
-    >>> with pk.io.atomic_path(target) as tmp:
-    ...     _ = tmp.write_text("whole")
-    >>> target.read_text()
-    'whole'
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    # keep the suffix: writers (matplotlib, VTK) pick the format from it
-    tmp = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
-    try:
-        yield tmp
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
+WRITERS = {".csv": write_csv, ".parquet": write_parquet, ".nc": write_netcdf}
+READERS = {".csv": read_csv, ".parquet": read_parquet, ".nc": read_netcdf}
 
 
 def _need(suffix: str) -> None:
@@ -77,147 +46,45 @@ def _need(suffix: str) -> None:
                             "\"phasekit[data]\")")
 
 
-def _times(traj, times, n):
-    if times is not None:
-        return times
-    n = check_int("n", n, minimum=2, maximum=10_000_000)
-    return np.linspace(traj.t0, traj.t, n)
-
-
 def _check_path(path, suffixes) -> Path:
     if not isinstance(path, (str, os.PathLike)) or Path(path).suffix.lower() not in suffixes:
-        raise ParameterError("path", f"must be a file path ending in {', '.join(suffixes)}", path)
+        raise ParameterError("path", f"must be a file path ending in {', '.join(suffixes)}",
+                             str(path) if isinstance(path, os.PathLike) else path)
     return Path(path)
 
 
-def to_xarray(traj, times=None, *, n: int = 2001):
-    """The trajectory sampled at ``times`` (default ``n`` instants uniform over the run) as an
-    xarray Dataset: coordinate ``t``, one variable per column of :meth:`Trajectory.sample`
-    (``mode`` as strings) and the run's inputs as JSON-string attributes.
-
-    Parameters
-    ----------
-    traj : Trajectory
-        The run, with its dense output.
-    times : array_like, optional
-        The sampling times; default ``n`` instants uniform over the run.
-    n : int, optional
-        The number of instants without ``times``, in [2, 1e7] (default 2001).
-
-    Returns
-    -------
-    xarray.Dataset
-        The sampled trajectory.
-
-    Raises
-    ------
-    ParameterError
-        If ``times`` is None and ``n`` is not an integer in [2, 1e7].
-    """
-    import xarray as xr
-
-    df = traj.sample(_times(traj, times, n))
-    d = traj.to_dict(events=False)
-    ds = xr.Dataset({c: ("t", df[c].to_numpy(dtype=str if c == "mode" else float)) for c in df.columns if c != "t"},
-                    coords={"t": df["t"].to_numpy()})
-    ds.attrs = {k: json.dumps(d.get(k)) for k in ATTRS}
-    ds.attrs["events"] = json.dumps([e.to_dict() for e in traj.events])
-    ds.attrs["run"] = json.dumps(d)  # the whole result: pk.rerun(json.loads(ds.attrs["run"])) repeats it
-    ds.attrs["units"] = "phasekit's: lengths b, times sqrt(b/g), rates sqrt(g/b), angles rad, forces M g"
-    ds["t"].attrs["long_name"] = "time"
-    return ds
-
-
-def write_trajectory(traj, path, times=None, *, n: int = 2001) -> Path:
-    """Write the sampled trajectory to ``path``: .nc (NetCDF, the Dataset of :func:`to_xarray`),
-    .parquet (the table, the attributes in its metadata) or .csv.
-
-    Parameters
-    ----------
-    traj : Trajectory
-        The run, with its dense output.
-    path : str or os.PathLike
-        The file, ending in .csv, .parquet or .nc (written atomically).
-    times : array_like, optional
-        The sampling times; default ``n`` instants uniform over the run.
-    n : int, optional
-        The number of instants without ``times``, in [2, 1e7] (default 2001).
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-
-    Raises
-    ------
-    ParameterError
-        If ``path`` is not a file path ending in .csv, .parquet or .nc, or ``times`` is None
-        and ``n`` is not an integer in [2, 1e7].
-    PhasekitError
-        If the optional packages of the file type are missing (.parquet: pyarrow; .nc: xarray,
-        h5netcdf, h5py): ``pip install "phasekit[data]"``.
-    """
-    path = _check_path(path, TABLE_SUFFIXES)
-    suffix = path.suffix.lower()
-    _need(suffix)
-    with atomic_path(path) as tmp:
-        if suffix == ".nc":
-            to_xarray(traj, times, n=n).to_netcdf(tmp, engine=_netcdf_engine())
-        else:
-            df = traj.sample(_times(traj, times, n))
-            d = traj.to_dict(events=False)
-            df.attrs = {k: json.dumps(v) for k, v in d.items() if k in ATTRS}
-            df.attrs["run"] = json.dumps(d)  # as in the NetCDF file: enough to repeat the run
-            _write_frame(df, tmp, suffix)
-    return path
-
-
-def _netcdf_engine() -> str:
-    return "h5netcdf" if importlib.util.find_spec("h5netcdf") else "netcdf4"
-
-
-def _write_frame(df, path: Path, suffix: str) -> None:
-    if suffix == ".csv":
-        df.to_csv(path, index=False, na_rep="")
-    elif suffix == ".parquet":
-        import pyarrow as pa
-        import pyarrow.parquet as pq
-
-        table = pa.Table.from_pandas(df, preserve_index=False)
-        meta = {**(table.schema.metadata or {}), b"phasekit": json.dumps(dict(df.attrs)).encode()}
-        pq.write_table(table.replace_schema_metadata(meta), path)
-    else:
-        import xarray as xr
-
-        ds = xr.Dataset.from_dataframe(df.reset_index(drop=True))
-        ds.attrs = {k: v if isinstance(v, str) else json.dumps(v) for k, v in df.attrs.items()}
-        ds.to_netcdf(path, engine=_netcdf_engine())
-
-
-def _honest(df):
-    """Columns as what they hold: True/False (with missing cells) as nullable booleans, numbers as
-    floats or ints, the rest as strings; every missing cell is NA."""
-    import pandas as pd
-
-    out = df.copy()
-    for c in out.columns:
-        col = out[c]
-        if pd.api.types.is_bool_dtype(col) or pd.api.types.is_numeric_dtype(col):
-            continue
-        vals = set(col.dropna().astype(str).unique())
-        if vals and vals <= {"True", "False"}:
-            out[c] = col.map({"True": True, "False": False, True: True, False: False}).astype("boolean")
-    return out
+def table_dataset(df):
+    """``df`` as the xarray Dataset its NetCDF file holds (see :mod:`phasekit.io.netcdf`);
+    ParameterError naming ``df`` for a table no file could give back as it is."""
+    _need(".nc")
+    return dataset(df, describe(df))
 
 
 def write_table(df, path) -> Path:
-    """Write a study table (a DataFrame) as .csv (missing cells empty), .parquet or .nc, with
-    honest dtypes (:func:`read_table`'s).
+    """Write a table (a DataFrame) as .csv, .parquet or .nc, so that :func:`read_table` gives it
+    back: values, dtypes, each column's units and long name, and the other attributes.
+
+    Per column, ``df.attrs["units"]`` and ``df.attrs["long_names"]`` (mappings from column names
+    to text) become the CF attributes ``units`` and ``long_name`` (:meth:`phasekit.Scale.table`
+    and :meth:`phasekit.core.Trajectory.sample` set the units). The other attributes are
+    numbers, text, True/False, None, or lists and dicts (text keys) of these (a tuple is written
+    as a list). The index is not written: rows come back numbered from 0.
+
+    * CSV: a plain CSV (a missing cell empty) and, beside it, ``x.csv.json`` with the dtypes,
+      units, long names and attributes. CSV spells missing text as an empty cell, so a text
+      column may not hold empty strings (use None), nor carriage returns.
+    * Parquet: units and long names in each field's metadata, the rest in the schema's
+      metadata under ``phasekit``.
+    * NetCDF: one dimension (``t`` with the times as coordinate when the first column is ``t``,
+      else ``row``), each column a variable with ``units`` and ``long_name``; attributes that
+      NetCDF holds (text, numbers) as global attributes, the others and the dtypes as JSON in
+      the global attribute ``phasekit_json``. Text may not hold empty strings or NUL characters.
 
     Parameters
     ----------
     df : pandas.DataFrame
-        The table.
+        The table: columns (named by non-empty, distinct text) of floats, integers (numpy's or
+        pandas' nullable ones), booleans (numpy's or pandas' nullable "boolean") or text.
     path : str or os.PathLike
         The file, ending in .csv, .parquet or .nc (written atomically).
 
@@ -229,8 +96,9 @@ def write_table(df, path) -> Path:
     Raises
     ------
     ParameterError
-        If ``df`` is not a DataFrame, or ``path`` is not a file path ending in .csv, .parquet
-        or .nc.
+        If ``df`` is not a DataFrame or holds what the file could not give back as it is (no
+        column, other dtypes, attributes of other types, text the format cannot hold), or
+        ``path`` is not a file path ending in .csv, .parquet or .nc.
     PhasekitError
         If the optional packages of the file type are missing (.parquet: pyarrow; .nc: xarray,
         h5netcdf, h5py): ``pip install "phasekit[data]"``.
@@ -239,26 +107,25 @@ def write_table(df, path) -> Path:
     --------
     >>> import phasekit as pk
     >>> import pandas as pd, tempfile, pathlib
-    >>> pk.write_table(pd.DataFrame({'a': [1.5]}), pathlib.Path(tempfile.mkdtemp()) / 't.csv').name
-    't.csv'
+    >>> df = pd.DataFrame({'t': [0.0, 12.5], 'ok': [True, False]})
+    >>> df.attrs = {'units': {'t': 'ms'}, 'status': 'jumped'}
+    >>> path = pk.write_table(df, pathlib.Path(tempfile.mkdtemp()) / 't.csv')
+    >>> pk.read_table(path).attrs
+    {'status': 'jumped', 'units': {'t': 'ms'}}
     """
-    if not hasattr(df, "columns"):
-        raise ParameterError("df", "must be a pandas DataFrame", type(df).__name__)
+    schema = describe(df)
     path = _check_path(path, TABLE_SUFFIXES)
     suffix = path.suffix.lower()
     _need(suffix)
-    table = _honest(df)
-    if suffix == ".nc":  # NetCDF has no nullable booleans or NA strings: missing -> NaN / ""
-        table = table.apply(lambda c: c.astype(float) if str(c.dtype) == "boolean" else c)
-        table = table.apply(lambda c: c.fillna("") if c.dtype == object or str(c.dtype).startswith("str") else c)
-    with atomic_path(path) as tmp:
-        _write_frame(table, tmp, suffix)
+    WRITERS[suffix](df, schema, path)
     return path
 
 
 def read_table(path):
-    """A study table (.csv, .parquet or .nc) as a DataFrame with honest dtypes: booleans as
-    pandas' nullable "boolean", numbers as numbers, text as strings, every missing cell NA.
+    """A table (.csv, .parquet or .nc) as a DataFrame: one :func:`write_table` wrote as it was
+    (values, dtypes, ``attrs`` with ``units``, ``long_names`` and the other attributes), any
+    other with inferred dtypes: booleans as pandas' nullable "boolean", numbers as numbers, text
+    as strings, every missing cell NA (and the units and attributes the file holds).
 
     Parameters
     ----------
@@ -268,7 +135,7 @@ def read_table(path):
     Returns
     -------
     pandas.DataFrame
-        The table.
+        The table, its units and attributes in ``attrs``.
 
     Raises
     ------
@@ -287,20 +154,9 @@ def read_table(path):
     >>> pk.read_table(path).dtypes.astype(str).tolist()
     ['float64', 'bool']
     """
-    import pandas as pd
-
     path = _check_path(path, TABLE_SUFFIXES)
     if not path.exists():
         raise ParameterError("path", "must be an existing file", str(path))
     suffix = path.suffix.lower()
     _need(suffix)
-    if suffix == ".csv":
-        df = pd.read_csv(path, keep_default_na=False, na_values=[""])
-    elif suffix == ".parquet":
-        df = pd.read_parquet(path)
-    else:
-        import xarray as xr
-
-        with xr.open_dataset(path, engine=_netcdf_engine()) as ds:
-            df = ds.to_dataframe().reset_index(drop=True)
-    return _honest(df)
+    return READERS[suffix](path)

@@ -19,6 +19,7 @@ from .._runtime.errors import SearchStatus
 from ..core.charts import EULER, VECTOR, euler_to_vector
 from ..core.model import Model
 from .branches import _curve, _off_crossings
+from .budget import spend_wall
 from .linearisation import FixedPoint, _eigen_with_bounds, _jacobian_error, _law_jacobian, _mode_for, linearise
 
 __all__ = ["StabilityChange", "linearise_precession"]
@@ -65,7 +66,9 @@ def linearise_precession(model: Model, theta: float, Omega: float, n: float, *, 
     ``chart="euler"``: :func:`phasekit.steady.linearise` in the paper's variables. ``"rotating"``: the
     vector chart (k, w, v) in axes turning at Omega about the vertical, J - Omega G, regular at
     the poles (two more zero eigenvalues; tilt modes' imaginary parts shifted by Omega, real
-    parts the same). ``"auto"``: rotating within POLE_ZONE of a pole, Euler elsewhere."""
+    parts the same). ``"auto"``: rotating within POLE_ZONE of a pole, Euler elsewhere. Raises
+    TimeoutError once a wall budget in force has run out (phasekit.steady.budget)."""
+    spend_wall()
     if chart == "auto":
         chart = "rotating" if min(theta, np.pi - theta) < POLE_ZONE else "euler"
     y = np.array([0.0, 0.0, Omega, 0.0, theta, n])

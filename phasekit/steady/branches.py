@@ -154,6 +154,30 @@ def precession_on_branch(body, theta) -> tuple[np.ndarray, np.ndarray]:
     return om, n
 
 
+# -- a degenerate body ---------------------------------------------------------------------------
+
+#: q vanishing to this (relative to rho_2) at every theta is q = 0 identically
+DEGENERATE_RTOL = 1e-12
+
+
+def _degeneracy(body) -> str | None:
+    """Why the steady states of ``body`` are a continuum rather than branches, or None: q = 0 at
+    every theta (h_theta = 0: a sphere with G at its centre, every orientation a static
+    equilibrium), and then, with A = C, D = 0 too (every orientation precesses at any rate)."""
+    grid = np.linspace(0.0, np.pi, 257)
+    q, rho2 = _geometry(body, grid)[:2]
+    if not np.all(np.abs(q) <= DEGENERATE_RTOL * np.abs(rho2)):
+        return None
+    what = ("degenerate body: h_theta = 0 at every theta (a sphere with G at its centre), so every orientation is a "
+            "static equilibrium (and rolls straight at any spin)")
+    if abs(body.A - body.C) <= DEGENERATE_RTOL * body.C:
+        return (what + "; with A = C every orientation also precesses steadily at any rate Omega with n = Omega cos "
+                "theta: the steady states fill a continuum, not branches (only the isolated states are listed: the "
+                "spins about the vertical and the horizontal precession)")
+    return (what + "; the only precessions are the horizontal family (theta = pi/2, any Omega, n = 0) and the spins "
+            "about the vertical: there are no branches")
+
+
 # -- roots of q and D ---------------------------------------------------------------------------
 
 

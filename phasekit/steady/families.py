@@ -15,6 +15,7 @@ from ..core.charts import EULER
 from ..theory.criteria import PoleCriterion, pole_stability_threshold
 from .branch_stability import linearise_precession
 from .branches import _family_rate2, _geometry
+from .budget import spend_wall
 from .linearisation import linearise
 from .rolling import rolling_state
 
@@ -133,7 +134,11 @@ def _rolling_family(model, theta: float) -> tuple[tuple[float, ...], tuple[bool,
     """The spins where the straight rolling at ``theta`` changes stability (scan, then bisection
     in log n to 1e-10 relative) and the stability between them."""
     me = model if model.chart is EULER else model.with_chart("euler")
-    count = lambda n: linearise(me, rolling_state(model.body, theta, n), kind="rolling").n_unstable  # noqa: E731
+
+    def count(n):
+        spend_wall()
+        return linearise(me, rolling_state(model.body, theta, n), kind="rolling").n_unstable
+
     counts = [count(n) for n in ROLLING_SCAN]
     crits = []
     for k in np.flatnonzero(np.diff(counts) != 0):

@@ -21,8 +21,11 @@ from ..core.hybrid import Mode
 from ..core.model import Model
 from ..friction.laws import Viscous
 from ..theory.criteria import pole_stability_threshold
+from .branches import _degeneracy
+from .budget import spend_wall
 from .linearisation import FixedPoint, _check_model, _mode_for, linearise
 from .precessions import (
+    _root_float,
     horizontal_like_angle,
     horizontal_state,
     inverted_state,
@@ -235,14 +238,18 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
     -------
     list of FixedPoint
         The states found, linearised; a precession at which Newton does not converge is left out.
+        For a body whose steady states fill a continuum (a sphere with G at its centre:
+        SteadyStructure.degenerate says so) only the isolated states (horizontal, vertical).
 
     Raises
     ------
     ParameterError
         If ``model`` or ``model_vector`` is not a Model, if not exactly one of ``omega0`` and ``n0`` is
-        given, or if it is not finite.
+        given, or if it is not finite or beyond FAMILY_MAX (1e12) in size.
     ConvergenceError
         If Newton does not converge at the horizontal or the vertical state.
+    TimeoutError
+        If a wall budget in force (a caller's ``max_wall``, phasekit._runtime.watch) runs out.
 
     Examples
     --------
@@ -259,27 +266,66 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
         raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
     model_euler = model if model.chart is EULER else model.with_chart("euler")
     model_vector = model_vector or model.with_chart("vector")
+    omega0, n0 = _family_value("omega0", omega0), _family_value("n0", n0)
     body = model_euler.body
-    out: list[FixedPoint] = []
+    thetas = [] if _degeneracy(body) else precession_angles(body, omega0=omega0, n0=n0)
+    return _isolated_states(model_euler, model_vector, omega0, n0) + _precessions(model_euler, thetas, omega0, n0)
+
+
+def _family_value(name: str, value) -> float | None:
+    """None, or a finite Omega0 or n0 within FAMILY_MAX (ParameterError naming it)."""
+    if value is None:
+        return None
+    value = check_finite(name, value)
+    return check_range(name, value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")
+
+
+def _has_horizontal_state(body) -> bool:
+    """The horizontal state exists where h_theta(pi/2) = 0 (a flip-symmetric body, or one resting on its side
+    exactly at pi/2)."""
+    return bool(body.flip_symmetric or abs(body.h(np.pi / 2)[1]) < 1e-14)
+
+
+#: a precession within this of pi/2 is the horizontal state where that exists
+HORIZONTAL_GAP = 1e-9
+
+
+def _isolated_states(model_euler: Model, model_vector: Model, omega0, n0) -> list[FixedPoint]:
+    """The horizontal state (given omega0, where it exists) or the spins about the vertical (given
+    n0; the inverted one for a body without flip symmetry), as :func:`fixed_points` lists them first."""
+    body = model_euler.body
     if omega0 is not None:
-        omega0 = check_finite("omega0", omega0)
-        if body.flip_symmetric or abs(body.h(np.pi / 2)[1]) < 1e-14:
-            out.append(find_fixed_point(model_euler, horizontal_state(omega0), kind="horizontal", value=omega0))
-        fixed, value = "Omega", omega0
-    else:
-        n0 = check_finite("n0", n0)
-        out.append(_pole(model_vector, n0, "upright"))
-        if not body.flip_symmetric:
-            out.append(_pole(model_vector, n0, "inverted"))
-        fixed, value = "n", n0
-    thetas = precession_angles(body, omega0=omega0, n0=n0)
+        if not _has_horizontal_state(body):
+            return []
+        return [find_fixed_point(model_euler, horizontal_state(omega0), kind="horizontal", value=omega0)]
+    out = [_pole(model_vector, n0, "upright")]
+    if not body.flip_symmetric:
+        out.append(_pole(model_vector, n0, "inverted"))
+    return out
+
+
+def _precessions(model_euler: Model, thetas, omega0, n0) -> list[FixedPoint]:
+    """The precessions with rate omega0 (or spin n0) at the angles ``thetas`` (increasing), by Newton
+    from the closed form: the last step of both :func:`fixed_points` (angles from a scan of the
+    residual) and SteadyStructure.at (angles from the branches), so the two list the same states
+    when they find the same angles. Angles within HORIZONTAL_GAP of pi/2 are the horizontal state
+    (given omega0, where it exists); the one continuing it is "horizontal-like"; a precession at
+    which Newton does not converge is left out, and one already found from another angle."""
+    body = model_euler.body
+    fixed, value = ("Omega", omega0) if omega0 is not None else ("n", n0)
+    if omega0 is not None and _has_horizontal_state(body):
+        thetas = [t for t in thetas if abs(t - np.pi / 2) > HORIZONTAL_GAP]
     like = horizontal_like_angle(body, thetas) if omega0 is not None else None
+    out: list[FixedPoint] = []
     for theta in thetas:
-        guess = precession_state(body, theta, omega0=omega0, n0=n0)
+        spend_wall()
+        guess = precession_state(body, _root_float(body, theta, omega0=omega0, n0=n0), omega0=omega0, n0=n0)
         kind = "horizontal-like" if theta == like else "intermediate"
         try:
             fp = find_fixed_point(model_euler, guess, kind=kind, value=value, fixed=fixed)
         except ConvergenceError:
+            continue
+        if any(np.all(np.abs(fp.x - p.x) <= 1e-10 * np.maximum(np.abs(p.x), 1.0)) for p in out):
             continue
         out.append(replace(fp, parameter={fixed: value, "theta": float(fp.x[4])}))
     return out

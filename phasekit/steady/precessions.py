@@ -187,13 +187,23 @@ def precession_residual(body, theta, *, omega0: float | None = None, n0: float |
     return out if np.ndim(theta) else float(out[0])
 
 
+#: spins below this are spin 0: the two states with spin +n0 and -n0 near a point of spin 0
+#: (z = 0) differ in tilt by ~n0, which rounding cannot resolve, so one is listed (Omega >= 0)
+SPIN_FLOOR = 1e-12
+
+
 def precession_angles(body, *, omega0: float | None = None, n0: float | None = None, theta_range=None,
                       n_grid: int = 4001) -> list[float]:
-    """Every theta in ``theta_range`` (default (0, pi), or (0, pi/2) for a flip-symmetric body)
-    at which a steady precession with rate ``omega0`` (or spin ``n0``) exists: sign changes of
-    :func:`precession_residual` on ``n_grid`` points, refined by Brent's method to ~1e-15.
-    For a flip-symmetric body the neighbourhood of pi/2 (the horizontal family, where
-    G vanishes identically) is left out.
+    """Every theta strictly inside ``theta_range`` (default (0, pi), or (0, pi/2) for a
+    flip-symmetric body) at which a steady precession with rate ``omega0`` (or spin ``n0``)
+    exists: sign changes of :func:`precession_residual` on ``n_grid`` points (the ends of the
+    range included, so a root next to a pole is found), refined by Brent's method to ~1e-15, and
+    pairs of roots between two grid points (a dip of the residual toward zero, located and tested).
+    For a flip-symmetric body the residual is divided by cos(theta), its factor from the
+    horizontal family at pi/2 (where it vanishes identically), so precessions however close to
+    pi/2 are found and pi/2 itself is not; with ``n0`` = 0 (|n0| < SPIN_FLOOR) the roots are
+    those of q (the tilted static equilibria) and of z on a branch (spin 0, n = Omega z / rho_2),
+    which the residual has only as double roots.
 
     Parameters
     ----------
@@ -204,7 +214,7 @@ def precession_angles(body, *, omega0: float | None = None, n0: float | None = N
     n0 : float, optional
         Spin.
     theta_range : tuple of float, optional
-        (lo, hi), radians; the end points themselves are not searched.
+        (lo, hi), radians; the end points themselves are not roots.
     n_grid : int, optional
         Number of grid points over ``theta_range``.
 
@@ -224,34 +234,105 @@ def precession_angles(body, *, omega0: float | None = None, n0: float | None = N
     >>> [round(t, 6) for t in pk.steady.precession_angles(pk.Egg(1.3, 0.05), omega0=6.0)]
     [0.51274, 1.756111]
     """
-    from scipy.optimize import brentq
-
     if (omega0 is None) == (n0 is None):
         raise ValueError("give exactly one of `omega0` or `n0`.")
+    flip = bool(body.flip_symmetric)
     if theta_range is None:
-        theta_range = (0.0, np.pi / 2 - 1e-3) if body.flip_symmetric else (0.0, np.pi)
-    lo, hi = theta_range
-    grid = np.linspace(lo, hi, n_grid)[1:-1]
-    g = precession_residual(body, grid, omega0=omega0, n0=n0)
-    roots = []
-    for k in np.flatnonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0):
-        f = lambda t: precession_residual(body, t, omega0=omega0, n0=n0)  # noqa: E731
+        theta_range = (0.0, np.pi / 2) if flip else (0.0, np.pi)
+    grid = np.linspace(theta_range[0], theta_range[1], n_grid)
+    if n0 is not None and abs(n0) < SPIN_FLOOR:
+        statics = _angles(lambda t: _reduced(_regular(body, t)[0], t, flip), grid)
+        spinless = _angles(lambda t: _reduced(_regular(body, t)[2], t, flip), grid)
+        return sorted(statics + [t for t in spinless if _omega_squared(body, t) > 0.0])
+    # the spin residual has a double root where z = 0 (n changes sign): a pair of states with
+    # spin +-n0 straddles it, found from z's own root however close together they are
+    double = None if n0 is None else (lambda t: _reduced(_regular(body, t)[2], t, flip))
+    return _angles(lambda t: _reduced(precession_residual(body, t, omega0=omega0, n0=n0), t, flip), grid, double)
+
+
+def _root_float(body, theta: float, *, omega0: float | None = None, n0: float | None = None) -> float:
+    """The float within 16 floats of ``theta`` (a root of :func:`precession_residual` found by
+    any route) at which the residual (as :func:`precession_angles` scans it) is smallest: the
+    same float from any estimate a few floats off, so that every route that finds a state
+    polishes it from the same start and ends at the same state, bit for bit."""
+    flip = bool(body.flip_symmetric)
+    lo = hi = float(theta)
+    below, above = [], []
+    for _ in range(16):
+        lo, hi = float(np.nextafter(lo, -np.inf)), float(np.nextafter(hi, np.inf))
+        below.append(lo)
+        above.append(hi)
+    ts = np.array(below[::-1] + [float(theta)] + above)
+    ts = ts[(ts > 0.0) & (ts < np.pi)]
+    if n0 is not None and abs(n0) < SPIN_FLOOR:
+        q, _, z, _ = _regular(body, ts)
+        r = _reduced(_reduced(q * z, ts, flip), ts, flip)
+    else:
+        r = _reduced(precession_residual(body, ts, omega0=omega0, n0=n0), ts, flip)
+    r = np.where(np.isfinite(r), np.abs(r), np.inf)
+    return float(ts[int(np.argmin(r))]) if np.isfinite(r).any() else float(theta)
+
+
+def _reduced(values, theta, flip: bool):
+    """``values`` divided by cos(theta) for a flip-symmetric body (the horizontal family's factor:
+    the residual, q and z are odd about pi/2 there), as they are otherwise."""
+    return values / np.cos(theta) if flip else values
+
+
+def _omega_squared(body, theta: float) -> float:
+    q, rho2, _, D = (float(v[0]) for v in _regular(body, np.array([theta])))
+    return q * rho2 / D if D != 0.0 else float("inf")
+
+
+def _angles(fun, grid: np.ndarray, double=None) -> list[float]:
+    """The roots of ``fun`` (vectorised) strictly inside the range of ``grid``: sign changes
+    refined by Brent's method, exact zeros at grid points, and pairs of roots between grid
+    points where |fun| dips toward zero without a sign change (the dip's extremum is located,
+    as the root of ``double`` where that changes sign there (a factor whose square divides
+    ``fun`` up to a small term: located to rounding, which minimising |fun| is not), else by
+    Brent's minimisation, and tested)."""
+    from scipy.optimize import brentq, minimize_scalar
+
+    g = np.asarray(fun(grid), dtype=float)
+    f = lambda t: float(np.asarray(fun(np.array([t])), dtype=float)[0])  # noqa: E731
+    sgn = np.sign(g)
+    roots = [float(t) for t in grid[1:-1][sgn[1:-1] == 0.0]]
+    for k in np.flatnonzero(sgn[:-1] * sgn[1:] < 0):
         roots.append(float(brentq(f, grid[k], grid[k + 1], xtol=1e-15, rtol=4 * np.finfo(float).eps)))
-    roots += [float(grid[k]) for k in np.flatnonzero(g == 0.0)]
-    return sorted(roots)
+    a = np.abs(g)
+    dips = np.flatnonzero((a[1:-1] < a[:-2]) & (a[1:-1] < a[2:]) & (sgn[:-2] == sgn[1:-1]) & (sgn[1:-1] == sgn[2:])
+                          & (sgn[1:-1] != 0) & np.isfinite(a[1:-1])) + 1
+    for k in dips:
+        lo, hi = grid[k - 1], grid[k + 1]
+        d = None if double is None else np.asarray(double(np.array([lo, hi])), dtype=float)
+        if d is not None and d[0] * d[1] < 0:
+            t0 = brentq(lambda t: float(np.asarray(double(np.array([t])))[0]), lo, hi, xtol=1e-16, rtol=4 * np.finfo(float).eps)
+            low = sgn[k] * f(t0)
+        else:
+            res = minimize_scalar(lambda t, s=sgn[k]: s * f(t), bounds=(lo, hi), method="bounded", options={"xatol": 1e-14})
+            t0, low = float(res.x), res.fun
+        if low < 0:
+            roots += [float(brentq(f, lo, t0, xtol=1e-15)), float(brentq(f, t0, hi, xtol=1e-15))]
+    return sorted(r for r in roots if grid[0] < r < grid[-1])
 
 
 def precession_state(body, theta: float, *, omega0: float | None = None, n0: float | None = None) -> np.ndarray:
     """The steady precession at ``theta`` with rate ``omega0`` or spin ``n0`` (Euler chart):
     (0, 0, Omega, 0, theta, n) with n = Omega z / rho_2 (zero slip). ``theta`` should be one
-    of :func:`precession_angles`; no check that the torque balance holds is made here."""
+    of :func:`precession_angles`; no check that the torque balance holds is made here. Given
+    ``n0``, Omega = n0 rho_2 / z, or where z is within rounding of 0 (near a point of spin 0)
+    the same rate from the curve, sign(n0 z) sqrt(q rho_2 / D) (Omega >= 0 for |n0| < SPIN_FLOOR)."""
     q, rho2, z, D = (float(v[0]) for v in _regular(body, np.array([theta])))
     if omega0 is not None:
         om = float(omega0)
         n = om * z / rho2
     else:
         n = float(n0)
-        om = n * rho2 / z
+        if abs(z) > 1e-8 * abs(D):
+            om = n * rho2 / z
+        else:
+            sign = -1.0 if n * z < 0 and abs(n) >= SPIN_FLOOR else 1.0
+            om = sign * float(np.sqrt(max(q * rho2 / D, 0.0))) if D != 0.0 else 0.0
     return np.array([0.0, 0.0, om, 0.0, float(theta), n])
 
 

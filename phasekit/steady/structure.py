@@ -18,20 +18,19 @@ static equilibria and the families).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from .._runtime.errors import ConvergenceError, ParameterError, Status
-from .._runtime.validate import check_bool, check_finite
+from .._runtime.validate import check_bool
+from .._runtime.watch import check_max_wall, wall_deadline
 from ..bodies.body import Body
-from ..core.charts import EULER
 from ..core.model import Model
 from ..friction.laws import FrictionLaw, Viscous
 from .branch_stability import StabilityChange, _stability, linearise_precession
-from .branches import BranchEnd, _end, _pieces, _sample, _special_points, precession_on_branch
+from .branches import BranchEnd, _degeneracy, _end, _pieces, _sample, _special_points, precession_on_branch
 from .families import SpinFamily, StaticEquilibrium, _families, _statics
-from .fixedpoints import find_fixed_point
 from .linearisation import FixedPoint
 
 __all__ = ["SteadyBranch", "SteadyStructure", "steady_structure", "bifurcation_between"]
@@ -109,9 +108,15 @@ class SteadyStructure:
     families : tuple of SpinFamily
         The families (the horizontal state; the spins about the vertical).
     status : Status
-        ``Status.COMPLETED``, or ``Status.FAILED`` if a root or a limit could not be computed.
+        ``Status.COMPLETED``, or ``Status.FAILED`` if a root or a limit could not be computed or
+        the wall budget ran out.
     reason : str or None
         Why the computation failed, else None.
+    degenerate : str or None
+        Why the steady states fill a continuum rather than branches (a sphere with G at its
+        centre: every orientation is a static equilibrium), else None; such a structure has no
+        branches, statics or families listed, its signature is "degenerate" and :meth:`at` gives
+        its isolated states.
 
     Examples
     --------
@@ -127,6 +132,7 @@ class SteadyStructure:
     families: tuple[SpinFamily, ...]
     status: Status = Status.COMPLETED
     reason: str | None = None
+    degenerate: str | None = None
 
     @property
     def body(self):
@@ -135,14 +141,18 @@ class SteadyStructure:
     @property
     def signature(self) -> str:
         """The branches' ends in theta order, e.g. ``pole0-inf | static-polePi``; "cross" marks
-        a family crossed on the way (part I's horizontal state); "none" when there is no branch."""
+        a family crossed on the way (part I's horizontal state); "none" when there is no branch;
+        "degenerate" for a continuum of steady states (:attr:`degenerate`)."""
+        if self.degenerate is not None:
+            return "degenerate"
         return " | ".join(b.label for b in self.branches) or "none"
 
     def at(self, *, omega0: float | None = None, n0: float | None = None) -> list[FixedPoint]:
         """Every steady state with precession rate ``omega0`` (or spin ``n0``): the families' (the
-        horizontal state; the spins about the vertical) and the branches', found on the sampled
-        curves and polished by Newton on the full equations as :func:`phasekit.fixed_points`
-        does (the same states and eigenvalues).
+        horizontal state; the spins about the vertical; a precession family's member) and the
+        branches', found along each branch between its ends' exact limits (so also next to an
+        end: phasekit.steady.states_at) and polished by Newton on the full equations as
+        :func:`phasekit.fixed_points` polishes its own: the same states, kinds and eigenvalues.
 
         Parameters
         ----------
@@ -154,16 +164,30 @@ class SteadyStructure:
         Returns
         -------
         list of FixedPoint
-            The states, linearised.
+            The states, linearised, in the order of :func:`phasekit.fixed_points`; a
+            precession at which Newton does not converge is left out, as there.
 
         Raises
         ------
         ParameterError
-            If not exactly one of ``omega0`` and ``n0`` is given, or it is not finite.
+            If not exactly one of ``omega0`` and ``n0`` is given, or it is not finite or beyond
+            1e12 in size (phasekit.steady.fixedpoints.FAMILY_MAX).
         ConvergenceError
-            If Newton does not converge at one of the states.
+            If Newton does not converge at the horizontal or the vertical state, or the
+            structure failed (status "failed").
+        TimeoutError
+            If a wall budget in force (a caller's ``max_wall``) runs out.
+
+        Examples
+        --------
+        >>> import phasekit as pk
+        >>> s = pk.steady_structure(pk.Spheroid(1.5, offset=0.2), pk.Viscous(0.1), samples=False)
+        >>> [(p.kind, round(float(p.x[4]), 6)) for p in s.at(omega0=1000.0)]
+        [('horizontal-like', 1.276569)]
         """
-        return _states_at(self, omega0, n0)
+        from .states_at import states_at
+
+        return states_at(self, omega0, n0)
 
     def precession(self, theta):
         """(Omega, n) of the steady precession at ``theta`` (array; Omega >= 0), NaN where
@@ -183,8 +207,8 @@ class SteadyStructure:
 
     def to_dict(self, eigenvalues: bool = True) -> dict:
         return {"status": self.status.value, **({"reason": self.reason} if self.reason else {}),
-                "signature": self.signature, "branches": [b.to_dict(eigenvalues) for b in self.branches],
-                "static_equilibria": [s.to_dict() for s in self.static_equilibria],
+                **({"degenerate": self.degenerate} if self.degenerate else {}), "signature": self.signature,
+                "branches": [b.to_dict(eigenvalues) for b in self.branches], "static_equilibria": [s.to_dict() for s in self.static_equilibria],
                 "families": [f.to_dict() for f in self.families], "model": self.model.to_dict()}
 
     def __repr__(self) -> str:
@@ -195,7 +219,8 @@ class SteadyStructure:
 # -- the structure ------------------------------------------------------------------------------
 
 
-def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, samples: bool = True) -> SteadyStructure:
+def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, samples: bool = True,
+                     max_wall: float | None = None) -> SteadyStructure:
     """The steady-state structure of ``body`` under ``friction`` (module notes).
 
     Parameters
@@ -212,11 +237,17 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, sam
     samples : bool
         False: no samples along the branches either (their ends, the statics, the families and
         the signature only: what an atlas of classes needs, ~5 ms a body).
+    max_wall : float, optional
+        Wall budget in seconds (None: none; a caller's earlier deadline holds too): when it runs
+        out the structure has status "failed" and a reason naming it (a structure takes about a
+        second; a few with exact Coulomb's rolling families).
 
     Returns
     -------
     SteadyStructure
-        With status "failed" and the reason if a root or a limit could not be computed.
+        With status "failed" and the reason if a root or a limit could not be computed or the
+        budget ran out; with :attr:`SteadyStructure.degenerate` set (and no branches) for a body
+        whose steady states fill a continuum (a sphere with G at its centre).
 
     Examples
     --------
@@ -233,15 +264,22 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, sam
         raise ParameterError("friction", "must be a phasekit friction law such as Viscous(0.1) or Coulomb(0.1)", friction)
     check_bool("stability", stability)
     check_bool("samples", samples)
-    model = Model(body, friction)
-    try:
-        return _structure(model, stability and samples, samples)
-    except (ArithmeticError, ValueError, RuntimeError, ConvergenceError) as exc:
-        return SteadyStructure(model, (), (), (), Status.FAILED, f"{type(exc).__name__}: {exc}")
+    max_wall = check_max_wall(max_wall)
+    with wall_deadline(max_wall):  # from the start: compiling the model's fields counts too
+        model = Model(body, friction)
+        try:
+            return _structure(model, stability and samples, samples)
+        except TimeoutError as exc:
+            return SteadyStructure(model, (), (), (), Status.FAILED, f"not finished: {exc}")
+        except (ArithmeticError, ValueError, RuntimeError, ConvergenceError) as exc:
+            return SteadyStructure(model, (), (), (), Status.FAILED, f"{type(exc).__name__}: {exc}")
 
 
 def _structure(model: Model, stability: bool, samples: bool) -> SteadyStructure:
     body, friction = model.body, model.friction
+    why = _degeneracy(body)
+    if why is not None:  # a continuum of statics (and precessions): nothing to sample
+        return SteadyStructure(model, (), (), (), degenerate=why)
     pts = _special_points(body)
     pieces = _pieces(body, pts)
     for p in pieces:
@@ -260,61 +298,6 @@ def _structure(model: Model, stability: bool, samples: bool) -> SteadyStructure:
         branches.append(SteadyBranch((p["lo_end"], p["hi_end"]), theta, om, n, points, changes,
                                      tuple(p["crossings"]), slide))
     return SteadyStructure(model, tuple(branches), _statics(body, pts), _families(model, body, pts, pieces, stability))
-
-
-def _states_at(structure: SteadyStructure, omega0, n0) -> list[FixedPoint]:
-    """The families' states and the branches' states at one rate or spin, as
-    :func:`phasekit.fixed_points` finds them (for a flip-symmetric body the states at
-    theta > pi/2, mirror images of those below, are left out as it does)."""
-    from .fixedpoints import _pole
-    from .precessions import horizontal_state
-
-    if (omega0 is None) == (n0 is None):
-        raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
-    model, body = structure.model, structure.body
-    me = model if model.chart is EULER else model.with_chart("euler")
-    out = []
-    if omega0 is not None:
-        omega0 = check_finite("omega0", omega0)
-        for fam in structure.families:
-            if fam.kind == "precession" and fam.theta == np.pi / 2:
-                out.append(find_fixed_point(me, horizontal_state(omega0), kind="horizontal", value=omega0))
-    else:
-        n0 = check_finite("n0", n0)
-        mv = model.with_chart("vector")
-        out.append(_pole(mv, n0, "upright"))
-        if not body.flip_symmetric:
-            out.append(_pole(mv, n0, "inverted"))
-    for b in structure.branches:
-        out += _branch_states(me, b, omega0, n0)
-    if body.flip_symmetric:
-        out = [fp for fp in out if fp.kind != "intermediate" or fp.x[4] < np.pi / 2]
-    return out
-
-
-def _branch_states(model, branch: SteadyBranch, omega0, n0) -> list[FixedPoint]:
-    """The states of ``branch`` with rate omega0 (or spin n0), via Newton on the full equations
-    (Euler chart) from the root of the precession residual between two samples."""
-    from scipy.optimize import brentq
-
-    from .precessions import precession_residual, precession_state
-
-    body = model.body
-    fixed, value = ("Omega", omega0) if omega0 is not None else ("n", n0)
-    th = branch.theta
-    if th.size < 2:
-        return []
-    g = precession_residual(body, th, omega0=omega0, n0=n0)
-    out = []
-    f = lambda t: precession_residual(body, t, omega0=omega0, n0=n0)  # noqa: E731
-    for k in np.flatnonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0):
-        t = float(brentq(f, th[k], th[k + 1], xtol=1e-15, rtol=4 * np.finfo(float).eps))
-        if any(abs(t - c) < 1e-7 for c in branch.crossings):  # the family's state, not the branch's
-            continue
-        guess = precession_state(body, t, omega0=omega0, n0=n0)
-        fp = find_fixed_point(model, guess, kind="intermediate", value=value, fixed=fixed)
-        out.append(replace(fp, parameter={fixed: value, "theta": float(fp.x[4])}))
-    return out
 
 
 # -- between classes ------------------------------------------------------------------------------

@@ -15,7 +15,7 @@ from ..viz.output import pyplot
 __all__ = ["signature_colours", "plot_atlas", "plot_classes"]
 
 BIFURCATION_MARKERS = ("o", "s", "^", "D", "v", "P", "X")
-STABLE, UNSTABLE, CHANGE = "#1a9850", "#d73027", "#fdae61"
+CHANGE = "#fdae61"
 
 
 def signature_colours(signatures) -> dict:
@@ -105,11 +105,14 @@ def _scales(ax, logx, logy) -> None:
         ax.tick_params(which="minor", labelsize=7)
 
 
-def plot_classes(structures: dict, *, note: str, law: str = "viscous $\\mu$ = 0.1"):
+def plot_classes(structures: dict, *, note: str, law: str | None = None):
     """Omega(theta) (solid) and n(theta) (dashed) of each structure (``structures``: signature ->
-    :class:`phasekit.steady.SteadyStructure` with stability, stable green, unstable red under ``law``),
-    three to a row: changes of stability, pole ends (spin n) and static ends marked, the
-    infinite-spin ends dotted.
+    :class:`phasekit.steady.SteadyStructure` with stability), coloured by the stability
+    vocabulary of :mod:`phasekit.viz.stability` (stable, neutral, undecided, unstable; under exact
+    Coulomb friction no state is stable: the rolling field's are neutral), up to three to a row
+    with one panel per structure: changes of stability, pole ends (spin n) and static ends
+    marked, the infinite-spin ends dotted. ``law``: how the legend names the friction law
+    (default: from the structures).
 
     Examples
     --------
@@ -117,19 +120,27 @@ def plot_classes(structures: dict, *, note: str, law: str = "viscous $\\mu$ = 0.
     >>> s = pk.steady_structure(pk.Spheroid(1.5, offset=0.2), pk.Viscous(0.1))
     >>> fig = ps.plot_classes({s.signature: s}, note="demo")
     >>> len(fig.axes)
-    3
+    1
     """
+    from ..viz.stability import COLOURS, WORDS, law_text, legend_label, state_word
+
     plt = pyplot()
     n = len(structures)
-    cols = 3
-    rows_ = math.ceil(n / cols)
-    fig, axes = plt.subplots(rows_, cols, figsize=(5.2 * cols, 3.9 * rows_), squeeze=False)
+    cols = max(1, min(3, n))
+    rows_ = max(1, math.ceil(n / cols))
+    height = 3.9 * rows_ + (0.0 if cols == 3 else 0.8)  # fewer panels: room for a legend in rows
+    fig, axes = plt.subplots(rows_, cols, figsize=(max(5.2 * cols, 8.0), height), squeeze=False)
+    present = set()  # (word, legend label)
     for ax, (sig, s) in zip(axes.ravel(), structures.items()):
         top = 1.0
+        friction = s.model.friction
         for b in s.branches:
+            words = [state_word(p) for p in b.points]
+            present.update((w, legend_label(w, law_text(friction) if law is None else law,
+                                            rolling=friction.has_rolling_mode)) for w in words)
             for y, ls in ((b.Omega, "-"), (b.n, "--")):
-                for seg, st in _runs(b.theta, y, b.stable):
-                    ax.plot(seg[0], seg[1], ls, color=STABLE if st else UNSTABLE, lw=1.6)
+                for seg, word in _runs(b.theta, y, words):
+                    ax.plot(seg[0], seg[1], ls, color=COLOURS[word], lw=1.6)
             top = max(top, float(np.quantile(np.abs(b.Omega), 0.7)) * 1.8)
             for c in b.changes:
                 ax.plot([c.theta] * 2, [c.Omega, c.n], "o", color=CHANGE, ms=4, zorder=5)
@@ -138,17 +149,22 @@ def plot_classes(structures: dict, *, note: str, law: str = "viscous $\\mu$ = 0.
         ax.set(xlim=(0, math.pi), ylim=(-top, top), xlabel=r"$\theta$ (rad)", ylabel=r"$\Omega$, $n$ ($\sqrt{g/b}$)")
         ax.set_title(f"{sig}\n{s.body!r}", fontsize=8)
     for ax in axes.ravel()[n:]:
-        ax.axis("off")
+        ax.remove()
     handles = [plt.Line2D([], [], color="k", ls="-", label=r"$\Omega(\theta)$"),
                plt.Line2D([], [], color="k", ls="--", label=r"$n(\theta)$"),
-               plt.Line2D([], [], color=STABLE, label=f"stable ({law})"),
-               plt.Line2D([], [], color=UNSTABLE, label="unstable"),
-               plt.Line2D([], [], ls="none", marker="o", color=CHANGE, label="change of stability"),
+               *[plt.Line2D([], [], color=COLOURS[w], label=text) for w, text in
+                 sorted(present, key=lambda p: (WORDS.index(p[0]), p[1]))],
                plt.Line2D([], [], ls="none", marker="o", color="k", label="pole end (spin n)"),
                plt.Line2D([], [], ls="none", marker="^", color="k", label="static end")]
-    fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=8, frameon=False)
-    fig.suptitle("One body of every class: steady precessions " + r"$\Omega(\theta)$, $n(\theta)$" + "\n" + note, fontsize=10)
-    fig.tight_layout(rect=(0, 0.03, 1, 0.95))
+    if any(b.changes for s in structures.values() for b in s.branches):
+        handles.insert(-2, plt.Line2D([], [], ls="none", marker="o", color=CHANGE, label="change of stability"))
+    ncol = len(handles) if cols == 3 else math.ceil(len(handles) / 3)
+    fig.legend(handles=handles, loc="lower center", ncol=ncol, fontsize=8, frameon=False)
+    bodies = [repr(s.body) for s in structures.values()]
+    what = f"One body of each of {n} classes" if n > 1 else f"The steady-state structure of {bodies[0]}" if n else "None"
+    fig.suptitle(f"{what}: steady precessions " + r"$\Omega(\theta)$, $n(\theta)$" + "\n" + note, fontsize=10)
+    legend_rows = math.ceil(len(handles) / ncol)
+    fig.tight_layout(rect=(0, max(0.03, (0.25 * legend_rows + 0.1) / height), 1, 0.95 if cols == 3 else 1.0))
     return fig
 
 
@@ -169,6 +185,6 @@ def _runs(x, y, flags):
     out, start = [], 0
     for k in range(1, len(x) + 1):
         if k == len(x) or flags[k] != flags[start]:
-            out.append(((x[start:k + 1], y[start:k + 1]), bool(flags[start])))
+            out.append(((x[start:k + 1], y[start:k + 1]), flags[start]))
             start = k
     return out

@@ -98,7 +98,9 @@ def plot_flights(rows, *, experiment: dict, title: str):
     "value", "e" (restitution) and, for runs that flew, "first_flight_ms", "first_gap_mm",
     "longest_flight_ms", "largest_gap_mm"): the longest flight and largest gap of each run
     (black without rebounds, e = 0; labelled with the lever's value), the first flight hollow,
-    and the experiment's reported range (``experiment``: "flight_ms" and "gap_mm" ranges).
+    and a box for the experiment (``experiment``: "flight_ms" and "gap_mm" ranges, and "label":
+    whose numbers they are; a published text's words turned into numbers are our reading of
+    it, and the label says so).
 
     Examples
     --------
@@ -112,7 +114,8 @@ def plot_flights(rows, *, experiment: dict, title: str):
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(8.6, 6.0))
     g, f = experiment["gap_mm"], experiment["flight_ms"]
-    ax.fill_between(f, g[0], g[1], color="#fdd0a2", alpha=0.6, label="Mitsui et al. 2006 (reported range)")
+    ax.fill_between(f, g[0], g[1], color="#fdd0a2", alpha=0.6,
+                    label=experiment.get("label", "our reading of a published range (not its numbers)"))
     markers = dict(zip(sorted({r["lever"] for r in rows}), "osD^vP*X"))
     for r in rows:
         if r.get("largest_gap_mm") is None:
@@ -133,7 +136,7 @@ def plot_flights(rows, *, experiment: dict, title: str):
     ax.set_xlabel("flight duration (ms)")
     ax.set_ylabel("gap (mm)")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend(fontsize=7, loc="lower right")  # the box and the longest flights are at the top
     ax.set_title(title, fontsize=9)
     fig.tight_layout()
     return fig

@@ -20,8 +20,8 @@ from ..viz.pv import ASPECT, RenderInfo, _box, _check_file, _check_window_size, 
 
 __all__ = ["render_structure", "plot_branch_planes"]
 
-STABLE, UNSTABLE = "#1a9850", "#d73027"
-TRAJECTORY_COLORS = ("#4575b4", "#7b3294", "#e08214", "#01665e")
+#: none of them blue: blue is the colour of neutral states (phasekit.viz.stability)
+TRAJECTORY_COLORS = ("#7b3294", "#8c510a", "#01665e", "#e08214")
 
 
 def _box_bounds(structure, trajectories, omega_max):
@@ -38,20 +38,22 @@ def _box_bounds(structure, trajectories, omega_max):
     return (0.0, float(omega_max), 0.0, float(np.pi), n_lo - pad, n_hi + pad)
 
 
-def _segments_by_stability(P: np.ndarray, stable: np.ndarray):
-    """Split a polyline into runs of equal stability (each run shares its end point with the next)."""
+def _segments_by_stability(P: np.ndarray, words) -> list:
+    """Split a polyline into runs of one stability word (each run shares its end point with the next)."""
     runs, start = [], 0
     for k in range(1, len(P)):
-        if stable[k] != stable[start]:
-            runs.append((P[start:k + 1], bool(stable[start])))
+        if words[k] != words[start]:
+            runs.append((P[start:k + 1], words[start]))
             start = k
-    runs.append((P[start:], bool(stable[start])))
+    runs.append((P[start:], words[start]))
     return [(r, s) for r, s in runs if len(r) >= 2]
 
 
 def render_structure(structure, path, *, trajectories=(), surface: bool = False, omega_max: float | None = None,
                      title: str | None = None, window_size=(1500, 1050), camera=None) -> RenderInfo:
-    """Draw ``structure`` (a :class:`phasekit.steady.SteadyStructure` with stability) off-screen to a PNG.
+    """Draw ``structure`` (a :class:`phasekit.steady.SteadyStructure` with stability) off-screen to a PNG,
+    its branches and families coloured by the stability vocabulary of :mod:`phasekit.viz.stability`
+    (under exact Coulomb friction the states that do not grow are neutral, never stable).
 
     Parameters
     ----------
@@ -83,6 +85,7 @@ def render_structure(structure, path, *, trajectories=(), surface: bool = False,
     (150, 200, 3)
     """
     from ..steady.structure import SteadyStructure
+    from ..viz.stability import COLOURS, state_word
 
     if not isinstance(structure, SteadyStructure):
         raise ParameterError("structure", "must be what phasekit.steady_structure returned", structure)
@@ -97,17 +100,19 @@ def render_structure(structure, path, *, trajectories=(), surface: bool = False,
 
     f = _box(bounds)
     counts = {"branches": 0, "trajectories": 0, "surface": 0, "points": 0}
+    words = set()
     with _quiet_vtk():
         pl = pv.Plotter(off_screen=True, window_size=list(window_size))
         pl.set_background("white")
         for b in structure.branches:
             P = np.column_stack([b.Omega, b.theta, b.n])
-            for run, st in _segments_by_stability(P, b.stable):
+            for run, word in _segments_by_stability(P, [state_word(p) for p in b.points]):
                 for piece in _inside_runs(run, bounds):
                     line = pv.lines_from_points(f(piece))
                     counts["branches"] += line.n_points
-                    pl.add_mesh(line, color=STABLE if st else UNSTABLE, line_width=5)
-        counts["points"] = _add_special_points(pl, pv, f, structure, bounds)
+                    words.add(word)
+                    pl.add_mesh(line, color=COLOURS[word], line_width=5)
+        counts["points"], family_words = _add_special_points(pl, pv, f, structure, bounds)
         for k, tr in enumerate(trs):
             for piece in _inside_runs(tr, bounds):
                 line = pv.lines_from_points(f(piece))
@@ -118,16 +123,19 @@ def render_structure(structure, path, *, trajectories=(), surface: bool = False,
         pl.show_bounds(bounds=[0, ASPECT[0], 0, ASPECT[1], 0, ASPECT[2]], axes_ranges=list(bounds),
                        xtitle="Omega [sqrt(g/b)]", ytitle="theta [rad]", ztitle="n [sqrt(g/b)]", color="k", font_size=16,
                        location="outer", grid="back", ticks="outside")
-        _legend_and_title(pl, bool(trs), title, window_size)
+        _legend_and_title(pl, structure, words, family_words, bool(trs), title, window_size)
         pl.camera_position = camera or [(3.4, -2.3, 1.8), (0.7, 0.5, 0.45), (0.0, 0.0, 1.0)]
         img = pl.screenshot(str(path), return_img=True)
         pl.close()
     return RenderInfo(str(path), counts, tuple(float(v) for v in bounds), tuple(img.shape), float(img.std()))
 
 
-def _add_special_points(pl, pv, f, structure, bounds) -> int:
+def _add_special_points(pl, pv, f, structure, bounds) -> tuple[int, set]:
     """Branch ends at poles and statics (black), stability changes (orange), the pole and
-    precession families as dashed-looking thin lines coloured by their stability."""
+    precession families as thin lines coloured by their stability. Returns the number of points
+    and the stability words of the families drawn."""
+    from ..viz.stability import COLOURS, family_word
+
     lo, hi = np.array(bounds[0::2]), np.array(bounds[1::2])
     ends, changes = [], []
     for b in structure.branches:
@@ -144,6 +152,7 @@ def _add_special_points(pl, pv, f, structure, bounds) -> int:
         if len(P):
             pl.add_points(f(P), color=color, point_size=size, render_points_as_spheres=True)
             count += len(P)
+    words = set()
     for fam in structure.families:
         if fam.parameter == "n":
             # spins about the vertical (Omega undefined: drawn in the plane where a branch meets
@@ -156,19 +165,32 @@ def _add_special_points(pl, pv, f, structure, bounds) -> int:
             vals = np.linspace(lo[0], hi[0], 81)
             P = np.column_stack([vals, np.full_like(vals, fam.theta), np.zeros_like(vals)])
         side = [fam.stable_on[int(np.searchsorted(fam.criticals, abs(v)))] for v in vals]
-        known = all(v is not None for v in side)
-        for run, st in _segments_by_stability(P, np.array([bool(v) for v in side])):
-            color = STABLE if known and st else UNSTABLE if known else (0.5, 0.5, 0.5)
-            pl.add_mesh(pv.lines_from_points(f(run)), color=color, line_width=2, opacity=0.7)
-    return count
+        for run, word in _segments_by_stability(P, [family_word(s, structure.model.friction) for s in side]):
+            words.add(word)
+            pl.add_mesh(pv.lines_from_points(f(run)), color=COLOURS[word], line_width=2, opacity=0.7)
+    return count, words
 
 
-def _legend_and_title(pl, trajectories: bool, title, window_size) -> None:
-    legend = [["stable branch state", STABLE], ["unstable branch state", UNSTABLE], ["end of a branch", "black"],
-              ["change of stability", "#fdae61"], ["families (thin; same colours)", (0.4, 0.4, 0.4)]]
+def _legend_and_title(pl, structure, words, family_words, trajectories: bool, title, window_size) -> None:
+    """The legend names the stability words drawn (branches thick, families thin), under the law."""
+    from ..viz.stability import COLOURS, WORDS, law_text, legend_label
+
+    law = structure.model.friction
+    legend = [[legend_label(w, law_text(law).replace("$\\mu$", "mu"), rolling=law.has_rolling_mode), COLOURS[w]]
+              for w in WORDS if w in words | family_words]
+    if "unknown" in family_words:
+        legend.append(["family: stability not computed", COLOURS["unknown"]])
+    legend.append(["end of a branch", "black"])
+    if any(b.changes for b in structure.branches):
+        legend.append(["change of stability", "#fdae61"])
+    legend.append(["branches thick, families thin", (0.4, 0.4, 0.4)])
     if trajectories:
         legend.append(["trajectory", TRAJECTORY_COLORS[0]])
-    pl.add_legend(legend, bcolor="white", face="rectangle", size=(0.22, 0.15), loc="lower left")
+    # top right: the drawn box leaves it free from the cameras the studies use
+    box = pl.add_legend(legend, bcolor="white", face="rectangle", loc=None)
+    height = min(0.032, 22.0 / window_size[1]) * len(legend)  # VTK fits the font to the box: ~22 px a row
+    box.SetPosition(0.64, 0.92 - height)  # top right, below a title of two lines
+    box.SetPosition2(0.34, height)
     if title:
         actor = pl.add_text(title, position=(16, window_size[1] - 14), font_size=11, color="k")
         actor.GetTextProperty().SetVerticalJustificationToTop()

@@ -186,11 +186,11 @@ def animate(traj, path, frames: int = 96, *, fps: float = 24.0, t_span=None, tim
     t_span : (float, float), optional
         The stretch of the run to show (default the whole run).
     timing : {"body", "real"}
-        "body": the clock shows the body's time; "real" (needs ``scale``): also seconds, and
-        the playback speed relative to real time (frames / fps against the span in seconds)
-        is printed and returned.
+        "real" (needs ``scale``): the playback speed relative to real time (frames / fps
+        against the span in seconds) is printed on every frame (and returned with a scale).
     scale : Scale, optional
-        The body's size: the clock in ms and gaps in micrometres.
+        The body's size: every label in real units (clock in ms, s over 10 s; gaps in mm;
+        the panel's R in N with the Scale's mass, else M g; rates in rev/s).
     gap_scale : float >= 1
         Draw the gap in flight this many times larger (micrometre flights); printed on every
         frame when not 1.
@@ -282,7 +282,7 @@ def film_strip(traj, path, frames: int = 6, *, t_span=None, times=None, columns:
     columns : int, optional
         Images per row, in [1, 100] (default all in one row).
     scale : Scale, optional
-        The body's size: the clock in ms and gaps in micrometres.
+        The body's size: the clock in ms (s for a span over 10 s) and gaps in mm.
     gap_scale : float >= 1
         Draw the gap in flight this many times larger.
     camera : {"follow", "fixed"}
@@ -367,7 +367,7 @@ def render_body(traj, t: float, path, *, scale=None, gap_scale: float = 1.0, win
     path : str or Path
         Ending in .png.
     scale : Scale, optional
-        The body's size: the clock in ms and gaps in micrometres.
+        The body's size: the clock in ms (s for a span over 10 s) and gaps in mm.
     gap_scale : float >= 1
         Draw the gap in flight this many times larger.
     window_size : (int, int)

@@ -13,6 +13,7 @@ spin about the axis visible; the contact point's path is traced on the table.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -72,6 +73,37 @@ class _Style:
                    scale, title)
 
 
+class _Units:
+    """The units a frame is labelled in: the body's (sqrt(b/g), M g, b) without a Scale; with
+    one, real units: time in ms (s for a span over 10 s), R in N (in M g when the Scale has no
+    mass), gaps in mm, rates in rev/s."""
+
+    def __init__(self, scale, span):
+        self.scale, self.real = scale, scale is not None
+        long = self.real and float(scale.to_real(span[1] - span[0], "time", "s").magnitude) > 10.0
+        self.time_unit = "sqrt(b/g)" if not self.real else "s" if long else "ms"
+        self.force_unit = "N" if self.real and scale.mass is not None else "M g"
+        self.gap_unit, self.rate_unit = ("mm", "rev/s") if self.real else ("b", "sqrt(g/b)")
+
+    def _to(self, value, kind: str, unit: str):
+        if not self.real or unit in ("M g", "b", "sqrt(b/g)", "sqrt(g/b)"):
+            return value
+        value = float(value) if np.ndim(value) == 0 else np.asarray(value, dtype=float)
+        return self.scale.to_real(value, kind, unit).magnitude
+
+    def time(self, t):
+        return self._to(t, "time", self.time_unit)
+
+    def force(self, R):
+        return self._to(R, "force", self.force_unit)
+
+    def gap(self, gap):
+        return self._to(gap, "length", self.gap_unit)
+
+    def rate(self, w):
+        return self._to(w, "rate", self.rate_unit)
+
+
 class _Stage:
     """One off-screen plotter with the table, the body, the traced paths and the captions;
     :meth:`frame` moves them to a time and returns the image."""
@@ -82,7 +114,7 @@ class _Stage:
         _headless()
         import pyvista as pv
 
-        self.pv, self.traj, self.style = pv, traj, style
+        self.pv, self.traj, self.style, self.units = pv, traj, style, _Units(style.scale, span)
         self.body0 = body_mesh(traj.model.body)
         self.deco0 = [d.triangulate() for d in decorations(traj.model.body)]
         self.pl = pv.Plotter(off_screen=True, window_size=list(style.window_size))
@@ -142,15 +174,13 @@ class _Stage:
             mesh.lines = np.concatenate([[k], np.arange(k)])
 
     def caption(self, row) -> str:
-        sc = self.style.scale
+        units = self.units
         clock = f"t = {row['t']:.3f} sqrt(b/g)"
-        if sc is not None:
-            clock += f" = {sc.to_real(row['t'], 'time').magnitude:.1f} ms"
+        if units.real:
+            clock += f" = {units.time(row['t']):.{1 if units.time_unit == 'ms' else 3}f} {units.time_unit}"
         lines = [clock, f"{row['mode']}, theta = {row['theta']:.3f} rad"]
         if row["mode"] == "flight":
-            gap = (f"gap {row['gap']:.3g} b" if sc is None
-                   else f"gap {sc.to_real(row['gap'], 'length').to('um').magnitude:.3g} um")
-            lines.append(gap)
+            lines.append(f"gap {units.gap(row['gap']):.3g} {units.gap_unit}")
         if self.style.gap_scale != 1.0:
             lines.append(f"gap drawn x{self.style.gap_scale:g}")
         return "\n".join(lines)
@@ -171,13 +201,16 @@ class _Stage:
 
 class _Panel:
     """The side panel (matplotlib, Agg): R(t) or the trajectory in (Omega, theta, n), with a
-    marker at the frame's time."""
+    marker at the frame's time; every axis in the units of :class:`_Units` (real units with a
+    Scale)."""
 
-    def __init__(self, traj, kind: str, span, height: int):
+    def __init__(self, traj, kind: str, span, height: int, scale=None):
         from matplotlib.backends.backend_agg import FigureCanvasAgg
         from matplotlib.figure import Figure
+        from matplotlib.ticker import MaxNLocator
 
         self.kind = kind
+        units = _Units(scale, span)
         ts = np.linspace(*span, 3000)
         df = traj.sample(ts)
         dpi = 100
@@ -185,27 +218,34 @@ class _Panel:
         self.canvas = FigureCanvasAgg(self.fig)
         if kind == "R":
             ax = self.fig.add_subplot(111)
-            ax.plot(ts, df["R"], lw=1, color="k")
-            ax.fill_between(ts, 0, 1, where=(df["mode"] == "flight").to_numpy(), color="#9ecae1", alpha=0.6,
+            x, y = units.time(ts), units.force(df["R"].to_numpy())
+            ax.plot(x, y, lw=1, color="k")
+            ax.fill_between(x, 0, 1, where=(df["mode"] == "flight").to_numpy(), color="#9ecae1", alpha=0.6,
                             transform=ax.get_xaxis_transform(), label="flight")
-            ax.set_xlabel("t (units sqrt(b/g))")
-            ax.set_ylabel("R (units Mg)")
+            ax.set_xlabel(f"t ({units.time_unit})")
+            ax.set_ylabel(f"R ({units.force_unit})")
+            ax.xaxis.set_major_locator(MaxNLocator(max(2, min(4, height // 90))))  # ms: four digits or more
             (self.marker,) = ax.plot([], [], "o", color="#e6550d")
-            self.xy = (ts, df["R"].to_numpy())
+            self.xy = (ts, x, y)
         else:
             ax = self.fig.add_subplot(111, projection="3d")
-            ax.plot(df["Omega"], df["theta"], df["n"], lw=0.8, color="k")
-            ax.set_xlabel("Omega")
-            ax.set_ylabel("theta")
-            ax.set_zlabel("n")
+            P = np.column_stack([units.rate(df["Omega"].to_numpy()), df["theta"].to_numpy(),
+                                 units.rate(df["n"].to_numpy())])
+            ax.plot(P[:, 0], P[:, 1], P[:, 2], lw=0.8, color="k")
+            ax.set_xlabel(f"Omega ({units.rate_unit})")
+            ax.set_ylabel("theta (rad)")
+            ax.set_zlabel(f"n ({units.rate_unit})")
+            ax.set_box_aspect(None, zoom=0.8)  # room for the labels inside the square
             (self.marker,) = ax.plot([], [], [], "o", color="#e6550d")
-            self.xyz = (ts, df[["Omega", "theta", "n"]].to_numpy())
-        self.fig.tight_layout()
+            self.xyz = (ts, P)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # a small panel's labels may not fit: drawn all the same
+            self.fig.tight_layout()
 
     def frame(self, t: float) -> np.ndarray:
         if self.kind == "R":
-            ts, R = self.xy
-            self.marker.set_data([t], [np.interp(t, ts, R)])
+            ts, x, y = self.xy
+            self.marker.set_data([np.interp(t, ts, x)], [np.interp(t, ts, y)])
         else:
             ts, P = self.xyz
             p = [np.interp(t, ts, P[:, j]) for j in range(3)]
@@ -220,7 +260,7 @@ def _frames(traj, times, style: _Style, span, progress: bool):
 
     rows = traj.sample(times)
     stage = _Stage(traj, style, span)
-    panel = None if style.panel == "none" else _Panel(traj, style.panel, span, style.window_size[1])
+    panel = None if style.panel == "none" else _Panel(traj, style.panel, span, style.window_size[1], style.scale)
     out = []
     try:
         for i in bar(range(len(rows)), desc="frames", enabled=progress and len(rows) > 10):

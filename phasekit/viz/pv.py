@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import contextlib
 import importlib.util
-import json
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,17 +18,14 @@ from pathlib import Path
 import numpy as np
 
 from .._runtime.errors import ParameterError, PhasekitError
+from .box import ASPECT, _box, _inside_runs  # noqa: F401 (the studies' scenes draw in the same box)
+from .export import _export, axes_caption  # noqa: F401 (axes_caption: what an exported scene's caption says)
 
 __all__ = ["render_scene", "RenderInfo", "HTML_EXTRA", "axes_caption"]
 
 #: the optional packages the HTML export needs: ``pip install "phasekit[html]"`` (pyvista's
 #: export starts trame's server in-process, which needs nest_asyncio2 outside Jupyter)
 HTML_EXTRA = ("trame_pyvista", "nest_asyncio2")
-#: drawn box in VTK coordinates: Omega, theta, n spans
-ASPECT = (1.4, 1.0, 1.0)
-#: where the glTF axes' tick values and titles sit, per axis, relative to the axis (box units)
-TICK_OFFSETS = ((0.0, -0.08, -0.06), (-0.12, 0.0, -0.06), (-0.12, -0.05, 0.0))
-TITLE_OFFSETS = ((0.0, -0.2, -0.12), (-0.25, 0.0, -0.12), (-0.25, -0.1, 0.0))
 COLORS = ("#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d", "#666666")
 
 
@@ -70,50 +66,6 @@ class RenderInfo:
     image_shape: tuple
     image_std: float
     exported: tuple = ()
-
-
-def _box(bounds, aspect=ASPECT):
-    lo = np.array(bounds[0::2], dtype=float)
-    hi = np.array(bounds[1::2], dtype=float)
-    span = np.where(hi > lo, hi - lo, 1.0)
-
-    def f(P):
-        P = np.atleast_2d(np.asarray(P, dtype=float))
-        return (P - lo) / span * np.asarray(aspect)
-
-    return f
-
-
-def _inside_runs(P: np.ndarray, bounds) -> list[np.ndarray]:
-    """The pieces of the polyline P (N, 3) inside the box, each cut exactly at the faces."""
-    lo, hi = np.array(bounds[0::2]), np.array(bounds[1::2])
-    tol = 1e-12 * (hi - lo)
-    inside = np.all((P >= lo - tol) & (P <= hi + tol), axis=1)
-    runs, cur = [], []
-    for k in range(len(P)):
-        if inside[k]:
-            if not cur and k > 0:
-                cur.append(_cut(P[k], P[k - 1], lo, hi))
-            cur.append(P[k])
-        elif cur:
-            cur.append(_cut(P[k - 1], P[k], lo, hi))
-            runs.append(np.array(cur))
-            cur = []
-    if cur:
-        runs.append(np.array(cur))
-    return [r for r in runs if len(r) >= 2]
-
-
-def _cut(a: np.ndarray, b: np.ndarray, lo, hi) -> np.ndarray:
-    """The point where the segment from ``a`` (inside) to ``b`` (outside) leaves the box."""
-    s = 1.0
-    d = b - a
-    for j in range(3):
-        if d[j] > 0 and b[j] > hi[j]:
-            s = min(s, (hi[j] - a[j]) / d[j])
-        elif d[j] < 0 and b[j] < lo[j]:
-            s = min(s, (lo[j] - a[j]) / d[j])
-    return a + max(0.0, s) * d
 
 
 @contextlib.contextmanager
@@ -444,150 +396,3 @@ def _draw_bodies(pl, data, f) -> int:
         pl.add_mesh(mesh, scalars="sector", cmap=list(BODY_COLORS), show_scalar_bar=False, smooth_shading=True)
         n += 1
     return n
-
-
-def _export(pl, data, html, gltf, title=None) -> list[str]:
-    """Write the glTF and HTML exports. Neither format keeps VTK's annotation actors (the cube
-    axes would show the drawn box's 0..1.4 coordinates, the 2-D text and colour bar vanish), so
-    the axes, their tick values in the data's units and the title are added as meshes, and the
-    cube axes removed; the HTML also gets a caption (title, axes, true ranges) as page text."""
-    out = []
-    if gltf or html:
-        pl.remove_bounds_axes()
-        _add_axes_geometry(pl, data.bounds)
-        if title:
-            _add_title_geometry(pl, title)
-    if gltf:
-        tmp = Path(gltf).with_name(f".{Path(gltf).name}.{os.getpid()}.tmp.gltf")
-        try:
-            import warnings
-
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # pyvista notes that it converts the grids to surfaces
-                pl.export_gltf(str(tmp), inline_data=True)
-            _annotate_gltf(tmp, data.bounds, title)
-            os.replace(tmp, gltf)
-        finally:
-            tmp.unlink(missing_ok=True)
-        out.append(str(gltf))
-    if html:
-        tmp = Path(html).with_name(f".{Path(html).stem}.{os.getpid()}.tmp{Path(html).suffix}")
-        try:
-            import warnings
-
-            with warnings.catch_warnings(), _without_vtk_wasm():
-                warnings.simplefilter("ignore")  # pyvista's deprecation notice of export_html
-                pl.export_html(str(tmp))
-            _caption_html(tmp, data, title)
-            os.replace(tmp, html)
-        except Exception as exc:
-            raise PhasekitError(f"cannot write the HTML export {html}: {type(exc).__name__}: "
-                                f"{' '.join(str(exc).split())}") from None
-        finally:
-            tmp.unlink(missing_ok=True)
-        out.append(str(html))
-    return out
-
-
-@contextlib.contextmanager
-def _without_vtk_wasm():
-    """pyvista's HTML export starts trame's server, which initialises trame-vtklocal when it is
-    installed; that module then downloads VTK's WebAssembly bundle from the internet (not needed:
-    the page is vtk.js) and, offline, prints a traceback later. Hide it while the server starts."""
-    import sys
-
-    key, missing = "trame.widgets.vtklocal", object()
-    saved = sys.modules.get(key, missing)
-    sys.modules[key] = None  # an import of it raises ImportError, which trame-pyvista skips
-    try:
-        yield
-    finally:
-        if saved is missing:
-            sys.modules.pop(key, None)
-        else:
-            sys.modules[key] = saved
-
-
-def axes_caption(data, title=None) -> list[str]:
-    """The lines of text that say what an exported scene shows: its title and each axis with
-    its unit and true range (the drawn box is rescaled)."""
-    from ..theory.surface import AXES
-
-    lines = [title] if title else []
-    for j, (name, unit) in enumerate(AXES):
-        lines.append(f"{name} [{unit}]: {data.bounds[2 * j]:.4g} to {data.bounds[2 * j + 1]:.4g}")
-    if data.surface is not None and "surface" in data.scene.show:
-        lines.append(f"colour: n on (6.3) [sqrt(g/b)], {data.bounds[4]:.4g} to {data.bounds[5]:.4g}")
-    return lines
-
-
-def _caption_html(path: Path, data, title) -> None:
-    """Put the caption into the exported page: a box over the 3-D view and the page's title."""
-    import html as _html
-
-    text = Path(path).read_text(encoding="utf-8")
-    lines = axes_caption(data, title)
-    items = "".join(f"<div>{_html.escape(line)}</div>" for line in lines)
-    box = ('<div id="phasekit-caption" style="position:fixed;top:8px;left:8px;z-index:10;font:14px sans-serif;'
-           f'background:rgba(255,255,255,0.85);color:#000;padding:6px 10px;border-radius:4px">{items}</div>')
-    head_title = _html.escape(title or "phasekit scene")
-    text = text.replace("<title>VTK.js | Example - OfflineLocalView</title>", f"<title>{head_title}</title>", 1)
-    if "<body>" not in text:
-        raise PhasekitError("the HTML export has no <body> to caption (an unexpected page layout)")
-    # vtk.js replaces what is in its container (.content, else <body>): give it its own
-    view = '<div class="content" style="position:absolute;top:0;left:0;width:100%;height:100%"></div>'
-    Path(path).write_text(text.replace("<body>", "<body>\n" + view + box, 1), encoding="utf-8")
-
-
-def _add_title_geometry(pl, title: str) -> None:
-    """The title as 3-D text above the box (exports keep meshes, not 2-D text)."""
-    import pyvista as pv
-
-    txt = pv.Text3D(title, depth=0.002).scale(0.05, inplace=False)
-    width = txt.bounds[1] - txt.bounds[0]
-    pl.add_mesh(txt.rotate_x(90, inplace=False).translate((0.5 * ASPECT[0] - 0.5 * width, 0.0, ASPECT[2] + 0.15),
-                                                          inplace=False), color="black")
-
-
-def _add_axes_geometry(pl, bounds) -> None:
-    """The axes as meshes (glTF keeps meshes, not VTK's annotation actors): the three axis
-    lines, tick marks with their values, and the titles with units, as 3-D text."""
-    import pyvista as pv
-
-    from ..theory.surface import AXES
-
-    f = _box(bounds)
-    lo = np.array(bounds[0::2], dtype=float)
-    hi = np.array(bounds[1::2], dtype=float)
-    for j, (name, unit) in enumerate(AXES):
-        a, b = lo.copy(), lo.copy()
-        b[j] = hi[j]
-        pl.add_mesh(pv.Line(f(a)[0], f(b)[0]), color="black", line_width=2)
-        for v in np.linspace(lo[j], hi[j], 4):
-            p = lo.copy()
-            p[j] = v
-            q = f(p)[0]
-            label = pv.Text3D(f"{v:.3g}", depth=0.002).scale(0.035, inplace=False)
-            off = np.array(TICK_OFFSETS[j])
-            pl.add_mesh(label.translate(q + off, inplace=False), color="black")
-        mid = lo.copy()
-        mid[j] = 0.5 * (lo[j] + hi[j])
-        q = f(mid)[0] + np.array(TITLE_OFFSETS[j])
-        pl.add_mesh(pv.Text3D(f"{name} [{unit}]", depth=0.002).scale(0.045, inplace=False).translate(q, inplace=False),
-                    color="black")
-
-
-def _annotate_gltf(path: Path, bounds, title=None) -> None:
-    """Record the axes (name, unit, range, drawn span), the title and what glTF cannot hold in
-    the file's ``asset.extras``."""
-    from ..theory.surface import AXES
-
-    doc = json.loads(Path(path).read_text())
-    extras = doc.setdefault("asset", {}).setdefault("extras", {})
-    extras["phasekit_axes"] = [
-        {"name": name, "unit": unit, "range": [float(bounds[2 * j]), float(bounds[2 * j + 1])],
-         "drawn_span": [0.0, ASPECT[j]]} for j, (name, unit) in enumerate(AXES)]
-    extras["phasekit_title"] = title
-    extras["phasekit_note"] = ("glTF holds meshes only: the axes, their tick values (true values) and the title are "
-                               "3-D text; the colour bar and 2-D annotations of the PNG are not in the file")
-    Path(path).write_text(json.dumps(doc))

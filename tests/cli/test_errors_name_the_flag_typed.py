@@ -6,6 +6,7 @@ import math
 import subprocess
 import sys
 
+import phasekit as pk
 from phasekit import cli
 
 import pytest
@@ -133,18 +134,30 @@ def test_unstable_manifold_of_a_state_the_body_lacks_is_bad_input(body, state, v
     assert msg.startswith(f"--unstable-manifold must be one of {valid} for the ") and msg.endswith(f"got '{state}'.")
 
 
+class _Unrun:
+    """What the recorder below returns in place of a Trajectory: a run that did nothing."""
+
+    status, flights = pk.Status.COMPLETED, ()
+
+    def to_dict(self):
+        return {"status": "completed", "reason": None}
+
+    def flight_summary(self):
+        return {"n_flights": 0}
+
+
 @pytest.fixture
 def started(monkeypatch):
-    """simulate_start replaced by a recorder: what the CLI passes on, without integrating."""
+    """run_start replaced by a recorder: what the CLI passes on, without integrating."""
     import phasekit.cli.params
 
     calls = []
 
     def record(**kw):
         calls.append(kw)
-        return {"status": "completed", "reason": None}
+        return _Unrun(), None
 
-    monkeypatch.setattr(phasekit.cli.params, "simulate_start", record)
+    monkeypatch.setattr(phasekit.cli.params, "run_start", record)
     return calls
 
 

@@ -125,3 +125,29 @@ def test_help_stability_statements_hold_for_the_law_they_name(a, family, below, 
     assert state(above, "--friction", "viscous")["n_unstable"] > 0
     for value in (below, above):
         assert state(value)["classification"] == "neutral (spectrally stable)"
+
+
+@pytest.mark.timeout(300)
+def test_fixed_points_on_a_sphere_say_it_is_a_continuum():
+    """A sphere with G at its centre: the horizontal state (with --omega0) or the vertical spin
+    (with --n0) only, and a note that every orientation is steady, not a scan of a continuum."""
+    from phasekit.cli.params import fixed_points_report
+
+    code, d = run_json(["fixed-points", "--a", "1.0", "--A", "0.4", "--mu", "0.1", "--omega0", "10.0", "--json"])
+    assert code == 0 and d["status"] == "completed"
+    assert [p["kind"] for p in d["fixed_points"]] == ["horizontal"] and "static equilibrium" in d["degenerate"]
+    assert d["degenerate"] in d["note"]
+    d = fixed_points_report(body=pk.Spheroid(1.0), mu=0.1, n0=3.0, max_wall=60.0)
+    assert d["status"] == "completed" and [p["kind"] for p in d["fixed_points"]] == ["vertical"]
+
+
+def test_fixed_points_report_keeps_its_wall_budget():
+    from phasekit.cli.params import fixed_points_report
+
+    d = fixed_points_report(body=pk.Egg(1.3, 0.05), mu=0.1, omega0=6.0, max_wall=1e-9)
+    assert d["status"] == "failed" and "max_wall = 1e-09 s" in d["reason"] and d["fixed_points"] == []
+    d = fixed_points_report(body=pk.Egg(1.3, 0.05), mu=0.1, omega0=6.0, max_wall=600.0)
+    assert d["status"] == "completed" and "reason" not in d
+    assert [p["kind"] for p in d["fixed_points"]] == ["intermediate", "horizontal-like"]
+    with pytest.raises(pk.ParameterError, match="`max_wall`"):
+        fixed_points_report(body=pk.Spheroid(1.5), mu=0.1, omega0=1.0, max_wall=-1.0)

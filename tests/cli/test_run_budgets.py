@@ -1,6 +1,6 @@
 """Runs on the command line keep their budgets: ``--max-steps`` and ``--max-wall`` end a run
-"failed" with a reason naming the budget, an end time beyond the wall budget is said at once,
-and what a step is for each backend is stated."""
+"failed" with a reason naming the budget (within it, for every backend), an end time beyond the
+wall budget is refused at once, and what a step is for each backend is stated."""
 
 from phasekit import cli
 
@@ -18,12 +18,13 @@ def _bugs_raise(monkeypatch):
 SIM = ["simulate", "--a", "1.5", "--mu", "0.1", "--gyroscopic", "--theta0", "1.5607963", "--omega0", "10.5"]
 
 
-@pytest.mark.parametrize("budget, reason", [(["--max-steps", 3000], "step limit"), (["--max-wall", 0.3], "wall-time")])
-def test_long_stop_at_none_run_ends_failed_at_its_budget(budget, reason):
+@pytest.mark.parametrize("budget, t_end, reason", [(["--max-steps", 3000], 1e5, "step limit"),
+                                                   (["--max-wall", 0.3], 2e4, "wall-time")])  # 2e4 is within reach
+def test_long_stop_at_none_run_ends_failed_at_its_budget(budget, t_end, reason):
     code, out, _ = run_cli("simulate", "--a", 1.5, "--mu", 0.1, "--gyroscopic", "--theta0", 1.5, "--omega0", 10,
-                           "--stop-at", "none", "--t-end", 1e5, *budget, "--json")
+                           "--stop-at", "none", "--t-end", t_end, *budget, "--json")
     d = strict_json(out)
-    assert code == 1 and d["status"] == "failed" and reason in d["reason"] and d["t_end"] < 1e5
+    assert code == 1 and d["status"] == "failed" and reason in d["reason"] and d["t_end"] < t_end
 
 
 @pytest.mark.timeout(300)  # a hang guard: the run is stopped by its budget after 0.5 s (it takes ~7 s without)
@@ -37,22 +38,33 @@ def test_wall_budget_holds_for_runs_of_many_short_segments():
     assert d["t_end"] < 200 and float(d["reason"].rsplit("= ", 1)[1]) == pytest.approx(d["t_end"], rel=1e-5)
 
 
-def test_an_end_time_beyond_the_wall_budget_is_said_at_once():
+def test_an_end_time_beyond_the_wall_budget_is_refused_at_once():
+    """No run covers more than REACH_PER_S time units per wall-clock second: a --t-end beyond
+    REACH_PER_S * --max-wall is refused before anything runs (one line, the reachable range)."""
+    from phasekit.core.simulate import REACH_PER_S
+
     code, out, err = run_cli(*SIM, "--t-end", "1e300", "--stop-at", "none", "--max-wall", "1", "--json")
-    lines = err.splitlines()
-    assert lines[0].startswith("phasekit: warning: --t-end = 1e+300 cannot be reached within --max-wall = 1 s")
+    assert code == 2 and err.count("\n") == 1
     d = strict_json(out)
-    assert code == 1 and d["status"] == "failed" and "wall-time limit" in d["reason"]
+    assert d["parameter"] == "--t-end" and f"must lie in (0, {REACH_PER_S:g}]" in d["message"]
     code, out, err = run_cli(*SIM, "--t-end", "300", "--json")  # a reachable end: no warning
     assert code == 0 and err == ""
 
 
-def test_a_step_budget_on_cvodes_says_what_a_step_is():
-    code, out, _ = run_cli(*SIM, "--backend", "cvodes", "--max-steps", "20", "--json")
+@pytest.mark.parametrize("backend", ["cvodes", "cvodes-adams", "idas"])
+@pytest.mark.parametrize("budget", [2, 20, 700])
+def test_a_step_budget_on_cvodes_and_idas_holds(backend, budget):
+    """The run ends "failed" within its budget (a chunk of output points that would pass it is
+    not taken), its reason giving the count it reports."""
+    code, out, _ = run_cli(*SIM, "--backend", backend, "--max-steps", budget, "--json")
     d = strict_json(out)
-    assert code == 1 and d["status"] == "failed"
-    assert d["reason"].startswith(f"step limit ({d['n_steps']} steps) reached at t = ") and d["n_steps"] >= 20
+    assert code == 1 and d["status"] == "failed" and d["n_steps"] <= budget
+    assert d["reason"].startswith(f"step limit ({d['n_steps']} steps) reached at t = ")
+    assert float(d["reason"].split("t = ")[1].split()[0]) == pytest.approx(d["t_end"], rel=1e-5, abs=1e-12)
+
+
+def test_what_a_step_is_is_stated_and_taylor_stops_at_the_budget_exactly():
     help_text = " ".join(cli._build_parser().commands["simulate"].format_help().split())
-    assert "CVODES/IDAS internal steps" in help_text and "may pass it by one chunk" in help_text
+    assert "CVODES/IDAS internal steps" in help_text and "a chunk that would pass the budget is not taken" in help_text
     code, out, _ = run_cli(*SIM, "--backend", "taylor", "--max-steps", "20", "--json")
     assert strict_json(out)["n_steps"] == 20  # the Taylor method stops at the budget exactly

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from ..generated_inputs import generated, st
-from ..helpers import run_cli
+from ..helpers import run_cli, strict_json
 
 
 def test_cli_steady_states_json_and_bad_input():
@@ -77,3 +77,51 @@ def test_generated_steady_states_command_lines_end_in_a_result_or_one_line(argv)
         required = {"spheroid": "--a", "tippe-top": "--offset"}.get(argv[argv.index("--body") + 1])
         assert d["parameter"] in argv or (d["parameter"] == required and required not in argv), (argv, d)
         assert len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("options", [
+    ["--a", 1.5, "--offset", 0.2, "--mu", 0.1, "--friction", "viscous", "--omega0", 1000],  # next to an asymptote
+    ["--a", 1.5, "--offset", 0.2, "--mu", 0.1, "--friction", "viscous", "--omega0", 1e12],
+    ["--body", "egg", "--a", 1.3, "--w", 0.05, "--mu", 0.1, "--n0", 1e-3],  # a pair around a point of spin 0
+    ["--body", "tippe-top", "--offset", 0.3, "--A", 0.38, "--C", 0.4, "--mu", 0.3, "--n0", 1.04],
+    ["--a", 0.6, "--mu", 0.1, "--slip-eps", 1e-3, "--omega0", 1e-6],
+    ["--a", 1, "--mu", 0.1, "--omega0", 10],  # a sphere: its isolated states only
+], ids=["omega0=1e3", "omega0=1e12", "egg-n0=1e-3", "tippe-top", "oblate-omega0=1e-6", "sphere"])
+def test_steady_states_at_a_rate_lists_what_fixed_points_lists(options):
+    code, out, err = run_cli("steady-states", *options, "--json")
+    assert code == 0 and err == "", err
+    states = strict_json(out)["states"]
+    code, out, err = run_cli("fixed-points", *options, "--json")
+    assert code == 0 and err == "", err
+    ref = strict_json(out)["fixed_points"]
+    keys = ("kind", "classification", "n_unstable", "stable")
+    assert [[p[k] for k in keys] for p in states] == [[p[k] for k in keys] for p in ref]
+    for p, r in zip(states, ref):
+        for name, v in r["state"].items():  # Omega is null at the vertical (undefined at theta = 0)
+            assert p["state"][name] == (v if v is None else pytest.approx(v, rel=1e-9, abs=1e-9)), name
+    if "--omega0" in options and options[options.index("--omega0") + 1] == 1000:
+        assert [p["n_unstable"] for p in states] == [1]  # the unstable state the structure once left out
+
+
+@pytest.mark.timeout(300)
+def test_a_sphere_is_reported_as_a_continuum_of_steady_states():
+    """A sphere with G at its centre: every orientation is static, so there are no branches to
+    sample; the command says so at once (the report's budget, 60 s, is only a hang guard)."""
+    from phasekit.cli.params import steady_structure_report
+
+    code, out, err = run_cli("steady-states", "--a", "1", "--mu", "0.1", "--json")
+    d = strict_json(out)
+    assert code == 0 and d["status"] == "completed" and d["signature"] == "degenerate" and d["branches"] == []
+    assert "every orientation is a static equilibrium" in d["degenerate"]
+    d = steady_structure_report(body=pk.EccentricSphere(0.0), mu=0.1, n0=5.0, max_wall=60.0)
+    assert d["status"] == "completed" and d["signature"] == "degenerate"
+    assert [s["kind"] for s in d["states"]] == ["vertical"]
+
+
+def test_the_report_keeps_its_wall_budget():
+    from phasekit.cli.params import steady_structure_report
+
+    d = steady_structure_report(body=pk.Spheroid(1.5, offset=0.2), mu=0.1, omega0=3.0, max_wall=1e-6)
+    assert d["status"] == "failed" and "max_wall = 1e-06 s" in d["reason"] and "states" not in d
+    with pytest.raises(pk.ParameterError, match="`max_wall`"):
+        steady_structure_report(body=pk.Spheroid(1.5), mu=0.1, max_wall=0.0)

@@ -1,7 +1,9 @@
 """The documentation site builds without a warning, with everything generated where it should be:
-the gallery runs every example and shows its figures, the CLI page describes real runs, the
-results pages read their numbers from figures/ (a changed number in a copy changes the page),
-the event table comes from the declarations, and the examples in the docstrings run."""
+the gallery runs every example and shows its figures, the CLI page describes real runs (each
+example value one run's own), the results pages read their numbers from figures/ (a changed
+number in a copy changes the page), the event table comes from the declarations, the examples in
+the docstrings run, every ``pk.X`` a reader sees exists, and the build says what it is doing
+while it runs the examples."""
 
 import doctest
 import importlib
@@ -22,19 +24,26 @@ sys.path.insert(0, str(DOCS / "_ext"))  # pkdocs, imported by the tests that use
 RESULTS = ["reproduction", "findings", "maps", "bodies", "steady_structure", "performance", "robustness"]
 
 
-def sphinx(out: Path, *options: str) -> subprocess.CompletedProcess:
-    cmd = [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html", *options, str(DOCS), str(out)]
+def sphinx(out: Path, *options: str, quiet: bool = True) -> subprocess.CompletedProcess:
+    cmd = [sys.executable, "-m", "sphinx", "-W", "--keep-going", *(["-q"] if quiet else []), "-b", "html", *options,
+           str(DOCS), str(out)]
     return subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=1200)
 
 
 @pytest.fixture(scope="module")
-def site(tmp_path_factory):
-    """The whole site, as a user builds it: the examples and the CLI runs executed."""
+def build(tmp_path_factory):
+    """The whole site, as a user builds it (the examples and the CLI runs executed), and what
+    the build printed on stdout (its progress: not quiet)."""
     out = tmp_path_factory.mktemp("site")
-    p = sphinx(out)
+    p = sphinx(out, quiet=False)
     assert p.returncode == 0, p.stderr[-4000:]
     assert p.stderr.strip() == ""
-    return out
+    return out, p.stdout
+
+
+@pytest.fixture(scope="module")
+def site(build):
+    return build[0]
 
 
 def text(site: Path, page: str) -> str:
@@ -124,6 +133,150 @@ def test_cli_page_describes_real_runs_of_every_command(site, tmp_path):
         assert re.search(rf"^{re.escape(key)}$", page, flags=re.M), key  # a row of the table starts with the key
     assert "branches[].ends[].kind" in page
     assert "Bad input (exit 2) prints instead" in page
+
+
+def _table_rows(html: str, section: str) -> list[list[str]]:
+    """The cells, as a reader sees them, of the first table in the page's section ``section``."""
+    part = re.search(rf'<section id="{section}">(.*?)</section>', html, flags=re.S).group(1)
+    table = re.search(r"<table.*?</table>", part, flags=re.S).group(0)
+    return [[plain(c).strip() for c in re.findall(r"<t[dh][^>]*>(.*?)</t[dh]>", row, flags=re.S)]
+            for row in re.findall(r"<tr[^>]*>(.*?)</tr>", table, flags=re.S)]
+
+
+def _value_at(obj, parts: list[str]):
+    """(found, value) at a key path of the schema table: ``a.b``, and ``a[]`` for the first item
+    of a list that has the rest of the path."""
+    if not parts:
+        return True, obj
+    head, rest = parts[0], parts[1:]
+    key = head.removesuffix("[]")
+    if not isinstance(obj, dict) or key not in obj:
+        return False, None
+    if key == head:
+        return _value_at(obj[key], rest)
+    for item in obj[key] if isinstance(obj[key], list) else []:
+        found, value = _value_at(item, rest)
+        if found:
+            return True, value
+    return False, None
+
+
+def test_each_cli_example_is_one_runs_own_value(site):
+    """Every example of the simulate table is what one run printed: unlabelled, that of the first
+    run (checked against a fresh run with the same arguments), else labelled with its run (and
+    then the first run has no such key). Only the wall time differs between two runs."""
+    from pkdocs import cli_schema
+
+    labels = [label for label, _ in cli_schema.RUNS["simulate"]]
+    fresh = cli_schema._run("simulate", labels[0], cli_schema.RUNS["simulate"][0][1], "").output
+    header, *rows = _table_rows(text(site, "cli"), "simulate")
+    assert header[-1] == f"example (run {labels[0]}, unless named)"
+    compared = 0
+    for key, _types, _runs, example in rows:
+        found, value = _value_at(fresh, key.split("."))
+        named = re.fullmatch(r"(.*) \((.+)\)", example)
+        if named and named.group(2) in labels[1:]:
+            assert not found, (key, example)  # another run's value only where the first run has none
+        elif example:
+            assert found, (key, example)
+            if key != "wall_s":
+                assert example == json.dumps(value)[:40], (key, example, value)
+                compared += 1
+        else:
+            assert not found or isinstance(value, (dict, list)), (key, value)
+    assert compared > 40 and any(k == "t_jump" for k, *_ in rows)
+
+
+def test_examples_of_merged_outputs_keep_to_one_run():
+    """Two runs merged: a key the first run has shows the first run's value (null included), a
+    key only the second has shows the second's, named."""
+    from pkdocs import cli_schema
+
+    node = cli_schema.merge([("jump", {"t_jump": 45.2, "reason": None, "items": [1, 2]}),
+                             ("touchdown", {"t_jump": 42.1, "reason": "x", "flight": {"t": 3.5}, "items": [7]})])
+    rows = {r[0]: r[3] for r in cli_schema.rows(node, ["jump", "touchdown"])}
+    assert rows == {"`t_jump`": "`45.2`", "`reason`": "`null`", "`items`": "", "`items[]`": "`1`", "`flight`": "",
+                    "`flight.t`": "`3.5` (touchdown)"}
+    schema = cli_schema.json_schema(node, ["jump", "touchdown"])
+    assert schema["properties"]["t_jump"]["examples"] == [45.2]
+    assert schema["properties"]["flight"]["properties"]["t"]["examples"] == [3.5]
+
+
+def test_the_build_says_what_it_is_doing(build):
+    """While it runs the examples and the CLI (minutes), the build prints a line as each ends and
+    as each generated page is written (sphinx's logger: quiet with -q)."""
+    from pkdocs import cli_schema, gallery
+
+    _, stdout = build
+    scripts = gallery.scripts()
+    n_cli = sum(len(r) for r in cli_schema.RUNS.values())
+    for p in scripts:
+        assert re.search(rf"^pkdocs: \[\d+/{len(scripts)}\] examples/{re.escape(p.name)} (ran in|not run)", stdout,
+                         flags=re.M), p.name
+        assert f"pkdocs: wrote gallery/{p.stem}.md" in stdout, p.name
+    for command, runs in cli_schema.RUNS.items():
+        for label, _ in runs:
+            assert re.search(rf"^pkdocs: \[\d+/{n_cli}\] phasekit {command} \({re.escape(label)}\): exit \d$", stdout,
+                             flags=re.M), (command, label)
+        assert f"pkdocs: wrote _generated/schemas/{command}.schema.json" in stdout, command
+    assert f"[{len(scripts)}/{len(scripts)}]" in stdout and f"[{n_cli}/{n_cli}]" in stdout
+
+
+# -- names written in the docs ------------------------------------------------------------------
+
+_NAME = re.compile(r"(?<![\w.])(?:pk|phasekit)((?:\.[A-Za-z_]\w*)+)")
+
+
+def _resolves(path: str) -> bool:
+    """Does ``phasekit.a.b.c`` exist: the longest importable module, then attributes?"""
+    parts = path.split(".")
+    for i in range(len(parts), 0, -1):
+        try:
+            obj = importlib.import_module(".".join(parts[:i]))
+        except ModuleNotFoundError:
+            continue
+        for attr in parts[i:]:
+            if not hasattr(obj, attr):
+                return False
+            obj = getattr(obj, attr)
+        return True
+    return False
+
+
+def unresolved(text_: str) -> list[str]:
+    """The ``pk.X...`` and ``phasekit.X...`` written in ``text_`` (prose, code, comments) that
+    name nothing."""
+    return sorted({m.group(0) for m in _NAME.finditer(text_) if not _resolves("phasekit" + m.group(1))})
+
+
+def test_the_name_check_catches_a_name_in_a_comment():
+    block = "# A and C default to the uniform solid's (pk.uniform_mass_properties);\nb = pk.Spheroid(1.5)"
+    assert unresolved(block) == ["pk.uniform_mass_properties"]
+    assert unresolved("phasekit.bodies.body.uniform_mass_properties, pk.viz.animate, pk.Scale(...).unit") == []
+
+
+def test_every_name_written_in_the_doc_sources_exists():
+    """Every page source, the examples the gallery shows and the text the docs extension
+    generates (the changelog names what existed then)."""
+    sources = [*DOCS.rglob("*.md"), *DOCS.rglob("*.rst"), *(DOCS / "_ext").rglob("*.py"), DOCS / "conf.py",
+               *(ROOT / "examples").glob("*.py"), *(ROOT / "examples").glob("*.sh")]
+    bad = {str(f.relative_to(ROOT)): unresolved(f.read_text()) for f in sources
+           if "_build" not in f.parts and f.name != "changelog.md"}
+    assert {f: names for f, names in bad.items() if names} == {}
+
+
+def test_every_name_on_the_built_site_exists(site):
+    """What a reader sees on every page, generated ones included (gallery, CLI, API, results):
+    no ``pk.X`` that names nothing. The changelog, which names what existed then, is left out."""
+    bad = {}
+    for page in site.rglob("*.html"):
+        if page.name == "changelog.html" or "_sources" in page.parts:
+            continue
+        html = re.sub(r"<(script|style)\b.*?</\1>", "", page.read_text(), flags=re.S)
+        names = unresolved(plain(html))
+        if names:
+            bad[str(page.relative_to(site))] = names
+    assert bad == {}
 
 
 def test_results_pages_show_the_committed_numbers(site):

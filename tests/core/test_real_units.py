@@ -40,7 +40,7 @@ def test_scale_converts_arrays_columns_and_tables():
     sc = pk.Scale("21.5 mm")
     assert f"{sc.time_unit:.4g~P}" == "46.81 ms" and "ms" in repr(sc) and "**" not in repr(sc)
     q = sc.to_real(np.array([0.0, 1.0, 2.0]), "time")
-    assert str(q.units) == "millisecond"
+    assert str(q.units) == "ms"
     np.testing.assert_allclose(q.magnitude, np.array([0.0, 1.0, 2.0]) * T * 1e3, rtol=1e-14)
     np.testing.assert_allclose(sc.quantity([1.0, 2.0], "length").to("m").magnitude, [B, 2 * B], rtol=1e-14)
     col = sc.to_real(pd.Series([1.0, 3.0], name="Omega"), "rate")
@@ -134,3 +134,65 @@ def test_units_valid_by_hand():
     assert egg.a == pytest.approx(57 / 43, rel=1e-14) and sc2.b.to("mm").magnitude == pytest.approx(21.5, rel=1e-14)
     top, sc3 = pk.core.tippe_top_of_size("15 mm", "3 mm")
     assert top.offset == pytest.approx(0.2, rel=1e-14) and top.A == pytest.approx(0.4 - 0.2**2, rel=1e-14)
+
+
+# -- units printed simplified --------------------------------------------------------------------
+SIZES = ["2.25 mm", "21.5 mm", "0.7 cm", "4.3 cm", "0.0215 m", "1.2 m", "1 inch", "0.85 inch",
+         "(2 mm * 8 mm)**0.5", "30 um"]
+KIND_NAMES = list(units.KINDS)
+
+
+@pytest.mark.parametrize("size", SIZES)
+def test_every_unit_a_scale_returns_prints_simplified(size):
+    """unit, quantity, to_real, time_unit, b, g, mass and repr print one simple unit per kind (the
+    kind's display unit, "46.81 ms", "m/s", "rev/s"), never pint's product of roots of the inputs'
+    units; the values equal the unsimplified product b^pb g^pg M^pm to 1e-15 relative."""
+    ureg = units.units()
+    sc = pk.Scale(size, g="981 cm/s**2", mass="0.057 kg")
+    b, g, m = ureg.Quantity(size), ureg.Quantity("981 cm/s**2"), ureg.Quantity("0.057 kg")
+    printed = [str(sc.b), str(sc.g), str(sc.mass), repr(sc), str(sc.time_unit), f"{sc.time_unit}"]
+    for kind in KIND_NAMES:
+        pb, pg, pm = units.KINDS[kind][1]
+        raw = b**pb * g**pg * m**pm  # pint's unsimplified product of the inputs' units
+        for q in (sc.unit(kind), sc.quantity(0.37, kind), sc.quantity([0.37, -2.0], kind), sc.to_real(0.37, kind)):
+            assert str(q.units) == f"{ureg.Unit(units.DISPLAY_UNITS[kind]):~P}", (kind, str(q))
+            printed.append(str(q))
+        assert sc.unit(kind).magnitude == pytest.approx(raw.to(units.DISPLAY_UNITS[kind]).magnitude, rel=1e-15, abs=0)
+        assert (sc.quantity(0.37, kind) / (0.37 * raw)).to("dimensionless").magnitude == pytest.approx(1.0, rel=1e-15)
+    for p in printed:
+        assert "**" not in p and "^" not in p and "sqrt" not in p and "millimeter" not in p, p
+    assert str(sc.unit("rate").units) == "rev/s" and str(sc.unit("speed").units) == "m/s"
+    assert str(sc.time_unit).endswith(" ms") and str(sc.unit("time")) == str(sc.time_unit)
+    real = sc.table(pd_frame())
+    assert all("**" not in u for u in real.attrs["units"].values())
+
+
+def pd_frame():
+    import pandas as pd
+
+    return pd.DataFrame({"t": [0.0, 1.0], "Omega": [10.5, 10.4], "U": [0.0, 0.1], "gap": [0.0, 1e-6],
+                         "R": [1.0, 0.9], "energy": [3.0, 2.9], "theta": [1.5, 1.4]})
+
+
+def test_the_time_unit_of_the_issue_prints_in_ms():
+    """b = 2.25 mm: sqrt(b/g) = 15.14 ms, printed so (pint alone prints
+    '0.4789 millimeter ** 0.5 * second / meter ** 0.5')."""
+    sc = pk.Scale("2.25 mm")
+    assert f"{sc.unit('time'):.4g~P}" == "15.14 ms" and str(sc.unit("time").round(2)) == "15.14 ms"
+    assert sc.unit("time").to("s").magnitude == pytest.approx(math.sqrt(0.00225 / 9.81), rel=1e-15)
+    assert str(sc.unit("rate").round(2)) == "10.51 rev/s"
+
+
+def test_printed_units_read_back():
+    """The short units a Scale prints (and puts in a table's attrs) are units pint parses back,
+    to the same quantity."""
+    ureg = units.units()
+    sc = pk.Scale("21.5 mm", mass="57 g")
+    for kind in KIND_NAMES:
+        q = sc.quantity(0.37, kind)
+        back = ureg.Quantity(str(q))
+        assert back.units == q.units and back.magnitude == pytest.approx(q.magnitude, rel=1e-15), str(q)
+    for unit in sc.table(pd_frame()).attrs["units"].values():
+        if unit in ("", "rad"):
+            continue
+        assert ureg.Unit(unit).dimensionality in {ureg.get_dimensionality(d) for d, _ in units.KINDS.values()}, unit

@@ -105,6 +105,7 @@ class PkCliSchema(SphinxDirective):
         (schema_dir / f"{command}.schema.json").write_text(
             json.dumps(cli_schema.json_schema(node, labels, f"phasekit {command} --json"), indent=1)
         )
+        LOG.info(f"pkdocs: wrote _generated/schemas/{command}.schema.json and the {command} table")
         lines = ["The runs (made when these pages were built):", ""]
         for r in runs:
             status = r.output.get("status", "") if isinstance(r.output, dict) else ""
@@ -137,13 +138,16 @@ def _builder_inited(app):
     if execute:
         import concurrent.futures as cf
 
+        n_cli = sum(len(r) for r in cli_schema.RUNS.values())
+        LOG.info(f"pkdocs: running the {len(gallery.scripts())} examples and {n_cli} CLI runs "
+                 f"({jobs} at a time); a line as each ends")
         # the examples and the CLI runs share the worker budget: both are subprocesses
         with cf.ThreadPoolExecutor(max_workers=2) as ex:
-            cli = ex.submit(cli_schema.run_all, max(1, jobs // 2))
-            runs = gallery.build(DOCS, execute=True, jobs=max(1, jobs - jobs // 2))
+            cli = ex.submit(cli_schema.run_all, max(1, jobs // 2), LOG.info)
+            runs = gallery.build(DOCS, execute=True, jobs=max(1, jobs - jobs // 2), log=LOG.info)
             app._pk_cli_runs = cli.result()
     else:
-        runs = gallery.build(DOCS, execute=False)
+        runs = gallery.build(DOCS, execute=False, log=LOG.info)
         app._pk_cli_runs = []
     for r in runs.values():
         if r.missing:  # e.g. jq for the shell example: said on its page, as tests/contracts/test_examples.py skips it

@@ -2,7 +2,11 @@
 the docs build (``phasekit <command> ... --json`` in its own process), and its outputs are merged
 into one schema per command: every key path, the JSON types seen there, and which runs have it.
 Nothing here lists a key by hand; a new key appears on the page the next time the docs build.
-The same merge is written as a JSON Schema (draft 2020-12) file per command."""
+The same merge is written as a JSON Schema (draft 2020-12) file per command.
+
+Each example value on the page is what one run printed: that of the first run listed, or, for a
+key that run lacks, of the first run that has it (named beside the value), never a mix of
+runs within one value."""
 
 from __future__ import annotations
 
@@ -82,9 +86,15 @@ def _run(command: str, label: str, args: str, tmp: str) -> CommandRun:
     return CommandRun(command, label, argv, p.returncode, out, p.stderr)
 
 
-def run_all(jobs: int = 2) -> list[CommandRun]:
+def run_all(jobs: int = 2, log=None) -> list[CommandRun]:
+    """Every run of :data:`RUNS`, ``jobs`` at a time, in the order listed; ``log(line)`` is told
+    of each as it ends (the build shows it is working)."""
     with tempfile.TemporaryDirectory() as tmp, cf.ThreadPoolExecutor(max_workers=max(1, jobs)) as ex:
-        futs = [ex.submit(_run, c, label, args, tmp) for c, runs in RUNS.items() for label, args in runs]
+        futs = {ex.submit(_run, c, label, args, tmp): None for c, runs in RUNS.items() for label, args in runs}
+        for i, f in enumerate(cf.as_completed(futs), 1):
+            r = f.result()
+            if log:
+                log(f"pkdocs: [{i}/{len(futs)}] phasekit {r.command} ({r.label}): exit {r.returncode}")
         return [f.result() for f in futs]
 
 
@@ -113,11 +123,12 @@ class Node:
     runs: set = field(default_factory=set)
     keys: dict = field(default_factory=dict)  # object members
     items: "Node | None" = None  # array items
-    example: object = None
+    examples: dict = field(default_factory=dict)  # run -> the first value it printed here
 
     def add(self, v, run: str):
         self.types.add(_type(v))
         self.runs.add(run)
+        self.examples.setdefault(run, v)
         if isinstance(v, dict):
             for k, x in v.items():
                 self.keys.setdefault(k, Node()).add(x, run)
@@ -126,8 +137,12 @@ class Node:
                 self.items = Node()
             for x in v:
                 self.items.add(x, run)
-        elif self.example is None and v is not None:
-            self.example = v
+
+    def example(self, all_runs: list[str]) -> tuple[str, object]:
+        """(run, value): the value printed by the first run (in the order of ``all_runs``) that
+        has this key."""
+        run = next(r for r in all_runs if r in self.examples)
+        return run, self.examples[run]
 
 
 def merge(outputs: list[tuple[str, object]]) -> Node:
@@ -142,7 +157,18 @@ def _types(n: Node) -> str:
     return " or ".join(t)
 
 
+def _example_cell(n: Node, all_runs: list[str]) -> str:
+    """The example of a scalar key, labelled with its run unless it is the first run's; blank
+    for an object or a list (their members have their own rows)."""
+    run, v = n.example(all_runs)
+    if isinstance(v, (dict, list)):
+        return ""
+    text = f"`{json.dumps(v)[:40]}`"
+    return text if run == all_runs[0] else f"{text} ({run})"
+
+
 def rows(node: Node, all_runs: list[str], path: str = "") -> list[list[str]]:
+    """One row per key path: the path, its JSON types, the runs that have it, an example."""
     out = []
     for k, child in node.keys.items():
         p = f"{path}.{k}" if path else k
@@ -153,20 +179,19 @@ def rows(node: Node, all_runs: list[str], path: str = "") -> list[list[str]]:
             where = "all but " + ", ".join(missing)
         else:
             where = ", ".join(r for r in all_runs if r in child.runs)
-        ex = "" if child.example is None else json.dumps(child.example)
-        out.append([f"`{p}`", _types(child), where, f"`{ex[:40]}`" if ex else ""])
+        out.append([f"`{p}`", _types(child), where, _example_cell(child, all_runs)])
         out += rows(child, all_runs, p)
         if child.items is not None:
             if child.items.keys:
                 out += rows(child.items, all_runs, p + "[]")
             elif child.items.types:
-                ex = "" if child.items.example is None else json.dumps(child.items.example)
-                out.append([f"`{p}[]`", _types(child.items), "", f"`{ex[:40]}`" if ex else ""])
+                out.append([f"`{p}[]`", _types(child.items), "", _example_cell(child.items, all_runs)])
     return out
 
 
 def schema_table(node: Node, labels: list[str]) -> str:
-    return table(["key", "type", "in the runs", "example"], rows(node, labels))
+    header = ["key", "type", "in the runs", f"example (run {labels[0]}, unless named)"]
+    return table(header, rows(node, labels))
 
 
 def json_schema(node: Node, labels: list[str], title: str = "") -> dict:
@@ -175,6 +200,9 @@ def json_schema(node: Node, labels: list[str], title: str = "") -> dict:
     def conv(n: Node) -> dict:
         t = sorted(n.types - ({"integer"} if "number" in n.types else set()))
         s: dict = {"type": t[0] if len(t) == 1 else t}
+        run, example = n.example(labels)
+        if not isinstance(example, (dict, list)):
+            s["examples"] = [example]  # as on the page: one run's value
         if n.keys:
             s["properties"] = {k: conv(c) for k, c in n.keys.items()}
             s["required"] = [k for k, c in n.keys.items() if c.runs >= n.runs]

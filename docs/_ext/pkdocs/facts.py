@@ -685,6 +685,7 @@ def egg(src: Sources) -> dict:
     out["first_gap_range_um"] = rng(
         ok["first_gap_mm"].min() * 1000, ok["first_gap_mm"].max() * 1000, lambda x: f"{x:.2g}"
     )
+    out["first_ms_range"] = rng(ok["first_flight_ms"].min(), ok["first_flight_ms"].max(), lambda x: fixed(x, 1))
     ff = pd.DataFrame(jm["first_flights"])
     out["first_flights"] = "; ".join(
         f"{fixed(r.rev, 1)} rev/s: {fixed(r.flight_ms, 1)} ms, {sig(r.gap_um, 2)} um" for r in ff.itertuples()
@@ -905,14 +906,17 @@ def repro(src: Sources) -> dict:
         ],
         [
             "egg jumps (Mitsui et al. 2006, cited)",
-            "losses of contact of a fraction of a mm, up to a few hundredths of a second, at tens of rev/s",
+            'abstract: "the durations of the first loss of contact are measured"; as Science News reported it: '
+            '"a fraction of a millimeter off the surface for up to a few hundredths of a second" at up to 2,500 rpm '
+            "(our reading: 0.05-0.5 mm, 5-30 ms)",
             f"hen's-egg-sized body (57 x 43 mm, uniform, mu = 0.1): thresholds {e['thr_rev_w0.05']}-{e['thr_rev_w0']} "
             f"rev/s; first flights {e['first_gap_range_um']} micrometres; the highest hops, late in the rise, "
             f"{e['hop_gap_range']} mm for {e['hop_ms_range']} ms",
             "egg_real_units.csv, egg_jumps.csv",
         ],
     ]
-    return {"table": table(["quantity", "paper", "phasekit (measured)", "data"], rows), "n_rows": len(rows)}
+    header = ["quantity", 'paper (its words "in quotes"; the rest our reading)', "phasekit (measured)", "data"]
+    return {"table": table(header, rows), "n_rows": len(rows)}
 
 
 # -- blocks of the README (tests/contracts/test_readme.py checks that the README holds them as generated) ------
@@ -950,9 +954,11 @@ def readme(src: Sources) -> dict:
         f"({e['first_gap_range_um']} um over every lever tried: spin, friction, asymmetry, start), but it keeps "
         "hopping "
         f"through the rise, and its highest hops, late in the rise, leave the table by {e['hop_gap_range']} mm for "
-        f"{e['hop_ms_range']} ms at any spin, start or asymmetry, with or without rebounds: the fraction of a "
-        "millimetre "
-        "and hundredth of a second that Mitsui et al. 2006 (Proc. R. Soc. A 462, 2897) saw. What the model cannot say "
-        "is which of its many flights the experiment measured, nor the real eggs' friction and restitution."
+        f"{e['hop_ms_range']} ms at any spin, start or asymmetry, with or without rebounds: inside our reading "
+        "(0.05-0.5 mm, 5-30 ms) of Science News's report that the egg-shaped bodies of Mitsui et al. 2006 "
+        '(Proc. R. Soc. A 462, 2897) "leaped a fraction of a millimeter off the surface for up to a few hundredths '
+        'of a second". The paper\'s abstract says it measured "the durations of the first loss of contact", and '
+        "phasekit's first flights are below that reading; the real bodies' friction and restitution are not known "
+        "here."
     )
     return out

@@ -98,11 +98,19 @@ def run(path: Path, timeout: float = 600.0) -> Run:
     return r
 
 
-def run_all(paths: list[Path], jobs: int = 2) -> dict[str, Run]:
-    """Every script, ``jobs`` at a time, the slowest started first."""
+def run_all(paths: list[Path], jobs: int = 2, log=None) -> dict[str, Run]:
+    """Every script, ``jobs`` at a time, the slowest started first; ``log(line)`` is told of
+    each as it ends (the build shows it is working)."""
     order = sorted(paths, key=lambda p: p.stat().st_size, reverse=True)
     with cf.ThreadPoolExecutor(max_workers=max(1, jobs)) as ex:
-        runs = list(ex.map(run, order))
+        futs = [ex.submit(run, p) for p in order]
+        for i, f in enumerate(cf.as_completed(futs), 1):
+            r = f.result()
+            if log:
+                what = f"not run ({r.missing} is not installed)" if r.missing else \
+                    f"ran in {r.seconds:.1f} s (exit {r.returncode})"
+                log(f"pkdocs: [{i}/{len(futs)}] examples/{r.name} {what}")
+        runs = [f.result() for f in futs]
     return {r.name: r for r in runs}
 
 
@@ -222,16 +230,19 @@ def index(paths: list[Path], runs: dict[str, Run] | None, image_dir: Path, docs_
     return "\n".join(lines)
 
 
-def build(docs: Path, execute: bool = True, jobs: int = 2) -> dict[str, Run]:
-    """Run the scripts and (re)write docs/gallery/. Returns the runs (empty when not executed)."""
+def build(docs: Path, execute: bool = True, jobs: int = 2, log=None) -> dict[str, Run]:
+    """Run the scripts and (re)write docs/gallery/, telling ``log(line)`` of each script run and
+    each page written. Returns the runs (empty when not executed)."""
     gal = docs / "gallery"
     if gal.exists():
         shutil.rmtree(gal)
     image_dir = gal / "images"
     image_dir.mkdir(parents=True)
     paths = scripts()
-    runs = run_all(paths, jobs) if execute else {}
+    runs = run_all(paths, jobs, log) if execute else {}
     for p in paths:
         (gal / f"{p.stem}.md").write_text(page(p, runs.get(p.name), image_dir, gal))
+        if log:
+            log(f"pkdocs: wrote gallery/{p.stem}.md")
     (gal / "index.md").write_text(index(paths, runs, image_dir, gal))
     return runs

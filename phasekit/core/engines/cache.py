@@ -1,15 +1,26 @@
 """One cache for every engine's compiled integrators: :func:`compiled` builds an entry once and keeps
 it in memory and (heyoka's, whose LLVM compilation costs seconds to minutes) on disk, under
-``$PHASEKIT_CACHE`` (default ``~/.cache/phasekit``; empty: no disk cache). :func:`snapshot` and
+``$PHASEKIT_CACHE`` (default ``~/.cache/phasekit``; empty: no disk cache). heyoka's own cache of
+compiled object code lives under the same directory (``heyoka/``, at most :data:`HEYOKA_CACHE_LIMIT`
+bytes), so that one place holds, shows and clears everything compiled. :func:`snapshot` and
 :func:`install` move the picklable entries between processes (:class:`phasekit.sweep.ModelPack`).
+
+A build that takes longer than ``$PHASEKIT_COMPILE_NOTICE`` seconds (default 1; ``off``: never)
+says so in one line on stderr while it runs, and once more when it is done; the same two messages
+go at INFO level to the ``compile`` child of the logger named ``phasekit`` (the hook for a program
+that shows its own progress: ``logging.getLogger("phasekit").getChild("compile")``).
 """
 
 from __future__ import annotations
 
 import hashlib
+import logging
 import os
 import pickle
+import shutil
+import sys
 import threading
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -17,6 +28,11 @@ from .taylor_build import _heyoka
 
 #: bump when the layout of the pickled cache entries changes
 CACHE_FORMAT = 4
+#: bytes of heyoka's object-code cache under the cache directory (heyoka's own default is 20 GiB)
+HEYOKA_CACHE_LIMIT = 1 << 30
+
+_LOG = logging.getLogger("phasekit").getChild("compile")
+_WHAT = {"taylor": "the Taylor integrator of this model", "taylor-batch": "the batch Taylor integrator of this model"}
 
 
 def _cache_dir() -> Path | None:
@@ -29,6 +45,61 @@ def _cache_dir() -> Path | None:
     except OSError:
         return None
     return path
+
+
+def _place_heyoka_cache() -> None:
+    """Point heyoka's disk cache into phasekit's cache directory, bounded (off when caching is)."""
+    llvm = _heyoka().llvm_state
+    cache = _cache_dir()
+    if cache is None:
+        llvm.set_diskcache_enabled(False)
+        return
+    path = str(cache / "heyoka")
+    if llvm.get_diskcache_path() != path:
+        llvm.set_diskcache_path(path)
+        llvm.set_diskcache_limit(HEYOKA_CACHE_LIMIT)
+
+
+def _notice_after() -> float | None:
+    """Seconds a build runs before it is announced (None: never), from $PHASEKIT_COMPILE_NOTICE."""
+    raw = os.environ.get("PHASEKIT_COMPILE_NOTICE", "1").strip().lower()
+    if raw in ("off", "none", "no"):
+        return None
+    try:
+        after = float(raw)
+    except ValueError:
+        return 1.0
+    return after if after >= 0 else None
+
+
+def _announced(build: Callable[[], object], disk: str | None) -> object:
+    """``build()``, announced on stderr and to the compile logger if it runs long."""
+    after = _notice_after()
+    if after is None:
+        return build()
+    said = threading.Event()
+
+    def say():
+        said.set()
+        where = _cache_dir() if disk is not None else None
+        text = (f"compiling {_WHAT.get(disk, 'the solver of this model')} "
+                + (f"(heyoka/LLVM; once, then cached in {where}) ..." if where else "(once per process) ..."))
+        _LOG.info(text)
+        print(f"phasekit: {text}", file=sys.stderr, flush=True)
+
+    timer = threading.Timer(after, say)
+    timer.daemon = True
+    start = time.perf_counter()
+    timer.start()
+    try:
+        return build()
+    finally:
+        timer.cancel()
+        timer.join()  # a notice being printed is finished before its "compiled" line
+        if said.is_set():
+            text = f"compiled in {time.perf_counter() - start:.1f} s"
+            _LOG.info(text)
+            print(f"phasekit: {text}", file=sys.stderr, flush=True)
 
 
 _LOCK = threading.Lock()
@@ -58,7 +129,9 @@ def compiled(key: tuple, build: Callable[[], object], *, disk: str | None = None
         except Exception:  # a stale or partial file: rebuild it
             entry = None
     if entry is None:
-        entry = build()
+        if disk is not None:
+            _place_heyoka_cache()
+        entry = _announced(build, disk)
         if path is not None:
             try:
                 tmp = path.with_suffix(f".{os.getpid()}.tmp")
@@ -86,6 +159,42 @@ def install(entries: dict) -> None:
         for k, v in entries.items():
             _MEMORY.setdefault(k, v)
             _PERSISTENT.add(k)
+
+
+def _files(root: Path) -> dict:
+    """Files and bytes under ``root`` (0 and 0 where it does not exist)."""
+    paths = [q for q in root.rglob("*") if q.is_file()] if root.is_dir() else []
+    return {"files": len(paths), "bytes": sum(q.stat().st_size for q in paths)}
+
+
+def disk_usage() -> dict:
+    """What the disk cache holds: its directory (None: caching is off), phasekit's compiled
+    integrators and heyoka's object code, each as files and bytes (``phasekit cache``)."""
+    cache = _cache_dir()
+    if cache is None:
+        return {"directory": None, "integrators": {"files": 0, "bytes": 0}, "heyoka": {"files": 0, "bytes": 0}}
+    pickles = [q for q in cache.glob("*.pkl") if q.is_file()]
+    return {"directory": str(cache), "heyoka_limit_bytes": HEYOKA_CACHE_LIMIT,
+            "integrators": {"files": len(pickles), "bytes": sum(q.stat().st_size for q in pickles)},
+            "heyoka": _files(cache / "heyoka")}
+
+
+def clear_disk() -> dict:
+    """Delete the disk cache's compiled integrators and heyoka's object code (the next run of each
+    model compiles again); returns :func:`disk_usage` as it was before. The in-memory cache of
+    this process is emptied too."""
+    before = disk_usage()
+    if before["directory"] is not None:
+        cache = Path(before["directory"])
+        for q in [*cache.glob("*.pkl"), *cache.glob("*.tmp")]:
+            q.unlink(missing_ok=True)
+        hy, objects = sys.modules.get("heyoka"), cache / "heyoka"
+        if hy is not None and hy.llvm_state.get_diskcache_path() == str(objects):
+            hy.llvm_state.clear_diskcache()  # its database is open in this process: heyoka empties it
+        else:
+            shutil.rmtree(objects, ignore_errors=True)
+    forget()
+    return before
 
 
 def forget() -> None:

@@ -45,11 +45,15 @@ class CvodesEngine:
     #: output points per chunk (the chunk length adapts to the rotation rate). Measured: 100
     #: is 2x faster than 40 (fewer restarts of CVODES) and no slower than 200.
     n_grid = 100
-    #: CVODES' own step limit per output interval. The run's budgets are checked between
-    #: chunks, so a chunk may take up to n_grid * mxstep = 2e6 steps (~4 s for Adams on a stiff
-    #: field) past them; 500 000 let one chunk run 14.5 million steps (32 s) past --max-wall 2.
+    #: CVODES' own step limit per output interval. The wall budget is checked between chunks,
+    #: so a chunk may take up to n_grid * mxstep = 2e6 steps (~4 s for Adams on a stiff field)
+    #: past it; 500 000 let one chunk run 14.5 million steps (32 s) past --max-wall 2.
     #: Non-stiff output intervals take tens to hundreds of steps.
     mxstep = 20_000
+    #: chunks tried, each shorter, once the next one would pass the run's step budget (a refused
+    #: chunk is not counted: the run's steps are those of the chunks it kept, so it ends within
+    #: its budget, having computed at most this many chunks more)
+    budget_tries = 3
 
     def __init__(self, rtol: float, atol: float | None = None, method: str = "bdf", plugin: str = "cvodes"):
         self.rtol = float(rtol)
@@ -117,17 +121,28 @@ class CvodesEngine:
         def run(xa, T):
             return np.asarray(single(x0=xa, p=np.concatenate([p, [T]]))["xf"]).ravel() if T > 0 else xa
 
+        shrink, refused = 1.0, 0  # a chunk that would pass the step budget is not taken: shorter ones are tried
         with _library_output_dropped():  # SUNDIALS' own error lines: the reason carries them
             while t < t_end and prop.outcome is End.TIME:
                 # 20 grid points per period of the fastest rotation resolve the oscillation of R.
-                dt = min(2 * np.pi / 20 / flow.rate_hint(x) * ng, t_end - t)
+                dt = min(2 * np.pi / 20 / flow.rate_hint(x) * ng * shrink, t_end - t)
                 try:
                     r = chunk(x0=x, p=np.concatenate([p, [dt]]))
                 except RuntimeError as exc:
                     prop.outcome, prop.reason = End.FAILED, f"{self.plugin}: {sundials_message(exc)} (chunk from t = {t:.6g})"
                     break
                 st = chunk.stats()
-                prop.n_steps += int(st.get("nsteps", 0))
+                steps, left = int(st.get("nsteps", 0)), budget.steps - prop.n_steps
+                if steps > left:  # the run ends within its budget, at the last chunk that fitted
+                    refused += 1
+                    if refused > self.budget_tries or left <= 0 or budget.wall_exceeded():
+                        prop.outcome, prop.reason = End.FAILED, (
+                            f"step limit ({prop.n_steps} steps) reached at t = {t:.6g} (the next stretch of "
+                            f"{self.plugin} needed {steps} steps, more than the {left} left)")
+                        break
+                    shrink *= 0.5 * left / steps
+                    continue
+                prop.n_steps += steps
                 prop.n_rhs += int(st.get("nfevals", 0))
                 X = np.vstack([x[None, :], np.asarray(r["xf"]).T])  # (ng + 1, nx), row 0 = start
                 tk = t + dt * np.arange(ng + 1) / ng
@@ -140,10 +155,7 @@ class CvodesEngine:
                     t, x = hit[0], hit[1]
                     prop.outcome, prop.event = End.EVENT, hit[2]
                 if flow.monitor is not None:
-                    Ms = M[2 * ne]
-                    for j in np.flatnonzero(np.sign(Ms[:-1]) * flow.monitor.direction < 0):
-                        if j < last and np.sign(Ms[j + 1]) * flow.monitor.direction >= 0:
-                            prop.monitored.append((float(tk[j + 1]), X[j + 1].copy()))
+                    _record_monitor(flow.monitor.direction, M[2 * ne], tk, X, last, prop)
                 keep = tk <= (t if hit is not None else tk[-1])
                 grid_t.extend(tk[1:][keep[1:]])
                 grid_x.extend(X[1:][keep[1:]])
@@ -152,12 +164,7 @@ class CvodesEngine:
                     grid_x.append(x.copy())
                 else:
                     t, x = float(tk[-1]), X[-1].copy()
-                if prop.n_steps >= budget.steps:
-                    prop.outcome, prop.reason = End.FAILED, f"step limit ({prop.n_steps} steps) reached at t = {t:.6g}"
-                elif budget.wall_exceeded() and prop.outcome is End.TIME and t < t_end:
-                    prop.outcome, prop.reason = End.FAILED, f"wall-time limit reached at t = {t:.6g}"
-                elif budget.tick is not None:
-                    budget.tick(t)
+                _check_budgets(prop, budget, t, t_end)
         prop.t, prop.x = t, x
         if dense and len(grid_t) > 1:
             prop.dense.append(_Span(HermiteDense(grid_t, grid_x, flow.field, p), grid_t[0], grid_t[-1]))
@@ -190,6 +197,26 @@ class CvodesEngine:
             if found is not None:
                 return (tk[j] + found[0], found[1], found[2]), j
         return None, ng
+
+
+def _record_monitor(direction, Ms, tk, X, last, prop) -> None:
+    """Where the flow's monitor (values ``Ms`` on the chunk's grid) crossed zero in its direction
+    before grid index ``last``: recorded in ``prop.monitored`` to grid accuracy."""
+    for j in np.flatnonzero(np.sign(Ms[:-1]) * direction < 0):
+        if j < last and np.sign(Ms[j + 1]) * direction >= 0:
+            prop.monitored.append((float(tk[j + 1]), X[j + 1].copy()))
+
+
+def _check_budgets(prop, budget, t, t_end) -> None:
+    """After a chunk kept: a propagation still under way at ``t`` whose steps or wall time are
+    spent fails there (an end or event reached is kept); else the progress bar is told."""
+    going = prop.outcome is End.TIME and t < t_end
+    if going and prop.n_steps >= budget.steps:
+        prop.outcome, prop.reason = End.FAILED, f"step limit ({prop.n_steps} steps) reached at t = {t:.6g}"
+    elif going and budget.wall_exceeded():
+        prop.outcome, prop.reason = End.FAILED, f"wall-time limit reached at t = {t:.6g}"
+    elif budget.tick is not None:
+        budget.tick(t)
 
 
 @contextlib.contextmanager

@@ -1,0 +1,66 @@
+"""A value typed with units must have its number: pint reads a unit alone ("mm", "rev/s") as one
+of it, so ``--size mm`` was 1 mm. Every flag of every command that takes a value with units
+refuses one without a number, in one line naming the flag."""
+
+from phasekit import cli
+from phasekit.cli.parser import _build_parser, _quantity_text, _real_or_units
+
+import pytest
+
+from ..helpers import run_cli, strict_json
+
+RUN = ["--a", "1.5", "--mu", "0.1", "--gyroscopic", "--theta0", "1.56", "--omega0", "11", "--stop-at", "touchdown",
+       "--size", "21.5 mm"]
+#: a unit without its number for each kind of value, and the same with a number (accepted)
+BARE = {"--theta0": ("deg", "89 deg"), "--omega0": ("rev/s", "41 rev/s"), "--n0": ("rpm", "2000 rpm"),
+        "--spin-about-vertical": ("rev/s", "10 rev/s"), "--t-end": ("s", "0.5 s"), "--psi0": ("deg", "30 deg"),
+        "--phi0": ("turn", "0.5 turn"), "--X0": ("mm", "3 mm"), "--Y0": ("cm", "1 cm"), "--size": ("mm", "21.5 mm"),
+        "--g": ("m/s^2", "9.81 m/s^2")}
+
+
+def unit_flags(command: str) -> set[str]:
+    """The flags of ``command`` that take a value with units (by their parser type)."""
+    parser = _build_parser().commands[command]
+    return {f for a in parser._actions if a.type in (_real_or_units, _quantity_text) for f in a.option_strings}
+
+
+@pytest.fixture(autouse=True)
+def _bugs_raise(monkeypatch):
+    monkeypatch.setenv(cli.DEBUG_ENV, "1")
+
+
+def test_every_flag_with_units_is_covered():
+    assert unit_flags("simulate") == unit_flags("animate") == set(BARE)
+    assert unit_flags("fixed-points") == unit_flags("steady-states") == unit_flags("gyroscopic") == set()
+
+
+@pytest.mark.parametrize("command", ["simulate", "animate"])
+@pytest.mark.parametrize("flag", sorted(BARE))
+def test_a_unit_without_its_number_is_refused(command, flag):
+    bare = BARE[flag][0]
+    args = [command, *(["x.gif"] if command == "animate" else []), *RUN]
+    args = [a for i, a in enumerate(args) if not (a == flag or (i and args[i - 1] == flag))]  # the flag once
+    args = [a for i, a in enumerate(args)
+            if flag != "--spin-about-vertical" or a not in ("--gyroscopic", "--omega0") and args[i - 1] != "--omega0"]
+    code, out, err = run_cli(*args, flag, bare, "--json")
+    d = strict_json(out)
+    assert code == 2 and d["status"] == "error" and d["parameter"] == flag
+    assert err.count("\n") == 1 and err.startswith(f"phasekit: error: argument {flag}: ") and repr(bare) in err
+    assert "needs its number" in err
+
+
+@pytest.mark.parametrize("flag", sorted(BARE))
+def test_the_same_unit_with_a_number_is_read(flag):
+    """The parser's types take the value with its number (the run's own checks come later)."""
+    parser = _build_parser().commands["simulate"]
+    kind = parser._option_string_actions[flag].type
+    assert kind(BARE[flag][1]) == BARE[flag][1]
+    assert kind("inf mm") == "inf mm"  # refused later as not finite, naming the flag
+    assert kind("(2 mm * 8 mm)**0.5") == "(2 mm * 8 mm)**0.5"  # a number written as a product
+
+
+def test_a_unit_alone_is_not_one_of_it():
+    code, out, err = run_cli("simulate", *RUN[:-2], "--size", "mm", "--si", "--json")
+    assert code == 2 and strict_json(out)["parameter"] == "--size"
+    code, out, err = run_cli("simulate", *RUN[:-2], "--size", "1 mm", "--si", "--json")
+    assert code == 0 and strict_json(out)["si"]["b"] == "1 mm"
