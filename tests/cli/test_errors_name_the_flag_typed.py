@@ -20,7 +20,7 @@ MINIMAL = {"simulate": SIM + ["--gyroscopic", "--theta0", "1.5", "--omega0", "10
            "animate": ["animate", "x.gif", *SIM[1:], "--gyroscopic", "--theta0", "1.5", "--omega0", "10"],
            "fixed-points": ["fixed-points", "--a", "1.5", "--mu", "0.1", "--omega0", "10"],
            "steady-states": ["steady-states", "--a", "1.5", "--mu", "0.1"],
-           "gyroscopic": GYRO + ["--t", "0"]}
+           "gyroscopic": GYRO + ["--t", "0"], "cache": ["cache"]}
 
 
 @pytest.fixture(autouse=True)
