@@ -63,7 +63,8 @@ DISPLAY_UNITS = {"length": "mm", "time": "ms", "rate": "rev/s", "speed": "m/s", 
 COLUMN_KINDS = {"t": "time", "U": "speed", "V": "speed", "slip": "speed", "Omega": "rate", "Lambda": "rate",
                 "n": "rate", "X": "length", "Y": "length", "X_P": "length", "Y_P": "length", "h": "length",
                 "gap": "length", "t_jump": "time", "t_end": "time", "t_flight": "time", "longest_flight": "time",
-                "gap_max": "length", "R": "force", "R_min": "force", "energy": "energy", "jellett": "angular_momentum", "L_Z": "angular_momentum"}
+                "gap_max": "length", "R": "force", "R_min": "force", "energy": "energy", "jellett": "angular_momentum",
+                "L_Z": "angular_momentum"}
 #: an example of each kind, for the messages
 EXAMPLES = {"length": "21.5 mm", "time": "12 ms", "rate": "30 rev/s", "speed": "0.5 m/s", "acceleration": "9.81 m/s**2",
             "mass": "57 g", "force": "0.5 N", "energy": "1 mJ", "inertia": "2 g*cm**2", "angular_momentum": "1e-4 kg*m**2/s"}

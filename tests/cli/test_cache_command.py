@@ -37,6 +37,9 @@ def test_the_cache_command_counts_what_a_run_compiled_and_clears_it(tmp_path):
     after = strict_json(_in(tmp_path, "cache", "--json").stdout)
     assert after["integrators"] == {"files": 0, "bytes": 0} and after["heyoka"] == {"files": 0, "bytes": 0}
     again = _in(tmp_path, *RUN)
+    assert again.returncode == 0, again.stderr
+    recompiled = strict_json(_in(tmp_path, "cache", "--json").stdout)  # the run compiled again, as many files
+    assert recompiled["integrators"]["files"] == shown["integrators"]["files"]
     assert strict_json(again.stdout)["t_end"] == strict_json(first.stdout)["t_end"]
     assert strict_json(again.stdout)["state_end"] == strict_json(first.stdout)["state_end"]
 

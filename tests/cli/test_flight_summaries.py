@@ -30,10 +30,9 @@ def top():
     code, out, err = run_cli(*TOP, "--json")
     assert code == 0, err
     d = strict_json(out)
-    text = run_cli(*TOP)[1]
-    si = run_cli(*TOP, "--size", "15 mm", "--si")[1]
-    si_json = strict_json(run_cli(*TOP, "--size", "15 mm", "--si", "--json")[1])
-    return d, text, si, si_json
+    runs = [run_cli(*TOP), run_cli(*TOP, "--size", "15 mm", "--si"), run_cli(*TOP, "--size", "15 mm", "--si", "--json")]
+    assert [r[0] for r in runs] == [0, 0, 0], [r[2] for r in runs]
+    return d, runs[0][1], runs[1][1], strict_json(runs[2][1])
 
 
 @pytest.mark.timeout(900)  # a hang guard: four runs of a few seconds each

@@ -36,5 +36,5 @@ def test_the_wall_clock_line_is_labelled_and_outside_the_real_units_block():
     assert all("wall" not in ln for ln in block)
     [counts] = [ln for ln in lines if " events, " in ln]
     assert re.fullmatch(r"\d+ events, \d+ steps, \w+ chart, [\w+-]+( \(.*\))?", counts)  # no time among the counts
-    wall_s = strict_json(run_cli(*RUN, "--json")[1])["wall_s"]
-    assert wall_s > 0  # the JSON keeps the number in seconds
+    d = strict_json(run_cli(*RUN, "--json")[1])
+    assert "wall_s" in d and not any("wall" in k for k in d["si"])  # a wall time is no simulated time

@@ -174,7 +174,7 @@ def pd_frame():
                          "R": [1.0, 0.9], "energy": [3.0, 2.9], "theta": [1.5, 1.4]})
 
 
-def test_the_time_unit_of_the_issue_prints_in_ms():
+def test_a_2_25_mm_body_has_a_time_unit_of_15_14_ms():
     """b = 2.25 mm: sqrt(b/g) = 15.14 ms, printed so (pint alone prints
     '0.4789 millimeter ** 0.5 * second / meter ** 0.5')."""
     sc = pk.Scale("2.25 mm")
