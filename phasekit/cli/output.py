@@ -59,6 +59,21 @@ def _print_cache(out: dict) -> None:
           f"{mb('heyoka')} (kept under {out['heyoka_limit_bytes'] / 2**30:g} GiB)")
 
 
+def _print_contact(out: dict) -> None:
+    """The tilt's change and the time rolling without slip, in words ("stuck" alone reads as
+    "did not rise"), and what a run that ends rolling rests on."""
+    if out.get("theta_start") is None:
+        return
+    change = out["theta_change"]
+    verb = "rose (theta fell)" if change < 0 else "sank (theta grew)" if change > 0 else "kept its tilt"
+    stick = out.get("t_first_stick")
+    print(f"the axis {verb} by {abs(change):.4g} rad, theta {out['theta_start']:.6g} -> {out['theta_end']:.6g}; rolling "
+          f"without slip {100 * (out['rolling_fraction'] or 0.0):.1f}% of the run"
+          + (f", first from t = {_fmt(stick, '.6g')}" if stick is not None else " (it never stuck)"))
+    if out.get("rests_on"):
+        print(out["rests_on"])
+
+
 def _print_human(out: dict, events: bool) -> None:
     if "cleared" in out:
         _print_cache(out)
@@ -90,9 +105,10 @@ def _print_human(out: dict, events: bool) -> None:
         speed = f", {an['playback_speed']:.3g}x real time" if an.get("playback_speed") else ""
         print(f"wrote {an['path']}: {an['frames']} frames of {an['frame_size'][0]}x{an['frame_size'][1]} pixels"
               f"{speed}, {an['bytes'] / 1e6:.2f} MB")
-    for key in ("t_jump", "t_stop", "t_end", "theta_end", "R_min", "stuck", "mode_end"):
+    for key in ("t_jump", "t_stop", "t_end", "theta_end", "R_min", "mode_end"):
         if out.get(key) is not None:
             print(f"{key}: {_fmt(out[key])}")
+    _print_contact(out)
     if out.get("flight"):
         print("first flight: " + ", ".join(f"{k}={_fmt(v)}" for k, v in out["flight"].items()))
     if (out.get("flight_summary") or {}).get("n_flights"):

@@ -23,7 +23,7 @@ from .units import COLUMN_KINDS
 
 __all__ = ["STATE_COLUMNS", "UNITS", "LONG_NAMES", "observable_table", "sample_table", "pose_table", "event_dict",
            "flight_dict", "trajectory_dict", "event_poses", "events_table", "run_table", "trajectory_xarray",
-           "write_run_table", "write_netcdf", "write_parquet"]
+           "write_run_table", "write_netcdf", "write_parquet", "contact_summary", "PURE_ROLLING"]
 
 #: the observables of a state (columns of :func:`observable_table`)
 STATE_COLUMNS = (*PAPER_NAMES, "R", "energy", "jellett", "slip", "L_Z", "h", "gap")
@@ -49,6 +49,26 @@ LONG_NAMES = {
     "X_P": "contact point on the table (in flight: below the lowest point), X",
     "Y_P": "contact point on the table (in flight: below the lowest point), Y",
 }
+#: what a run that ends rolling without slip rests on (exact Coulomb friction's rolling mode does
+#: no work: nothing dissipates, so the energy and, with it, the tilt stay as they are)
+PURE_ROLLING = ("pure rolling: energy is conserved and theta cannot change while the body rolls without slipping; "
+                "a regularised or viscous friction law (CLI: --slip-eps EPS, --friction viscous) changes this")
+
+
+def contact_summary(traj) -> dict:
+    """How a run held the table: the time of its first stick, the fraction of the run spent
+    rolling without slip, theta at the start and its change (negative: the axis rose towards
+    the vertical), and ``rests_on`` (:data:`PURE_ROLLING`) when it ends rolling, else None."""
+    span = traj.t - traj.t0
+    rolling = sum(s.t1 - s.t0 for s in traj.segments if s.mode.value == "rolling")
+    sticks = [e.t for e in traj.events if e.name == "stick"]
+    theta0 = float(traj.model.chart.to_paper(traj.x0)[4])
+    return {"t_first_stick": float(sticks[0]) if sticks else None,
+            "rolling_fraction": float(rolling / span) if span > 0 else None, "theta_start": theta0,
+            "theta_change": float(traj.model.chart.to_paper(traj.x)[4]) - theta0,
+            "rests_on": PURE_ROLLING if traj.mode == "rolling" else None}
+
+
 #: the scalars of a run's outcome and inputs that a run's table carries as attributes of their own
 RUN_SCALARS = ("status", "reason", "t_jump", "n_flights", "stop_at", "restitution", "t_end")
 #: its structured inputs, each an attribute (all of them, and more, are in the attribute "run")
@@ -215,7 +235,8 @@ def trajectory_dict(traj, *, events: bool = True) -> dict:
         "theta_end": float(y_end[4]),
         "state_end": dict(zip(PAPER_NAMES, map(float, y_end))),
         "mode_end": traj.mode,
-        "stuck": traj.stuck,
+        "stuck": traj.stuck,  # ever held zero slip (not "did not rise": see contact_summary)
+        **contact_summary(traj),
         "n_events": len(traj.events),
         "n_steps": int(traj.n_steps),
         "n_rhs": int(traj.n_rhs),
