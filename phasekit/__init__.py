@@ -29,7 +29,7 @@ from .core import (
     gyroscopic_start,
     simulate,
 )
-from .friction import Coulomb, RegularisedCoulomb, Viscous
+from .friction import AirDrag, Coulomb, RegularisedCoulomb, RollingResistance, SpinFriction, Viscous
 from .io import read_table, write_table
 from .steady import fixed_points, steady_structure
 from .sweep import ensemble, rerun
@@ -54,6 +54,7 @@ def __getattr__(name):
 __all__ = [
     # bodies and friction laws
     "Spheroid", "EccentricSphere", "Egg", "CustomBody", "Coulomb", "RegularisedCoulomb", "Viscous",
+    "RollingResistance", "SpinFriction", "AirDrag",
     # the model, simulations and their starts
     "Model", "Event", "SolverOptions", "simulate", "ensemble", "rerun",
     "gyroscopic_start", "paper_start",

@@ -182,6 +182,8 @@ class Status(_Vocabulary):
         "completed": reached the end time.
     SETTLED
         "settled": the body settled: it rolls in a steady state (the option settle).
+    REST
+        "rest": the body came to rest (with dissipation laws, :meth:`phasekit.Coulomb.with_dissipation`).
     FAILED
         "failed": the computation could not continue; see the reason.
 
@@ -197,6 +199,7 @@ class Status(_Vocabulary):
     STOPPED = ("stopped", "a stop condition was met")
     COMPLETED = ("completed", "reached the end time")
     SETTLED = ("settled", "the body settled: it rolls in a steady state (the option settle)")
+    REST = ("rest", "the body came to rest: every motion stopped, held by friction and rolling resistance")
     FAILED = ("failed", "the computation could not continue; see the reason")
 
 

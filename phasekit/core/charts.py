@@ -63,10 +63,27 @@ class Chart:
     def n_states(self) -> int:
         return len(self.state_names)
 
-    def terms(self, x, H, A, C, Fc) -> dict:
+    def terms(self, x, H, A, C, Fc, wrench=None) -> dict:
         """Symbolic terms: ``xdot`` (affine in Fc), ``W``, ``slip``, ``energy``, ``L_Z``,
-        ``spin``, ``jellett``, ``cos_theta``, ``h`` and ``paper`` (the paper's six variables).
-        ``H`` maps c = cos(theta) to the height of G (an SX expression)."""
+        ``spin``, ``jellett``, ``cos_theta``, ``h``, ``paper`` (the paper's six variables), and
+        ``w``, ``v`` (angular velocity, velocity of G, in axes with e_Z vertical) and ``lift``
+        (the wrench's vertical force). ``H`` maps c = cos(theta) to the height of G (an SX
+        expression); ``wrench(w, v, R) -> (f, couple)``, optional, adds a dissipative force at G
+        and a couple (:mod:`phasekit.friction.dissipation`)."""
+        raise NotImplementedError
+
+    #: the state's positions (what a body at rest keeps; every other entry is a velocity)
+    positions: tuple[int, ...] = ()
+
+    def at_rest(self, x) -> np.ndarray:
+        """The state ``x`` with every velocity set to zero (the body at rest where it stands)."""
+        out = np.zeros_like(np.asarray(x, dtype=float))
+        out[list(self.positions)] = np.asarray(x, dtype=float)[list(self.positions)]
+        return out
+
+    def with_pivot(self, x, dw: float) -> np.ndarray:
+        """The state ``x`` with dw added to the spin about the vertical, w_Z (nothing else of w
+        changes)."""
         raise NotImplementedError
 
     def from_paper(self, y) -> np.ndarray:
@@ -94,10 +111,11 @@ class Chart:
 class EulerChart(Chart):
     name = "euler"
     state_names = PAPER_NAMES
+    positions = (4,)
     velocity_slots = (0, 1)
     regular_at_poles = False
 
-    def terms(self, x, H, A, C, Fc) -> dict:
+    def terms(self, x, H, A, C, Fc, wrench=None) -> dict:
         U, V, Om, Lam, th, n = (x[i] for i in range(6))
         FX, Fy, R = Fc[0], Fc[1], Fc[2]
         c, s = ca.cos(th), ca.sin(th)
@@ -105,6 +123,9 @@ class EulerChart(Chart):
         h1 = ca.jacobian(h, th)
         xP = h * s + h1 * c  # -h^2 d/dtheta(cos/h), (2.2)
         zPm = h * c - h1 * s  # h^2 d/dtheta(sin/h) = -z_P
+        W = Lam * h1  # (2.5)
+        # a dissipative wrench (f at G, couple G) in the turning axes (e_X, e_Y, e_Z), w in them:
+        # its couple along e_Y, along e_theta = c e_X - s e_Z and along k enters as friction's does
         xdot = ca.vertcat(
             Om * V + FX,  # (2.7a)
             -Om * U + Fy,  # (2.7b)
@@ -113,13 +134,20 @@ class EulerChart(Chart):
             Lam,  # (2.7e)
             xP * Fy / C,  # (2.7f)
         )
-        W = Lam * h1  # (2.5)
+        w = ca.vertcat((n - Om * c) * s, Lam, Om + (n - Om * c) * c)
+        lift = ca.SX(0)
+        if wrench is not None:
+            f, G = wrench(w, ca.vertcat(U, V, W), R)
+            G_theta, G_k = c * G[0] - s * G[2], s * G[0] + c * G[2]
+            xdot = xdot + ca.vertcat(f[0], f[1], -G_theta / (A * s), G[1] / A, 0, G_k / C)
+            lift = f[2]
         slip = ca.vertcat(U - h * Lam, V + Om * h1 + (n - Om * c) * xP)  # (2.4a,b)
         energy = 0.5 * (U * U + V * V + W * W) + 0.5 * A * (Om * Om * s * s + Lam * Lam) + 0.5 * C * n * n + h
         L_Z = A * Om * s * s + C * n * c
         jellett = A * Om * s * xP + C * n * zPm
         return dict(xdot=xdot, W=W, slip=slip, energy=energy, L_Z=L_Z, spin=n, jellett=jellett, cos_theta=c, h=h,
-                    paper=ca.vertcat(U, V, Om, Lam, th, n))
+                    paper=ca.vertcat(U, V, Om, Lam, th, n), lift=lift, lever=ca.fabs(h1), w=w,
+                    v=ca.vertcat(U, V, W))
 
     def from_paper(self, y) -> np.ndarray:
         return np.array(y, dtype=float)
@@ -130,6 +158,12 @@ class EulerChart(Chart):
     def theta(self, x) -> float:
         return float(x[4])
 
+    def with_pivot(self, x, dw: float) -> np.ndarray:
+        out = np.array(x, dtype=float)  # w + dw e_Z: Omega gains dw, n = w.k gains dw cos(theta)
+        out[2] += dw
+        out[5] += dw * np.cos(out[4])
+        return out
+
     def rotation_rate(self, x) -> float:
         return float(max(1.0, abs(x[2]), abs(x[5]), abs(x[3])))
 
@@ -137,9 +171,10 @@ class EulerChart(Chart):
 class VectorChart(Chart):
     name = "vector"
     state_names = ("k_x", "k_y", "k_z", "w_x", "w_y", "w_z", "v_x", "v_y")
+    positions = (0, 1, 2)
     velocity_slots = (6, 7)
 
-    def rigid_terms(self, x, H, A, C, Fc) -> dict:
+    def rigid_terms(self, x, H, A, C, Fc, wrench=None) -> dict:
         """Newton-Euler in fixed axes: m dv/dt = F + R e_Z - e_Z, dL/dt = r_P x (F + R e_Z).
 
         With I = A 1 + (C - A) k k^T about G and dI/dt w = (C - A) n (w x k):
@@ -158,11 +193,15 @@ class VectorChart(Chart):
         rP = -dH * (khat - c * ez) - Hc * ez
         n = ca.dot(w, khat)
         wxk = _cross(w, khat)
+        W = dH * wxk[2]  # d/dt H(k_Z)
         torque = _cross(rP, ca.vertcat(Fc[0], Fc[1], Fc[2])) - (C - A) * n * wxk
+        force, lift = ca.vertcat(Fc[0], Fc[1]), ca.SX(0)
+        if wrench is not None:  # a dissipative wrench: a force f at G and a couple G
+            f, G = wrench(w, ca.vertcat(vx, vy, W), Fc[2])
+            torque, force, lift = torque + G, force + f[0:2], f[2]
         # I^{-1} = (1 - k k^T)/A + k k^T / C
         wdot = (torque - khat * ca.dot(khat, torque)) / A + khat * ca.dot(khat, torque) / C
-        xdot = ca.vertcat(_cross(w, k), wdot, Fc[0], Fc[1])
-        W = dH * wxk[2]  # d/dt H(k_Z)
+        xdot = ca.vertcat(_cross(w, k), wdot, force)
         slip = (ca.vertcat(vx, vy, 0) + _cross(w, rP))[0:2]
         Lvec = A * (w - n * khat) + C * n * khat
         rot_energy = 0.5 * ca.dot(w, Lvec)
@@ -173,16 +212,23 @@ class VectorChart(Chart):
         v3 = ca.vertcat(vx, vy, 0)
         paper = ca.vertcat(ca.dot(v3, eX), ca.dot(v3, eY), (w[2] - n * c) / (s * s), ca.dot(w, eY), ca.atan2(s, c), n)
         return dict(xdot=xdot, W=W, slip=slip, rot_energy=rot_energy, L_Z=Lvec[2], L=Lvec, spin=n,
-                    jellett=-ca.dot(Lvec, rP), cos_theta=c, h=Hc, rP=rP, paper=paper)
+                    jellett=-ca.dot(Lvec, rP), cos_theta=c, h=Hc, rP=rP, paper=paper, lift=lift, w=w,
+                    lever=ca.sqrt(rP[0] ** 2 + rP[1] ** 2),
+                    v=ca.vertcat(vx, vy, W))
 
-    def terms(self, x, H, A, C, Fc) -> dict:
-        T = self.rigid_terms(x, H, A, C, Fc)
+    def terms(self, x, H, A, C, Fc, wrench=None) -> dict:
+        T = self.rigid_terms(x, H, A, C, Fc, wrench)
         vx, vy, W = x[6], x[7], T["W"]
         T["energy"] = 0.5 * (vx * vx + vy * vy + W * W) + T["rot_energy"] + T["h"]
         return T
 
     def from_paper(self, y) -> np.ndarray:
         return euler_to_vector(y)
+
+    def with_pivot(self, x, dw: float) -> np.ndarray:
+        out = np.array(x, dtype=float)
+        out[5] += dw
+        return out
 
     def to_paper(self, x) -> np.ndarray:
         return vector_to_euler(x)
@@ -201,16 +247,22 @@ class FlightChart(Chart):
     state_names = VectorChart.state_names + ("gap", "gap_rate")
     velocity_slots = (6, 7)
 
-    def terms(self, x, H, A, C, Fc) -> dict:
+    def terms(self, x, H, A, C, Fc, wrench=None) -> dict:
+        # Hdot needs only the rotation; the wrench needs the vertical speed Dd + Hdot: two passes
         T = VECTOR.rigid_terms(x[0:8], H, A, C, ca.SX.zeros(3))
-        rot = ca.vertcat(T["xdot"], 0, 0)
-        Hdot = ca.jtimes(T["h"], x, rot)
-        Hddot = ca.jtimes(Hdot, x, rot)
+        Hdot = ca.jtimes(T["h"], x, ca.vertcat(T["xdot"], 0, 0))
         D, Dd = x[8], x[9]
-        T["xdot"] = ca.vertcat(T["xdot"], Dd, -1 - Hddot)
         vz = Dd + Hdot
+        lift = None
+        if wrench is not None:  # in flight only the air acts (the contact laws vanish with R = 0)
+            T = VECTOR.rigid_terms(x[0:8], H, A, C, ca.SX.zeros(3), lambda w, v, R: wrench(w, ca.vertcat(v[0], v[1], vz), 0))
+            lift = T["lift"]
+        rot = ca.vertcat(T["xdot"], 0, 0)
+        Hddot = ca.jtimes(Hdot, x, rot)
+        gap_acc = -1 - Hddot if wrench is None else -1 + lift - Hddot
+        T["xdot"] = ca.vertcat(T["xdot"], Dd, gap_acc)
         T["energy"] = 0.5 * (x[6] ** 2 + x[7] ** 2 + vz * vz) + T["rot_energy"] + D + T["h"]
-        T.update(W=vz, gap=D, gap_rate=Dd, gap_acc=-1 - Hddot, Hdot=Hdot)
+        T.update(W=vz, gap=D, gap_rate=Dd, gap_acc=gap_acc, Hdot=Hdot, v=ca.vertcat(x[6], x[7], vz))
         return T
 
     def from_paper(self, y) -> np.ndarray:

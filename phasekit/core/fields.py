@@ -28,17 +28,26 @@ from dataclasses import dataclass, field
 import casadi as ca
 
 from ..bodies.body import Body
+from ..friction.dissipation import RollingResistance, SpinFriction
 from ..friction.laws import FrictionLaw
 from .charts import FLIGHT, PAPER_NAMES, Chart
 from .hybrid import Mode
 
-__all__ = ["CompiledModel", "compiled_model", "STICK_SLIP", "STICK_SLIP_POINTWISE", "snapshot", "install"]
+__all__ = ["CompiledModel", "compiled_model", "STICK_SLIP", "STICK_SLIP_POINTWISE", "REST_SPEED", "PIVOT_STICK", "snapshot", "install"]
 
 #: slip speed (units sqrt(g b)) at which exact Coulomb sliding is taken to have stuck;
 #: the stick time is then extrapolated to the exact zero of the slip
 STICK_SLIP = 1e-10
 #: the same for integrators that evaluate the field pointwise (CVODES), which chatter at u = 0
 STICK_SLIP_POINTWISE = 1e-7
+#: the speed of the motion, sqrt(|w|^2 + |v|^2) (units sqrt(g b)), at which a dissipative run
+#: is taken to have come to rest; the time of rest is extrapolated to its exact zero
+REST_SPEED = 1e-7
+#: the spin about the normal (units sqrt(g/b)) at which spin friction is taken to have stopped it
+#: (the time is extrapolated to its zero). Well above the couple's regularisation SIGN_EPS = 1e-9:
+#: held by the regularised couple, |w_Z| creeps at SIGN_EPS rho/sqrt(1 - rho^2), rho the couple
+#: needed over mu_s R, which stays below 1e-6 for every rho < 1 - 5e-7
+PIVOT_STICK = 1e-6
 
 
 @dataclass
@@ -81,11 +90,13 @@ def install(models: dict) -> None:
 
 
 def compiled_model(body: Body, law: FrictionLaw, chart: Chart) -> CompiledModel:
-    """Build (or fetch from the cache) the compiled model of a body structure, law class and chart."""
-    key = (body.structure_key, type(law), chart.name)
+    """Build (or fetch from the cache) the compiled model of a body structure, law structure
+    (its class and the kinds of its dissipation laws) and chart."""
+    structure = law.structure
+    key = (body.structure_key, structure[0] if len(structure) == 1 else structure, chart.name)
     with _LOCK:
         if key not in _CACHE:
-            _CACHE[key] = _build(body, type(law), chart, key)
+            _CACHE[key] = _build(body, type(law), chart, key, law.dissipation)
         return _CACHE[key]
 
 
@@ -102,24 +113,60 @@ def _common(fn: dict, T: dict, x, p) -> None:
     fn["paper"] = _function("paper", x, p, T["paper"])
 
 
-def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key) -> CompiledModel:
+def _wrench(laws, p, first: int):
+    """The dissipation laws' total wrench (f, couple) as a function of (w, v, R), each law reading
+    its coefficients from p after index ``first``; None without laws."""
+    if not laws:
+        return None
+
+    def wrench(w, v, R):
+        f, G, i = ca.SX.zeros(3), ca.SX.zeros(3), first
+        for law in laws:
+            fi, Gi = law.wrench(w, v, R, p[i:i + law.n_params])
+            f, G, i = f + fi, G + Gi, i + law.n_params
+        return f, G
+
+    return wrench
+
+
+def _dissipation_terms(fn, tag, T, x, p, rhs, Fc_mode, laws, first) -> None:
+    """A mode's power of sliding friction, then of each dissipation law; the rates of the motion's
+    speed and of the spin about the normal (what the rest and pivot events extrapolate with)."""
+    fn[f"motion_rate_{tag}"] = _function(f"motion_rate_{tag}", x, p, ca.jtimes(_motion(T), x, rhs))
+    fn[f"pivot_rate_{tag}"] = _function(f"pivot_rate_{tag}", x, p, ca.jtimes(T["w"][2], x, rhs))
+    power = [ca.dot(Fc_mode[0:2], T["slip"])]  # the slip and w, v depend on the state only
+    power += _powers(laws, p, first, T["w"], T["v"], Fc_mode[2])
+    fn[f"power_{tag}"] = _function(f"power_{tag}", x, p, ca.vertcat(*power))
+
+
+def _powers(laws, p, first: int, w, v, R):
+    """Each dissipation law's power f.v + couple.w, in order."""
+    out, i = [], first
+    for law in laws:
+        out.append(law.power(w, v, R, p[i:i + law.n_params]))
+        i += law.n_params
+    return out
+
+
+def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=()) -> CompiledModel:
     nx, ns = chart.n_states, body.n_shape
+    n_params = ns + 4 + sum(d.n_params for d in laws)
     x = ca.SX.sym("x", nx)
-    p = ca.SX.sym("p", ns + 4)
+    p = ca.SX.sym("p", n_params)
     Fc = ca.SX.sym("Fc", 3)
     shape, A, C, mu, eps = p[:ns], p[ns], p[ns + 1], p[ns + 2], p[ns + 3]
 
     def H(c):
         return body.height(c, shape)
 
-    T = chart.terms(x, H, A, C, Fc)
+    T = chart.terms(x, H, A, C, Fc, _wrench(laws, p, ns + 4))
     xdot, slip = T["xdot"], T["slip"]
     modes = [Mode.SLIDING, Mode.ROLLING] if law_cls.can_stick else [Mode.SLIDING]
-    out = CompiledModel(chart=chart, n_params=ns + 4, modes=(*modes, Mode.FLIGHT), key=key)
+    out = CompiledModel(chart=chart, n_params=n_params, modes=(*modes, Mode.FLIGHT), key=key)
     fn = out.contact
 
-    # Contact constraint R - 1 - dW/dt = 0, affine in Fc: G.Fc + g0 = 0.
-    constraint = Fc[2] - 1 - ca.jtimes(T["W"], x, xdot)
+    # Contact constraint R + lift - 1 - dW/dt = 0 (lift: the air's), affine in Fc: G.Fc + g0 = 0.
+    constraint = (Fc[2] + T["lift"] if laws else Fc[2]) - 1 - ca.jtimes(T["W"], x, xdot)
     G = ca.jacobian(constraint, Fc)
     g0 = ca.substitute(constraint, Fc, ca.SX.zeros(3))
 
@@ -134,6 +181,8 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key) -> Compile
         fn[f"Rdot_{tag}"] = _function(f"Rdot_{tag}", x, p, ca.jtimes(R, x, rhs))
         fn[f"Fc_{tag}"] = _function(f"Fc_{tag}", x, p, Fc_mode)
         fn[f"friction_{tag}"] = _function(f"friction_{tag}", x, p, Fc_mode[0:2])
+        if laws:
+            _dissipation_terms(fn, tag, T, x, p, rhs, Fc_mode, laws, ns + 4)
         return rhs, Fc_mode
 
     # SLIDING: Fc = Fc0 + R d, R from the constraint.
@@ -171,10 +220,112 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key) -> Compile
     _common(fn, T, x, p)
     fn["gap"] = _function("gap", x, p, ca.SX(0))
     fn["gap_rate"] = _function("gap_rate", x, p, ca.SX(0))
-    _build_flight(out.flight, body, ns)
+    if laws:  # rest, and the modes with the spin about the normal held (spin friction)
+        _build_rest(fn, T, x, p, ns, laws)
+        out.modes = (*modes, *_build_no_pivot(fn, chart, x, p, Fc, H, laws, law_cls, ns), Mode.FLIGHT)
+    _build_flight(out.flight, body, ns, laws)
     blob = "".join(f.serialize() for d in (out.contact, out.flight) for _, f in sorted(d.items()))
-    out.signature = f"{key[0]}|{law_cls.__qualname__}|{chart.name}|" + hashlib.sha256(blob.encode()).hexdigest()
+    names = "+".join([law_cls.__qualname__, *(type(d).__qualname__ for d in laws)])
+    out.signature = f"{key[0]}|{names}|{chart.name}|" + hashlib.sha256(blob.encode()).hexdigest()
     return out
+
+
+def _build_no_pivot(fn, chart, x, p, Fc, H, laws, law_cls, ns) -> tuple[Mode, ...]:
+    """The modes in which spin friction holds the spin about the normal, w_Z, at zero: the
+    pivoting couple tau e_Z is then an unknown fixed by dw_Z/dt = 0 (with the contact
+    constraint, and with du/dt = 0 when rolling too), and it holds while |tau| <= mu_s R."""
+    if not any(isinstance(d, SpinFriction) for d in laws):
+        return ()
+    A, C, mu, eps = p[ns], p[ns + 1], p[ns + 2], p[ns + 3]
+    first, mu_s, free = ns + 4, None, []
+    for law in laws:
+        if isinstance(law, SpinFriction):
+            mu_s = p[first]
+        else:
+            free.append((law, first))
+        first += law.n_params
+    tau = ca.SX.sym("tau")
+
+    def wrench(w, v, R):
+        f, G = ca.SX.zeros(3), ca.vertcat(0, 0, tau)
+        for law, i in free:
+            fi, Gi = law.wrench(w, v, R, p[i:i + law.n_params])
+            f, G = f + fi, G + Gi
+        return f, G
+
+    T = chart.terms(x, H, A, C, Fc, wrench)
+    xdot, slip = T["xdot"], T["slip"]
+    constraint = Fc[2] + T["lift"] - 1 - ca.jtimes(T["W"], x, xdot)
+    hold = ca.jtimes(T["w"][2], x, xdot)
+    z = ca.vertcat(Fc, tau)
+
+    def add(mode, rows, Fc_of, unknowns):
+        sol = -ca.solve(ca.jacobian(rows, unknowns), ca.substitute(rows, unknowns, ca.SX.zeros(unknowns.numel())))
+        Fc_m, tau_m = Fc_of(sol), sol[-1]
+        rhs = ca.substitute(xdot, z, ca.vertcat(Fc_m, tau_m))
+        tag, R = mode.value, Fc_m[2]
+        for name, expr in (("rhs", rhs), ("rhs_jac", ca.jacobian(rhs, x)), ("R", R), ("Rdot", ca.jtimes(R, x, rhs)),
+                           ("Fc", Fc_m), ("friction", Fc_m[0:2]), ("motion_rate", ca.jtimes(_motion(T), x, rhs)),
+                           ("pivot_margin", mu_s * mu_s * R * R - tau_m * tau_m), ("pivot_couple", tau_m)):
+            fn[f"{name}_{tag}"] = _function(f"{name}_{tag}", x, p, ca.substitute(expr, z, ca.vertcat(Fc_m, tau_m)))
+        w, v = T["w"], T["v"]
+        power = [ca.dot(Fc_m[0:2], slip)] + [law.power(w, v, R, p[i:i + law.n_params]) if law in dict(free)
+                                             else tau_m * w[2] for law, i in _offsets(laws, ns + 4)]
+        fn[f"power_{tag}"] = _function(f"power_{tag}", x, p, ca.substitute(ca.vertcat(*power), z, ca.vertcat(Fc_m, tau_m)))
+        return Fc_m
+
+    # sliding: Fc = Fc0 + R d; the unknowns R and tau
+    Fc0, d = law_cls.sliding_force(slip, mu, eps)
+    Fc0, d = ca.SX(Fc0), ca.SX(d)
+    R_, t_ = ca.SX.sym("R"), ca.SX.sym("t")
+    sub = ca.vertcat(Fc0 + R_ * d, t_)
+    rows = ca.substitute(ca.vertcat(constraint, hold), z, sub)
+    add(Mode.SLIDING_NO_PIVOT, rows, lambda sol: ca.substitute(Fc0 + R_ * d, ca.vertcat(R_, t_), sol), ca.vertcat(R_, t_))
+    if law_cls.has_rolling_mode:  # rolling: all of Fc and tau
+        Fc_r = add(Mode.ROLLING_NO_PIVOT, ca.vertcat(constraint, ca.jtimes(slip, x, xdot), hold), lambda sol: sol[0:3], z)
+        fn["margin_rolling_no_pivot"] = _function("margin_rolling_no_pivot", x, p,
+                                                  mu * mu * Fc_r[2] ** 2 - Fc_r[0] ** 2 - Fc_r[1] ** 2)
+        return Mode.SLIDING_NO_PIVOT, Mode.ROLLING_NO_PIVOT
+    if law_cls.can_stick:  # a regularised law: its "rolling" is its sliding field
+        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction", "motion_rate", "pivot_margin", "pivot_couple",
+                     "power"):
+            fn[f"{name}_rolling_no_pivot"] = fn[f"{name}_sliding_no_pivot"]
+        return Mode.SLIDING_NO_PIVOT, Mode.ROLLING_NO_PIVOT
+    return (Mode.SLIDING_NO_PIVOT,)
+
+
+def _offsets(laws, first):
+    out = []
+    for law in laws:
+        out.append((law, first))
+        first += law.n_params
+    return out
+
+
+def _motion(T):
+    w, v = T["w"], T["v"]
+    return ca.sqrt(ca.dot(w, w) + ca.dot(v, v))
+
+
+def _build_rest(fn, T, x, p, ns, laws) -> None:
+    """What decides that the body has come to rest (:mod:`phasekit.core.system`): the speed of
+    its motion sqrt(|w|^2 + |v|^2), and the rolling couple needed to hold it still where it
+    stands (the weight's moment about the contact point, R = 1) against what rolling resistance
+    can give (delta; 0 without it)."""
+    speed = _motion(T)
+    fn["motion"] = _function("motion", x, p, speed)
+    fn["rest_guard"] = _function("rest_guard", x, p, speed - REST_SPEED)
+    i, delta = ns + 4, ca.SX(0)
+    for law in laws:
+        if isinstance(law, RollingResistance):
+            delta = p[i]
+        i += law.n_params
+    # |x_P|: the horizontal distance of G from the contact point, the weight's lever arm
+    fn["rest_margin"] = _function("rest_margin", x, p, delta - T["lever"])
+    # spin friction: the spin about the normal |w_Z| falls to PIVOT_STICK (see resets.PivotStick)
+    # (CasADi turns sqrt(w_Z^2) into fabs, which heyoka cannot take; 1e-40 is far below rounding)
+    fn["pivot_guard"] = _function("pivot_guard", x, p, ca.sqrt(T["w"][2] ** 2 + 1e-40) - PIVOT_STICK)
+    fn["pivot_spin"] = _function("pivot_spin", x, p, T["w"][2])
 
 
 def _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu) -> None:
@@ -196,12 +347,15 @@ def _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu) ->
                                    ["x", "p", "phi"], ["slip_acc", "R"])
 
 
-def _build_flight(fn: dict, body: Body, ns: int) -> None:
-    """FLIGHT: the same rigid-body equations with no contact force, in the flight chart."""
+def _build_flight(fn: dict, body: Body, ns: int, laws=()) -> None:
+    """FLIGHT: the same rigid-body equations with no contact force, in the flight chart (the air
+    still acts)."""
     x = ca.SX.sym("x", FLIGHT.n_states)
-    p = ca.SX.sym("p", ns + 4)
+    p = ca.SX.sym("p", ns + 4 + sum(d.n_params for d in laws))
     shape, A, C = p[:ns], p[ns], p[ns + 1]
-    T = FLIGHT.terms(x, lambda c: body.height(c, shape), A, C, None)
+    T = FLIGHT.terms(x, lambda c: body.height(c, shape), A, C, None, _wrench(laws, p, ns + 4))
+    if laws:
+        fn["power_flight"] = _function("power_flight", x, p, ca.vertcat(0, *_powers(laws, p, ns + 4, T["w"], T["v"], 0)))
     rhs = T["xdot"]
     fn["rhs_flight"] = _function("rhs_flight", x, p, rhs)
     fn["rhs_jac_flight"] = _function("rhs_jac_flight", x, p, ca.jacobian(rhs, x))

@@ -37,17 +37,32 @@ class Mode(str, enum.Enum):
         for a regularised law, the stretch where the slip is below 10 eps (same field).
     FLIGHT : Mode
         Value "flight": no contact: gravity and torque-free rotation, until the gap closes.
+    SLIDING_NO_PIVOT, ROLLING_NO_PIVOT : Mode
+        Values "sliding_no_pivot", "rolling_no_pivot": as SLIDING and ROLLING, with the spin
+        about the normal held at zero by spin friction (:class:`phasekit.SpinFriction`).
 
     Examples
     --------
     >>> import phasekit as pk
     >>> [m.value for m in pk.core.Mode]
-    ['sliding', 'rolling', 'flight']
+    ['sliding', 'rolling', 'flight', 'sliding_no_pivot', 'rolling_no_pivot']
     """
 
     SLIDING = "sliding"
     ROLLING = "rolling"
     FLIGHT = "flight"
+    SLIDING_NO_PIVOT = "sliding_no_pivot"
+    ROLLING_NO_PIVOT = "rolling_no_pivot"
+
+    @property
+    def pivoting(self) -> "Mode":
+        """The mode with the spin about the normal free (SLIDING for SLIDING_NO_PIVOT, ...)."""
+        return {Mode.SLIDING_NO_PIVOT: Mode.SLIDING, Mode.ROLLING_NO_PIVOT: Mode.ROLLING}.get(self, self)
+
+    @property
+    def no_pivot(self) -> "Mode":
+        """The mode with the spin about the normal held (SLIDING_NO_PIVOT for SLIDING, ...)."""
+        return {Mode.SLIDING: Mode.SLIDING_NO_PIVOT, Mode.ROLLING: Mode.ROLLING_NO_PIVOT}.get(self, self)
 
     def __str__(self) -> str:
         return self.value

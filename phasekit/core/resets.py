@@ -12,19 +12,23 @@ lift-off   contact -> FLIGHT: positions and velocities carry over (R = 0, so the
 touchdown  FLIGHT -> contact or FLIGHT: the impact law (:mod:`phasekit.core.impact`); a rebound
            slower than BOUNCE_STOP ends a bounce train, and so does a ballistic train with more
            than BOUNCE_TAIL rebounds left (:func:`bounce_tail`).
+pivot      spin friction: the spin about the normal stops and is held (PivotStick, into the
+           NO_PIVOT modes) while the couple needed is <= mu_s R, then restarts (PivotSlip).
+rest       with dissipation laws: every motion stopped where rolling resistance holds the body
+           (:class:`Rest`); the run ends there with status "rest".
 The regularised law's "stick" and "slip" only change the mode (the field is the same).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from .._runtime.errors import Status
 from .charts import FLIGHT, VECTOR, euler_to_vector
-from .fields import STICK_SLIP
+from .fields import PIVOT_STICK, REST_SPEED, STICK_SLIP
 from .hybrid import Mode, Record, Transition
 from .impact import _impact
 
@@ -44,6 +48,12 @@ __all__ = [
     "Stick",
     "SlipOnset",
     "SwitchMode",
+    "Rest",
+    "PivotStick",
+    "PivotSlip",
+    "PivotHold",
+    "hold_pivot",
+    "PIVOT_ONSET",
     "LiftOff",
     "Touchdown",
 ]
@@ -197,7 +207,7 @@ class Stick:
         if rate >= 0:  # the guard was grazed, the slip is not vanishing
             return Transition(mode, t, x, resume=True)
         dt = 2.0 * s2 / (-rate)  # |u| linear in time as it vanishes: |u|^2 ~ (rate/2) * 2 * dt
-        x_s = x + dt * model._rhs(x, Mode.SLIDING)
+        x_s = x + dt * model._rhs(x, mode)
         out = zero_slip_start(model, x_s)
         if out is None:
             return _no_direction(t + dt, x_s)
@@ -211,7 +221,7 @@ class SlipOnset:
     """Exact Coulomb: ROLLING reached |F_req| = mu R; slide with slip along -F_req."""
 
     def __call__(self, model, event, mode, t, x) -> Transition:
-        F = np.asarray(model.function("Fc_rolling")(x, model.p)).ravel()[:2]
+        F = np.asarray(model.function(f"Fc_{mode.value}")(x, model.p)).ravel()[:2]
         norm = np.hypot(*F)
         if norm == 0.0:
             out = zero_slip_start(model, x)
@@ -233,6 +243,117 @@ class SwitchMode:
 
     def __call__(self, model, event, mode, t, x) -> Transition:
         return Transition(self.to, t, x, (Record(self.record_as, mode.value, self.to.value, x, self.detail),))
+
+
+@dataclass(frozen=True)
+class Rest:
+    """Dissipation laws: the motion's speed sqrt(|w|^2 + |v|^2) fell to REST_SPEED. Extrapolate
+    to its zero (it falls linearly under the set-valued laws); if rolling resistance can hold
+    the body where it stands (the weight's lever arm about the contact point <= delta), the
+    run ends at rest there; otherwise this is a turning point and the motion goes on."""
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        speed = float(model.function("motion")(x, model.p))
+        rate = float(model.function(f"motion_rate_{mode.value}")(x, model.p))
+        if rate >= 0:  # grazed: the motion is not stopping
+            return Transition(mode, t, x, resume=True)
+        dt = speed / -rate
+        x_rest = model.chart.at_rest(x + dt * model._rhs(x, mode))
+        margin = float(model.function("rest_margin")(x_rest, model.p))
+        if margin < -REST_SLACK:
+            return Transition(mode, t, x, resume=True)
+        detail = f"held still by rolling resistance (lever arm {max(0.0, -margin + _delta(model)):.3g} b)"
+        return Transition(mode, t + dt, x_rest, (Record("rest", mode.value, "end", x_rest, detail),), stop=Status.REST,
+                          reason=f"at rest at t = {t + dt:.10g}: every motion stopped")
+
+
+#: the spin about the normal given to a body whose pivoting starts from zero (units sqrt(g/b)): as
+#: for SLIP_ONSET, the regularised couple is stiff while |w_Z| < SIGN_EPS, which this skips at the
+#: price of a 1e-6 jump of w_Z (its energy is counted in the budget's at_events)
+PIVOT_ONSET = 1e-6
+
+
+@dataclass(frozen=True)
+class PivotStick:
+    """Spin friction: the spin about the normal |w_Z| fell to PIVOT_STICK. Extrapolate to its
+    zero (it falls linearly under the set-valued couple); hold it there (the NO_PIVOT mode)
+    where the couple that holds it is <= mu_s R, else it passes through zero and the couple
+    reverses."""
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        wz = float(model.function("pivot_spin")(x, model.p))
+        rate = float(model.function(f"pivot_rate_{mode.value}")(x, model.p))
+        if wz * rate >= 0:  # grazed: the spin is not vanishing
+            return Transition(mode, t, x, resume=True)
+        dt = -wz / rate
+        x_s = x + dt * model._rhs(x, mode)
+        tr = hold_pivot(model, Transition(mode, t + dt, x_s))
+        if tr.mode is mode:  # the couple cannot hold it: it passes through zero
+            return Transition(mode, t, x, resume=True)
+        rec = Record("pivot stick", mode.value, tr.mode.value, x_s, "the spin about the normal stopped: |tau| <= mu_s R")
+        if float(model.function("motion")(x_s, model.p)) < REST_SPEED:  # it was all that moved
+            rest = Rest()(model, event, mode, t, x)
+            if rest.stop is not None:
+                return replace(rest, records=(rec, *rest.records))
+        return replace(tr, records=(rec,))
+
+
+@dataclass(frozen=True)
+class PivotSlip:
+    """A NO_PIVOT mode: the couple holding the spin about the normal reached mu_s R; pivoting
+    starts against it, at |w_Z| = PIVOT_ONSET."""
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        tau = float(model.function(f"pivot_couple_{mode.value}")(x, model.p))
+        free = mode.pivoting
+        x_new = model.chart.with_pivot(x, -math.copysign(PIVOT_ONSET, tau))
+        if free is Mode.ROLLING:
+            x_new = project_no_slip(model, x_new)
+        return Transition(free, t, x_new, (Record("pivot slip", mode.value, free.value, x_new, "|tau| reached mu_s R"),))
+
+
+def hold_pivot(model, tr: Transition) -> Transition:
+    """``tr`` into SLIDING or ROLLING with the spin about the normal already stopped and
+    holdable by spin friction goes to the NO_PIVOT mode instead."""
+    if tr.stop is not None or tr.resume or tr.mode not in (Mode.SLIDING, Mode.ROLLING):
+        return tr
+    if abs(float(model.function("pivot_spin")(tr.x, model.p))) > PIVOT_STICK:
+        return tr
+    held = tr.mode.no_pivot
+    if float(model.function(f"pivot_margin_{held.value}")(tr.x, model.p)) < 0.0:
+        return tr
+    if held is Mode.ROLLING_NO_PIVOT and model.friction.has_rolling_mode \
+            and float(model.function("margin_rolling_no_pivot")(tr.x, model.p)) < 0.0:
+        return tr
+    return replace(tr, mode=held, records=tuple(replace(r, mode_after=held.value) if r.mode_after == tr.mode.value
+                                                else r for r in tr.records))
+
+
+@dataclass(frozen=True)
+class PivotHold:
+    """A reset whose transition passes through :func:`hold_pivot` (models with spin friction)."""
+
+    inner: object
+
+    @property
+    def uses_log(self) -> bool:
+        return getattr(self.inner, "uses_log", False)
+
+    def __call__(self, model, event, mode, t, x, **kw) -> Transition:
+        return hold_pivot(model, self.inner(model, event, mode, t, x, **kw))
+
+
+#: a lever arm this far beyond delta is rounding, not a push off the rest state
+REST_SLACK = 1e-9
+
+
+def _delta(model) -> float:
+    i = model.body.n_shape + 4
+    for d in model.friction.dissipation:
+        if d.name == "rolling-resistance":
+            return float(model.p[i])
+        i += d.n_params
+    return 0.0
 
 
 # -- flight ---------------------------------------------------------------------------------

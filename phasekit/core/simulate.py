@@ -18,6 +18,7 @@ from .._runtime.validate import check_bool, check_finite, check_range, check_tim
 from .._runtime.watch import WALL_REASON, deadline, progress_bar, show_progress
 from .charts import FLIGHT, POLE_GUARD
 from .engines import Budget, End, Propagation, TaylorEngine, engine_for
+from .engines.dense import linear_span
 from .hybrid import Event, Mode, Transition
 from .model import Model
 from .options import SolverOptions
@@ -77,12 +78,11 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     x0 : array
         A state of ``model.chart`` (6 numbers for "euler", 8 for "vector"); with
         ``mode="flight"``, a flight state (10) or a contact state lifted off with zero gap.
-    t_end : float
-        End time (> t0).
-    t0 : float
-        Start time, in [-1e6, 1e6] (default 0).
-    stop_at : {"jump", "touchdown", "none"}
-        Stop at the first lift-off or touchdown, or run to t_end through every flight and impact.
+    t_end, t0 : float
+        End time (> t0); start time, in [-1e6, 1e6] (default 0).
+    stop_at : {"jump", "touchdown", "none", "rest"}
+        Stop at the first lift-off or touchdown, or run to t_end through flights and impacts ("none";
+        "rest" alike: a run with dissipation laws ends when the body rests, status "rest").
     restitution : float in [0, 1]
         Newton's coefficient e of the impact law (``stop_at="none"``).
     events : sequence of Event
@@ -145,6 +145,13 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     if throw and traj.status is Status.FAILED:
         raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
     return traj
+
+
+def extended(seg: Segment, t1: float, x1: np.ndarray) -> Segment:
+    """``seg`` carried on in a straight line to (t1, x1): the last instants before a body comes to
+    rest, which the reset extrapolates (its dense output gains that line)."""
+    dense = seg.dense + (linear_span(seg.t1, t1, seg.x1, x1),) if seg.dense else ()
+    return replace(seg, t1=t1, x1=x1, dense=dense)
 
 
 def _checked_arguments(model, x0, t0, t_end, mode, throw, events, t_eval, max_wall):
@@ -244,6 +251,9 @@ class RunState:
             self.status, self.reason = tr.stop, tr.reason
             if not self.segments:  # stopped before any integration: keep the start
                 self.t, self.x, self.mode = tr.t, np.asarray(tr.x, dtype=float), tr.mode or self.mode
+            elif tr.t > self.segments[-1].t1:  # the reset extrapolated on (to the instant of rest)
+                self.segments[-1] = extended(self.segments[-1], tr.t, np.asarray(tr.x, dtype=float))
+                self.t, self.x = tr.t, np.asarray(tr.x, dtype=float)
             return
         self.mode, self.t, self.x = tr.mode, tr.t, np.asarray(tr.x, dtype=float)
         if len(self.records) >= self.switch_limit:

@@ -22,18 +22,24 @@ from .resets import (
     BOUNCE_STOP,
     BOUNCE_TAIL,
     LiftOff,
+    PivotHold,
+    PivotSlip,
+    PivotStick,
+    Rest,
     SlipOnset,
     Stick,
     SwitchMode,
     Touchdown,
     contact_start,
     flight_start_state,
+    hold_pivot,
 )
 
 __all__ = ["declare", "STOP_AT", "STIFF_RATE", "GUARD_DELAY"]
 
-#: how far a run goes: the first lift-off, the first touchdown, or the end time
-STOP_AT = ("jump", "touchdown", "none")
+#: how far a run goes: the first lift-off, the first touchdown, or the end time; "rest" goes
+#: through flights as "none" does (with dissipation laws every run ends when the body rests)
+STOP_AT = ("jump", "touchdown", "none", "rest")
 #: "auto" hands a stuck regularised law to CVODES when its slip relaxation rate mu/eps
 #: exceeds this. Measured (prolate a = 1.5, mu = 0.1, literal seeds, t <= 3000): the Taylor
 #: method is faster for eps >= 1e-4 (rate 1e3) and runs out of steps at eps = 1e-5.
@@ -55,36 +61,55 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     restitution = check_range("restitution", restitution, 0.0, 1.0, closed="lr")
     law = model.friction
     stiff = law.can_stick and not law.has_rolling_mode and law.mu / law.eps > STIFF_RATE
+    pivot = Mode.SLIDING_NO_PIVOT in model.modes  # spin friction can hold the spin about the normal
+    hold = PivotHold if pivot else _same
     flows = (
         Flow(Mode.SLIDING, "rhs_sliding", monitor=("Rdot", +1)),
         Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1), stiff=stiff),
         Flow(Mode.FLIGHT, "rhs_flight", monitor=("gap_rate", -1), engine="taylor", contact=False),
-    )
+    ) + ((Flow(Mode.SLIDING_NO_PIVOT, "rhs_sliding_no_pivot", monitor=("Rdot", +1)),
+          Flow(Mode.ROLLING_NO_PIVOT, "rhs_rolling_no_pivot", monitor=("Rdot", +1), stiff=stiff)) if pivot else ())
     jump_ends = stop_at == "jump"
     contact = frozenset(f.mode for f in flows if f.contact)
+    sliding, rolling = {Mode.SLIDING, Mode.SLIDING_NO_PIVOT}, {Mode.ROLLING, Mode.ROLLING_NO_PIVOT}
     evs = [Event("R", name="lift-off", direction=-1, modes=contact, rate="Rdot", stop=Status.JUMPED,
                  reset=None if jump_ends else LiftOff())]
     if law.can_stick:
-        to_roll = Stick() if law.has_rolling_mode else SwitchMode(Mode.ROLLING, "stick", "slip < 10 eps (regularised)")
+        to_roll = hold(Stick() if law.has_rolling_mode else SwitchMode(Mode.ROLLING, "stick", "slip < 10 eps (regularised)"))
         # the Taylor method watches |u| itself; pointwise integrators the dip of |u|^2 (see model)
-        evs += [Event("stick_guard", name="stick", direction=-1, modes={Mode.SLIDING}, reset=to_roll),
-                Event("stick_guard_sq", name="stick", direction=-1, modes={Mode.SLIDING}, reset=to_roll,
+        evs += [Event("stick_guard", name="stick", direction=-1, modes=sliding, reset=to_roll),
+                Event("stick_guard_sq", name="stick", direction=-1, modes=sliding, reset=to_roll,
                       rate="slip_speed2_rate")]
         if law.has_rolling_mode:
-            evs.append(Event("margin_rolling", name="slip", direction=-1, modes={Mode.ROLLING}, reset=SlipOnset()))
+            evs.append(Event("margin_rolling", name="slip", direction=-1, modes={Mode.ROLLING}, reset=hold(SlipOnset())))
+            if pivot:
+                evs.append(Event("margin_rolling_no_pivot", name="slip", direction=-1, modes={Mode.ROLLING_NO_PIVOT},
+                                 reset=hold(SlipOnset())))
         else:
-            evs.append(Event("unstick_guard", name="slip", direction=-1, modes={Mode.ROLLING},
-                             reset=SwitchMode(Mode.SLIDING, "slip", "slip > 100 eps (regularised)")))
+            evs.append(Event("unstick_guard", name="slip", direction=-1, modes=rolling,
+                             reset=hold(SwitchMode(Mode.SLIDING, "slip", "slip > 100 eps (regularised)"))))
+    if pivot:  # spin friction stops the spin about the normal, holds it, lets it go (see resets)
+        evs.append(Event("pivot_guard", name="pivot stick", direction=-1, modes={Mode.SLIDING, Mode.ROLLING},
+                         reset=PivotStick()))
+        evs += [Event(f"pivot_margin_{m.value}", name="pivot slip", direction=-1, modes={m}, reset=PivotSlip())
+                for m in (Mode.SLIDING_NO_PIVOT, Mode.ROLLING_NO_PIVOT) if m in model.modes]
+    if law.dissipation:  # the body comes to rest in finite time (see resets.Rest)
+        evs.append(Event("rest_guard", name="rest", direction=-1, modes=contact, reset=Rest(), stop=Status.REST))
     evs.append(Event("gap", name="touchdown", direction=-1, modes={Mode.FLIGHT}, arm_after=GUARD_DELAY,
-                     stop=Status.TOUCHDOWN, reset=None if stop_at == "touchdown" else Touchdown(restitution, *bounce)))
+                     stop=Status.TOUCHDOWN,
+                     reset=None if stop_at == "touchdown" else hold(Touchdown(restitution, *bounce))))
     for ev in events:
         if not isinstance(ev, Event):
             raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
         evs.append(ev)
-    return HybridSystem(flows, tuple(evs), _initial(stop_at, stiff))
+    return HybridSystem(flows, tuple(evs), _initial(stop_at, stiff, pivot))
 
 
-def _initial(stop_at: str, stiff: bool):
+def _same(reset):
+    return reset
+
+
+def _initial(stop_at: str, stiff: bool, pivot: bool = False):
     def initial(model, t, x, mode=None):
         """Start in contact (the mode from the slip), or in flight when asked; a contact
         state that would need R <= 0 lifts off at once."""
@@ -92,8 +117,11 @@ def _initial(stop_at: str, stiff: bool):
             return _flight_start(model, t, x)
         speed, R = np.asarray(model.function("start_probe")(x, model.p)).ravel()
         if speed > STICK_SLIP + 10 * model.friction.eps and R > 0.0:  # the common case, in one call
-            return Transition(Mode.SLIDING, t, x)
+            tr = Transition(Mode.SLIDING, t, x)
+            return hold_pivot(model, tr) if pivot else tr
         start = contact_start(model, t, x, stiff=stiff)
+        if pivot:
+            start = hold_pivot(model, start)
         if start.stop is not None or float(model._evaluate("R", start.x, start.mode)) > 0.0:
             return start
         rec = start.records + (Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 at start"),)

@@ -4,8 +4,7 @@ A :class:`Trajectory` is what :func:`phasekit.simulate` returns. It keeps the in
 dense output (heyoka's Taylor polynomials) per segment, so :meth:`Trajectory.sample`
 evaluates the state and any observable at any instant without re-integrating, and it
 carries its inputs (model, start, options) so that it can be rerun from :meth:`to_dict`. Its
-other forms (the JSON dict, tables, xarray, NetCDF, Parquet) are built in
-:mod:`phasekit.core.trajectory_io`.
+other forms (JSON, tables, xarray, NetCDF, Parquet) are built in :mod:`phasekit.core.trajectory_io`.
 """
 
 from __future__ import annotations
@@ -18,6 +17,7 @@ import numpy as np
 from .._runtime.errors import ParameterError, Status
 from .._runtime.validate import check_times
 from .charts import FLIGHT
+from .energy import EnergyBudget, energy_budget
 from .fields import STICK_SLIP
 from .hybrid import Mode
 from .model import Model
@@ -336,8 +336,7 @@ class Trajectory:
 
     @property
     def stuck(self) -> bool:
-        """Whether the body ever held zero slip: any time in the rolling mode, a stick event, or
-        (regularised law) a start with the slip already below its stick threshold 10 eps."""
+        """Whether the body ever held zero slip (rolling mode, a stick, a regularised start below 10 eps)."""
         if any(s.mode is Mode.ROLLING for s in self.segments) or any(e.name == "stick" for e in self.events):
             return True
         law = self.model.friction
@@ -351,20 +350,21 @@ class Trajectory:
 
     @property
     def t_jump(self) -> float | None:
-        e = self._liftoff
-        return None if e is None else e.t
+        return None if self._liftoff is None else self._liftoff.t
 
     @property
     def x_jump(self) -> np.ndarray | None:
-        e = self._liftoff
-        return None if e is None else e.x
+        return None if self._liftoff is None else self._liftoff.x
 
     @property
     def Rdot_jump(self) -> float | None:
         e = self._liftoff
-        if e is None:
-            return None
-        return float(self.model._evaluate("Rdot", e.x, Mode(e.mode_before) if e.mode_before in ("sliding", "rolling") else Mode.SLIDING))
+        return None if e is None else float(self.model._evaluate(
+            "Rdot", e.x, Mode(e.mode_before) if e.mode_before in ("sliding", "rolling") else Mode.SLIDING))
+
+    def energy_budget(self) -> EnergyBudget:
+        """Where the energy went, law by law, and at events (:mod:`phasekit.core.energy`)."""
+        return energy_budget(self)
 
     @property
     def minima(self) -> np.ndarray:

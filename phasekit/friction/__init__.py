@@ -1,5 +1,7 @@
 """Friction at the contact point (``phasekit.friction``): exact Coulomb with stick-slip, the
 regularised Coulomb law and viscous friction; a new law subclasses :class:`FrictionLaw`.
+Besides sliding, rolling resistance, spin friction and air drag take energy out of the motion
+(:meth:`FrictionLaw.with_dissipation`).
 
 Examples
 --------
@@ -8,6 +10,8 @@ Examples
 0.1
 """
 
+from .dissipation import AirDrag, Dissipation, RollingResistance, SpinFriction
 from .laws import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous
 
-__all__ = ["FrictionLaw", "Coulomb", "RegularisedCoulomb", "Viscous"]
+__all__ = ["FrictionLaw", "Coulomb", "RegularisedCoulomb", "Viscous", "Dissipation", "RollingResistance", "SpinFriction",
+           "AirDrag"]

@@ -26,6 +26,7 @@ it then works everywhere a built-in law does (simulation, fixed points, threshol
 
 from __future__ import annotations
 
+import copy
 import warnings
 
 import casadi as ca
@@ -33,6 +34,7 @@ import numpy as np
 
 from .._runtime.errors import ParameterError
 from .._runtime.validate import check_nonnegative, check_positive
+from .dissipation import Dissipation, check_dissipation
 
 __all__ = ["FrictionLaw", "Coulomb", "RegularisedCoulomb", "Viscous", "friction_law", "MU_MAX"]
 
@@ -75,6 +77,8 @@ class FrictionLaw:
     #: True when the law's force is proportional to R (Coulomb-like): zero slip can stick
     can_stick = False
     name = "friction"
+    #: the dissipation laws acting besides sliding (:meth:`with_dissipation`)
+    dissipation: tuple[Dissipation, ...] = ()
 
     def __init__(self, mu: float):
         self.mu = check_nonnegative("mu", mu, upper=MU_MAX)
@@ -86,8 +90,47 @@ class FrictionLaw:
 
     @property
     def params(self) -> np.ndarray:
-        """(mu, eps): the law's part of a model's parameter vector."""
-        return np.array([self.mu, self.eps], dtype=float)
+        """(mu, eps, then each dissipation law's coefficients): the law's part of a model's
+        parameter vector."""
+        return np.concatenate([[self.mu, self.eps], *(d.params for d in self.dissipation)]).astype(float)
+
+    @property
+    def structure(self) -> tuple:
+        """What the compiled equations depend on besides numbers: the law's class and the
+        kinds of its dissipation laws."""
+        return (type(self), *(type(d) for d in self.dissipation))
+
+    def with_dissipation(self, *laws: Dissipation) -> "FrictionLaw":
+        """This sliding law with rolling resistance, spin friction or air drag acting besides it.
+
+        Parameters
+        ----------
+        *laws : Dissipation
+            :class:`phasekit.RollingResistance`, :class:`phasekit.SpinFriction`,
+            :class:`phasekit.AirDrag`, each at most once (they replace the ones already set).
+
+        Returns
+        -------
+        FrictionLaw
+            A copy of this law carrying them (:attr:`dissipation`).
+
+        Raises
+        ------
+        ParameterError
+            If a law is not a Dissipation, or a kind is given twice.
+
+        Examples
+        --------
+        >>> import phasekit as pk
+        >>> pk.Coulomb(0.2).with_dissipation(pk.SpinFriction(0.02)).describe()
+        'coulomb(mu=0.2) + spin-friction(mu_s=0.02)'
+        """
+        out = copy.copy(self)
+        out.dissipation = check_dissipation(laws)
+        return out
+
+    def _with_description(self, text: str) -> str:
+        return " + ".join([text, *(d.describe() for d in self.dissipation)])
 
     @staticmethod
     def sliding_force(u, mu, eps):
@@ -136,19 +179,26 @@ class FrictionLaw:
         return np.asarray(f(np.asarray(u, float))).ravel()
 
     def describe(self) -> str:
-        return f"{self.name}(mu={self.mu:g})"
+        return self._with_description(f"{self.name}(mu={self.mu:g})")
 
     def to_dict(self) -> dict:
-        return {"law": self.name, "mu": self.mu, "slip_eps": self.eps if self.eps > 0 else None}
+        out = {"law": self.name, "mu": self.mu, "slip_eps": self.eps if self.eps > 0 else None}
+        if self.dissipation:  # absent without it: descriptions written before are unchanged
+            out["dissipation"] = [d.to_dict() for d in self.dissipation]
+        return out
 
     def __eq__(self, other) -> bool:
-        return type(other) is type(self) and np.array_equal(other.params, self.params)
+        return (type(other) is type(self) and other.dissipation == self.dissipation
+                and np.array_equal(other.params, self.params))
 
     def __hash__(self) -> int:
         return hash((type(self), tuple(self.params)))
 
     def __repr__(self) -> str:
-        return f"{type(self).__name__}(mu={self.mu!r})"
+        return f"{type(self).__name__}(mu={self.mu!r})" + self._repr_tail()
+
+    def _repr_tail(self) -> str:
+        return f".with_dissipation({', '.join(map(repr, self.dissipation))})" if self.dissipation else ""
 
 
 class Coulomb(FrictionLaw):
@@ -225,10 +275,10 @@ class RegularisedCoulomb(FrictionLaw):
         return ca.SX.zeros(3), ca.vertcat(-mu * u[0] / s, -mu * u[1] / s, 1)
 
     def describe(self) -> str:
-        return f"{self.name}(mu={self.mu:g}, eps={self.eps:g})"
+        return self._with_description(f"{self.name}(mu={self.mu:g}, eps={self.eps:g})")
 
     def __repr__(self) -> str:
-        return f"{type(self).__name__}(mu={self.mu!r}, eps={self.eps!r})"
+        return f"{type(self).__name__}(mu={self.mu!r}, eps={self.eps!r})" + self._repr_tail()
 
 
 class Viscous(FrictionLaw):

@@ -21,9 +21,9 @@ COUNTER = textwrap.dedent("""
     def counted_init(self, body, friction, chart="euler"):
         counts[f"model:{type(friction).__name__}"] += 1
         return init(self, body, friction, chart)
-    def counted_build(body, law, chart, key):
+    def counted_build(body, law, chart, key, *laws):
         counts[f"build:{law.__name__}"] += 1
-        return build(body, law, chart, key)
+        return build(body, law, chart, key, *laws)
     M.Model.__init__, F._build = counted_init, counted_build
     from phasekit.cli import main
     with contextlib.redirect_stdout(io.StringIO()) as out:

@@ -8,7 +8,8 @@ from phasekit.core import engines
 
 
 def test_one_status_vocabulary_per_level():
-    assert {s.value for s in pk.Status} == {"jumped", "touchdown", "stopped", "completed", "settled", "failed"}
+    assert {s.value for s in pk.Status} == {"jumped", "touchdown", "stopped", "completed", "settled", "rest",
+                                            "failed"}
     assert {s.value for s in pk.SearchStatus} == {"converged", "non_monotone", "bracket_only", "no_jump_in_range",
                                                   "jumps_at_lower_bound", "failed"}
     th = pk.find_threshold(pk.Definition("sliding", "sliding"), 1.5, hi=120.0, guess=9.74, tol=1e-2)

@@ -78,6 +78,13 @@ class _Span:
         return self.f.pieces()
 
 
+def linear_span(t0: float, t1: float, x0, x1) -> _Span:
+    """The straight line from (t0, x0) to (t1, x1) as a dense-output span (a one-step polynomial)."""
+    x0, x1 = np.asarray(x0, dtype=float), np.asarray(x1, dtype=float)
+    coefs = np.stack([x0, (x1 - x0) / (t1 - t0)], axis=-1)[None]
+    return _Span(_TaylorDense(np.array([t0]), np.array([t1]), coefs), t0, t1)
+
+
 class HermiteDense:
     """Cubic Hermite interpolation on an integrator's output grid (for output only)."""
 

@@ -1,0 +1,129 @@
+"""Where the energy of a run went: the work of sliding friction and of each dissipation law,
+by quadrature of its power along the dense output, and the jumps at events.
+
+Along a smooth stretch the mechanical energy E changes only by the power of the forces that
+are not conservative: dE/dt = F.u (sliding friction, u the slip) + sum over the dissipation laws
+of f.v + Gamma.w (:mod:`phasekit.friction.dissipation`). Each power is integrated over every
+Taylor step of the dense output with Gauss-Legendre nodes (the step's polynomial is smooth, so
+the quadrature is exact to rounding), so ``lost - dissipated - at_events`` measures how well
+the run conserved the balance: the integrator's error, not the quadrature's. Energy also
+changes at events: an impact (restitution e < 1, or friction in the impulse) and the nudge
+that starts sliding from zero slip (:data:`phasekit.core.resets.SLIP_ONSET`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._runtime.errors import ParameterError
+from .hybrid import Mode
+from .observables import evaluate_function
+
+__all__ = ["EnergyBudget", "energy_budget", "GAUSS_NODES"]
+
+#: Gauss-Legendre nodes per Taylor step
+GAUSS_NODES = 12
+
+
+@dataclass(frozen=True)
+class EnergyBudget:
+    """The energy balance of one run (units M g b).
+
+    Attributes
+    ----------
+    energy_start, energy_end : float
+        The mechanical energy at the start and at the end.
+    laws : tuple of str
+        "sliding friction", then the name of each dissipation law of the model.
+    dissipated : tuple of float
+        The energy each took out of the motion (>= 0): minus the integral of its power.
+    at_events : float
+        The energy lost in jumps at events (impacts; the slip-onset nudge), summed.
+    """
+
+    energy_start: float
+    energy_end: float
+    laws: tuple
+    dissipated: tuple
+    at_events: float
+
+    @property
+    def lost(self) -> float:
+        """energy_start - energy_end."""
+        return self.energy_start - self.energy_end
+
+    @property
+    def residual(self) -> float:
+        """lost - sum(dissipated) - at_events: the error of the balance."""
+        return self.lost - float(np.sum(self.dissipated)) - self.at_events
+
+    def to_dict(self) -> dict:
+        return {"energy_start": self.energy_start, "energy_end": self.energy_end, "lost": self.lost,
+                "dissipated": dict(zip(self.laws, self.dissipated)), "at_events": self.at_events,
+                "residual": self.residual}
+
+
+def energy_budget(traj) -> EnergyBudget:
+    """The :class:`EnergyBudget` of a run kept with dense output (see the module notes).
+
+    Raises
+    ------
+    ParameterError
+        If the run kept no dense output (simulate with dense=True, the default).
+    """
+    model = traj.model
+    if not traj.segments or not all(s.dense for s in traj.segments):
+        raise ParameterError("traj", "has no energy budget: the run kept no dense output (simulate with dense=True)",
+                             show_value=False)
+    names = ("sliding friction", *(d.name for d in model.friction.dissipation))
+    work, jumps, e_prev = np.zeros(len(names)), 0.0, None
+    for seg in traj.segments:
+        energy = model.function("energy", seg.mode)
+        e0 = float(energy(seg.x0, model.p))
+        e1 = float(energy(seg.x1, model.p))
+        if e_prev is not None:
+            jumps += e_prev - e0
+        e_prev = e1
+        work += _segment_work(model, seg, len(names))
+    first = traj.segments[0]
+    e_start = float(model.function("energy", first.mode)(first.x0, model.p))
+    return EnergyBudget(e_start, e_prev, names, tuple(float(v) for v in -work), jumps)
+
+
+def _power_function(model, mode: Mode):
+    fns = model.compiled.functions_of(mode)
+    name = f"power_{mode.value}"
+    if name in fns:
+        return fns[name]
+    return None  # a model without dissipation laws: only sliding friction works
+
+
+def _segment_work(model, seg, n_laws: int) -> np.ndarray:
+    """The integral over the segment of each law's power."""
+    P = _power_function(model, seg.mode)
+    nodes, weights = np.polynomial.legendre.leggauss(GAUSS_NODES)
+    total = np.zeros(n_laws)
+    for span in seg.dense:
+        try:
+            starts, ends, _ = span.pieces()
+        except AttributeError:  # an interpolant of a pointwise integrator: between its output points
+            starts = np.asarray(getattr(span.f, "ts", [span.t0, span.t1]), dtype=float)
+            starts, ends = starts[:-1], starts[1:]
+        a, b = np.maximum(starts, span.t0), np.minimum(ends, span.t1)
+        keep = b > a
+        a, b = a[keep], b[keep]
+        ts = (0.5 * (b - a)[:, None] * nodes[None, :] + 0.5 * (a + b)[:, None]).ravel()
+        X = span(ts)
+        w = (0.5 * (b - a)[:, None] * weights[None, :]).ravel()
+        if P is None:
+            slip = evaluate_function(model.compiled.functions_of(seg.mode)["slip"], model.p, X)
+            F = evaluate_function(model.compiled.functions_of(seg.mode)[f"friction_{seg.mode.value}"], model.p, X)
+            vals = np.sum(np.atleast_2d(F) * np.atleast_2d(slip), axis=1)[:, None] if seg.mode is not Mode.FLIGHT \
+                else np.zeros((len(ts), 1))
+        else:
+            vals = np.atleast_2d(evaluate_function(P, model.p, X))
+            vals = vals.reshape(len(ts), -1)
+        total += w @ vals
+    return total
