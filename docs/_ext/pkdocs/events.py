@@ -10,8 +10,8 @@ import re
 
 from .fmt import table
 
-LAWS = ("exact Coulomb", "regularised Coulomb", "viscous")
-STOPS = ("jump", "touchdown", "none")  # system.STOP_AT
+LAWS = ("exact Coulomb", "regularised Coulomb", "viscous", "with dissipation laws")
+STOPS = ("jump", "touchdown", "none", "rest")  # system.STOP_AT
 
 
 def _guards():
@@ -22,6 +22,11 @@ def _guards():
         "stick_guard_sq": f"|u|^2 = ({m.STICK_SLIP_POINTWISE:g} + 10 eps)^2 (its square, for pointwise integrators)",
         "margin_rolling": "mu^2 R^2 - |F_req|^2 = 0: the friction rolling needs reaches mu R",
         "unstick_guard": "|u| = 100 eps",
+        "rest_guard": f"sqrt(|w|^2 + |v|^2) = {m.REST_SPEED:g} (the speed of the whole motion)",
+        "pivot_guard": f"|w_Z| = {m.PIVOT_STICK:g} (the spin about the normal)",
+        "pivot_margin_sliding_no_pivot": "mu_s^2 R^2 - tau^2 = 0: the couple holding w_Z = 0 reaches mu_s R",
+        "pivot_margin_rolling_no_pivot": "mu_s^2 R^2 - tau^2 = 0 (rolling, the spin about the normal held)",
+        "margin_rolling_no_pivot": "mu^2 R^2 - |F_req|^2 = 0 (rolling with the spin about the normal held)",
     }
 
 
@@ -32,6 +37,8 @@ def _laws():
         "exact Coulomb": pk.Coulomb(0.1),
         "regularised Coulomb": pk.RegularisedCoulomb(0.1, 1e-3),
         "viscous": pk.Viscous(0.1),
+        "with dissipation laws": pk.Coulomb(0.1).with_dissipation(pk.SpinFriction(0.01), pk.RollingResistance(0.01),
+                                                                 pk.AirDrag(rotation=0.001)),
     }
 
 
@@ -49,6 +56,10 @@ def _first_line(obj) -> str:
 def _outcome(ev) -> str:
     if ev.reset is None:
         return f"stop, status `{ev.stop.value}`" if ev.terminal else "recorded, the run goes on"
+    inner = getattr(ev.reset, "inner", None)  # a reset wrapped by PivotHold (spin friction)
+    if inner is not None:
+        return (f"`{type(inner).__name__}`: {_first_line(inner)} Then `PivotHold`: a contact mode entered with "
+                "the spin about the normal stopped and holdable becomes its no-pivot mode.")
     return f"`{type(ev.reset).__name__}`: {_first_line(ev.reset)}"
 
 
@@ -83,7 +94,7 @@ def _integrators(sys_, ev) -> set[str]:
     return found
 
 
-ORDER = ("lift-off", "stick", "slip", "touchdown", "a user's event")
+ORDER = ("lift-off", "stick", "slip", "pivot stick", "pivot slip", "rest", "touchdown", "a user's event")
 
 
 def event_table() -> str:
