@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import warnings
 
-from .inputs import _apply_units, _body, _law_args, _paper_body, _pose_of, _start_of
+from .inputs import _apply_units, _body, _dissipation_of, _law_args, _paper_body, _pose_of, _start_of
 from .parser import _UsageError
 
 
@@ -102,8 +102,13 @@ def _simulate_args(args, runner, scale=None):
                       "or --stop-at NAME=VALUE)")
     if args.atol is not None and args.backend == "taylor":
         warnings.warn("--atol has no effect with --backend taylor (the Taylor method has the one tolerance --rtol)")
+    dissipation = _dissipation_of(args)
+    if args.stop_at == "rest" and not any(dissipation.values()):
+        warnings.warn("--stop-at rest runs as --stop-at none without a dissipation law: the body never comes to rest "
+                      "(give --rolling-resistance, --spin-friction or an --air-drag option)")
     return runner(body=body, friction=friction, mu=mu, slip_eps=eps, start=start, t_end=args.t_end,
-                  stop_at=args.stop_at, restitution=restitution, chart=args.chart, options=opts, pose0=_pose_of(args))
+                  stop_at=args.stop_at, restitution=restitution, chart=args.chart, options=opts, pose0=_pose_of(args),
+                  dissipation=dissipation)
 
 
 def _check_reach(args, scale) -> None:
@@ -131,7 +136,7 @@ def _cmd_fixed_points(args) -> dict:
     friction, mu, eps = _law_args(args)
     check_positive("max_wall", args.max_wall)  # as simulate's --max-wall
     return fixed_points_report(body=_body(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0, n0=args.n0,
-                               max_wall=args.max_wall)
+                               max_wall=args.max_wall, dissipation=_dissipation_of(args))
 
 
 def _cmd_steady_states(args) -> dict:
@@ -141,7 +146,7 @@ def _cmd_steady_states(args) -> dict:
     friction, mu, eps = _law_args(args)
     check_positive("max_wall", args.max_wall)  # as simulate's --max-wall
     return steady_structure_report(body=_body(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0,
-                                   n0=args.n0, max_wall=args.max_wall)
+                                   n0=args.n0, max_wall=args.max_wall, dissipation=_dissipation_of(args))
 
 
 def _cmd_gyroscopic(args) -> dict:

@@ -22,7 +22,10 @@ FLAGS = {
     "b": "--size", "g": "--g", "pose0.psi": "--psi0", "pose0.phi": "--phi0", "pose0.X": "--X0", "pose0.Y": "--Y0",
     "psi0": "--psi0", "phi0": "--phi0", "X0": "--X0", "Y0": "--Y0", "spin_about_vertical": "--spin-about-vertical",
     "frames": "--frames", "fps": "--fps", "out": "OUT", "gap_scale": "--gap-scale", "camera": "--camera",
-    "panel": "--panel", "timing": "--timing", "window_size": "--window-size", "path": "OUT",
+    "panel": "--panel", "timing": "--timing", "window_size": "--window-size", "path": "OUT", "mass": "--mass",
+    "rolling_resistance": "--rolling-resistance", "spin_friction": "--spin-friction", "air_drag": "--air-drag",
+    "air_drag_quadratic": "--air-drag-quadratic", "air_drag_force": "--air-drag-force",
+    "air_drag_force_quadratic": "--air-drag-force-quadratic",
 }
 #: API parameters that more than one flag feeds: (flag typed, name to print), the first typed one wins
 #: (e.g. `n0` is --spin-about-vertical's value in that start, and theta its --theta0)

@@ -11,7 +11,7 @@ import re
 import warnings
 
 from .flags import FLAGS
-from .parser import _UsageError, _WithUnits
+from .parser import DISSIPATION_FLAGS, _UsageError, _WithUnits
 
 #: the smallest --A and --C, units M b^2 (a body's own are ~0.1-0.5): rates of order 1/C follow
 #: from smaller ones, and the steady states' residuals grow as 1/C^2 (measured: 4e-8 at C = 1e-9,
@@ -71,9 +71,17 @@ def _law_args(args) -> tuple[str, float, float | None]:
     return args.friction, args.mu, eps
 
 
-#: options that take a value with units: dest -> kind (angles need no --size)
+def _dissipation_of(args) -> dict:
+    """The coefficients of the dissipation laws given (flag dest -> value, in phasekit's units):
+    what :func:`phasekit.cli.params._law_of` builds the laws from."""
+    return {dest: getattr(args, dest) for dest in DISSIPATION_FLAGS if getattr(args, dest, None) is not None}
+
+
+#: options that take a value with units: dest -> kind (angles need no --size; the dissipation laws'
+#: coefficients are kinds of phasekit.Scale of their own, air drag's need --mass)
 UNIT_OPTIONS = {"theta0": "angle", "omega0": "rate", "n0": "rate", "spin_about_vertical": "rate", "t_end": "time",
-                "psi0": "angle", "phi0": "angle", "X0": "length", "Y0": "length"}
+                "psi0": "angle", "phi0": "angle", "X0": "length", "Y0": "length",
+                **{dest: dest for dest in DISSIPATION_FLAGS}}
 
 
 def _scale_of(args):
@@ -81,11 +89,12 @@ def _scale_of(args):
     from ..core.units import STANDARD_GRAVITY, Scale
 
     if args.size is None:
-        if args.g is not None:
-            raise _UsageError(f"--g needs --size (the body's unit of length, e.g. --size '21.5 mm'), got {args.g!r}.",
-                              "--g")
+        for flag, value in (("--g", args.g), ("--mass", getattr(args, "mass", None))):
+            if value is not None:
+                raise _UsageError(f"{flag} needs --size (the body's unit of length, e.g. --size '21.5 mm'), got "
+                                  f"{value!r}.", flag)
         return None
-    return Scale(args.size, g=STANDARD_GRAVITY if args.g is None else args.g)
+    return Scale(args.size, g=STANDARD_GRAVITY if args.g is None else args.g, mass=getattr(args, "mass", None))
 
 
 def _apply_units(args):
@@ -110,10 +119,25 @@ def _apply_units(args):
             raise _UsageError(f"{flag} {str(value)!r} has units: give the body's size with --size (e.g. --size "
                               f"'21.5 mm') to express it in units of b and sqrt(b/g), or type a plain number.", flag)
         else:
-            setattr(args, dest, scale._dimensionless(str(value), kind, dest))
+            setattr(args, dest, _in_phasekit_units(scale, str(value), kind, dest))
     if getattr(args, "si", False) and scale is None:
         raise _UsageError("--si needs --size (the body's unit of length, e.g. --size '21.5 mm').", "--si")
     return scale
+
+
+def _in_phasekit_units(scale, value: str, kind: str, dest: str) -> float:
+    """``value`` in phasekit's units by ``scale``; an air-drag coefficient typed with units without
+    --mass is refused naming its flag (its unit holds the body's mass M)."""
+    from .._runtime.errors import ParameterError
+
+    try:
+        return scale._dimensionless(value, kind, dest)
+    except ParameterError as exc:
+        if exc.param != "mass":
+            raise
+        unit = DISSIPATION_FLAGS[dest][2]
+        raise _UsageError(f"{FLAGS[dest]} {value!r} needs the body's mass to be expressed in phasekit's {unit}: give "
+                          f"--mass (e.g. --mass '57 g'), or type a plain number.", FLAGS[dest]) from None
 
 
 def _pose_of(args) -> dict:

@@ -74,6 +74,21 @@ def _print_contact(out: dict) -> None:
         print(out["rests_on"])
 
 
+def _print_energy(out: dict) -> None:
+    """With dissipation laws: one line for the energy (start, end, what was lost and by which law),
+    in mJ with --si and --mass, else in M g b; and, with --si, the time of rest in seconds (the
+    status line gives it in phasekit's units)."""
+    si = out.get("si") or {}
+    budget, unit = (si["energy_budget"], "mJ") if si.get("energy_budget") else (out.get("energy_budget"), "M g b")
+    if budget:
+        laws = ", ".join(f"{law} {_fmt(e, '.4g')}" for law, e in budget["dissipated"].items())
+        print(f"energy: {_fmt(budget['energy_start'], '.8g')} -> {_fmt(budget['energy_end'], '.8g')} {unit}, lost "
+              f"{_fmt(budget['lost'], '.6g')}: {laws}, at events {_fmt(budget['at_events'], '.4g')} (balance residual "
+              f"{_fmt(budget['residual'], '.2g')})" + (" (give --mass for mJ)" if si and unit != "mJ" else ""))
+    if si.get("t_rest") is not None:
+        print(f"at rest at t = {_fmt(si['t_rest'] / 1e3, '.6g')} s")
+
+
 def _print_human(out: dict, events: bool) -> None:
     if "cleared" in out:
         _print_cache(out)
@@ -109,6 +124,7 @@ def _print_human(out: dict, events: bool) -> None:
         if out.get(key) is not None:
             print(f"{key}: {_fmt(out[key])}")
     _print_contact(out)
+    _print_energy(out)
     if out.get("flight"):
         print("first flight: " + ", ".join(f"{k}={_fmt(v)}" for k, v in out["flight"].items()))
     if (out.get("flight_summary") or {}).get("n_flights"):

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._runtime.errors import ParameterError
-from .._runtime.validate import check_choice, check_finite
+from .._runtime.validate import check_choice, check_finite, check_range
 from .._runtime.watch import check_max_wall, wall_deadline
 from ..bodies.body import Body
 from ..bodies.spheroid import Spheroid
@@ -20,18 +20,21 @@ from ..core.model import Model
 from ..core.observables import OBSERVABLES
 from ..core.simulate import simulate
 from ..core.starts import RATE_MAX, gyroscopic_start, raw_start, to_chart, vertical_spin_start
+from ..core.system import STOP_AT
+from ..friction.dissipation import COEFF_MAX, AirDrag, RollingResistance, SpinFriction
 from ..friction.laws import friction_law
 
 __all__ = ["parse_stop", "run_start", "simulate_start", "real_units_report", "fixed_points_report", "gyroscopic_report",
            "steady_structure_report"]
 
 def parse_stop(stop: str) -> tuple[str, list[Event]]:
-    """``jump``, ``touchdown`` or ``none``, or ``NAME=VALUE`` (stop when the observable NAME
-    first reaches VALUE, e.g. ``theta=0.4``; the run then runs through flights)."""
+    """``jump``, ``touchdown``, ``none`` or ``rest`` (:data:`phasekit.core.system.STOP_AT`), or
+    ``NAME=VALUE`` (stop when the observable NAME first reaches VALUE, e.g. ``theta=0.4``; the run
+    then runs through flights)."""
     if not isinstance(stop, str):
-        raise ParameterError("stop_at", "must be jump, touchdown, none or NAME=VALUE", stop)
+        raise ParameterError("stop_at", f"must be {', '.join(STOP_AT)} or NAME=VALUE", stop)
     if "=" not in stop:
-        return check_choice("stop_at", stop, ("jump", "touchdown", "none")), []
+        return check_choice("stop_at", stop, STOP_AT), []
     name, _, value = stop.partition("=")
     if name not in OBSERVABLES or name in ("slip", "friction"):
         raise ParameterError("stop_at", f"NAME=VALUE needs NAME among {', '.join(n for n in OBSERVABLES if n not in ('slip', 'friction'))}",
@@ -90,17 +93,44 @@ def _start(body, law, start: dict, chart: str):
 
 
 def run_start(*, body: Body, friction="coulomb", mu, slip_eps=None, start: dict, t_end=200.0, stop_at="jump",
-              restitution=0.0, chart="auto", options: dict | None = None, pose0=None):
+              restitution=0.0, chart="auto", options: dict | None = None, pose0=None, dissipation=None):
     """Run one simulation described by plain parameters: (Trajectory, seed info or None).
     The dense output is kept: the pose (psi, phi, X, Y, X_P, Y_P) at the events and the end
-    comes from it, and keeping it changes no number of the run."""
-    law = friction_law(friction, mu, slip_eps)
+    comes from it (and the energy budget), and keeping it changes no number of the run.
+    ``dissipation``: the coefficients of the dissipation laws (:func:`_law_of`)."""
+    law = _law_of(friction, mu, slip_eps, dissipation)
     check_choice("chart", chart, ("auto", "euler", "vector"))
     stop, events = parse_stop(stop_at)
     model, x0, seed = _start(body, law, start, chart)
     res = simulate(model, x0, t_end, stop_at=stop, restitution=restitution, events=events, dense=True, pose0=pose0,
                    **(options or {}))
     return res, seed
+
+
+#: the dissipation laws' coefficients by plain name (the CLI's flags): (law, its coefficient), and
+#: the unit of each in the messages
+DISSIPATION = {"rolling_resistance": (RollingResistance, "delta", "b"), "spin_friction": (SpinFriction, "mu_s", "b"),
+               "air_drag": (AirDrag, "rotation", "M b^2 sqrt(g/b)"),
+               "air_drag_quadratic": (AirDrag, "rotation_quadratic", "M b^2"),
+               "air_drag_force": (AirDrag, "translation", "M sqrt(g/b)"),
+               "air_drag_force_quadratic": (AirDrag, "translation_quadratic", "M/b")}
+
+
+def _law_of(friction, mu, slip_eps=None, dissipation=None):
+    """The sliding law with the dissipation laws whose coefficients ``dissipation`` gives by plain
+    name ({"spin_friction": 0.02, ...}, :data:`DISSIPATION`): each checked in [0, 1e3] (named so),
+    a law whose coefficients are all 0 left out (the sliding law alone is the paper's model)."""
+    law = friction_law(friction, mu, slip_eps)
+    coefficients: dict = {}
+    for name, value in (dissipation or {}).items():
+        if name not in DISSIPATION:
+            raise ParameterError("dissipation", f"must name coefficients among {', '.join(DISSIPATION)}", name)
+        cls, coefficient, unit = DISSIPATION[name]
+        value = check_range(name, value, 0.0, COEFF_MAX, closed="lr", label=f"[0, {COEFF_MAX:g}] (units {unit})")
+        if value > 0:
+            coefficients.setdefault(cls, {})[coefficient] = value
+    laws = [cls(**kw) for cls, kw in coefficients.items()]
+    return law.with_dissipation(*laws) if laws else law
 
 
 def simulate_start(**kwargs) -> dict:
@@ -118,7 +148,7 @@ def real_units_report(out: dict, scale) -> dict:
     m/s, rev/s; angles in radians), given the body's :class:`phasekit.Scale`."""
     from ..core.units import DISPLAY_UNITS
 
-    kinds = {"t": "time", "t_jump": "time", "t_stop": "time", "t_end": "time", "t_liftoff": "time",
+    kinds = {"t": "time", "t_jump": "time", "t_stop": "time", "t_end": "time", "t_rest": "time", "t_liftoff": "time",
              "t_touchdown": "time", "t_gap_max": "time", "gap_max": "length", "W_star": "speed", "Omega_star": "rate",
              "U": "speed", "V": "speed", "Omega": "rate", "Lambda": "rate", "n": "rate", "X": "length", "Y": "length",
              "X_P": "length", "Y_P": "length"}
@@ -129,7 +159,10 @@ def real_units_report(out: dict, scale) -> dict:
 
     rep = {"units": {k: f"{DISPLAY_UNITS[k]}" for k in ("time", "length", "speed", "rate")} | {"angle": "rad"},
            "b": f"{scale.b:~P}", "g": f"{scale.g:~P}", "time_unit": f"{scale.time_unit:.6g~P}"}
-    rep.update(conv({k: out.get(k) for k in ("t_jump", "t_stop", "t_end") if k in out}))
+    rep.update(conv({k: out.get(k) for k in ("t_jump", "t_stop", "t_end", "t_rest") if k in out}))
+    if out.get("energy_budget") and scale.mass is not None:  # energies need the mass: M g b without it
+        rep["units"]["energy"] = DISPLAY_UNITS["energy"]
+        rep["energy_budget"] = _energies(out["energy_budget"], scale)
     for key in ("state_at_jump", "state_end", "pose_end", "flight"):
         if out.get(key):
             rep[key] = conv(out[key])
@@ -141,18 +174,25 @@ def real_units_report(out: dict, scale) -> dict:
     return rep
 
 
+def _energies(budget: dict, scale) -> dict:
+    """An energy budget (EnergyBudget.to_dict, units M g b) in mJ."""
+    def mj(v):
+        return float(scale.quantity(v, "energy").to("mJ").magnitude)
+
+    return {k: {law: mj(e) for law, e in v.items()} if isinstance(v, dict) else mj(v) for k, v in budget.items()}
+
+
 def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, omega0=None, n0=None,
-                        max_wall=None) -> dict:
+                        max_wall=None, dissipation=None) -> dict:
     """All steady states at the given Omega0 or n0 with their linear stability (JSON dict), with
     status "completed", or "failed" and the reason when the wall budget ``max_wall`` (seconds)
-    runs out."""
-    from .._runtime.validate import check_range
+    runs out; ``dissipation`` as for :func:`run_start`."""
     from ..steady.branches import _degeneracy
     from ..steady.fixedpoints import FAMILY_MAX, fixed_points
 
     if (omega0 is None) == (n0 is None):
         raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
-    law = friction_law(friction, mu, slip_eps)
+    law = _law_of(friction, mu, slip_eps, dissipation)
     name, value = ("omega0", omega0) if omega0 is not None else ("n0", n0)
     check_range(name, value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")
     max_wall = check_max_wall(max_wall)
@@ -174,15 +214,15 @@ def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, om
 
 
 def steady_structure_report(*, body: Body, mu, friction="coulomb", slip_eps=None, omega0=None, n0=None,
-                            max_wall=None) -> dict:
+                            max_wall=None, dissipation=None) -> dict:
     """The steady-state structure of ``body`` (phasekit.steady.structure) as a JSON dict; with
     ``omega0`` or ``n0`` also the states on it at that rate or spin. Status "failed" and the
-    reason when the structure fails or the wall budget ``max_wall`` (seconds) runs out."""
-    from .._runtime.validate import check_range
+    reason when the structure fails or the wall budget ``max_wall`` (seconds) runs out;
+    ``dissipation`` as for :func:`run_start`."""
     from ..steady.fixedpoints import FAMILY_MAX
     from ..steady.structure import steady_structure
 
-    law = friction_law(friction, mu, slip_eps)
+    law = _law_of(friction, mu, slip_eps, dissipation)
     if omega0 is not None or n0 is not None:
         name, value = ("omega0", omega0) if omega0 is not None else ("n0", n0)
         check_range(name, value, -FAMILY_MAX, FAMILY_MAX, closed="lr", label=f"[-{FAMILY_MAX:g}, {FAMILY_MAX:g}]")

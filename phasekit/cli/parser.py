@@ -216,7 +216,8 @@ STABILITY = """stability (which law each statement is for):
 """
 
 
-def _add_friction(p):
+def _add_friction(p, units: bool = False):
+    """--mu, --friction, --slip-eps and the dissipation laws (values with units with ``units``)."""
     g = p.add_argument_group("friction")
     g.add_argument("--mu", type=_real, required=True,
                    help="friction coefficient mu (coulomb) or drag coefficient (viscous), in [0, 1000]")
@@ -226,6 +227,37 @@ def _add_friction(p):
     g.add_argument("--slip-eps", type=_real, default=None,
                    help="regularise Coulomb friction as -mu R u/sqrt(|u|^2+eps^2), eps in [1e-14, 1] "
                         "(default: exact stick-slip; no effect with --friction viscous)")
+    _add_dissipation(p, units)
+
+
+#: the dissipation laws' flags (phasekit.friction.dissipation): dest -> (metavar, what, phasekit's unit, example with
+#: units); each in [0, 1000], 0 or absent: the law is left out
+DISSIPATION_FLAGS = {
+    "rolling_resistance": ("DELTA", "rolling resistance: a couple -DELTA R w_h/|w_h| against the rolling part w_h of "
+                           "the angular velocity (DELTA: the pressure's offset ahead of the contact point)",
+                           "a length, units b", "'0.2 mm'"),
+    "spin_friction": ("MU_S", "spin (pivoting) friction: a couple -MU_S R sign(w_Z) about the vertical (MU_S = "
+                      "3 pi mu a/16 for a contact patch of radius a)", "a length, units b", "'0.5 mm'"),
+    "air_drag": ("K1", "air drag on the rotation: a couple -K1 w", "units M b^2 sqrt(g/b)", "'1e-7 N*m*s'"),
+    "air_drag_quadratic": ("K2", "quadratic air drag on the rotation: a couple -K2 |w| w", "units M b^2",
+                           "'1e-9 N*m*s^2'"),
+    "air_drag_force": ("C1", "air drag on the centre of mass: a force -C1 v at G", "units M sqrt(g/b)",
+                       "'1e-4 N*s/m'"),
+    "air_drag_force_quadratic": ("C2", "quadratic air drag on the centre of mass: a force -C2 |v| v at G",
+                                 "units M/b", "'1e-3 N*s^2/m^2'"),
+}
+
+
+def _add_dissipation(p, units: bool) -> None:
+    """The dissipation laws acting besides sliding friction; with ``units`` (simulate, animate) a
+    value may be typed with units (a length with --size, air drag with --size and --mass)."""
+    rest = "; a run with any of them ends when the body comes to rest, status \"rest\"" if units else ""
+    g = p.add_argument_group(f"dissipation besides sliding friction (each in [0, 1000]; 0 or absent: none{rest})")
+    for dest, (metavar, what, unit, example) in DISSIPATION_FLAGS.items():
+        needs = "--size" if "length" in unit else "--size and --mass"
+        typed = f", or e.g. {example} with {needs}" if units else ""
+        g.add_argument("--" + dest.replace("_", "-"), dest=dest, metavar=metavar, default=None,
+                       type=_real_or_units if units else _real, help=f"{what}; {unit}{typed}")
 
 
 def _add_solver(p):
@@ -255,7 +287,7 @@ def _add_wall(p) -> None:
 def _add_run_options(sim) -> None:
     """The options of a run (simulate and animate): body, friction, start, run, solver, units."""
     _add_body(sim)
-    _add_friction(sim)
+    _add_friction(sim, units=True)
     g = sim.add_argument_group("start (exactly one)")
     start = g.add_mutually_exclusive_group(required=True)
     start.add_argument("--state", type=_real, nargs=6, metavar=("U", "V", "Omega", "Lambda", "theta", "n"),
@@ -289,8 +321,9 @@ def _add_run_options(sim) -> None:
     r.add_argument("--t-end", type=_real_or_units, default=200.0,
                    help="end time, units sqrt(b/g) (or e.g. '2 s' with --size) (default: %(default)s)")
     r.add_argument("--stop-at", default="jump",
-                   help="jump | touchdown | none | NAME=VALUE: stop when an observable first reaches a value, "
-                        "e.g. theta=0.4 (runs through flights) (default: %(default)s)")
+                   help="jump | touchdown | none | rest | NAME=VALUE: stop when an observable first reaches a value, "
+                        "e.g. theta=0.4 (runs through flights); rest: through flights until the body comes to rest "
+                        "(with a dissipation law; else as none) (default: %(default)s)")
     r.add_argument("--restitution", type=_real, default=None, help="Newton's e in [0, 1] at impacts (with --stop-at none; "
                                                                      "default 0)")
     u = sim.add_argument_group("real units (see 'units' below)")
@@ -299,6 +332,9 @@ def _add_run_options(sim) -> None:
                         "ball's radius (tippe top), e.g. '21.5 mm'")
     u.add_argument("--g", type=_quantity_text, default=None,
                    help="gravity with its unit (default: 9.81 m/s^2; with --size)")
+    u.add_argument("--mass", type=_quantity_text, default=None,
+                   help="the body's mass with its unit, e.g. '57 g' (with --size): air-drag coefficients typed with "
+                        "units, and the energies of --si in mJ")
     _add_solver(sim)
 
 
@@ -325,6 +361,8 @@ UNITS_HELP = """units:
   Numbers are in phasekit's units: length b (--size), time sqrt(b/g), rates sqrt(g/b), radians.
   With --size (and optionally --g) the rates, times and positions may be typed with units:
   --omega0 "41 rev/s" or "2500 rpm", --t-end "2 s", --X0 "3 mm"; angles take "deg" without it.
+  The dissipation laws too: --rolling-resistance "0.2 mm", --spin-friction "0.5 mm" (lengths, with
+  --size), --air-drag "1e-7 N*m*s" (with --size and --mass: its unit holds the mass M).
 """
 ANIMATE_EXAMPLES = """examples:
   phasekit animate spin.gif --a 1.5 --mu 0.1 --gyroscopic --theta0 1.5607963 --omega0 11 --stop-at touchdown \\

@@ -140,8 +140,8 @@ def _steady(model, inside, settle: Settle) -> bool:
 
 def settled(model, records, t_start: float, settle: Settle) -> str | None:
     """The reason the run has settled by its last record, or None (see the module's rule)."""
-    if not records or not model.friction.has_rolling_mode:
-        return None
+    if not records or not model.friction.has_rolling_mode or model.friction.dissipation:
+        return None  # with dissipation laws no roll is steady: the body comes to rest instead
     last = records[-1]
     if last.name != "stick" or last.mode_after != "rolling" or last.t - settle.window < t_start:
         return None

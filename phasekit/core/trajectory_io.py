@@ -50,23 +50,41 @@ LONG_NAMES = {
     "Y_P": "contact point on the table (in flight: below the lowest point), Y",
 }
 #: what a run that ends rolling without slip rests on (exact Coulomb friction's rolling mode does
-#: no work: nothing dissipates, so the energy and, with it, the tilt stay as they are)
+#: no work: with no dissipation law nothing dissipates, so the energy and, with it, the tilt stay)
 PURE_ROLLING = ("pure rolling: energy is conserved and theta cannot change while the body rolls without slipping; "
-                "a regularised or viscous friction law (CLI: --slip-eps EPS, --friction viscous) changes this")
+                "a regularised or viscous friction law, spin friction or rolling resistance (CLI: --slip-eps EPS, "
+                "--friction viscous, --spin-friction MU_S, --rolling-resistance DELTA) changes this")
 
 
 def contact_summary(traj) -> dict:
     """How a run held the table: the time of its first stick, the fraction of the run spent
-    rolling without slip, theta at the start and its change (negative: the axis rose towards
-    the vertical), and ``rests_on`` (:data:`PURE_ROLLING`) when it ends rolling, else None."""
+    rolling without slip (every no-slip mode: "rolling", "rolling_no_pivot"), theta at the start
+    and its change (negative: the axis rose towards the vertical), and ``rests_on``
+    (:data:`PURE_ROLLING`) when it ends rolling under exact Coulomb friction with no dissipation
+    law (then no energy is lost while it rolls), else None."""
     span = traj.t - traj.t0
-    rolling = sum(s.t1 - s.t0 for s in traj.segments if s.mode.value == "rolling")
+    rolling = sum(s.t1 - s.t0 for s in traj.segments if s.mode.value.startswith("rolling"))
     sticks = [e.t for e in traj.events if e.name == "stick"]
     theta0 = float(traj.model.chart.to_paper(traj.x0)[4])
+    law = traj.model.friction
+    pure = str(traj.mode).startswith("rolling") and law.has_rolling_mode and not law.dissipation
     return {"t_first_stick": float(sticks[0]) if sticks else None,
             "rolling_fraction": float(rolling / span) if span > 0 else None, "theta_start": theta0,
             "theta_change": float(traj.model.chart.to_paper(traj.x)[4]) - theta0,
-            "rests_on": PURE_ROLLING if traj.mode == "rolling" else None}
+            "rests_on": PURE_ROLLING if pure else None}
+
+
+def _dissipation_summary(traj) -> dict:
+    """With dissipation laws, where the energy went and when the body came to rest:
+    ``energy_budget`` (:meth:`~phasekit.core.trajectory.Trajectory.energy_budget`, units M g b;
+    None without dense output) and ``t_rest`` (the "rest" event's time, or None); an empty dict
+    for a model without them (its JSON is as before)."""
+    if not traj.model.friction.dissipation:
+        return {}
+    dense = bool(traj.segments) and all(s.dense for s in traj.segments)
+    rest = [e.t for e in traj.events if e.name == "rest"]
+    return {"t_rest": float(rest[-1]) if rest else None,
+            "energy_budget": traj.energy_budget().to_dict() if dense else None}
 
 
 #: the scalars of a run's outcome and inputs that a run's table carries as attributes of their own
@@ -237,6 +255,7 @@ def trajectory_dict(traj, *, events: bool = True) -> dict:
         "mode_end": traj.mode,
         "stuck": traj.stuck,  # ever held zero slip (not "did not rise": see contact_summary)
         **contact_summary(traj),
+        **_dissipation_summary(traj),
         "n_events": len(traj.events),
         "n_steps": int(traj.n_steps),
         "n_rhs": int(traj.n_rhs),

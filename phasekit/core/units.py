@@ -1,10 +1,10 @@
 """Real units: millimetres, grams, revolutions per second in and out, by pint.
 
-phasekit computes in the paper's units: mass M, length b (the equatorial radius of a
-spheroid or egg, the radius of a tippe top's ball), acceleration g, hence time sqrt(b/g),
-rates sqrt(g/b), speeds sqrt(g b), forces M g, energies M g b and moments of inertia M b^2.
-A :class:`Scale` holds b, g (and M when forces or moments are wanted) as pint quantities and
-converts both ways by dimensional analysis, so that a user never converts by hand::
+phasekit computes in the paper's units: mass M, length b (the equatorial radius of a spheroid or egg, the
+radius of a tippe top's ball), acceleration g, hence time sqrt(b/g), rates sqrt(g/b), speeds sqrt(g b), forces
+M g, energies M g b, moments of inertia M b^2, and the dissipation laws' coefficients (lengths b; air drag in
+M, b, g). A :class:`Scale` holds b, g (and M for forces, energies and drag) as pint quantities and converts
+both ways by dimensional analysis, so that a user never converts by hand::
 
     sc = pk.Scale("21.5 mm")                  # g = 9.81 m/s^2
     sc.dimensionless("30 rev/s")              # -> 8.82..., a spin in units sqrt(g/b)
@@ -17,11 +17,10 @@ Every quantity a Scale returns is in one simple unit per kind (:data:`DISPLAY_UN
 rev/s, ...), never in pint's unsimplified product of the inputs' units (``mm ** 0.5 * s / m ** 0.5``),
 and prints in pint's short form ("46.81 ms", "m/s²", "cm²·g"), which pint also reads back.
 
-Angles: pint takes the radian as dimensionless, so 1 rev/s = 2 pi rad/s = 2 pi (1/s). A rate
-in hertz is refused: pint converts 1 Hz to 1 rad/s, which is a factor 2 pi away from one
-revolution per second; write "rev/s" (or "rps", "rpm", "rad/s").
-
-pint is imported on first use (building its registry takes ~0.6 s), not with phasekit.
+Angles: pint takes the radian as dimensionless, so 1 rev/s = 2 pi rad/s = 2 pi (1/s). A rate in hertz is
+refused: pint converts 1 Hz to 1 rad/s, which is a factor 2 pi away from one revolution per second; write
+"rev/s" (or "rps", "rpm", "rad/s"). pint is imported on first use (building its registry takes ~0.6 s),
+not with phasekit.
 """
 
 from __future__ import annotations
@@ -43,21 +42,25 @@ STANDARD_GRAVITY = "9.81 m/s**2"
 
 #: kinds of quantity and their unit in phasekit: (pint dimensionality, factor as powers of (b, g, M))
 KINDS = {
-    "length": ("[length]", (1, 0, 0)),
-    "time": ("[time]", (0.5, -0.5, 0)),
-    "rate": ("1 / [time]", (-0.5, 0.5, 0)),
-    "speed": ("[length] / [time]", (0.5, 0.5, 0)),
-    "acceleration": ("[length] / [time] ** 2", (0, 1, 0)),
-    "mass": ("[mass]", (0, 0, 1)),
-    "force": ("[mass] * [length] / [time] ** 2", (0, 1, 1)),
-    "energy": ("[length] ** 2 * [mass] / [time] ** 2", (1, 1, 1)),
-    "inertia": ("[length] ** 2 * [mass]", (2, 0, 1)),
+    "length": ("[length]", (1, 0, 0)), "time": ("[time]", (0.5, -0.5, 0)), "rate": ("1 / [time]", (-0.5, 0.5, 0)),
+    "speed": ("[length] / [time]", (0.5, 0.5, 0)), "acceleration": ("[length] / [time] ** 2", (0, 1, 0)),
+    "mass": ("[mass]", (0, 0, 1)), "force": ("[mass] * [length] / [time] ** 2", (0, 1, 1)),
+    "energy": ("[length] ** 2 * [mass] / [time] ** 2", (1, 1, 1)), "inertia": ("[length] ** 2 * [mass]", (2, 0, 1)),
     "angular_momentum": ("[length] ** 2 * [mass] / [time]", (1.5, 0.5, 1)),
+    "power": ("[length] ** 2 * [mass] / [time] ** 3", (0.5, 1.5, 1)),
+    # the coefficients of the dissipation laws (phasekit.friction.dissipation): delta and mu_s are
+    # lengths; air drag's couple per rate (k1) and per rate squared (k2), force per speed (c1, c2)
+    "rolling_resistance": ("[length]", (1, 0, 0)), "spin_friction": ("[length]", (1, 0, 0)),
+    "air_drag": ("[length] ** 2 * [mass] / [time]", (1.5, 0.5, 1)),
+    "air_drag_quadratic": ("[length] ** 2 * [mass]", (2, 0, 1)),
+    "air_drag_force": ("[mass] / [time]", (-0.5, 0.5, 1)), "air_drag_force_quadratic": ("[mass] / [length]", (-1, 0, 1)),
 }
 #: the unit each kind is shown in (times of a spinning body are milliseconds, its size millimetres,
 #: its spin revolutions per second: the units experiments quote)
 DISPLAY_UNITS = {"length": "mm", "time": "ms", "rate": "rev/s", "speed": "m/s", "acceleration": "m/s**2", "mass": "g",
-                 "force": "N", "energy": "mJ", "inertia": "g*cm**2", "angular_momentum": "g*cm**2/s"}
+                 "force": "N", "energy": "mJ", "inertia": "g*cm**2", "angular_momentum": "g*cm**2/s", "power": "mW",
+                 "rolling_resistance": "mm", "spin_friction": "mm", "air_drag": "N*m*s", "air_drag_quadratic": "N*m*s**2",
+                 "air_drag_force": "N*s/m", "air_drag_force_quadratic": "N*s**2/m**2"}
 #: the kind of each column of a sampled table (Trajectory.sample); angles stay in radians and
 #: columns not listed (mode) are left as they are
 COLUMN_KINDS = {"t": "time", "U": "speed", "V": "speed", "slip": "speed", "Omega": "rate", "Lambda": "rate",
@@ -65,9 +68,14 @@ COLUMN_KINDS = {"t": "time", "U": "speed", "V": "speed", "slip": "speed", "Omega
                 "gap": "length", "t_jump": "time", "t_end": "time", "t_flight": "time", "longest_flight": "time",
                 "gap_max": "length", "R": "force", "R_min": "force", "energy": "energy", "jellett": "angular_momentum",
                 "L_Z": "angular_momentum"}
+#: each kind named with its article, for the messages ("an air drag")
+NAMED = {k: f"{'an' if k[0] in 'aeiou' else 'a'} {k.replace('_', ' ')}" for k in KINDS}
 #: an example of each kind, for the messages
 EXAMPLES = {"length": "21.5 mm", "time": "12 ms", "rate": "30 rev/s", "speed": "0.5 m/s", "acceleration": "9.81 m/s**2",
-            "mass": "57 g", "force": "0.5 N", "energy": "1 mJ", "inertia": "2 g*cm**2", "angular_momentum": "1e-4 kg*m**2/s"}
+            "mass": "57 g", "force": "0.5 N", "energy": "1 mJ", "inertia": "2 g*cm**2", "angular_momentum": "1e-4 kg*m**2/s",
+            "power": "1 mW", "rolling_resistance": "0.2 mm", "spin_friction": "0.5 mm", "air_drag": "1e-7 N*m*s",
+            "air_drag_quadratic": "1e-9 N*m*s**2", "air_drag_force": "1e-4 N*s/m",
+            "air_drag_force_quadratic": "1e-3 N*s**2/m**2"}
 
 
 @functools.lru_cache(maxsize=1)
@@ -108,9 +116,7 @@ def as_quantity(value, name: str, default_unit: str | None = None):
     ureg = units()
     if default_unit is not None:
         try:
-            if not isinstance(default_unit, str):
-                raise TypeError
-            ureg.Unit(default_unit)
+            ureg.Unit(default_unit if isinstance(default_unit, str) else None)
         except Exception:
             raise ParameterError("default_unit", "must be a unit such as 'mm' or 'rev/s' (or None)", default_unit) from None
     if isinstance(value, pint.Quantity):
@@ -146,7 +152,7 @@ def _of_kind(value, name: str, kind: str, *, positive: bool = False):
     dim = KINDS[kind][0]
     typed = value if isinstance(value, str) else str(q)  # the value as the user wrote it
     if q.dimensionality != units().get_dimensionality(dim):
-        raise ParameterError(name, f"must be a {kind.replace('_', ' ')} (dimension {dim}, e.g. "
+        raise ParameterError(name, f"must be {NAMED[kind]} (dimension {dim}, e.g. "
                                    f"'{EXAMPLES[kind]}'), not of dimension {q.dimensionality}", typed)
     if positive and not q.magnitude > 0:
         raise ParameterError(name, "must be > 0", typed)
@@ -200,7 +206,7 @@ class Scale:
     g : quantity
         Gravity, default 9.81 m/s^2.
     mass : quantity, optional
-        The body's mass, needed only for forces, energies and moments of inertia.
+        The body's mass, needed only for forces, energies, powers, moments of inertia and drag.
 
     Attributes
     ----------
@@ -242,8 +248,8 @@ class Scale:
         Parameters
         ----------
         kind : str
-            A key of :data:`KINDS`: "length", "time", "rate", "speed", "acceleration", "mass",
-            "force", "energy", "inertia" or "angular_momentum".
+            A key of :data:`KINDS`: "length", "time", "rate", ..., "energy", "power", and the
+            dissipation laws' coefficients ("rolling_resistance", "spin_friction", "air_drag", ...).
 
         Returns
         -------
@@ -260,7 +266,7 @@ class Scale:
         _check_kind(kind)
         pb, pg, pm = KINDS[kind][1]
         if pm and self.mass is None:
-            raise ParameterError("mass", f"is needed to express a {kind} (give Scale(..., mass=...))", show_value=False)
+            raise ParameterError("mass", f"is needed for {NAMED[kind]} (give Scale(..., mass=...))", show_value=False)
         q = self.b**pb * self.g**pg
         return (q * self.mass**pm if pm else q).to(DISPLAY_UNITS[kind])
 
@@ -465,10 +471,10 @@ class Scale:
             raise ParameterError(name, f"must have the dimension of one of {', '.join(KINDS)} (it has {q.dimensionality})",
                                  typed)
         if kind is not None and kind not in found:
-            raise ParameterError(name, f"must be a {kind.replace('_', ' ')} (dimension {KINDS[kind][0]}, e.g. "
+            raise ParameterError(name, f"must be {NAMED[kind]} (dimension {KINDS[kind][0]}, e.g. "
                                        f"'{EXAMPLES[kind]}')", typed)
         with np.errstate(over="ignore", under="ignore"):
-            out = float((q / self.unit(found[0])).to("dimensionless").magnitude)
+            out = float((q / self.unit(kind or found[0])).to("dimensionless").magnitude)
         _representable(units().Quantity(out), float(q.magnitude), name, "in phasekit's units")
         return out
 

@@ -15,7 +15,10 @@ RUN = ["--a", "1.5", "--mu", "0.1", "--gyroscopic", "--theta0", "1.56", "--omega
 BARE = {"--theta0": ("deg", "89 deg"), "--omega0": ("rev/s", "41 rev/s"), "--n0": ("rpm", "2000 rpm"),
         "--spin-about-vertical": ("rev/s", "10 rev/s"), "--t-end": ("s", "0.5 s"), "--psi0": ("deg", "30 deg"),
         "--phi0": ("turn", "0.5 turn"), "--X0": ("mm", "3 mm"), "--Y0": ("cm", "1 cm"), "--size": ("mm", "21.5 mm"),
-        "--g": ("m/s^2", "9.81 m/s^2")}
+        "--g": ("m/s^2", "9.81 m/s^2"), "--mass": ("g", "57 g"), "--rolling-resistance": ("mm", "0.2 mm"),
+        "--spin-friction": ("um", "50 um"), "--air-drag": ("N*m*s", "1e-7 N*m*s"),
+        "--air-drag-quadratic": ("N*m*s^2", "1e-9 N*m*s^2"), "--air-drag-force": ("N*s/m", "1e-4 N*s/m"),
+        "--air-drag-force-quadratic": ("kg/m", "0.001 kg/m")}
 
 
 def unit_flags(command: str) -> set[str]:

@@ -8,7 +8,7 @@ from phasekit.core.trajectory_io import PURE_ROLLING
 import numpy as np
 import pytest
 
-from ..helpers import run_cli
+from ..helpers import run_cli, strict_json
 
 
 @pytest.fixture(scope="module")
@@ -50,3 +50,58 @@ def test_the_text_summary_says_it_in_words():
     lines = out.splitlines()
     assert PURE_ROLLING in lines and not any(ln.startswith("stuck:") for ln in lines)
     assert any(ln.startswith("the axis rose (theta fell) by ") and "first from t = " in ln for ln in lines)
+
+
+EGG = ["simulate", "--body", "egg", "--a", "1.33333", "--mu", "0.2", "--gyroscopic", "--theta0", "89.4 deg", "--omega0",
+       "25 rev/s", "--size", "22.5 mm", "--si", "--t-end", "0.5 s", "--max-wall", "300"]
+
+
+@pytest.mark.timeout(900)
+def test_the_pure_rolling_note_is_absent_when_spin_friction_takes_energy():
+    """The issue's egg (half a second): rolling under exact Coulomb friction alone, the note; with
+    spin friction it still rolls, but loses energy (the energy line says how much, to spin friction)."""
+    code, out, err = run_cli(*EGG)
+    assert code == 0, err
+    assert PURE_ROLLING in out.splitlines() and "mode_end: rolling" in out and "energy: " not in out
+    code, out, err = run_cli(*EGG, "--spin-friction", "0.1 mm", "--json")
+    assert code == 0, err
+    d = strict_json(out)
+    assert d["mode_end"] == "rolling" and d["rests_on"] is None and d["status"] == "completed" and d["t_rest"] is None
+    budget = d["energy_budget"]
+    assert budget["dissipated"]["spin-friction"] > 100 * budget["dissipated"]["sliding friction"] > 0
+    assert abs(budget["residual"]) < 1e-8 * budget["lost"]
+    code, text, err = run_cli(*EGG, "--spin-friction", "0.1 mm")
+    lines = text.splitlines()
+    assert code == 0 and PURE_ROLLING not in lines and not any(ln.startswith("pure rolling") for ln in lines)
+    [energy] = [ln for ln in lines if ln.startswith("energy: ")]
+    assert energy.endswith("(give --mass for mJ)") and " M g b, lost " in energy and "spin-friction" in energy
+
+
+def _fake_run(law, modes, end_mode):
+    """A run's record as contact_summary reads it: segments of the given modes, one time unit each."""
+    from types import SimpleNamespace
+
+    from phasekit.core.hybrid import Mode
+    from phasekit.core.starts import to_chart
+
+    model = pk.Model(pk.Spheroid(1.5), law, "euler")
+    x = to_chart("euler", np.array([0.0, 0.0, 1.0, 0.0, 1.0, 0.5]))
+    segments = [SimpleNamespace(mode=Mode(m), t0=float(i), t1=float(i + 1)) for i, m in enumerate(modes)]
+    return SimpleNamespace(model=model, segments=segments, events=[], t0=0.0, t=float(len(modes)), x0=x, x=x,
+                           mode=end_mode)
+
+
+def test_every_no_slip_mode_counts_as_rolling_and_only_exact_coulomb_alone_rests_on_pure_rolling():
+    from phasekit.core.trajectory_io import contact_summary
+
+    modes = ["sliding", "rolling", "rolling_no_pivot", "sliding_no_pivot", "flight"]
+    d = contact_summary(_fake_run(pk.Coulomb(0.2), modes, "rolling"))
+    assert d["rolling_fraction"] == pytest.approx(2 / 5, rel=1e-15) and d["rests_on"] == PURE_ROLLING
+    assert contact_summary(_fake_run(pk.Coulomb(0.2), modes, "rolling_no_pivot"))["rests_on"] == PURE_ROLLING
+    assert contact_summary(_fake_run(pk.Coulomb(0.2), modes, "sliding"))["rests_on"] is None
+    # energy leaves a rolling body: spin friction or rolling resistance, or a regularised law (whose
+    # "rolling" is slip below 10 eps, still sliding)
+    for law in (pk.Coulomb(0.2).with_dissipation(pk.RollingResistance(0.01)), pk.RegularisedCoulomb(0.2, 1e-3),
+                pk.Coulomb(0.2).with_dissipation(pk.SpinFriction(0.01))):
+        assert contact_summary(_fake_run(law, modes, "rolling"))["rests_on"] is None, law
+    assert "--spin-friction" in PURE_ROLLING and "--rolling-resistance" in PURE_ROLLING and "--slip-eps" in PURE_ROLLING

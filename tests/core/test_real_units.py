@@ -196,3 +196,33 @@ def test_printed_units_read_back():
         if unit in ("", "rad"):
             continue
         assert ureg.Unit(unit).dimensionality in {ureg.get_dimensionality(d) for d, _ in units.KINDS.values()}, unit
+
+
+# -- the dissipation laws' coefficients ----------------------------------------------------------
+def test_scale_converts_the_dissipation_coefficients_by_hand():
+    """delta and mu_s are lengths (b); air drag's k1 is in M b^2 sqrt(g/b) (N m s), k2 in M b^2
+    (N m s^2), c1 in M sqrt(g/b) (N s/m), c2 in M/b (N s^2/m^2); a power is M g b / sqrt(b/g)."""
+    M, b, g = 0.057, 0.0215, 9.81
+    sc = pk.Scale("21.5 mm", mass="57 g")
+    assert sc.dimensionless("0.2 mm", "rolling_resistance") == pytest.approx(0.2 / 21.5, rel=1e-14)
+    assert sc.dimensionless("50 um", "spin_friction") == pytest.approx(0.05 / 21.5, rel=1e-14)
+    by_hand = {"air_drag": ("N*m*s", M * b**2 * math.sqrt(g / b)), "air_drag_quadratic": ("N*m*s**2", M * b**2),
+               "air_drag_force": ("N*s/m", M * math.sqrt(g / b)), "air_drag_force_quadratic": ("N*s**2/m**2", M / b),
+               "power": ("W", M * g * b * math.sqrt(g / b))}
+    for kind, (si, unit) in by_hand.items():
+        assert sc.unit(kind).to(si).magnitude == pytest.approx(unit, rel=1e-14), kind
+        assert sc.dimensionless(f"{2.5 * unit!r} {si}", kind) == pytest.approx(2.5, rel=1e-14), kind
+        assert sc.quantity(0.37, kind).to(si).magnitude == pytest.approx(0.37 * unit, rel=1e-14), kind
+    assert str(sc.unit("air_drag").units) == "m·N·s" and str(sc.unit("power").units) == "mW"
+
+
+def test_a_coefficient_of_the_wrong_dimension_or_without_the_mass_is_refused_by_name():
+    sc = pk.Scale("21.5 mm")
+    err = raises_param("value", lambda: sc.dimensionless("3 s", "spin_friction"))
+    assert err.expected.startswith("must be a spin friction (dimension [length]") and "'0.5 mm'" in err.expected
+    err = raises_param("value", lambda: sc.dimensionless("1e-7 N*m", "air_drag"))
+    assert err.expected.startswith("must be an air drag (")
+    err = raises_param("mass", lambda: sc.dimensionless("1e-7 N*m*s", "air_drag"))
+    assert "an air drag" in err.expected
+    raises_param("mass", lambda: sc.quantity(1.0, "air_drag_force"))
+    assert sc.dimensionless("0.43 mm", "rolling_resistance") == sc.dimensionless("0.43 mm", "length")

@@ -35,6 +35,8 @@ RUNS = {
         ("stopped", f"{TOP} --slip-eps 1e-8 --theta0 0.1 --spin-about-vertical 15 --stop-at theta=0.4 --t-end 30"),
         ("real units", f"{PROLATE} --omega0 '45 rev/s' --size '21.5 mm' --si"),
         ("completed", "--a 1.5 --mu 0.1 --state 0 0 0 0 1.0 0 --t-end 5"),
+        ("rest", f"{TOP} --theta0 0.1 --spin-about-vertical 5 --spin-friction 0.02 --rolling-resistance 0.01 "
+                 "--stop-at rest --t-end 400 --max-wall 120"),
         ("failed", f"{PROLATE} --omega0 10.5 --max-steps 20"),
         ("bad input", "--a -1 --mu 0.1 --gyroscopic --theta0 1 --omega0 5"),
     ],
