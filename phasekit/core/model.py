@@ -17,6 +17,7 @@ from .._runtime.validate import check_array, check_choice
 from ..bodies.body import Body
 from ..bodies.egg import Egg
 from ..bodies.spheroid import EccentricSphere, Spheroid
+from ..friction.dissipation import dissipation_from_dict
 from ..friction.laws import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous
 from .charts import FLIGHT, POLE_GUARD, get_chart
 from .fields import compiled_model
@@ -351,7 +352,10 @@ class Model:
         if d.get("law") not in laws:
             raise ParameterError("model", f"must be given to rerun the friction law {d.get('law')!r} (only the built-in "
                                           "laws can be rebuilt from their description)", show_value=False)
-        return cls(body, laws[d["law"]](), d.get("chart", d.get("formulation", "euler")))
+        law = laws[d["law"]]()
+        if d.get("dissipation"):
+            law = law.with_dissipation(*(dissipation_from_dict(x) for x in d["dissipation"]))
+        return cls(body, law, d.get("chart", d.get("formulation", "euler")))
 
     def __eq__(self, other) -> bool:
         return isinstance(other, Model) and (other.body, other.friction, other.chart) == (self.body, self.friction, self.chart)
