@@ -193,7 +193,9 @@ class Transition:
     """What a reset decides: go on in ``mode`` from (t, x), or stop with ``stop``.
 
     ``records`` are logged in order (the first names the event itself); ``resume`` means the
-    guard was only grazed and the segment continues unchanged."""
+    guard was only grazed and the segment continues unchanged; ``carried``: the reset carried
+    the state on along the current field to (t, x) (an extrapolation to an exact zero), so the
+    segment that ended at the event extends to it."""
 
     mode: Mode | None
     t: float
@@ -202,6 +204,7 @@ class Transition:
     stop: Status | None = None
     reason: str | None = None
     resume: bool = False
+    carried: bool = False
 
 
 class Reset(Protocol):

@@ -144,8 +144,13 @@ def sliding_direction(model, x) -> tuple[np.ndarray, float] | None:
         elif c0 * c1 < 0.0:
             try:
                 phi = brentq(cross_at, lo, hi, xtol=1e-14)
-            except ValueError:  # a non-finite value inside the bracket (R exactly infinite)
-                continue
+            except ValueError:  # a non-finite value inside the bracket (R exactly infinite), or
+                # the wrap, where 2 pi evaluated afresh differs in sign from the grid's 0 by rounding
+                # (a root at 0 itself: planar motions)
+                try:
+                    phi = brentq(lambda q: cross_at(q % (2 * np.pi)), lo, hi, xtol=1e-14) % (2 * np.pi)
+                except ValueError:
+                    continue
         else:
             continue
         a, Rphi = (np.asarray(v).ravel() for v in f(x, p, phi))
@@ -264,7 +269,7 @@ class Rest:
             return Transition(mode, t, x, resume=True)
         detail = f"held still by rolling resistance (lever arm {max(0.0, -margin + _delta(model)):.3g} b)"
         return Transition(mode, t + dt, x_rest, (Record("rest", mode.value, "end", x_rest, detail),), stop=Status.REST,
-                          reason=f"at rest at t = {t + dt:.10g}: every motion stopped")
+                          reason=f"at rest at t = {t + dt:.10g}: every motion stopped", carried=True)
 
 
 #: the spin about the normal given to a body whose pivoting starts from zero (units sqrt(g/b)): as
@@ -295,7 +300,7 @@ class PivotStick:
             rest = Rest()(model, event, mode, t, x)
             if rest.stop is not None:
                 return replace(rest, records=(rec, *rest.records))
-        return replace(tr, records=(rec,))
+        return replace(tr, records=(rec,), carried=True)
 
 
 @dataclass(frozen=True)

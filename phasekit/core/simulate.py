@@ -148,8 +148,8 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
 
 
 def extended(seg: Segment, t1: float, x1: np.ndarray) -> Segment:
-    """``seg`` carried on in a straight line to (t1, x1): the last instants before a body comes to
-    rest, which the reset extrapolates (its dense output gains that line)."""
+    """``seg`` carried on in a straight line to (t1, x1): the instants a reset extrapolates over (to
+    the exact zero of the motion, or of the spin about the normal); its dense output gains that line."""
     dense = seg.dense + (linear_span(seg.t1, t1, seg.x1, x1),) if seg.dense else ()
     return replace(seg, t1=t1, x1=x1, dense=dense)
 
@@ -247,13 +247,13 @@ class RunState:
         if tr.resume:
             self.resume = True
             return
+        if tr.carried and self.segments and tr.t > self.segments[-1].t1:  # see Transition
+            self.segments[-1] = extended(self.segments[-1], tr.t, np.asarray(tr.x, dtype=float))
+            self.t, self.x = tr.t, np.asarray(tr.x, dtype=float)
         if tr.stop is not None:
             self.status, self.reason = tr.stop, tr.reason
             if not self.segments:  # stopped before any integration: keep the start
                 self.t, self.x, self.mode = tr.t, np.asarray(tr.x, dtype=float), tr.mode or self.mode
-            elif tr.t > self.segments[-1].t1:  # the reset extrapolated on (to the instant of rest)
-                self.segments[-1] = extended(self.segments[-1], tr.t, np.asarray(tr.x, dtype=float))
-                self.t, self.x = tr.t, np.asarray(tr.x, dtype=float)
             return
         self.mode, self.t, self.x = tr.mode, tr.t, np.asarray(tr.x, dtype=float)
         if len(self.records) >= self.switch_limit:

@@ -19,11 +19,17 @@ AirDrag(rotation, rotation_quadratic, translation, translation_quadratic)
     (form drag) resistance of the air, acting in contact and in flight.
 
 The sign laws are set-valued at zero rate (stick in spin, stick in rolling). phasekit writes
-them as x/sqrt(|x|^2 + eps^2) with eps = 1e-9 (a rate in units sqrt(g/b)): the couple
-differs from the set-valued law by a relative (eps/|x|)^2 / 2, below 5e-9 for rates above
-1e-8; the body's coming to rest, where every rate vanishes together, is an event whose
-time is extrapolated to the exact zero of the motion (:mod:`phasekit.core.system`). The
-power each law takes out of the motion is f.v + Gamma.w, reported per law along a run.
+spin friction's as x/sqrt(x^2 + eps^2) and rolling resistance's as x|x|^2/(|x|^2 + eps^2)^(3/2)
+(flat at zero, so a rolling part that is zero up to rounding meets no stiff couple), with
+eps = 1e-9 (a rate in units sqrt(g/b)): each couple differs from the set-valued law by a
+relative (eps/|x|)^2/2 or 3 (eps/|x|)^2/2, below 2e-8 for rates above 1e-8 (every event
+that stops a rate fires at 1e-7 or above). Where spin friction stops the spin about the
+normal it holds it exactly (the modes ``sliding_no_pivot``, ``rolling_no_pivot``); the body's
+coming to rest, where every rate vanishes together, is an event whose time is extrapolated to
+the exact zero of the motion (:mod:`phasekit.core.system`). Not modelled: rolling held at zero
+while the body still pivots or slides (the regularised couple then holds it, stiffly), and the
+coupling of sliding and spin friction over a contact patch (Contensou). The power each law
+takes out of the motion is f.v + Gamma.w, reported per law along a run.
 """
 
 from __future__ import annotations
@@ -140,8 +146,11 @@ class RollingResistance(Dissipation):
         super().__init__(delta)
 
     def wrench(self, w, v, R, q):
+        # w_h |w_h|^2 / (|w_h|^2 + eps^2)^(3/2): flat at w_h = 0, so a rolling part that is zero up
+        # to rounding (a body spinning in place) meets no stiff couple
         w_h = ca.vertcat(w[0], w[1], 0)
-        return ca.SX.zeros(3), -q[0] * R * _unit(w_h)
+        s2 = ca.dot(w_h, w_h)
+        return ca.SX.zeros(3), -q[0] * R * w_h * s2 / (s2 + SIGN_EPS * SIGN_EPS) ** 1.5
 
 
 class SpinFriction(Dissipation):

@@ -23,6 +23,7 @@ from ..friction.laws import Viscous
 from ..theory.criteria import pole_stability_threshold
 from .branches import _degeneracy
 from .budget import spend_wall
+from .dissipative import acting_laws
 from .linearisation import FixedPoint, _check_model, _mode_for, linearise
 from .precessions import (
     _root_float,
@@ -160,7 +161,9 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
         For an invalid argument.
     ConvergenceError
         When Newton does not reach a state whose residual is within NEWTON_RTOL of the
-        state's scale (the message gives both); ``result`` holds the last iterate.
+        state's scale (the message gives both; ``result`` holds the last iterate), or, with
+        dissipation laws, when they take energy out of the state found without them (the
+        message names them; phasekit.steady.dissipative).
 
     Examples
     --------
@@ -198,6 +201,8 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
         raise ConvergenceError(f"Newton did not converge to {article} {kind} fixed point with {fixed} = {value:g}: "
                                "the iterate left the domain of the equations (non-finite state)", None)
     err = _backward_error(model, x)
+    if not err <= NEWTON_RTOL and acting_laws(model, x):  # a steady state of the law without its dissipation
+        raise _dissipated(model, x, f"{kind} fixed point with {fixed} = {value:g}")
     if not err <= NEWTON_RTOL:
         residual = float(np.max(np.abs(model._rhs(x, _mode_for(model)))))
         try:
@@ -240,6 +245,9 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
         The states found, linearised; a precession at which Newton does not converge is left out.
         For a body whose steady states fill a continuum (a sphere with G at its centre:
         SteadyStructure.degenerate says so) only the isolated states (horizontal, vertical).
+        With dissipation laws only the states at which every law's power vanishes (e.g. the
+        vertical spin under rolling resistance alone; none under spin friction): the others
+        lose energy (:func:`find_fixed_point` says which law takes it).
 
     Raises
     ------
@@ -247,7 +255,8 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
         If ``model`` or ``model_vector`` is not a Model, if not exactly one of ``omega0`` and ``n0`` is
         given, or if it is not finite or beyond FAMILY_MAX (1e12) in size.
     ConvergenceError
-        If Newton does not converge at the horizontal or the vertical state.
+        If Newton does not converge at the horizontal or the vertical state (without dissipation
+        laws: with them such a state is left out when they take energy out of it).
     TimeoutError
         If a wall budget in force (a caller's ``max_wall``, phasekit._runtime.watch) runs out.
 
@@ -297,11 +306,29 @@ def _isolated_states(model_euler: Model, model_vector: Model, omega0, n0) -> lis
     if omega0 is not None:
         if not _has_horizontal_state(body):
             return []
-        return [find_fixed_point(model_euler, horizontal_state(omega0), kind="horizontal", value=omega0)]
-    out = [_pole(model_vector, n0, "upright")]
+        return _kept(lambda: [find_fixed_point(model_euler, horizontal_state(omega0), kind="horizontal", value=omega0)],
+                     model_euler)
+    out = _kept(lambda: [_pole(model_vector, n0, "upright")], model_vector)
     if not body.flip_symmetric:
-        out.append(_pole(model_vector, n0, "inverted"))
+        out += _kept(lambda: [_pole(model_vector, n0, "inverted")], model_vector)
     return out
+
+
+class _Dissipated(ConvergenceError):
+    """No steady state: the dissipation laws take energy out of the one the law has without them."""
+
+
+def _dissipated(model, x, what: str) -> _Dissipated:
+    return _Dissipated(f"no {what} under dissipation: {', '.join(acting_laws(model, x))} takes energy out of the "
+                       "steady state of the law without it, and energy decreases along every motion except rest", None)
+
+
+def _kept(find, model) -> list[FixedPoint]:
+    """``find()``, or nothing when the model's dissipation laws take energy out of the state."""
+    try:
+        return find()
+    except _Dissipated:
+        return []
 
 
 def _precessions(model_euler: Model, thetas, omega0, n0) -> list[FixedPoint]:
@@ -337,6 +364,8 @@ def _pole(model_vector: Model, n0: float, pole: str) -> FixedPoint:
     if pole == "upright":
         fp = find_fixed_point(model_vector, vertical_state(n0), kind="vertical", value=n0)
     else:
+        if acting_laws(model_vector, inverted_state(n0)):  # exact without dissipation: no Newton to fail
+            raise _dissipated(model_vector, inverted_state(n0), f"inverted fixed point with n = {n0:g}")
         fp = linearise(model_vector, inverted_state(n0), kind="inverted")
     crit = pole_stability_threshold(model_vector.body, pole)
     info = {"n0": n0, "theta": 0.0 if pole == "upright" else float(np.pi), **crit.to_dict(n0)}

@@ -30,8 +30,11 @@ from ..core.model import Model
 from ..friction.laws import FrictionLaw, Viscous
 from .branch_stability import StabilityChange, _stability, linearise_precession
 from .branches import BranchEnd, _degeneracy, _end, _pieces, _sample, _special_points, precession_on_branch
+from .dissipative import acting_laws, dissipation_note
 from .families import SpinFamily, StaticEquilibrium, _families, _statics
 from .linearisation import FixedPoint
+from .precessions import inverted_state, precession_state, vertical_state
+from .rolling import rolling_state
 
 __all__ = ["SteadyBranch", "SteadyStructure", "steady_structure", "bifurcation_between"]
 
@@ -117,6 +120,11 @@ class SteadyStructure:
         centre: every orientation is a static equilibrium), else None; such a structure has no
         branches, statics or families listed, its signature is "degenerate" and :meth:`at` gives
         its isolated states.
+    note : str or None
+        With dissipation laws (``friction.dissipation``): which steady states they leave and
+        why (phasekit.steady.dissipative: a steady state keeps its energy, so only those at
+        which every law's power vanishes remain: no branch of steady precessions under rolling
+        resistance, spin friction or air drag on rotation); else None.
 
     Examples
     --------
@@ -133,6 +141,7 @@ class SteadyStructure:
     status: Status = Status.COMPLETED
     reason: str | None = None
     degenerate: str | None = None
+    note: str | None = None
 
     @property
     def body(self):
@@ -207,7 +216,8 @@ class SteadyStructure:
 
     def to_dict(self, eigenvalues: bool = True) -> dict:
         return {"status": self.status.value, **({"reason": self.reason} if self.reason else {}),
-                **({"degenerate": self.degenerate} if self.degenerate else {}), "signature": self.signature,
+                **({"degenerate": self.degenerate} if self.degenerate else {}),
+                **({"note": self.note} if self.note else {}), "signature": self.signature,
                 "branches": [b.to_dict(eigenvalues) for b in self.branches], "static_equilibria": [s.to_dict() for s in self.static_equilibria],
                 "families": [f.to_dict() for f in self.families], "model": self.model.to_dict()}
 
@@ -231,7 +241,9 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, sam
         The law whose linearisation decides stability: viscous and regularised Coulomb as
         given; exact Coulomb by its rolling (no-slip) spectrum, with the sliding-friction
         criterion (the viscous law with the same mu, part I's weak friction) beside it in
-        ``SteadyBranch.sliding_stable`` (the poles' closed forms in ``families``).
+        ``SteadyBranch.sliding_stable`` (the poles' closed forms in ``families``). With
+        dissipation laws (:meth:`phasekit.Coulomb.with_dissipation`) only the steady states at
+        which every law's power vanishes remain (:attr:`SteadyStructure.note` says which).
     stability : bool
         False: the geometry only (branches, ends, statics, families, signature), ~10x faster.
     samples : bool
@@ -247,7 +259,8 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, sam
     SteadyStructure
         With status "failed" and the reason if a root or a limit could not be computed or the
         budget ran out; with :attr:`SteadyStructure.degenerate` set (and no branches) for a body
-        whose steady states fill a continuum (a sphere with G at its centre).
+        whose steady states fill a continuum (a sphere with G at its centre); with
+        :attr:`SteadyStructure.note` set under dissipation laws.
 
     Examples
     --------
@@ -268,6 +281,9 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, sam
     with wall_deadline(max_wall):  # from the start: compiling the model's fields counts too
         model = Model(body, friction)
         try:
+            if friction.dissipation:  # the structure without them, less what they take energy out of
+                bare = _structure(Model(body, friction.with_dissipation()), stability and samples, samples)
+                return _surviving(model, bare)
             return _structure(model, stability and samples, samples)
         except TimeoutError as exc:
             return SteadyStructure(model, (), (), (), Status.FAILED, f"not finished: {exc}")
@@ -298,6 +314,33 @@ def _structure(model: Model, stability: bool, samples: bool) -> SteadyStructure:
         branches.append(SteadyBranch((p["lo_end"], p["hi_end"]), theta, om, n, points, changes,
                                      tuple(p["crossings"]), slide))
     return SteadyStructure(model, tuple(branches), _statics(body, pts), _families(model, body, pts, pieces, stability))
+
+
+def _surviving(model: Model, bare: SteadyStructure) -> SteadyStructure:
+    """``bare`` (the structure without dissipation) less the branches and families out of which
+    ``model``'s dissipation laws take energy (phasekit.steady.dissipative), with its note."""
+    body, vector = model.body, model.with_chart("vector")
+    branches, removed = [], []
+    for b in bare.branches:
+        theta, om, n = (b.theta, b.Omega, b.n) if b.theta.size else _sample(body, *b.ends, b.crossings)
+        picks = sorted({theta.size // 4, theta.size // 2, (3 * theta.size) // 4}) if theta.size else []
+        if picks and not any(acting_laws(model, [0.0, 0.0, om[k], 0.0, theta[k], n[k]]) for k in picks):
+            branches.append(b)
+        else:
+            removed.append(f"the branch {b.label}")
+    families = []
+    for f in bare.families:
+        if f.kind == "pole":
+            x, m = (vertical_state(1.0) if f.theta == 0.0 else inverted_state(1.0)), vector
+        else:
+            x, m = (rolling_state(body, f.theta, 1.0) if f.kind == "rolling"
+                    else precession_state(body, f.theta, omega0=1.0)), model
+        if acting_laws(m, x):
+            removed.append(f"the {f.kind} family at theta = {f.theta:.6g}")
+        else:
+            families.append(f)
+    return SteadyStructure(model, tuple(branches), bare.static_equilibria, tuple(families), bare.status, bare.reason,
+                           bare.degenerate, dissipation_note(model, removed, len(branches), len(families)))
 
 
 # -- between classes ------------------------------------------------------------------------------

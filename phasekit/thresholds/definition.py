@@ -51,6 +51,7 @@ from ..core.options import RTOL_RANGE
 from ..core.settle import Settle, check_settle
 from ..core.simulate import simulate
 from ..core.starts import gyroscopic_start, to_chart
+from ..friction.dissipation import check_dissipation
 from ..friction.laws import Coulomb, RegularisedCoulomb, Viscous
 from ..steady.manifolds import unstable_manifold_start
 from ..theory.criteria import horizontal_stability_threshold, vertical_stability_threshold
@@ -97,6 +98,11 @@ class Definition:
         Step budget of a run, >= 1.
     settle : Settle, dict, bool or None, optional
         The settle rule: a run that has settled ends as no jump. None or False: no rule; True: ``Settle()``.
+    dissipation : tuple of Dissipation, optional
+        Laws acting besides sliding friction (:class:`phasekit.RollingResistance`,
+        :class:`phasekit.SpinFriction`, :class:`phasekit.AirDrag`), default none: the runs
+        simulate ``friction().with_dissipation(*dissipation)`` (seeds as without them); a run
+        in which the body comes to rest counts as no jump.
 
     Raises
     ------
@@ -125,9 +131,11 @@ class Definition:
     #: a run that has settled (zero slip, steady state; exact Coulomb only) ends as no jump:
     #: a body that settles tilted (an egg) would otherwise stick and slip until t_max
     settle: Settle | None = DEFAULT_SETTLE
+    dissipation: tuple = ()
 
     def __post_init__(self):
         object.__setattr__(self, "settle", check_settle(self.settle))
+        object.__setattr__(self, "dissipation", check_dissipation(self.dissipation))
         check_choice("seed", self.seed, ("viscous", "sliding", "literal"))
         check_range("amplitude", self.amplitude, 0.0, 0.5, closed="r")
         check_range("mu", self.mu, 0.0, 10.0, closed="r")
@@ -140,9 +148,10 @@ class Definition:
 
     @property
     def law_label(self) -> str:
+        extra = "".join(f" + {d.describe()}" for d in self.dissipation)
         if self.seed == "viscous":
-            return f"viscous mu={self.mu:g}"
-        return f"coulomb mu={self.mu:g}" + (f" eps={self.eps:g}" if self.eps else " exact")
+            return f"viscous mu={self.mu:g}{extra}"
+        return f"coulomb mu={self.mu:g}" + (f" eps={self.eps:g}" if self.eps else " exact") + extra
 
     @property
     def label(self) -> str:
@@ -153,17 +162,23 @@ class Definition:
     def key(self) -> str:
         """Identifies results that can be reused: every field that changes the answer. The
         default settle rule is left out: it ends only runs that would not jump (checked on the
-        published studies), so results computed before it existed keep their keys."""
+        published studies), so results computed before it existed keep their keys; so is an
+        empty ``dissipation``."""
         d = asdict(self)
         d.pop("name")
         if self.settle == DEFAULT_SETTLE:
             d.pop("settle")
+        d["dissipation"] = [x.describe() for x in self.dissipation]
+        if not self.dissipation:
+            d.pop("dissipation")
         return ";".join(f"{k}={v}" for k, v in sorted(d.items()))
 
     def friction(self):
         if self.seed == "viscous":
-            return Viscous(self.mu)
-        return Coulomb(self.mu) if self.eps is None else RegularisedCoulomb(self.mu, self.eps)
+            law = Viscous(self.mu)
+        else:
+            law = Coulomb(self.mu) if self.eps is None else RegularisedCoulomb(self.mu, self.eps)
+        return law.with_dissipation(*self.dissipation) if self.dissipation else law
 
     def lower_bound(self, body) -> float:
         """Where the seed exists: the fixed point must be unstable (eigenvector seeds) and the
@@ -386,7 +401,8 @@ def evaluate_outcomes(jobs, engine: str = "scalar", stats=None) -> list["Outcome
     out: list[Outcome | None] = [None] * len(jobs)
     groups: dict = {}
     for i, (defn, body, value) in enumerate(jobs):
-        if engine == "scalar" or type(defn).outcome is not Definition.outcome:
+        # the batch integrator has no dissipation laws' rest and pivot resets: those run one by one
+        if engine == "scalar" or type(defn).outcome is not Definition.outcome or defn.dissipation:
             out[i] = defn.outcome(body, value)
             continue
         body = as_body(body)
@@ -418,7 +434,8 @@ class Outcome:
         Whether it jumped; None if the run failed.
     status : Status
         jumped; stopped = the rise completed; completed = reached t_max; settled =
-        the body settled in contact (the definition's ``settle`` rule); failed.
+        the body settled in contact (the definition's ``settle`` rule); rest = the body came
+        to rest (dissipation laws); failed.
     t : float
         The time the run ended.
     stuck : bool
@@ -453,7 +470,7 @@ class Outcome:
     @property
     def how(self) -> str:
         return {Status.JUMPED: "jumped", Status.STOPPED: "rise-complete", Status.COMPLETED: "t_max",
-                Status.SETTLED: "settled"}.get(self.status, "failed")
+                Status.SETTLED: "settled", Status.REST: "rest"}.get(self.status, "failed")
 
     @property
     def kind(self) -> str:
