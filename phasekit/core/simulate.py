@@ -330,6 +330,8 @@ class _Run(RunState):
             if show_progress(progress) else None
         self.budget.tick = None if bar is None else (lambda t: bar.update(t - t0 - bar.n))
         self.apply(first)
+        if self.status is None:
+            self.prefetch()
         while self.status is None:
             self.step()
             if self.budget.tick is not None:
@@ -341,6 +343,19 @@ class _Run(RunState):
             bar.close()
         if self.call_budget is not None and self.status is Status.FAILED and "wall-time limit" in (self.reason or ""):
             self.reason = f"{WALL_REASON} (max_wall = {self.call_budget:g} s) ran out at t = {self.t:.6g}"
+
+    def prefetch(self) -> None:
+        """Compile in the background the Taylor integrators of the other two contact modes a run
+        most often reaches (sliding, rolling): a body's first run then waits for one compilation
+        on two cores, not for each in turn."""
+        for mode in (Mode.SLIDING, Mode.ROLLING):
+            if mode is self.mode or mode not in self.model.modes:
+                continue
+            flow = _tracked(self.system.flow(mode), self.opts.track_minima)
+            engine = self.engine(flow)
+            events = watched(self.system, mode, engine)
+            if getattr(engine, "prefetch", None) is not None and not any(e.arm_after > 0 for e in events):
+                engine.prefetch(self.model.compile_flow(flow, events), len(self.model.p))
 
     def engine(self, flow):
         name = flow.engine or self.opts.backend

@@ -13,6 +13,7 @@ that shows its own progress: ``logging.getLogger("phasekit").getChild("compile")
 
 from __future__ import annotations
 
+import atexit
 import hashlib
 import logging
 import os
@@ -72,8 +73,9 @@ def _notice_after() -> float | None:
     return after if after >= 0 else None
 
 
-def _announced(build: Callable[[], object], disk: str | None) -> object:
-    """``build()``, announced on stderr and to the compile logger if it runs long."""
+def _announced(build: Callable[[], object], disk: str | None, label: str | None = None) -> object:
+    """``build()``, announced on stderr and to the compile logger if it runs long (``label`` says
+    what is compiled, by default the kind of ``disk``)."""
     after = _notice_after()
     if after is None:
         return build()
@@ -82,7 +84,7 @@ def _announced(build: Callable[[], object], disk: str | None) -> object:
     def say():
         said.set()
         where = _cache_dir() if disk is not None else None
-        text = (f"compiling {_WHAT.get(disk, 'the solver of this model')} "
+        text = (f"compiling {label or _WHAT.get(disk, 'the solver of this model')} "
                 + (f"(heyoka/LLVM; once, then cached in {where}) ..." if where else "(once per process) ..."))
         _LOG.info(text)
         print(f"phasekit: {text}", file=sys.stderr, flush=True)
@@ -104,19 +106,63 @@ def _announced(build: Callable[[], object], disk: str | None) -> object:
 
 _LOCK = threading.Lock()
 _MEMORY: dict = {}  # key -> compiled entry (what ``build`` returned)
+_BUILDING: dict = {}  # key -> threading.Event, set when the build under way has finished (or failed)
 _PERSISTENT: set = set()  # the keys whose entries are picklable (heyoka's), for snapshot()
 _RECORDERS: dict = {}  # id(integrator) -> the monitor recorder inside it (looked up once)
 
 
-def compiled(key: tuple, build: Callable[[], object], *, disk: str | None = None):
+def compiled(key: tuple, build: Callable[[], object], *, disk: str | None = None, label: str | None = None):
     """The compiled entry ``key`` of an engine: from memory, else (``disk`` names the file kind)
     from the on-disk cache, else ``build()`` (then stored in both). Disk files are written under
     a temporary name and renamed, so processes sharing the cache never read a torn one."""
+    while True:  # one build per key: a second caller waits for the first (a background prefetch)
+        with _LOCK:
+            entry = _MEMORY.get(key)
+            if entry is not None:
+                return entry
+            pending = _BUILDING.get(key)
+            if pending is None:
+                _BUILDING[key] = threading.Event()
+                break
+        pending.wait()
+    try:
+        return _load_or_build(key, build, disk, label)
+    finally:
+        with _LOCK:
+            _BUILDING.pop(key).set()
+
+
+def prefetch(key: tuple, build: Callable[[], object], *, disk: str | None = None, label: str | None = None) -> None:
+    """:func:`compiled` in a background thread: the entry is ready (or being built) when it is asked
+    for. heyoka compiles with the GIL released, so on two cores a run's next mode compiles while
+    the first one runs. The process waits for builds under way when it exits (an LLVM build
+    cannot be interrupted)."""
     with _LOCK:
-        entry = _MEMORY.get(key)
-    if entry is not None:
-        return entry
-    path = None
+        if key in _MEMORY or key in _BUILDING:
+            return
+    thread = threading.Thread(target=_quietly, args=(key, build, disk, label), name="phasekit-prefetch", daemon=True)
+    _THREADS.append(thread)
+    thread.start()
+
+
+_THREADS: list = []
+
+
+def _quietly(key, build, disk, label) -> None:
+    try:
+        compiled(key, build, disk=disk, label=label)
+    except Exception as exc:  # the run that needs it builds it again and sees the error itself
+        _LOG.debug("prefetch of %r failed: %s", key, exc)
+
+
+@atexit.register
+def _join_prefetches() -> None:
+    for thread in _THREADS:
+        thread.join()
+
+
+def _load_or_build(key: tuple, build: Callable[[], object], disk: str | None, label: str | None = None):
+    entry = path = None
     if disk is not None:
         hy = _heyoka()
         digest = hashlib.sha256(repr((CACHE_FORMAT, key, hy.__version__)).encode()).hexdigest()[:24]
@@ -131,7 +177,7 @@ def compiled(key: tuple, build: Callable[[], object], *, disk: str | None = None
     if entry is None:
         if disk is not None:
             _place_heyoka_cache()
-        entry = _announced(build, disk)
+        entry = _announced(build, disk, label)
         if path is not None:
             try:
                 tmp = path.with_suffix(f".{os.getpid()}.tmp")

@@ -11,7 +11,7 @@ from functools import partial
 import numpy as np
 
 from ..hybrid import CompiledFlow
-from .cache import _RECORDERS, compiled
+from .cache import _RECORDERS, compiled, prefetch
 from .dense import _TaylorSteps
 from .protocol import Budget, End, Propagation
 from .taylor_build import _build_taylor, _heyoka, taylor_end
@@ -60,7 +60,7 @@ class TaylorEngine:
             (integrator, recorder or None, number of parameters).
         """
         ta, npar = compiled((flow.signature, self.rtol), partial(_build_taylor, flow, n_params, self.rtol, None),
-                            disk="taylor")
+                            disk="taylor", label=f"the Taylor integrator of the {flow.mode.value} mode")
         if flow.monitor is None:
             return ta, None, npar
         # the recorder inside the integrator is the one that records (heyoka copied ours, and
@@ -69,6 +69,12 @@ class TaylorEngine:
         if recorder is None:
             recorder = _RECORDERS.setdefault(id(ta), ta.nt_events[0].callback)
         return ta, recorder, npar
+
+    def prefetch(self, flow: CompiledFlow, n_params: int) -> None:
+        """Start compiling :meth:`integrator` of ``flow`` in the background (see
+        :func:`phasekit.core.engines.cache.prefetch`)."""
+        prefetch((flow.signature, self.rtol), partial(_build_taylor, flow, n_params, self.rtol, None), disk="taylor",
+                 label=f"the Taylor integrator of the {flow.mode.value} mode, in the background,")
 
     def propagate(self, flow: CompiledFlow, x0, t0, t_end, p, levels, *, budget: Budget, dense: bool = False,
                   resume: bool = False) -> Propagation:
