@@ -24,6 +24,8 @@ def _print_structure(out: dict) -> None:
     print(f"signature: {out['signature']}   (linearisation: {out['linearised_law']})")
     if out.get("degenerate"):
         print(f"({out['degenerate']})")
+    if out.get("note"):  # what the dissipation laws leave of the structure
+        print(f"note: {out['note']}")
     for i, b in enumerate(out["branches"]):
         ends = " -> ".join(f"{e['kind']} at theta = {_fmt(e['theta'], '.10f')}"
                            + (f" (spin n = {_fmt(e['n'], '.8g')})" if e["kind"] == "pole" else "") for e in b["ends"])
