@@ -86,6 +86,11 @@ class Chart:
         changes)."""
         raise NotImplementedError
 
+    def with_roll(self, x, dw) -> np.ndarray:
+        """The state ``x`` with the horizontal dw = (dw_X, dw_Y) added to w (in the axes of the
+        chart's ``w`` term; nothing else of w changes)."""
+        raise NotImplementedError
+
     def from_paper(self, y) -> np.ndarray:
         """A state in the paper's variables, in this chart's coordinates."""
         raise NotImplementedError
@@ -164,6 +169,16 @@ class EulerChart(Chart):
         out[5] += dw * np.cos(out[4])
         return out
 
+    def with_roll(self, x, dw) -> np.ndarray:
+        # w + dw_X e_X + dw_Y e_Y, e_X = (k - cos e_Z)/sin: Lambda gains dw_Y, Omega -dw_X cos/sin,
+        # n = w.k gains dw_X sin
+        out = np.array(x, dtype=float)
+        c, s = np.cos(out[4]), np.sin(out[4])
+        out[3] += dw[1]
+        out[2] -= dw[0] * c / s
+        out[5] += dw[0] * s
+        return out
+
     def rotation_rate(self, x) -> float:
         return float(max(1.0, abs(x[2]), abs(x[5]), abs(x[3])))
 
@@ -228,6 +243,11 @@ class VectorChart(Chart):
     def with_pivot(self, x, dw: float) -> np.ndarray:
         out = np.array(x, dtype=float)
         out[5] += dw
+        return out
+
+    def with_roll(self, x, dw) -> np.ndarray:
+        out = np.array(x, dtype=float)
+        out[3:5] += np.asarray(dw, dtype=float)
         return out
 
     def to_paper(self, x) -> np.ndarray:

@@ -33,7 +33,7 @@ from ..friction.laws import FrictionLaw
 from .charts import FLIGHT, PAPER_NAMES, Chart
 from .hybrid import Mode
 
-__all__ = ["CompiledModel", "compiled_model", "STICK_SLIP", "STICK_SLIP_POINTWISE", "REST_SPEED", "PIVOT_STICK", "snapshot", "install"]
+__all__ = ["CompiledModel", "compiled_model", "STICK_SLIP", "STICK_SLIP_POINTWISE", "REST_SPEED", "HOLD_RATE", "HELD", "snapshot", "install"]
 
 #: slip speed (units sqrt(g b)) at which exact Coulomb sliding is taken to have stuck;
 #: the stick time is then extrapolated to the exact zero of the slip
@@ -43,11 +43,12 @@ STICK_SLIP_POINTWISE = 1e-7
 #: the speed of the motion, sqrt(|w|^2 + |v|^2) (units sqrt(g b)), at which a dissipative run
 #: is taken to have come to rest; the time of rest is extrapolated to its exact zero
 REST_SPEED = 1e-7
-#: the spin about the normal (units sqrt(g/b)) at which spin friction is taken to have stopped it
-#: (the time is extrapolated to its zero). Well above the couple's regularisation SIGN_EPS = 1e-9:
-#: held by the regularised couple, |w_Z| creeps at SIGN_EPS rho/sqrt(1 - rho^2), rho the couple
-#: needed over mu_s R, which stays below 1e-6 for every rho < 1 - 5e-7
-PIVOT_STICK = 1e-6
+#: the spin about the normal, or the rolling rate (units sqrt(g/b)), at which spin friction or
+#: rolling resistance is taken to have stopped it (the time is extrapolated to its zero). Well
+#: above the couples' regularisation SIGN_EPS = 1e-9: held by the regularised couple, the rate
+#: creeps at about SIGN_EPS rho/sqrt(1 - rho^2), rho the couple needed over the most the law
+#: gives, which stays below 1e-6 for every rho < 1 - 5e-7
+HOLD_RATE = 1e-6
 
 
 @dataclass
@@ -133,7 +134,9 @@ def _dissipation_terms(fn, tag, T, x, p, rhs, Fc_mode, laws, first) -> None:
     """A mode's power of sliding friction, then of each dissipation law; the rates of the motion's
     speed and of the spin about the normal (what the rest and pivot events extrapolate with)."""
     fn[f"motion_rate_{tag}"] = _function(f"motion_rate_{tag}", x, p, ca.jtimes(_motion(T), x, rhs))
-    fn[f"pivot_rate_{tag}"] = _function(f"pivot_rate_{tag}", x, p, ca.jtimes(T["w"][2], x, rhs))
+    for kind, (_, _, part) in HELD.items():
+        speed = ca.sqrt(ca.sumsqr(T["w"][part]) + 1e-40)
+        fn[f"{kind}_rate_{tag}"] = _function(f"{kind}_rate_{tag}", x, p, ca.jtimes(speed, x, rhs))
     power = [ca.dot(Fc_mode[0:2], T["slip"])]  # the slip and w, v depend on the state only
     power += _powers(laws, p, first, T["w"], T["v"], Fc_mode[2])
     fn[f"power_{tag}"] = _function(f"power_{tag}", x, p, ca.vertcat(*power))
@@ -214,7 +217,8 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=()) -
         _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu)
     elif law_cls.can_stick:
         # a regularised law has one field: its "rolling" mode (slip below 10 eps) reuses it
-        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction"):
+        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction",
+                     *(("motion_rate", "pivot_rate", "roll_rate", "power") if laws else ())):
             fn[f"{name}_rolling"] = fn[f"{name}_sliding"]
 
     _common(fn, T, x, p)
@@ -222,7 +226,8 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=()) -
     fn["gap_rate"] = _function("gap_rate", x, p, ca.SX(0))
     if laws:  # rest, and the modes with the spin about the normal held (spin friction)
         _build_rest(fn, T, x, p, ns, laws)
-        out.modes = (*modes, *_build_no_pivot(fn, chart, x, p, Fc, H, laws, law_cls, ns), Mode.FLIGHT)
+        held = [m for kind in HELD for m in _build_held(fn, chart, x, p, Fc, H, laws, law_cls, ns, kind)]
+        out.modes = (*modes, *held, Mode.FLIGHT)
     _build_flight(out.flight, body, ns, laws)
     blob = "".join(f.serialize() for d in (out.contact, out.flight) for _, f in sorted(d.items()))
     names = "+".join([law_cls.__qualname__, *(type(d).__qualname__ for d in laws)])
@@ -230,24 +235,33 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=()) -
     return out
 
 
-def _build_no_pivot(fn, chart, x, p, Fc, H, laws, law_cls, ns) -> tuple[Mode, ...]:
-    """The modes in which spin friction holds the spin about the normal, w_Z, at zero: the
-    pivoting couple tau e_Z is then an unknown fixed by dw_Z/dt = 0 (with the contact
-    constraint, and with du/dt = 0 when rolling too), and it holds while |tau| <= mu_s R."""
-    if not any(isinstance(d, SpinFriction) for d in laws):
+#: the components of w a set-valued law can hold at zero: its law, the modes (sliding, rolling)
+#: with them held, and the index of w's components in axes with e_Z vertical
+HELD = {"pivot": (SpinFriction, (Mode.SLIDING_NO_PIVOT, Mode.ROLLING_NO_PIVOT), slice(2, 3)),
+        "roll": (RollingResistance, (Mode.SLIDING_NO_ROLL, Mode.PIVOTING), slice(0, 2))}
+
+
+def _build_held(fn, chart, x, p, Fc, H, laws, law_cls, ns, kind: str) -> tuple[Mode, ...]:
+    """The modes in which a set-valued law holds its part of w at zero: spin friction the spin
+    about the normal w_Z ("pivot"), rolling resistance the rolling part w_h ("roll"). Its couple
+    tau is then an unknown fixed by d(that part)/dt = 0 (with the contact constraint, and with
+    du/dt = 0 when the slip is zero too), and it holds while |tau| <= coefficient x R."""
+    cls, (m_slide, m_roll), part = HELD[kind]
+    if not any(isinstance(d, cls) for d in laws):
         return ()
     A, C, mu, eps = p[ns], p[ns + 1], p[ns + 2], p[ns + 3]
-    first, mu_s, free = ns + 4, None, []
-    for law in laws:
-        if isinstance(law, SpinFriction):
-            mu_s = p[first]
+    coef, free = None, []
+    for law, i in _offsets(laws, ns + 4):
+        if isinstance(law, cls):
+            coef = p[i]
         else:
-            free.append((law, first))
-        first += law.n_params
-    tau = ca.SX.sym("tau")
+            free.append((law, i))
+    n_tau = part.stop - part.start
+    tau = ca.SX.sym("tau", n_tau)
+    couple = ca.vertcat(0, 0, tau) if kind == "pivot" else ca.vertcat(tau, 0)
 
     def wrench(w, v, R):
-        f, G = ca.SX.zeros(3), ca.vertcat(0, 0, tau)
+        f, G = ca.SX.zeros(3), couple
         for law, i in free:
             fi, Gi = law.wrench(w, v, R, p[i:i + law.n_params])
             f, G = f + fi, G + Gi
@@ -256,42 +270,42 @@ def _build_no_pivot(fn, chart, x, p, Fc, H, laws, law_cls, ns) -> tuple[Mode, ..
     T = chart.terms(x, H, A, C, Fc, wrench)
     xdot, slip = T["xdot"], T["slip"]
     constraint = Fc[2] + T["lift"] - 1 - ca.jtimes(T["W"], x, xdot)
-    hold = ca.jtimes(T["w"][2], x, xdot)
+    hold = ca.jtimes(T["w"][part], x, xdot)
     z = ca.vertcat(Fc, tau)
 
     def add(mode, rows, Fc_of, unknowns):
         sol = -ca.solve(ca.jacobian(rows, unknowns), ca.substitute(rows, unknowns, ca.SX.zeros(unknowns.numel())))
-        Fc_m, tau_m = Fc_of(sol), sol[-1]
-        rhs = ca.substitute(xdot, z, ca.vertcat(Fc_m, tau_m))
+        Fc_m, tau_m = Fc_of(sol), sol[sol.numel() - n_tau:]
+        sub = ca.vertcat(Fc_m, tau_m)
+        rhs = ca.substitute(xdot, z, sub)
         tag, R = mode.value, Fc_m[2]
         for name, expr in (("rhs", rhs), ("rhs_jac", ca.jacobian(rhs, x)), ("R", R), ("Rdot", ca.jtimes(R, x, rhs)),
                            ("Fc", Fc_m), ("friction", Fc_m[0:2]), ("motion_rate", ca.jtimes(_motion(T), x, rhs)),
-                           ("pivot_margin", mu_s * mu_s * R * R - tau_m * tau_m), ("pivot_couple", tau_m)):
-            fn[f"{name}_{tag}"] = _function(f"{name}_{tag}", x, p, ca.substitute(expr, z, ca.vertcat(Fc_m, tau_m)))
+                           (f"{kind}_margin", coef * coef * R * R - ca.dot(tau_m, tau_m)), (f"{kind}_couple", tau_m)):
+            fn[f"{name}_{tag}"] = _function(f"{name}_{tag}", x, p, ca.substitute(expr, z, sub))
         w, v = T["w"], T["v"]
-        power = [ca.dot(Fc_m[0:2], slip)] + [law.power(w, v, R, p[i:i + law.n_params]) if law in dict(free)
-                                             else tau_m * w[2] for law, i in _offsets(laws, ns + 4)]
-        fn[f"power_{tag}"] = _function(f"power_{tag}", x, p, ca.substitute(ca.vertcat(*power), z, ca.vertcat(Fc_m, tau_m)))
+        power = [ca.dot(Fc_m[0:2], slip)] + [law.power(w, v, R, p[i:i + law.n_params]) if not isinstance(law, cls)
+                                             else ca.dot(tau_m, w[part]) for law, i in _offsets(laws, ns + 4)]
+        fn[f"power_{tag}"] = _function(f"power_{tag}", x, p, ca.substitute(ca.vertcat(*power), z, sub))
         return Fc_m
 
     # sliding: Fc = Fc0 + R d; the unknowns R and tau
     Fc0, d = law_cls.sliding_force(slip, mu, eps)
     Fc0, d = ca.SX(Fc0), ca.SX(d)
-    R_, t_ = ca.SX.sym("R"), ca.SX.sym("t")
-    sub = ca.vertcat(Fc0 + R_ * d, t_)
-    rows = ca.substitute(ca.vertcat(constraint, hold), z, sub)
-    add(Mode.SLIDING_NO_PIVOT, rows, lambda sol: ca.substitute(Fc0 + R_ * d, ca.vertcat(R_, t_), sol), ca.vertcat(R_, t_))
-    if law_cls.has_rolling_mode:  # rolling: all of Fc and tau
-        Fc_r = add(Mode.ROLLING_NO_PIVOT, ca.vertcat(constraint, ca.jtimes(slip, x, xdot), hold), lambda sol: sol[0:3], z)
-        fn["margin_rolling_no_pivot"] = _function("margin_rolling_no_pivot", x, p,
-                                                  mu * mu * Fc_r[2] ** 2 - Fc_r[0] ** 2 - Fc_r[1] ** 2)
-        return Mode.SLIDING_NO_PIVOT, Mode.ROLLING_NO_PIVOT
+    R_, t_ = ca.SX.sym("R"), ca.SX.sym("t", n_tau)
+    rows = ca.substitute(ca.vertcat(constraint, hold), z, ca.vertcat(Fc0 + R_ * d, t_))
+    add(m_slide, rows, lambda sol: ca.substitute(Fc0 + R_ * d, ca.vertcat(R_, t_), sol), ca.vertcat(R_, t_))
+    if law_cls.has_rolling_mode:  # zero slip too: all of Fc and tau
+        Fc_r = add(m_roll, ca.vertcat(constraint, ca.jtimes(slip, x, xdot), hold), lambda sol: sol[0:3], z)
+        fn[f"margin_{m_roll.value}"] = _function(f"margin_{m_roll.value}", x, p,
+                                                 mu * mu * Fc_r[2] ** 2 - Fc_r[0] ** 2 - Fc_r[1] ** 2)
+        return m_slide, m_roll
     if law_cls.can_stick:  # a regularised law: its "rolling" is its sliding field
-        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction", "motion_rate", "pivot_margin", "pivot_couple",
+        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction", "motion_rate", f"{kind}_margin", f"{kind}_couple",
                      "power"):
-            fn[f"{name}_rolling_no_pivot"] = fn[f"{name}_sliding_no_pivot"]
-        return Mode.SLIDING_NO_PIVOT, Mode.ROLLING_NO_PIVOT
-    return (Mode.SLIDING_NO_PIVOT,)
+            fn[f"{name}_{m_roll.value}"] = fn[f"{name}_{m_slide.value}"]
+        return m_slide, m_roll
+    return (m_slide,)
 
 
 def _offsets(laws, first):
@@ -322,10 +336,13 @@ def _build_rest(fn, T, x, p, ns, laws) -> None:
         i += law.n_params
     # |x_P|: the horizontal distance of G from the contact point, the weight's lever arm
     fn["rest_margin"] = _function("rest_margin", x, p, delta - T["lever"])
-    # spin friction: the spin about the normal |w_Z| falls to PIVOT_STICK (see resets.PivotStick)
-    # (CasADi turns sqrt(w_Z^2) into fabs, which heyoka cannot take; 1e-40 is far below rounding)
-    fn["pivot_guard"] = _function("pivot_guard", x, p, ca.sqrt(T["w"][2] ** 2 + 1e-40) - PIVOT_STICK)
-    fn["pivot_spin"] = _function("pivot_spin", x, p, T["w"][2])
+    # the held parts of w: |w_Z| (spin friction) and |w_h| (rolling resistance) fall to HOLD_RATE
+    # (see resets.Hold); CasADi turns sqrt(w_Z^2) into fabs, which heyoka cannot take: 1e-40 is
+    # far below rounding
+    for kind, (_, _, part) in HELD.items():
+        speed = ca.sqrt(ca.sumsqr(T["w"][part]) + 1e-40)
+        fn[f"{kind}_speed"] = _function(f"{kind}_speed", x, p, speed)
+        fn[f"{kind}_guard"] = _function(f"{kind}_guard", x, p, speed - HOLD_RATE)
 
 
 def _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu) -> None:

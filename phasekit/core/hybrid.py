@@ -40,12 +40,16 @@ class Mode(str, enum.Enum):
     SLIDING_NO_PIVOT, ROLLING_NO_PIVOT : Mode
         Values "sliding_no_pivot", "rolling_no_pivot": as SLIDING and ROLLING, with the spin
         about the normal held at zero by spin friction (:class:`phasekit.SpinFriction`).
+    SLIDING_NO_ROLL, PIVOTING : Mode
+        Values "sliding_no_roll", "pivoting": as SLIDING and ROLLING, with the rolling part of
+        the angular velocity held at zero by rolling resistance (:class:`phasekit.RollingResistance`);
+        without slip the body then only spins about the normal, in place.
 
     Examples
     --------
     >>> import phasekit as pk
     >>> [m.value for m in pk.core.Mode]
-    ['sliding', 'rolling', 'flight', 'sliding_no_pivot', 'rolling_no_pivot']
+    ['sliding', 'rolling', 'flight', 'sliding_no_pivot', 'rolling_no_pivot', 'sliding_no_roll', 'pivoting']
     """
 
     SLIDING = "sliding"
@@ -53,19 +57,27 @@ class Mode(str, enum.Enum):
     FLIGHT = "flight"
     SLIDING_NO_PIVOT = "sliding_no_pivot"
     ROLLING_NO_PIVOT = "rolling_no_pivot"
+    SLIDING_NO_ROLL = "sliding_no_roll"
+    PIVOTING = "pivoting"
 
     @property
-    def pivoting(self) -> "Mode":
-        """The mode with the spin about the normal free (SLIDING for SLIDING_NO_PIVOT, ...)."""
-        return {Mode.SLIDING_NO_PIVOT: Mode.SLIDING, Mode.ROLLING_NO_PIVOT: Mode.ROLLING}.get(self, self)
+    def free(self) -> "Mode":
+        """The mode with nothing held by spin friction or rolling resistance (SLIDING for
+        SLIDING_NO_PIVOT, ROLLING for PIVOTING, ...)."""
+        return _FREE.get(self, self)
 
-    @property
-    def no_pivot(self) -> "Mode":
-        """The mode with the spin about the normal held (SLIDING_NO_PIVOT for SLIDING, ...)."""
-        return {Mode.SLIDING: Mode.SLIDING_NO_PIVOT, Mode.ROLLING: Mode.ROLLING_NO_PIVOT}.get(self, self)
+    def held(self, kind: str) -> "Mode":
+        """The mode with ``kind`` ("pivot" or "roll") held, from SLIDING or ROLLING."""
+        return _HELD.get((self, kind), self)
 
     def __str__(self) -> str:
         return self.value
+
+
+_FREE = {Mode.SLIDING_NO_PIVOT: Mode.SLIDING, Mode.ROLLING_NO_PIVOT: Mode.ROLLING, Mode.SLIDING_NO_ROLL: Mode.SLIDING,
+         Mode.PIVOTING: Mode.ROLLING}
+_HELD = {(Mode.SLIDING, "pivot"): Mode.SLIDING_NO_PIVOT, (Mode.ROLLING, "pivot"): Mode.ROLLING_NO_PIVOT,
+         (Mode.SLIDING, "roll"): Mode.SLIDING_NO_ROLL, (Mode.ROLLING, "roll"): Mode.PIVOTING}
 
 
 @dataclass(frozen=True)

@@ -12,8 +12,9 @@ lift-off   contact -> FLIGHT: positions and velocities carry over (R = 0, so the
 touchdown  FLIGHT -> contact or FLIGHT: the impact law (:mod:`phasekit.core.impact`); a rebound
            slower than BOUNCE_STOP ends a bounce train, and so does a ballistic train with more
            than BOUNCE_TAIL rebounds left (:func:`bounce_tail`).
-pivot      spin friction: the spin about the normal stops and is held (PivotStick, into the
-           NO_PIVOT modes) while the couple needed is <= mu_s R, then restarts (PivotSlip).
+hold       spin friction stops the spin about the normal, rolling resistance the rolling, and
+           holds it (Hold, into the modes with it held) while the couple needed is within the
+           law's bound, then lets it go (Release).
 rest       with dissipation laws: every motion stopped where rolling resistance holds the body
            (:class:`Rest`); the run ends there with status "rest".
 The regularised law's "stick" and "slip" only change the mode (the field is the same).
@@ -28,7 +29,7 @@ import numpy as np
 
 from .._runtime.errors import Status
 from .charts import FLIGHT, VECTOR, euler_to_vector
-from .fields import PIVOT_STICK, REST_SPEED, STICK_SLIP
+from .fields import HOLD_RATE, REST_SPEED, STICK_SLIP
 from .hybrid import Mode, Record, Transition
 from .impact import _impact
 
@@ -49,11 +50,11 @@ __all__ = [
     "SlipOnset",
     "SwitchMode",
     "Rest",
-    "PivotStick",
-    "PivotSlip",
-    "PivotHold",
-    "hold_pivot",
-    "PIVOT_ONSET",
+    "Hold",
+    "Release",
+    "Held",
+    "hold",
+    "HOLD_ONSET",
     "LiftOff",
     "Touchdown",
 ]
@@ -272,30 +273,36 @@ class Rest:
                           reason=f"at rest at t = {t + dt:.10g}: every motion stopped", carried=True)
 
 
-#: the spin about the normal given to a body whose pivoting starts from zero (units sqrt(g/b)): as
-#: for SLIP_ONSET, the regularised couple is stiff while |w_Z| < SIGN_EPS, which this skips at the
-#: price of a 1e-6 jump of w_Z (its energy is counted in the budget's at_events)
-PIVOT_ONSET = 1e-6
+#: the rate given to the held part of w (the spin about the normal, or the rolling part) when the
+#: law lets it go (units sqrt(g/b)): as for SLIP_ONSET, the regularised couple is stiff while the
+#: rate is below SIGN_EPS, which this skips at the price of a 1e-6 jump of that rate (its energy
+#: is counted in the budget's at_events)
+HOLD_ONSET = 1e-6
+#: what each held part is called in the event log
+_WORDS = {"pivot": ("pivot", "the spin about the normal", "mu_s R"), "roll": ("roll", "the rolling", "delta R")}
 
 
 @dataclass(frozen=True)
-class PivotStick:
-    """Spin friction: the spin about the normal |w_Z| fell to PIVOT_STICK. Extrapolate to its
-    zero (it falls linearly under the set-valued couple); hold it there (the NO_PIVOT mode)
-    where the couple that holds it is <= mu_s R, else it passes through zero and the couple
-    reverses."""
+class Hold:
+    """Spin friction ("pivot": the spin about the normal |w_Z|) or rolling resistance ("roll": the
+    rolling part |w_h|): the rate fell to HOLD_RATE. Extrapolate to its zero (it falls linearly
+    under the set-valued couple); hold it there (the mode with it held) where the couple that
+    holds it is within the law's bound, else it passes through zero and the couple reverses."""
+
+    kind: str
 
     def __call__(self, model, event, mode, t, x) -> Transition:
-        wz = float(model.function("pivot_spin")(x, model.p))
-        rate = float(model.function(f"pivot_rate_{mode.value}")(x, model.p))
-        if wz * rate >= 0:  # grazed: the spin is not vanishing
+        speed = float(model.function(f"{self.kind}_speed")(x, model.p))
+        rate = float(model.function(f"{self.kind}_rate_{mode.value}")(x, model.p))
+        if rate >= 0:  # grazed: the rate is not vanishing
             return Transition(mode, t, x, resume=True)
-        dt = -wz / rate
+        dt = speed / -rate
         x_s = x + dt * model._rhs(x, mode)
-        tr = hold_pivot(model, Transition(mode, t + dt, x_s))
+        tr = hold(model, Transition(mode, t + dt, x_s), kinds=(self.kind,), level=np.inf)
         if tr.mode is mode:  # the couple cannot hold it: it passes through zero
             return Transition(mode, t, x, resume=True)
-        rec = Record("pivot stick", mode.value, tr.mode.value, x_s, "the spin about the normal stopped: |tau| <= mu_s R")
+        word, what, bound = _WORDS[self.kind]
+        rec = Record(f"{word} stick", mode.value, tr.mode.value, x_s, f"{what} stopped: |tau| <= {bound}")
         if float(model.function("motion")(x_s, model.p)) < REST_SPEED:  # it was all that moved
             rest = Rest()(model, event, mode, t, x)
             if rest.stop is not None:
@@ -304,39 +311,47 @@ class PivotStick:
 
 
 @dataclass(frozen=True)
-class PivotSlip:
-    """A NO_PIVOT mode: the couple holding the spin about the normal reached mu_s R; pivoting
-    starts against it, at |w_Z| = PIVOT_ONSET."""
+class Release:
+    """A mode with a part of w held: the couple holding it reached the law's bound; that part
+    starts to turn against the couple, at the rate HOLD_ONSET."""
+
+    kind: str
 
     def __call__(self, model, event, mode, t, x) -> Transition:
-        tau = float(model.function(f"pivot_couple_{mode.value}")(x, model.p))
-        free = mode.pivoting
-        x_new = model.chart.with_pivot(x, -math.copysign(PIVOT_ONSET, tau))
+        tau = np.atleast_1d(np.asarray(model.function(f"{self.kind}_couple_{mode.value}")(x, model.p), dtype=float).ravel())
+        free = mode.free
+        norm = float(np.linalg.norm(tau))
+        push = -HOLD_ONSET * tau / norm if norm > 0 else np.zeros_like(tau)
+        x_new = model.chart.with_pivot(x, float(push[0])) if self.kind == "pivot" else model.chart.with_roll(x, push)
         if free is Mode.ROLLING:
             x_new = project_no_slip(model, x_new)
-        return Transition(free, t, x_new, (Record("pivot slip", mode.value, free.value, x_new, "|tau| reached mu_s R"),))
+        word, _, bound = _WORDS[self.kind]
+        return Transition(free, t, x_new, (Record(f"{word} slip", mode.value, free.value, x_new, f"|tau| reached {bound}"),))
 
 
-def hold_pivot(model, tr: Transition) -> Transition:
-    """``tr`` into SLIDING or ROLLING with the spin about the normal already stopped and
-    holdable by spin friction goes to the NO_PIVOT mode instead."""
+def hold(model, tr: Transition, kinds=("pivot", "roll"), level: float = HOLD_RATE) -> Transition:
+    """``tr`` into SLIDING or ROLLING with the spin about the normal (or the rolling) already
+    stopped (below ``level``) and holdable by its law goes to the mode with it held instead."""
     if tr.stop is not None or tr.resume or tr.mode not in (Mode.SLIDING, Mode.ROLLING):
         return tr
-    if abs(float(model.function("pivot_spin")(tr.x, model.p))) > PIVOT_STICK:
-        return tr
-    held = tr.mode.no_pivot
-    if float(model.function(f"pivot_margin_{held.value}")(tr.x, model.p)) < 0.0:
-        return tr
-    if held is Mode.ROLLING_NO_PIVOT and model.friction.has_rolling_mode \
-            and float(model.function("margin_rolling_no_pivot")(tr.x, model.p)) < 0.0:
-        return tr
-    return replace(tr, mode=held, records=tuple(replace(r, mode_after=held.value) if r.mode_after == tr.mode.value
-                                                else r for r in tr.records))
+    for kind in kinds:
+        held = tr.mode.held(kind)
+        if held not in model.modes or float(model.function(f"{kind}_speed")(tr.x, model.p)) > level:
+            continue
+        if float(model.function(f"{kind}_margin_{held.value}")(tr.x, model.p)) < 0.0:
+            continue
+        if tr.mode is Mode.ROLLING and model.friction.has_rolling_mode \
+                and float(model.function(f"margin_{held.value}")(tr.x, model.p)) < 0.0:
+            continue
+        return replace(tr, mode=held, records=tuple(replace(r, mode_after=held.value) if r.mode_after == tr.mode.value
+                                                    else r for r in tr.records))
+    return tr
 
 
 @dataclass(frozen=True)
-class PivotHold:
-    """A reset whose transition passes through :func:`hold_pivot` (models with spin friction)."""
+class Held:
+    """A reset whose transition passes through :func:`hold` (models with spin friction or rolling
+    resistance)."""
 
     inner: object
 
@@ -345,7 +360,7 @@ class PivotHold:
         return getattr(self.inner, "uses_log", False)
 
     def __call__(self, model, event, mode, t, x, **kw) -> Transition:
-        return hold_pivot(model, self.inner(model, event, mode, t, x, **kw))
+        return hold(model, self.inner(model, event, mode, t, x, **kw))
 
 
 #: a lever arm this far beyond delta is rounding, not a push off the rest state

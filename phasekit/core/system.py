@@ -21,10 +21,10 @@ from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
 from .resets import (
     BOUNCE_STOP,
     BOUNCE_TAIL,
+    Held,
+    Hold,
     LiftOff,
-    PivotHold,
-    PivotSlip,
-    PivotStick,
+    Release,
     Rest,
     SlipOnset,
     Stick,
@@ -32,7 +32,7 @@ from .resets import (
     Touchdown,
     contact_start,
     flight_start_state,
-    hold_pivot,
+    hold,
 )
 
 __all__ = ["declare", "STOP_AT", "STIFF_RATE", "GUARD_DELAY"]
@@ -61,17 +61,17 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     restitution = check_range("restitution", restitution, 0.0, 1.0, closed="lr")
     law = model.friction
     stiff = law.can_stick and not law.has_rolling_mode and law.mu / law.eps > STIFF_RATE
-    pivot = Mode.SLIDING_NO_PIVOT in model.modes  # spin friction can hold the spin about the normal
-    hold = PivotHold if pivot else _same
+    held = [m for m in model.modes if m.free is not m]  # spin friction, rolling resistance hold parts of w
+    hold = Held if held else _same
     flows = (
         Flow(Mode.SLIDING, "rhs_sliding", monitor=("Rdot", +1)),
         Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1), stiff=stiff),
         Flow(Mode.FLIGHT, "rhs_flight", monitor=("gap_rate", -1), engine="taylor", contact=False),
-    ) + ((Flow(Mode.SLIDING_NO_PIVOT, "rhs_sliding_no_pivot", monitor=("Rdot", +1)),
-          Flow(Mode.ROLLING_NO_PIVOT, "rhs_rolling_no_pivot", monitor=("Rdot", +1), stiff=stiff)) if pivot else ())
+    ) + tuple(Flow(m, f"rhs_{m.value}", monitor=("Rdot", +1), stiff=stiff and m.free is Mode.ROLLING) for m in held)
     jump_ends = stop_at == "jump"
     contact = frozenset(f.mode for f in flows if f.contact)
-    sliding, rolling = {Mode.SLIDING, Mode.SLIDING_NO_PIVOT}, {Mode.ROLLING, Mode.ROLLING_NO_PIVOT}
+    sliding = {m for m in contact if m.free is Mode.SLIDING}
+    rolling = {m for m in contact if m.free is Mode.ROLLING}
     evs = [Event("R", name="lift-off", direction=-1, modes=contact, rate="Rdot", stop=Status.JUMPED,
                  reset=None if jump_ends else LiftOff())]
     if law.can_stick:
@@ -81,18 +81,18 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
                 Event("stick_guard_sq", name="stick", direction=-1, modes=sliding, reset=to_roll,
                       rate="slip_speed2_rate")]
         if law.has_rolling_mode:
-            evs.append(Event("margin_rolling", name="slip", direction=-1, modes={Mode.ROLLING}, reset=hold(SlipOnset())))
-            if pivot:
-                evs.append(Event("margin_rolling_no_pivot", name="slip", direction=-1, modes={Mode.ROLLING_NO_PIVOT},
-                                 reset=hold(SlipOnset())))
+            evs += [Event("margin_rolling" if m is Mode.ROLLING else f"margin_{m.value}", name="slip", direction=-1,
+                          modes={m}, reset=hold(SlipOnset())) for m in sorted(rolling, key=list(Mode).index)]
         else:
             evs.append(Event("unstick_guard", name="slip", direction=-1, modes=rolling,
                              reset=hold(SwitchMode(Mode.SLIDING, "slip", "slip > 100 eps (regularised)"))))
-    if pivot:  # spin friction stops the spin about the normal, holds it, lets it go (see resets)
-        evs.append(Event("pivot_guard", name="pivot stick", direction=-1, modes={Mode.SLIDING, Mode.ROLLING},
-                         reset=PivotStick()))
-        evs += [Event(f"pivot_margin_{m.value}", name="pivot slip", direction=-1, modes={m}, reset=PivotSlip())
-                for m in (Mode.SLIDING_NO_PIVOT, Mode.ROLLING_NO_PIVOT) if m in model.modes]
+    for kind in ("pivot", "roll"):  # a set-valued law stops its part of w, holds it, lets it go (resets)
+        kept = [m for m in held if m in (Mode.SLIDING.held(kind), Mode.ROLLING.held(kind))]
+        if kept:
+            evs.append(Event(f"{kind}_guard", name=f"{kind} stick", direction=-1, modes={Mode.SLIDING, Mode.ROLLING},
+                             reset=Hold(kind)))
+            evs += [Event(f"{kind}_margin_{m.value}", name=f"{kind} slip", direction=-1, modes={m}, reset=Release(kind))
+                    for m in kept]
     if law.dissipation:  # the body comes to rest in finite time (see resets.Rest)
         evs.append(Event("rest_guard", name="rest", direction=-1, modes=contact, reset=Rest(), stop=Status.REST))
     evs.append(Event("gap", name="touchdown", direction=-1, modes={Mode.FLIGHT}, arm_after=GUARD_DELAY,
@@ -102,14 +102,14 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
         if not isinstance(ev, Event):
             raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
         evs.append(ev)
-    return HybridSystem(flows, tuple(evs), _initial(stop_at, stiff, pivot))
+    return HybridSystem(flows, tuple(evs), _initial(stop_at, stiff, bool(held)))
 
 
 def _same(reset):
     return reset
 
 
-def _initial(stop_at: str, stiff: bool, pivot: bool = False):
+def _initial(stop_at: str, stiff: bool, held: bool = False):
     def initial(model, t, x, mode=None):
         """Start in contact (the mode from the slip), or in flight when asked; a contact
         state that would need R <= 0 lifts off at once."""
@@ -118,10 +118,10 @@ def _initial(stop_at: str, stiff: bool, pivot: bool = False):
         speed, R = np.asarray(model.function("start_probe")(x, model.p)).ravel()
         if speed > STICK_SLIP + 10 * model.friction.eps and R > 0.0:  # the common case, in one call
             tr = Transition(Mode.SLIDING, t, x)
-            return hold_pivot(model, tr) if pivot else tr
+            return hold(model, tr) if held else tr
         start = contact_start(model, t, x, stiff=stiff)
-        if pivot:
-            start = hold_pivot(model, start)
+        if held:
+            start = hold(model, start)
         if start.stop is not None or float(model._evaluate("R", start.x, start.mode)) > 0.0:
             return start
         rec = start.records + (Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 at start"),)

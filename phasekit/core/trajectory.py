@@ -337,7 +337,7 @@ class Trajectory:
     @property
     def stuck(self) -> bool:
         """Whether the body ever held zero slip (rolling mode, a stick, a regularised start below 10 eps)."""
-        if any(s.mode.pivoting is Mode.ROLLING for s in self.segments) or self.events_named("stick"):
+        if any(s.mode.free is Mode.ROLLING for s in self.segments) or self.events_named("stick"):
             return True
         law = self.model.friction
         if law.can_stick and not law.has_rolling_mode and self.segments and self.segments[0].mode is not Mode.FLIGHT:

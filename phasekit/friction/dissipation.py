@@ -22,8 +22,9 @@ The sign laws are set-valued at zero rate (stick in spin, stick in rolling). pha
 spin friction's as x/sqrt(x^2 + eps^2) and rolling resistance's as x|x|^2/(|x|^2 + eps^2)^(3/2)
 (flat at zero, so a rolling part that is zero up to rounding meets no stiff couple), with
 eps = 1e-9 (a rate in units sqrt(g/b)): each couple differs from the set-valued law by a
-relative (eps/|x|)^2/2 or 3 (eps/|x|)^2/2, below 2e-8 for rates above 1e-8 (every event
-that stops a rate fires at 1e-7 or above). Where spin friction stops the spin about the
+relative (eps/|x|)^2/2 or 3 (eps/|x|)^2/2, below 2e-8 for rates above 1e-5; below that the
+couple falls short by up to 1e-4 (at 1e-7, where the rest event fires) over the last
+~1e-5/|dx/dt| of the approach, which the events then extrapolate to the exact zero. Where spin friction stops the spin about the
 normal it holds it exactly (the modes ``sliding_no_pivot``, ``rolling_no_pivot``); the body's
 coming to rest, where every rate vanishes together, is an event whose time is extrapolated to
 the exact zero of the motion (:mod:`phasekit.core.system`). Not modelled: rolling held at zero

@@ -20,7 +20,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 STUDIES = sorted(p.name for p in (ROOT / "studies").glob("*.py"))
 ENV = {**os.environ, "PYTHONPATH": str(ROOT), "MPLBACKEND": "Agg"}
-RESUMABLE = {"egg.py", "steady_structure.py", "outcome_map.py", "paper_pairs.py", "threshold_vs_aspect.py", "threshold_vs_mu.py", "tippe_top.py"}
+RESUMABLE = {"egg.py", "steady_structure.py", "outcome_map.py", "paper_pairs.py", "threshold_vs_aspect.py", "threshold_vs_mu.py", "tippe_top.py",
+             "spin_down.py"}
 # (study, arguments, the flag the message must name, text the message must contain)
 BAD_NUMBERS = [
     ("figure5_gap.py", ["--seed", "-1"], "--seed", "an integer >= 0, got -1"),

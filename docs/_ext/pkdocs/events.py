@@ -23,10 +23,14 @@ def _guards():
         "margin_rolling": "mu^2 R^2 - |F_req|^2 = 0: the friction rolling needs reaches mu R",
         "unstick_guard": "|u| = 100 eps",
         "rest_guard": f"sqrt(|w|^2 + |v|^2) = {m.REST_SPEED:g} (the speed of the whole motion)",
-        "pivot_guard": f"|w_Z| = {m.PIVOT_STICK:g} (the spin about the normal)",
+        "pivot_guard": f"|w_Z| = {m.HOLD_RATE:g} (the spin about the normal)",
         "pivot_margin_sliding_no_pivot": "mu_s^2 R^2 - tau^2 = 0: the couple holding w_Z = 0 reaches mu_s R",
         "pivot_margin_rolling_no_pivot": "mu_s^2 R^2 - tau^2 = 0 (rolling, the spin about the normal held)",
         "margin_rolling_no_pivot": "mu^2 R^2 - |F_req|^2 = 0 (rolling with the spin about the normal held)",
+        "roll_guard": f"|w_h| = {m.HOLD_RATE:g} (the rolling part of the angular velocity)",
+        "roll_margin_sliding_no_roll": "delta^2 R^2 - |tau|^2 = 0: the couple holding w_h = 0 reaches delta R",
+        "roll_margin_pivoting": "delta^2 R^2 - |tau|^2 = 0 (pivoting in place, the rolling held)",
+        "margin_pivoting": "mu^2 R^2 - |F_req|^2 = 0 (pivoting in place without slip)",
     }
 
 
@@ -56,10 +60,10 @@ def _first_line(obj) -> str:
 def _outcome(ev) -> str:
     if ev.reset is None:
         return f"stop, status `{ev.stop.value}`" if ev.terminal else "recorded, the run goes on"
-    inner = getattr(ev.reset, "inner", None)  # a reset wrapped by PivotHold (spin friction)
+    inner = getattr(ev.reset, "inner", None)  # a reset wrapped by Held (spin friction, rolling resistance)
     if inner is not None:
-        return (f"`{type(inner).__name__}`: {_first_line(inner)} Then `PivotHold`: a contact mode entered with "
-                "the spin about the normal stopped and holdable becomes its no-pivot mode.")
+        return (f"`{type(inner).__name__}`: {_first_line(inner)} Then `Held`: a contact mode entered with the "
+                "spin about the normal (or the rolling) stopped and holdable becomes the mode with it held.")
     return f"`{type(ev.reset).__name__}`: {_first_line(ev.reset)}"
 
 
@@ -94,7 +98,8 @@ def _integrators(sys_, ev) -> set[str]:
     return found
 
 
-ORDER = ("lift-off", "stick", "slip", "pivot stick", "pivot slip", "rest", "touchdown", "a user's event")
+ORDER = ("lift-off", "stick", "slip", "pivot stick", "pivot slip", "roll stick", "roll slip", "rest", "touchdown",
+         "a user's event")
 
 
 def event_table() -> str:
