@@ -20,7 +20,7 @@ from ._runtime import startup as _startup  # noqa: F401  (first: Ctrl-C during t
 # isort: split
 from . import baseline, bodies, core, friction, io, steady, sweep, theory, thresholds  # noqa: F401  (the public namespaces)
 from ._runtime.errors import ConvergenceError, ParameterError, PhasekitError, SearchStatus, Status, WorkerError
-from .bodies import CustomBody, EccentricSphere, Egg, Spheroid
+from .bodies import CustomBody, Disk, EccentricSphere, Egg, Spheroid
 from .core import (
     Event,
     Model,
@@ -53,7 +53,7 @@ def __getattr__(name):
 
 __all__ = [
     # bodies and friction laws
-    "Spheroid", "EccentricSphere", "Egg", "CustomBody", "Coulomb", "RegularisedCoulomb", "Viscous",
+    "Spheroid", "EccentricSphere", "Egg", "Disk", "CustomBody", "Coulomb", "RegularisedCoulomb", "Viscous",
     "RollingResistance", "SpinFriction", "AirDrag",
     # the model, simulations and their starts
     "Model", "Event", "SolverOptions", "simulate", "ensemble", "rerun",

@@ -12,7 +12,8 @@ Examples
 
 from .body import Body
 from .custom import CustomBody
+from .edged import Disk
 from .egg import Egg
 from .spheroid import EccentricSphere, Spheroid
 
-__all__ = ["Body", "Spheroid", "EccentricSphere", "Egg", "CustomBody"]
+__all__ = ["Body", "Spheroid", "EccentricSphere", "Egg", "Disk", "CustomBody"]

@@ -25,7 +25,7 @@ FLAGS = {
     "panel": "--panel", "timing": "--timing", "window_size": "--window-size", "path": "OUT", "mass": "--mass",
     "rolling_resistance": "--rolling-resistance", "spin_friction": "--spin-friction", "air_drag": "--air-drag",
     "air_drag_quadratic": "--air-drag-quadratic", "air_drag_force": "--air-drag-force",
-    "air_drag_force_quadratic": "--air-drag-force-quadratic",
+    "air_drag_force_quadratic": "--air-drag-force-quadratic", "thickness": "--thickness", "radius": "--radius",
 }
 #: API parameters that more than one flag feeds: (flag typed, name to print), the first typed one wins
 #: (e.g. `n0` is --spin-about-vertical's value in that start, and theta its --theta0)
@@ -35,6 +35,7 @@ SOURCES = {
     "theta": (("--state", "--state (theta)"), ("--theta0", "--theta0")),
     "Omega": (("--state", "--state (Omega)"), ("--spin-about-vertical", "--spin-about-vertical")),
     "n": (("--state", "--state (n)"), ("--spin-about-vertical", "--spin-about-vertical")),
+    "b": (("--radius", "--radius"), ("--size", "--size")),  # a disk's radius is its unit of length
 }
 
 

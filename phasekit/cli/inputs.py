@@ -24,7 +24,7 @@ def _body(args):
     from ..core.model import make_body
 
     try:
-        body = make_body(args.body, a=args.a, offset=args.offset, w=args.w, A=args.A, C=args.C)
+        body = make_body(args.body, a=args.a, offset=args.offset, w=args.w, thickness=args.thickness, A=args.A, C=args.C)
     except ParameterError as exc:
         _moments_relation(args, exc)
         raise
@@ -45,7 +45,7 @@ def _moments_relation(args, exc) -> None:
     if exc.param != "C" or "C <= 2A" not in exc.expected or (args.A is None and args.C is None):
         return
     try:  # the body's own moments, where a flag leaves one out
-        own = make_body(args.body, a=args.a, offset=args.offset, w=args.w)
+        own = make_body(args.body, a=args.a, offset=args.offset, w=args.w, thickness=args.thickness)
     except ValueError:
         return
     A, C = (own.A if args.A is None else args.A), (own.C if args.C is None else args.C)
@@ -80,21 +80,31 @@ def _dissipation_of(args) -> dict:
 #: options that take a value with units: dest -> kind (angles need no --size; the dissipation laws'
 #: coefficients are kinds of phasekit.Scale of their own, air drag's need --mass)
 UNIT_OPTIONS = {"theta0": "angle", "omega0": "rate", "n0": "rate", "spin_about_vertical": "rate", "t_end": "time",
-                "psi0": "angle", "phi0": "angle", "X0": "length", "Y0": "length",
+                "psi0": "angle", "phi0": "angle", "X0": "length", "Y0": "length", "thickness": "length",
                 **{dest: dest for dest in DISSIPATION_FLAGS}}
 
 
 def _scale_of(args):
-    """The Scale of --size and --g, or None without --size."""
+    """The Scale of --size (or a disk's --radius) and --g, or None without either."""
     from ..core.units import STANDARD_GRAVITY, Scale
 
-    if args.size is None:
+    radius = getattr(args, "radius", None)
+    if radius is not None:
+        if args.body != "disk":
+            raise _UsageError(f"--radius is a disk's radius (with --body disk); the unit of length of the {args.body} "
+                              f"body is --size, got --radius {radius!r}.", "--radius")
+        if args.size is not None:
+            raise _UsageError(f"--radius and --size both set the unit of length b (the disk's radius): give one of them, "
+                              f"got --radius {radius!r} and --size {args.size!r}.", "--radius")
+    b = args.size if args.size is not None else radius
+    if b is None:
+        size = "--radius (the disk's radius, e.g. --radius '3.7 cm')" if args.body == "disk" else \
+            "--size (the body's unit of length, e.g. --size '21.5 mm')"
         for flag, value in (("--g", args.g), ("--mass", getattr(args, "mass", None))):
             if value is not None:
-                raise _UsageError(f"{flag} needs --size (the body's unit of length, e.g. --size '21.5 mm'), got "
-                                  f"{value!r}.", flag)
+                raise _UsageError(f"{flag} needs {size}, got {value!r}.", flag)
         return None
-    return Scale(args.size, g=STANDARD_GRAVITY if args.g is None else args.g, mass=getattr(args, "mass", None))
+    return Scale(b, g=STANDARD_GRAVITY if args.g is None else args.g, mass=getattr(args, "mass", None))
 
 
 def _apply_units(args):
@@ -116,12 +126,16 @@ def _apply_units(args):
                                   f"{str(value)!r}.", flag)
             setattr(args, dest, float(q.to("rad").magnitude))
         elif scale is None:
-            raise _UsageError(f"{flag} {str(value)!r} has units: give the body's size with --size (e.g. --size "
-                              f"'21.5 mm') to express it in units of b and sqrt(b/g), or type a plain number.", flag)
+            size = "the disk's radius with --radius (e.g. --radius '3.7 cm')" if args.body == "disk" else \
+                "the body's size with --size (e.g. --size '21.5 mm')"
+            raise _UsageError(f"{flag} {str(value)!r} has units: give {size} to express it in units of b and sqrt(b/g), "
+                              f"or type a plain number.", flag)
         else:
             setattr(args, dest, _in_phasekit_units(scale, str(value), kind, dest))
     if getattr(args, "si", False) and scale is None:
-        raise _UsageError("--si needs --size (the body's unit of length, e.g. --size '21.5 mm').", "--si")
+        size = "--radius (the disk's radius, e.g. --radius '3.7 cm')" if args.body == "disk" else \
+            "--size (the body's unit of length, e.g. --size '21.5 mm')"
+        raise _UsageError(f"--si needs {size}.", "--si")
     return scale
 
 
@@ -165,7 +179,7 @@ def _paper_body(args) -> None:
     which = f"with --paper-start {label} (its body is the uniform spheroid a = {case.a:.6g})"
     if args.body != "spheroid":
         raise _UsageError(f"--body must be spheroid {which}, got {plain(args.body)}.", "--body")
-    for name in ("A", "C", "offset", "w"):
+    for name in ("A", "C", "offset", "w", "thickness"):
         if getattr(args, name) is not None:
             raise _UsageError(f"{FLAGS[name]} must be left out {which}, got {plain(getattr(args, name))}.", FLAGS[name])
     if args.a is None:

@@ -13,6 +13,7 @@ from .._runtime.errors import ParameterError
 from .._runtime.validate import check_choice, check_finite, check_range
 from .._runtime.watch import check_max_wall, wall_deadline
 from ..bodies.body import Body
+from ..bodies.edged import EdgedBody
 from ..bodies.spheroid import Spheroid
 from ..core.charts import choose_chart
 from ..core.hybrid import Event
@@ -86,10 +87,23 @@ def _start(body, law, start: dict, chart: str):
     else:
         # the Euler chart only if asked for: "auto" takes a state at a pole into the vector chart
         y0 = raw_start(start["state"], chart="euler" if chart == "euler" else "vector")
+    _check_range_of(body, float(y0[4]), "theta" if kind == "state" else "theta0")
     chart = choose_chart(float(y0[4]), chart)
     if chart == "euler":
         raw_start(y0, chart="euler")  # theta strictly inside (0, pi)
     return Model(body, law, chart), to_chart(chart, y0), None
+
+
+def _check_range_of(body, theta: float, name: str) -> None:
+    """A body with an edge is modelled on an open range of theta only (:mod:`phasekit.bodies.edged`):
+    refuse a start outside it, naming ``name`` (beyond it another part of the body touches the table)."""
+    if not isinstance(body, EdgedBody):
+        return
+    lo, hi = body.theta_range
+    if not lo < theta < hi:
+        label, why = (("(0, pi)", "at 0 and pi it lies flat") if hi == np.pi else
+                      ("(0, pi/2)", "at 0 it lies flat, at pi/2 its side touches the table"))
+        raise ParameterError(name, f"must lie in {label} for this {body.kind} ({why})", theta)
 
 
 def run_start(*, body: Body, friction="coulomb", mu, slip_eps=None, start: dict, t_end=200.0, stop_at="jump",

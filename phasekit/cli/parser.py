@@ -21,6 +21,8 @@ EXAMPLES = """examples:
   phasekit simulate --a 1.5 --mu 0.1 --state 0 0 0 0 1.0 0 --t-end 5
   phasekit simulate --body tippe-top --offset 0.3 --A 0.38 --C 0.4 --mu 0.3 --slip-eps 1e-8 \\
       --theta0 0.1 --spin-about-vertical 15 --stop-at theta=0.4 --t-end 30 --rtol 1e-10 --json
+  phasekit simulate --body disk --radius "3.7 cm" --thickness "1.2 cm" --mu 0.5 --theta0 "60 deg" \\
+      --spin-about-vertical "5 rev/s" --t-end "2 s"
   phasekit fixed-points --a 1.5 --mu 0.1 --omega0 10 --json
   phasekit steady-states --body spheroid --a 1.5 --offset 0.2 --mu 0.1 --friction viscous
   phasekit steady-states --body tippe-top --offset 0.3 --A 0.38 --C 0.4 --mu 0.3 --json
@@ -190,13 +192,24 @@ def _count(text: str) -> int:
     return int(value)
 
 
-def _add_body(p):
-    g = p.add_argument_group("body (units: mass M, length b = equatorial radius or ball radius, time sqrt(b/g))")
-    g.add_argument("--body", default="spheroid", help="spheroid | tippe-top | egg (default: %(default)s)")
+def _add_body(p, units: bool = False):
+    """The body's flags; with ``units`` (simulate, animate) the disk's --thickness may be typed with
+    units and --radius gives its radius (the unit of length, as --size)."""
+    g = p.add_argument_group("body (units: mass M, length b = equatorial radius, ball radius or disk radius, time "
+                             "sqrt(b/g))")
+    g.add_argument("--body", default="spheroid", help="spheroid | tippe-top | egg | disk (default: %(default)s)")
     g.add_argument("--a", type=_real, default=None, help="aspect ratio: spheroid semi-axes (1, 1, a), egg length/breadth")
     g.add_argument("--offset", type=_real, default=None, help="tippe-top: centre of mass below the ball's centre, in [0, 1); spheroid: centre of mass "
                         "displaced from the centre toward the end at -k, in [0, a) (default 0)")
     g.add_argument("--w", type=_real, default=None, help="egg: asymmetry (shift of the widest section over the length)")
+    typed = ", or e.g. '1.2 cm' with --radius" if units else ""
+    g.add_argument("--thickness", type=_real_or_units if units else _real, default=None,
+                   help=f"disk: full thickness over the radius, in [0, 1000] (0: a thin disk, Euler's disk; a coin "
+                        f"~0.1; default 0){typed}")
+    if units:
+        g.add_argument("--radius", type=_quantity_text, default=None,
+                       help="disk: its radius with its unit, e.g. '3.7 cm': the unit of length b (as --size, which it "
+                            "replaces)")
     g.add_argument("--A", dest="A", type=_real, default=None,
                    help="transverse moment of inertia about G, units M b^2 (default: the body's, e.g. (1+a^2)/5)")
     g.add_argument("--C", dest="C", type=_real, default=None, help="axial moment of inertia about G (default: the body's, e.g. 2/5)")
@@ -286,7 +299,7 @@ def _add_wall(p) -> None:
 
 def _add_run_options(sim) -> None:
     """The options of a run (simulate and animate): body, friction, start, run, solver, units."""
-    _add_body(sim)
+    _add_body(sim, units=True)
     _add_friction(sim, units=True)
     g = sim.add_argument_group("start (exactly one)")
     start = g.add_mutually_exclusive_group(required=True)

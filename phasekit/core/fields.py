@@ -130,6 +130,10 @@ def _wrench(laws, p, first: int):
     return wrench
 
 
+#: what _dissipation_terms adds to each contact mode
+DISSIPATION_TERMS = ("motion_rate", "pivot_rate", "roll_rate", "power")
+
+
 def _dissipation_terms(fn, tag, T, x, p, rhs, Fc_mode, laws, first) -> None:
     """A mode's power of sliding friction, then of each dissipation law; the rates of the motion's
     speed and of the spin about the normal (what the rest and pivot events extrapolate with)."""
@@ -217,17 +221,15 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=()) -
         _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu)
     elif law_cls.can_stick:
         # a regularised law has one field: its "rolling" mode (slip below 10 eps) reuses it
-        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction",
-                     *(("motion_rate", "pivot_rate", "roll_rate", "power") if laws else ())):
+        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction", *(DISSIPATION_TERMS if laws else ())):
             fn[f"{name}_rolling"] = fn[f"{name}_sliding"]
 
     _common(fn, T, x, p)
     fn["gap"] = _function("gap", x, p, ca.SX(0))
     fn["gap_rate"] = _function("gap_rate", x, p, ca.SX(0))
-    if laws:  # rest, and the modes with the spin about the normal held (spin friction)
+    if laws:  # rest, and the modes with a part of w held (spin friction, rolling resistance)
         _build_rest(fn, T, x, p, ns, laws)
-        held = [m for kind in HELD for m in _build_held(fn, chart, x, p, Fc, H, laws, law_cls, ns, kind)]
-        out.modes = (*modes, *held, Mode.FLIGHT)
+        out.modes = (*modes, *(m for k in HELD for m in _build_held(fn, chart, x, p, Fc, H, laws, law_cls, ns, k)), Mode.FLIGHT)
     _build_flight(out.flight, body, ns, laws)
     blob = "".join(f.serialize() for d in (out.contact, out.flight) for _, f in sorted(d.items()))
     names = "+".join([law_cls.__qualname__, *(type(d).__qualname__ for d in laws)])

@@ -15,6 +15,7 @@ import numpy as np
 from .._runtime.errors import ParameterError
 from .._runtime.validate import check_array, check_choice
 from ..bodies.body import Body
+from ..bodies.edged import Disk
 from ..bodies.egg import Egg
 from ..bodies.spheroid import EccentricSphere, Spheroid
 from ..friction.dissipation import dissipation_from_dict
@@ -346,7 +347,8 @@ class Model:
         if kind not in BODIES:
             raise ParameterError("model", f"must be given to rerun a {kind or 'user-defined'} body (only the built-in "
                                           "bodies can be rebuilt from their description)", show_value=False)
-        body = make_body(kind, a=d.get("a"), offset=d.get("offset"), w=d.get("w"), A=d["A"], C=d["C"])
+        body = make_body(kind, a=d.get("a"), offset=d.get("offset"), w=d.get("w"), thickness=d.get("thickness"),
+                         A=d["A"], C=d["C"])
         laws = {"coulomb": lambda: Coulomb(d["mu"]), "viscous": lambda: Viscous(d["mu"]),
                 "coulomb-regularised": lambda: RegularisedCoulomb(d["mu"], d["slip_eps"])}
         if d.get("law") not in laws:
@@ -463,15 +465,16 @@ class Model:
 
 
 #: the built-in bodies, by the name the CLI's --body and a model's description use
-BODIES = ("spheroid", "tippe-top", "egg")
+BODIES = ("spheroid", "tippe-top", "egg", "disk")
 
 
-def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, A=None, C=None) -> Body:
-    """A built-in body by name: ``spheroid`` (a, offset), ``tippe-top`` (offset), ``egg`` (a, w)
-    (the CLI's ``--body``, and :meth:`Model.from_dict`)."""
+def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, thickness=None, A=None, C=None) -> Body:
+    """A built-in body by name: ``spheroid`` (a, offset), ``tippe-top`` (offset), ``egg`` (a, w),
+    ``disk`` (thickness, over the radius; default 0, a thin disk) (the CLI's ``--body``, and
+    :meth:`Model.from_dict`)."""
     check_choice("body", kind, BODIES)
-    given = {"a": a, "offset": offset, "w": w}
-    allowed = {"spheroid": ("a", "offset"), "tippe-top": ("offset",), "egg": ("a", "w")}[kind]
+    given = {"a": a, "offset": offset, "w": w, "thickness": thickness}
+    allowed = {"spheroid": ("a", "offset"), "tippe-top": ("offset",), "egg": ("a", "w"), "disk": ("thickness",)}[kind]
     for name, value in given.items():
         if value is not None and name not in allowed:
             raise ParameterError(name, f"does not apply to the {kind} body (its parameters: {', '.join(allowed)})", value)
@@ -484,6 +487,8 @@ def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, A=None, C=
             raise ParameterError("offset", "is required for the tippe-top body (centre of mass below the centre, in [0, 1))",
                                  show_value=False)
         return EccentricSphere(offset, A=A, C=C)
+    if kind == "disk":
+        return Disk(0.0 if thickness is None else thickness, A=A, C=C)
     return Egg(1.3 if a is None else a, 0.0 if w is None else w, A=A, C=C)
 
 

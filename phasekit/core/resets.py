@@ -50,6 +50,7 @@ __all__ = [
     "SlipOnset",
     "SwitchMode",
     "Rest",
+    "BodyLimit",
     "Hold",
     "Release",
     "Held",
@@ -280,6 +281,19 @@ class Rest:
 HOLD_ONSET = 1e-6
 #: what each held part is called in the event log
 _WORDS = {"pivot": ("pivot", "the spin about the normal", "mu_s R"), "roll": ("roll", "the rolling", "delta R")}
+
+
+@dataclass(frozen=True)
+class BodyLimit:
+    """The run reached an end of the body's valid range of theta (an edged body's ``limits``,
+    :mod:`phasekit.bodies.edged`: the flat face down, the side touching): it ends there, status
+    "stopped", with the limit's reason."""
+
+    reason: str
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        why = self.reason.format(t=t)
+        return Transition(mode, t, x, (Record(event.name, mode.value, "end", x, why),), stop=Status.STOPPED, reason=why)
 
 
 @dataclass(frozen=True)

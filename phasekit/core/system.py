@@ -21,6 +21,7 @@ from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
 from .resets import (
     BOUNCE_STOP,
     BOUNCE_TAIL,
+    BodyLimit,
     Held,
     Hold,
     LiftOff,
@@ -98,6 +99,8 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     evs.append(Event("gap", name="touchdown", direction=-1, modes={Mode.FLIGHT}, arm_after=GUARD_DELAY,
                      stop=Status.TOUCHDOWN,
                      reset=None if stop_at == "touchdown" else hold(Touchdown(restitution, *bounce))))
+    for lim in getattr(model.body, "limits", ()):  # a body with an edge: its model ends there (bodies.edged)
+        evs.append(Event("theta", lim.theta, direction=lim.direction, name=lim.name, reset=BodyLimit(lim.reason)))
     for ev in events:
         if not isinstance(ev, Event):
             raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)

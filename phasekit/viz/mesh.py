@@ -42,14 +42,17 @@ def body_mesh(body, *, n_theta: int = 64, n_azimuth: int = 48):
     """
     import pyvista as pv
 
-    th = np.linspace(0.0, np.pi, n_theta)
-    h, ht, _ = body.h(th)
-    z = ht * np.sin(th) - h * np.cos(th)
-    r = np.clip(h * np.sin(th) + ht * np.cos(th), 0.0, None)
+    if hasattr(body, "outline"):  # an edged body: its support function traces only the rim
+        z, r = body.outline(max(2, n_theta // 3))
+    else:
+        th = np.linspace(0.0, np.pi, n_theta)
+        h, ht, _ = body.h(th)
+        z = ht * np.sin(th) - h * np.cos(th)
+        r = np.clip(h * np.sin(th) + ht * np.cos(th), 0.0, None)
     az = np.linspace(0.0, 2 * np.pi, n_azimuth + 1)
     R, AZ = np.meshgrid(r, az, indexing="ij")
     pts = np.column_stack([(R * np.cos(AZ)).ravel(), (R * np.sin(AZ)).ravel(), np.repeat(z, az.size)])
-    i, j = np.meshgrid(np.arange(th.size - 1), np.arange(az.size - 1), indexing="ij")
+    i, j = np.meshgrid(np.arange(z.size - 1), np.arange(az.size - 1), indexing="ij")
     a = (i * az.size + j).ravel()
     quads = np.column_stack([np.full(a.size, 4), a, a + az.size, a + az.size + 1, a + 1])
     mesh = pv.PolyData(pts, quads.ravel())

@@ -1,5 +1,6 @@
 """The public API: the top level re-exports the names a user starts from; every public subpackage
-has its own ``__all__``; at most 200 public names over all of them together (190 before the dissipation laws); every public name has
+has its own ``__all__``; at most 205 public names over all of them together (190 before the dissipation laws, 200 before
+the bodies with edges: pk.Disk and pk.bodies.Disk); every public name has
 a numpydoc Parameters (or Attributes) section and an example that runs, and is in the API
 reference; the studies' support package is not API; every ``phasekit.a.b`` path written in the
 docs, the README and the docstrings imports."""
@@ -49,9 +50,9 @@ def test_every_public_package_has_its_own_all_without_private_names():
         assert all(not n.startswith("_") and hasattr(mod, n) for n in mod.__all__), ns
 
 
-def test_at_most_200_public_names_over_all_public_packages():
+def test_at_most_205_public_names_over_all_public_packages():
     counts = {ns: len(importlib.import_module(ns).__all__) for ns in public_packages()}
-    assert sum(counts.values()) <= 200, counts
+    assert sum(counts.values()) <= 205, counts
 
 
 def test_the_top_level_re_exports_names_that_live_in_a_subpackage_or_the_errors():

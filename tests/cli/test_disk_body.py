@@ -1,0 +1,111 @@
+"""--body disk: a thin disk by default, --thickness over the radius or with units by --radius (the
+unit of length, as --size, which it replaces); bad input is one line naming the flag typed, its
+range and the value typed."""
+
+import math
+
+from phasekit import cli
+
+import pytest
+
+from ..helpers import run_cli, strict_json
+
+DISK = ["simulate", "--body", "disk", "--mu", "0.5", "--theta0", "1.0", "--spin-about-vertical", "5", "--t-end", "2"]
+#: a disk of radius 3.7 cm and thickness 1.2 cm launched at 60 deg spinning at 5 rev/s about the vertical
+REAL = ["--theta0", "60 deg", "--spin-about-vertical", "5 rev/s", "--t-end", "0.5 s", "--json"]
+
+
+@pytest.fixture(autouse=True)
+def _bugs_raise(monkeypatch):
+    monkeypatch.setenv(cli.DEBUG_ENV, "1")
+
+
+def usage_error(args, flag):
+    """Exit 2, one stderr line, the JSON error object naming ``flag``; the same without --json."""
+    code, out, err = run_cli(*args, "--json")
+    d = strict_json(out)
+    assert code == 2 and d == {"status": "error", "parameter": flag, "message": d["message"]}, (code, err)
+    assert err == f"phasekit: error: {d['message']}\n" and "Traceback" not in err
+    assert run_cli(*args) == (2, "", err)
+    return d["message"]
+
+
+def test_a_disk_is_thin_by_default_and_its_thickness_is_in_radii():
+    code, out, _ = run_cli(*DISK, "--json")
+    model = strict_json(out)["model"]
+    assert code == 0 and model["body"] == "disk" and model["thickness"] == 0.0 and (model["A"], model["C"]) == (0.25, 0.5)
+    code, out, _ = run_cli(*DISK, "--thickness", "0.1", "--json")
+    model = strict_json(out)["model"]
+    assert code == 0 and model["thickness"] == 0.1 and model["A"] == pytest.approx(0.25 + 0.01 / 12, rel=1e-15)
+    assert model["description"].startswith("disk, thickness 0.1 radii")
+
+
+def test_radius_sets_the_unit_of_length_as_size_does():
+    base = ["simulate", "--body", "disk", "--mu", "0.5"]
+    code, out, _ = run_cli(*base, "--radius", "3.7 cm", "--thickness", "1.2 cm", *REAL, "--si")
+    by_radius = strict_json(out)
+    thickness = by_radius["model"]["thickness"]  # 1.2 cm / 3.7 cm, to rounding
+    code_size, out, _ = run_cli(*base, "--size", "3.7 cm", "--thickness", repr(thickness), *REAL)
+    by_size = strict_json(out)
+    assert code == code_size == 0 and by_radius["model"]["thickness"] == pytest.approx(1.2 / 3.7, rel=1e-15)
+    assert by_radius["model"] == by_size["model"] and by_radius["t_end"] == by_size["t_end"]
+    assert by_radius["state_end"] == by_size["state_end"] and by_radius["si"]["b"] == "3.7 cm"
+    # the launch in the disk's units: 5 rev/s = 10 pi rad/s in units sqrt(g/b), b = 3.7 cm, g = 9.81 m/s^2
+    assert by_radius["start"]["theta"] == pytest.approx(math.pi / 3, rel=1e-15)
+    assert by_radius["start"]["Omega"] == pytest.approx(10 * math.pi * math.sqrt(0.037 / 9.81), rel=1e-12)
+
+
+@pytest.mark.parametrize("extra, flag, says", [
+    (["--radius", "3.7 cm", "--size", "3 cm"], "--radius", "--radius and --size both set the unit of length"),
+    (["--thickness", "1.2 cm"], "--thickness", "give the disk's radius with --radius"),
+    (["--radius", "3.7 cm", "--thickness", "-1 cm"], "--thickness",
+     "must lie in [0, 1000] (the full thickness over the radius), got '-1 cm' (-0.2702702702702703 in units of b)."),
+    (["--thickness", "2e3"], "--thickness", "must lie in [0, 1000] (the full thickness over the radius), got 2000.0."),
+    (["--thickness", "nan"], "--thickness", "must lie in [0, 1000]"),
+    (["--radius", "3.7 s"], "--radius", "must be a length"),
+    (["--radius", "3.7 cm", "--thickness", "2 s"], "--thickness", "must be a length"),
+    (["--a", "1.5"], "--a", "does not apply to the disk body (its parameters: thickness)"),
+    (["--mass", "20 g"], "--mass", "--mass needs --radius"),
+    (["--A", "0.7", "--C", "1.2"], "--C", "must be at most 1"),
+])
+def test_bad_disk_input_names_the_flag_typed(extra, flag, says):
+    msg = usage_error([*DISK, *extra], flag)
+    assert msg.startswith(flag) and says in msg
+
+
+@pytest.mark.parametrize("start, flag, says", [
+    (["--thickness", "0.1", "--theta0", "100 deg", "--spin-about-vertical", "5"], "--theta0",
+     "--theta0 must lie in (0, pi/2) for this disk (at 0 it lies flat, at pi/2 its side touches the table), got "
+     "'100 deg' (1.7453292519943295 rad)."),
+    (["--thickness", "0.1", "--state", "0", "0", "0", "0", "1.6", "0"], "--state (theta)",
+     "--state (theta) must lie in (0, pi/2) for this disk"),
+    (["--theta0", "0", "--spin-about-vertical", "5"], "--theta0", "--theta0 must lie in (0, pi) for this disk (at 0 and "
+                                                                  "pi it lies flat), got 0.0."),
+])
+def test_a_start_beyond_the_disks_range_is_refused(start, flag, says):
+    msg = usage_error(["simulate", "--body", "disk", "--mu", "0.5", "--t-end", "2", *start], flag.split(" (")[0])
+    assert msg.startswith(says)
+
+
+@pytest.mark.parametrize("args, flag", [
+    (["simulate", "--a", "1.5", "--radius", "2 cm", "--mu", "0.1", "--gyroscopic", "--theta0", "1.5", "--omega0", "10"],
+     "--radius"),
+    (["simulate", "--a", "1.5", "--thickness", "0.1", "--mu", "0.1", "--gyroscopic", "--theta0", "1.5", "--omega0", "10"],
+     "--thickness"),
+    (["simulate", "--thickness", "0.1", "--mu", "0.1", "--paper-start", "5.2"], "--thickness"),
+    (["steady-states", "--body", "disk", "--thickness", "1.2 cm", "--mu", "0.1"], "--thickness"),
+])
+def test_disk_flags_elsewhere_are_refused_naming_them(args, flag):
+    usage_error(args, flag)
+
+
+def test_a_disk_run_stopped_as_the_face_comes_down():
+    """Euler's disk spinning in place at 30 deg with rolling resistance, stopped at theta = 1e-3."""
+    omega = 1 / math.sqrt(0.25 * 0.5)  # Omega^2 = 1 / (A sin theta)
+    state = ["0", "0", repr(omega), "0", repr(math.pi / 6), "0"]
+    code, out, _ = run_cli("simulate", "--body", "disk", "--friction", "viscous", "--mu", "1", "--rolling-resistance",
+                           "0.05", "--state", *state, "--stop-at", "theta=0.001", "--t-end", "500", "--rtol", "1e-12",
+                           "--json")
+    d = strict_json(out)
+    assert code == 0 and d["status"] == "stopped" and d["t_end"] == pytest.approx(20.8348090098, rel=1e-9)
+    assert d["state_end"]["theta"] == pytest.approx(1e-3, rel=1e-9) and d["state_end"]["Omega"] > 20 * omega
