@@ -278,7 +278,9 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
     omega0, n0 = _family_value("omega0", omega0), _family_value("n0", n0)
     body = model_euler.body
     thetas = [] if _degeneracy(body) else precession_angles(body, omega0=omega0, n0=n0)
-    return _isolated_states(model_euler, model_vector, omega0, n0) + _precessions(model_euler, thetas, omega0, n0)
+    found = _isolated_states(model_euler, model_vector, omega0, n0) + _precessions(model_euler, thetas, omega0, n0)
+    lo, hi = getattr(body, "theta_range", (0.0, np.pi))  # a body with an edge: its model holds on a range
+    return [fp for fp in found if (lo, hi) == (0.0, np.pi) or lo < fp.y[4] < hi]
 
 
 def _family_value(name: str, value) -> float | None:

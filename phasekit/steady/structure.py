@@ -293,6 +293,10 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, sam
 
 def _structure(model: Model, stability: bool, samples: bool) -> SteadyStructure:
     body, friction = model.body, model.friction
+    if hasattr(body, "theta_range"):  # its poles are off its range: the structure's tools assume them
+        return SteadyStructure(model, (), (), (), Status.FAILED, f"the steady-state structure of a body with an edge "
+                               f"({body.describe()}, valid for theta in ({body.theta_range[0]:.6g}, "
+                               f"{body.theta_range[1]:.6g})) is not computed yet: use fixed_points at a rate")
     why = _degeneracy(body)
     if why is not None:  # a continuum of statics (and precessions): nothing to sample
         return SteadyStructure(model, (), (), (), degenerate=why)

@@ -1,0 +1,29 @@
+"""Steady states of a body with an edge (pk.Disk): its model holds only on its range of theta, so
+fixed_points lists the states inside it (the precessions a scan of the whole [0, pi] finds outside
+it are left out), and steady_structure, whose tools assume the poles, says it is not computed."""
+
+from __future__ import annotations
+
+import numpy as np
+
+import phasekit as pk
+from phasekit.steady.precessions import precession_angles
+
+
+def test_fixed_points_of_a_disk_are_the_steady_states_inside_its_range():
+    disk = pk.Disk(0.1)
+    lo, hi = disk.theta_range
+    model = pk.Model(disk, pk.Coulomb(0.3))
+    states = pk.fixed_points(model, omega0=3.0)
+    thetas = sorted(float(fp.y[4]) for fp in states)
+    scanned = [float(t) for t in precession_angles(disk, omega0=3.0)]
+    inside = [t for t in scanned if lo < t < hi]
+    assert len(inside) < len(scanned)  # the scan over [0, pi] finds a state off the disk's range
+    assert np.allclose(sorted(t for t in thetas if abs(t - np.pi / 2) > 1e-9), inside, atol=1e-8)
+    for fp in states:  # each is a steady state of the rolling disk: its field vanishes there
+        assert np.max(np.abs(model.rhs(fp.y, "rolling"))) < 1e-10
+
+
+def test_the_structure_of_a_disk_says_it_is_not_computed():
+    s = pk.steady_structure(pk.Disk(0.1), pk.Coulomb(0.3))
+    assert s.status is pk.Status.FAILED and "(0, 1.5708)" in s.reason and not s.branches
