@@ -4,10 +4,10 @@ it are left out), and steady_structure, whose tools assume the poles, says it is
 
 from __future__ import annotations
 
-import numpy as np
-
 import phasekit as pk
 from phasekit.steady.precessions import precession_angles
+
+import numpy as np
 
 
 def test_fixed_points_of_a_disk_are_the_steady_states_inside_its_range():
