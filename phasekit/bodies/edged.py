@@ -156,13 +156,9 @@ class Disk(EdgedBody):
     Attributes
     ----------
     thickness : float
-        L, as given.
-    theta_range : tuple of float
-        (0, pi) for a thin disk, (0, pi/2) for L > 0 (open: the ends are not states of the
-        model).
-    limits : tuple of Limit
-        The ends a run stops at: "face down" at theta = FLAT_ANGLE (and pi - FLAT_ANGLE for a
-        thin disk), "side down" at pi/2 for L > 0.
+        L, as given. (``theta_range``: (0, pi) for a thin disk, (0, pi/2) for L > 0, open: the
+        ends are not states of the model; ``limits``: the ends a run stops at, "face down" at
+        theta = FLAT_ANGLE (and pi - FLAT_ANGLE for a thin disk), "side down" at pi/2 for L > 0.)
 
     Raises
     ------

@@ -7,6 +7,7 @@ the run with the event's status), record it, repeat. Nothing here knows any even
 from __future__ import annotations
 
 import functools
+import os
 import time
 import warnings
 from dataclasses import replace
@@ -345,9 +346,11 @@ class _Run(RunState):
             self.reason = f"{WALL_REASON} (max_wall = {self.call_budget:g} s) ran out at t = {self.t:.6g}"
 
     def prefetch(self) -> None:
-        """Compile in the background the Taylor integrators of the other two contact modes a run
-        most often reaches (sliding, rolling): a body's first run then waits for one compilation
-        on two cores, not for each in turn."""
+        """Compile in the background the Taylor integrator of the other of the two contact modes a
+        run most often reaches (sliding, rolling): a body's first run then waits for one
+        compilation on two cores, not for each in turn ($PHASEKIT_COMPILE_AHEAD=off: never)."""
+        if os.environ.get("PHASEKIT_COMPILE_AHEAD", "on").strip().lower() in ("off", "no", "0"):
+            return
         for mode in (Mode.SLIDING, Mode.ROLLING):
             if mode is self.mode or mode not in self.model.modes:
                 continue

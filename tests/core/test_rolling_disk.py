@@ -52,7 +52,7 @@ def test_frictionless_disk_keeps_energy_L_Z_and_spin(disk, chart):
     assert np.ptp(theta) > 0.2 and theta.min() > 0.4  # it nutates, well inside its range
 
 
-@pytest.mark.parametrize("chart", CHARTS)
+@pytest.mark.parametrize("chart", ["euler", pytest.param("vector", marks=pytest.mark.slow)])  # vector: ~50 s cold
 def test_thin_disk_rolling_upright_keeps_its_speed_and_goes_straight(chart):
     n0 = 2.0  # above sqrt(1/3): upright rolling is stable
     m = pk.Model(THIN, pk.Coulomb(0.5), chart)
@@ -103,7 +103,8 @@ def test_spinning_in_place_is_the_closed_form_precession(disk):
 
 
 @pytest.mark.parametrize("chart, law", [
-    ("euler", pk.RollingResistance(0.05)), ("vector", pk.RollingResistance(0.05)), ("euler", pk.AirDrag(rotation=0.05))],
+    ("euler", pk.RollingResistance(0.05)), pytest.param("vector", pk.RollingResistance(0.05), marks=pytest.mark.slow),
+    ("euler", pk.AirDrag(rotation=0.05))],
     ids=["rolling-resistance-euler", "rolling-resistance-vector", "air-drag-euler"])
 def test_eulers_disk_falls_to_its_face_in_finite_time(chart, law):
     """Launched spinning in place at 30 deg, the precession speeds up as theta falls (Omega^2 ~ 4/theta
@@ -120,7 +121,7 @@ def test_eulers_disk_falls_to_its_face_in_finite_time(chart, law):
     assert abs(budget.residual) < 1e-10 and budget.energy_end < 0.01 * budget.energy_start
 
 
-@pytest.mark.parametrize("chart", CHARTS)
+@pytest.mark.parametrize("chart", ["euler", pytest.param("vector", marks=pytest.mark.slow)])
 @pytest.mark.parametrize("theta0, name", [(1.2, "side down"), (1.0, "face down")])
 def test_a_cylinder_tipped_past_its_balance_falls_onto_its_side_or_its_face(chart, theta0, name):
     """At rest on its rim, a cylinder of thickness 1 balances at tan(theta) = 1/(L/2) = 2 (1.107 rad):

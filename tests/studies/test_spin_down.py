@@ -29,8 +29,10 @@ def _run(out: Path) -> subprocess.CompletedProcess:
                            "--out", str(out)], cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=1200)
 
 
-#: a hang guard (the quick run takes about a minute; the module's first test also runs it)
-pytestmark = pytest.mark.timeout(1500)
+#: a hang guard (the quick run takes about a minute, more with empty caches: so the module is in the
+#: full run only; the default run checks the egg's rise and the top's rest in tests/friction and
+#: tests/core/test_coming_to_rest.py)
+pytestmark = [pytest.mark.timeout(1500), pytest.mark.slow]
 
 
 def _committed() -> dict:
