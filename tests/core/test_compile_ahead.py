@@ -4,10 +4,10 @@ and a second run that reaches rolling compiles nothing (counted by the builds th
 
 from __future__ import annotations
 
-import numpy as np
-
 import phasekit as pk
 from phasekit.core.engines import cache
+
+import numpy as np
 
 
 def test_a_run_that_ends_sliding_leaves_its_rolling_mode_compiled(tmp_path, monkeypatch):

@@ -7,10 +7,10 @@ laws)."""
 
 from __future__ import annotations
 
+import phasekit as pk
+
 import numpy as np
 import pytest
-
-import phasekit as pk
 
 EGG = pk.Egg(1.33333, 0.0)
 SCALE = pk.Scale("22.5 mm")
