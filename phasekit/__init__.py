@@ -20,7 +20,7 @@ from ._runtime import startup as _startup  # noqa: F401  (first: Ctrl-C during t
 # isort: split
 from . import baseline, bodies, core, friction, io, steady, sweep, theory, thresholds  # noqa: F401  (the public namespaces)
 from ._runtime.errors import ConvergenceError, ParameterError, PhasekitError, SearchStatus, Status, WorkerError
-from .bodies import CustomBody, Disk, EccentricSphere, Egg, Spheroid
+from .bodies import Cone, CustomBody, Disk, EccentricSphere, Egg, Spheroid, TippeTop
 from .core import (
     Event,
     Model,
@@ -29,7 +29,7 @@ from .core import (
     gyroscopic_start,
     simulate,
 )
-from .friction import AirDrag, Coulomb, RegularisedCoulomb, RollingResistance, SpinFriction, Viscous
+from .friction import AirDrag, AirLayer, Coulomb, RegularisedCoulomb, RollingResistance, SpinFriction, Viscous
 from .io import read_table, write_table
 from .steady import fixed_points, steady_structure
 from .sweep import ensemble, rerun
@@ -53,8 +53,8 @@ def __getattr__(name):
 
 __all__ = [
     # bodies and friction laws
-    "Spheroid", "EccentricSphere", "Egg", "Disk", "CustomBody", "Coulomb", "RegularisedCoulomb", "Viscous",
-    "RollingResistance", "SpinFriction", "AirDrag",
+    "Spheroid", "EccentricSphere", "Egg", "Disk", "Cone", "TippeTop", "CustomBody", "Coulomb", "RegularisedCoulomb", "Viscous",
+    "RollingResistance", "SpinFriction", "AirDrag", "AirLayer",
     # the model, simulations and their starts
     "Model", "Event", "SolverOptions", "simulate", "ensemble", "rerun",
     "gyroscopic_start", "paper_start",

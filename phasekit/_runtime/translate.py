@@ -4,6 +4,15 @@ The equations are written once, as CasADi SX (:mod:`phasekit.core.fields`); this
 function's instruction list (its algorithm, with common subexpressions already shared)
 and rebuilds each instruction with heyoka's expression system, so the Taylor integrator
 runs exactly the compiled model and nothing is transcribed twice.
+
+Piecewise expressions: CasADi's ``if_else(cond, a, b)`` (a compound body's support function,
+the max of its pieces', :mod:`phasekit.bodies.compound`) compiles to comparisons and
+``if_else_zero(cond, x)`` (x where cond holds, else 0), which become heyoka's ``select`` and its
+comparisons. heyoka takes the Taylor coefficients of ``select`` from the branch chosen at the
+start of a step, so a step must never cross the switch: the hybrid system watches it as an
+event in every mode (:func:`phasekit.core.system.declare`), which cuts the step there, and its
+reset moves the state just past it. The other non-smooth operations (fabs, fmax, sign, ...)
+stay refused.
 """
 
 from __future__ import annotations
@@ -54,9 +63,27 @@ def _binary(hy):
     }
 
 
+def _piecewise(hy):
+    # comparisons give 1.0 or 0.0, as CasADi's do; select(cond, x, 0) is CasADi's if_else_zero
+    zero = hy.expression(0.0)
+    return {
+        ca.OP_LT: hy.lt,
+        ca.OP_LE: hy.lte,
+        ca.OP_EQ: hy.eq,
+        ca.OP_NE: hy.neq,
+        ca.OP_NOT: lambda a: hy.eq(a, zero),
+        ca.OP_AND: lambda a, b: hy.logical_and([a, b]),
+        ca.OP_OR: lambda a, b: hy.logical_or([a, b]),
+        ca.OP_IF_ELSE_ZERO: lambda cond, a: hy.select(cond, a, zero),
+    }
+
+
 #: operations with a kink or a jump: a body's profile (or a law) built from them is not smooth
+#: (:class:`~phasekit.bodies.custom.CustomBody` refuses them); of these only the PIECEWISE ones
+#: are translated, for the bodies built of pieces whose switches are events
 NON_SMOOTH = {getattr(ca, f"OP_{n}") for n in ("FABS", "FMAX", "FMIN", "IF_ELSE_ZERO", "SIGN", "FLOOR", "CEIL", "FMOD",
                                                 "COPYSIGN", "REMAINDER", "EQ", "NE", "LT", "LE", "AND", "OR", "NOT")}
+PIECEWISE = {getattr(ca, f"OP_{n}") for n in ("IF_ELSE_ZERO", "EQ", "NE", "LT", "LE", "AND", "OR", "NOT")}
 _STRUCTURAL = {ca.OP_CONST, ca.OP_INPUT, ca.OP_OUTPUT}
 _OP_NAMES = {getattr(ca, n): n[3:].lower() for n in dir(ca) if n.startswith("OP_")}
 
@@ -96,7 +123,7 @@ def to_heyoka(f: ca.Function, inputs: list[list]) -> list:
 
     if not f.is_a("SXFunction"):
         raise TypeError("to_heyoka needs an SX function")
-    unary, binary = _unary(hy), _binary(hy)
+    unary, binary, piecewise = _unary(hy), _binary(hy), _piecewise(hy)
     work: dict[int, object] = {}
     outputs = [[None] * f.nnz_out(i) for i in range(f.n_out())]
     for k in range(f.n_instructions()):
@@ -113,6 +140,9 @@ def to_heyoka(f: ca.Function, inputs: list[list]) -> list:
             work[o[0]] = unary[op](work[i[0]])
         elif op in binary:
             work[o[0]] = binary[op](work[i[0]], work[i[1]])
+        elif op in piecewise:
+            args = [work[i[0]]] if op == ca.OP_NOT else [work[i[0]], work[i[1]]]
+            work[o[0]] = piecewise[op](*args)
         else:
             raise NotImplementedError(f"CasADi operation {op} has no heyoka translation")
     for i, out in enumerate(outputs):

@@ -11,9 +11,11 @@ Examples
 """
 
 from .body import Body
+from .compound import TippeTop
+from .cone import Cone
 from .custom import CustomBody
 from .edged import Disk
 from .egg import Egg
 from .spheroid import EccentricSphere, Spheroid
 
-__all__ = ["Body", "Spheroid", "EccentricSphere", "Egg", "Disk", "CustomBody"]
+__all__ = ["Body", "Spheroid", "EccentricSphere", "Egg", "Disk", "Cone", "CustomBody", "TippeTop"]

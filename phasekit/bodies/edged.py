@@ -10,7 +10,9 @@ contact point stays at one point of the rim in the body's meridian plane, so the
 radius of curvature h + h_thetatheta is zero (an edge), while the azimuthal one, x_P / sin(theta)
 = 1 / sin(theta), is positive. The equations (2.7) and the vector chart use the body only
 through H and its derivatives, which are analytic wherever the rim is the lowest point: they
-hold there unchanged (:class:`EdgedBody` makes the convexity check accept the edge).
+hold there unchanged (:class:`EdgedBody` makes the convexity check accept the edge). A tip, where
+both radii are zero (the contact point fixed on the axis, H linear in c), is accepted likewise:
+:class:`~phasekit.bodies.cone.Cone`.
 
 Where the model ends
 --------------------
@@ -102,12 +104,65 @@ class EdgedBody(Body):
         r from the axis, units b)."""
         raise NotImplementedError(f"{type(self).__name__} must define `outline`")
 
+    def check_theta(self, theta: float, name: str = "theta") -> float:
+        """Raise ParameterError naming ``name`` unless ``theta`` is a state of this body's model:
+        inside :attr:`theta_range` (beyond it another part of the body touches the table), or
+        at pi for a body that stands there on a tip (no limit at pi).
+
+        Parameters
+        ----------
+        theta : float
+            The inclination, radians.
+        name : str, optional
+            The parameter the error names (default "theta").
+
+        Returns
+        -------
+        float
+            ``theta``.
+
+        Raises
+        ------
+        ParameterError
+            If ``theta`` is not inside the range.
+        """
+        if not self.in_range(theta):
+            label, why, _ = self._range_text()
+            raise ParameterError(name, f"must lie in {label} for this {self.kind} ({why})", theta)
+        return float(theta)
+
+    def in_range(self, theta: float) -> bool:
+        """True when ``theta`` is a state of this body's model (:meth:`check_theta`).
+
+        Parameters
+        ----------
+        theta : float
+            The inclination, radians.
+
+        Returns
+        -------
+        bool
+        """
+        lo, hi = self.theta_range
+        return bool(lo < theta < hi or (self._range_text()[2] and theta == hi))
+
+    def _range_text(self) -> tuple[str, str, bool]:
+        """(the range as written, what happens at its ends, True if it holds its upper end)."""
+        lo, hi = self.theta_range
+        return f"({lo:.6g}, {hi:.6g})", "beyond it another part of the body touches the table", False
+
+    @property
+    def kind(self) -> str:
+        """What the body is, in messages (its class's name, in lower case)."""
+        return type(self).__name__.lower()
+
     def check_convex(self, param: str = "height", theta_range: tuple[float, float] | None = None, n: int = 721) -> None:
         """Raise ParameterError (naming ``param``) unless the surface is convex over the open
-        ``theta_range`` (default :attr:`theta_range`): finite h > 0, azimuthal radius of
-        curvature > 0, and meridional radius h + h_thetatheta either > 0 or zero to rounding
-        (EDGE_TOL, and 16 eps / sin^3(theta) for the rounding of cos(theta) near a pole: the
-        contact point fixed on an edge), never negative (a concave profile).
+        ``theta_range`` (default :attr:`theta_range`): finite h > 0, and each radius of
+        curvature (meridional h + h_thetatheta, azimuthal x_P / sin(theta)) either > 0 or zero
+        to rounding (EDGE_TOL, and 16 eps / sin^3(theta) for the rounding of cos(theta) near a
+        pole), never negative (a concave profile): the meridional one is zero on an edge, both
+        are on a tip (the contact point fixed on the axis).
 
         Parameters
         ----------
@@ -121,26 +176,27 @@ class EdgedBody(Body):
         Raises
         ------
         ParameterError
-            If, at a sampled angle, h is not finite or not > 0, the azimuthal radius is not
-            > 0, or the meridional radius is negative beyond rounding.
+            If, at a sampled angle, h is not finite or not > 0, or a radius of curvature is
+            negative beyond rounding.
         """
         lo, hi = self.theta_range if theta_range is None else theta_range
         th = np.linspace(lo, hi, n + 2)[1:-1]  # the ends are where the model ends: not sampled
         h, h1, h2 = self.h(th)
         r1, r2 = self.radii_of_curvature(th)
         edge = -EDGE_TOL * (np.abs(h) + np.abs(h2)) - 16 * np.finfo(float).eps / np.abs(np.sin(th)) ** 3
-        bad = ~(np.isfinite(h) & np.isfinite(h1) & np.isfinite(h2) & (h > 0) & (r2 > 0) & (r1 >= edge))
+        bad = ~(np.isfinite(h) & np.isfinite(h1) & np.isfinite(h2) & (h > 0) & (r2 >= edge) & (r1 >= edge))
         if np.any(bad):
             k = int(np.flatnonzero(bad)[0])
-            raise ParameterError(param, f"must give a convex surface (height h > 0, azimuthal radius of curvature > 0 and "
-                                        f"meridional radius >= 0, zero on an edge, for theta in ({lo:g}, {hi:g})); at "
+            raise ParameterError(param, f"must give a convex surface (height h > 0 and radii of curvature >= 0, the "
+                                        f"meridional one zero on an edge, both on a tip, for theta in ({lo:g}, {hi:g})); at "
                                         f"theta = {th[k]:.4g}: h = {h[k]:.4g}, h + h'' = {r1[k]:.4g}, x_P/sin = "
                                         f"{r2[k]:.4g}", show_value=False)
 
 
 class Disk(EdgedBody):
     """A uniform cylinder of radius 1 (the unit b) and thickness L rolling and spinning on the
-    rim of a flat face: Euler's disk (L = 0), a coin (L ~ 0.07-0.15), a puck, a cylinder.
+    rim of a flat face: Euler's disk (L = 0), a coin (L ~ 0.07-0.15), a puck, a cylinder (a
+    cylinder is a Disk with its thickness, e.g. Disk(2.0) as long as it is wide).
 
     Support function h(theta) = sin(theta) + (L/2) cos(theta), G at the centre (module notes):
     theta -> 0 brings the face down onto the table, theta = pi/2 the side (L > 0).
@@ -209,6 +265,11 @@ class Disk(EdgedBody):
             return (down, Limit("face down", math.pi - FLAT_ANGLE, +1, face))
         return (down, Limit("side down", math.pi / 2, +1, "the side touched the table at t = {t:.10g}: a " + self.kind +
                             " on its side (a line contact) is not modelled"))
+
+    def _range_text(self) -> tuple[str, str, bool]:
+        if self.thickness == 0.0:
+            return "(0, pi)", "at 0 and pi it lies flat", False
+        return "(0, pi/2)", "at 0 it lies flat, at pi/2 its side touches the table", False
 
     @property
     def kind(self) -> str:

@@ -23,9 +23,10 @@ FLAGS = {
     "psi0": "--psi0", "phi0": "--phi0", "X0": "--X0", "Y0": "--Y0", "spin_about_vertical": "--spin-about-vertical",
     "frames": "--frames", "fps": "--fps", "out": "OUT", "gap_scale": "--gap-scale", "camera": "--camera",
     "panel": "--panel", "timing": "--timing", "window_size": "--window-size", "path": "OUT", "mass": "--mass",
-    "rolling_resistance": "--rolling-resistance", "spin_friction": "--spin-friction", "air_drag": "--air-drag",
+    "rolling_resistance": "--rolling-resistance", "spin_friction": "--spin-friction", "air_drag": "--air-drag", "air_layer": "--air-layer",
     "air_drag_quadratic": "--air-drag-quadratic", "air_drag_force": "--air-drag-force",
     "air_drag_force_quadratic": "--air-drag-force-quadratic", "thickness": "--thickness", "radius": "--radius",
+    "height": "--height", "on": "--on", "stem_length": "--stem-length", "stem_radius": "--stem-radius",
 }
 #: API parameters that more than one flag feeds: (flag typed, name to print), the first typed one wins
 #: (e.g. `n0` is --spin-about-vertical's value in that start, and theta its --theta0)
@@ -35,7 +36,7 @@ SOURCES = {
     "theta": (("--state", "--state (theta)"), ("--theta0", "--theta0")),
     "Omega": (("--state", "--state (Omega)"), ("--spin-about-vertical", "--spin-about-vertical")),
     "n": (("--state", "--state (n)"), ("--spin-about-vertical", "--spin-about-vertical")),
-    "b": (("--radius", "--radius"), ("--size", "--size")),  # a disk's radius is its unit of length
+    "b": (("--radius", "--radius"), ("--size", "--size")),  # a disk's or a cone's radius is its unit of length
 }
 
 

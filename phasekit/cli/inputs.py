@@ -19,12 +19,38 @@ from .parser import DISSIPATION_FLAGS, _UsageError, _WithUnits
 MOMENT_MIN = 1e-6
 
 
+#: the bodies whose --radius is the unit of length, and what it is for each
+RADIUS_OF = {"disk": "the disk's radius", "cone": "the cone's base radius"}
+
+
+def _make_body(args, A=None, C=None):
+    """The body of --body: the library's built-in ones (phasekit.core.model.make_body) and the
+    cone (--height, --on), whose flags are refused on another body."""
+    from .._runtime.errors import ParameterError
+    from .._runtime.validate import check_choice
+    from ..bodies.cone import Cone
+    from ..core.model import BODIES, make_body
+
+    check_choice("body", args.body, tuple(dict.fromkeys((*BODIES, "cone"))))
+    if args.body == "cone":
+        for name in ("a", "offset", "w", "thickness", "stem_length", "stem_radius"):
+            if getattr(args, name, None) is not None:
+                raise ParameterError(name, "does not apply to the cone body (its parameters: height, on)",
+                                     getattr(args, name))
+        return Cone(1.0 if args.height is None else args.height, "rim" if args.on is None else args.on, A=A, C=C)
+    for name in ("height", "on"):
+        if getattr(args, name, None) is not None:
+            raise ParameterError(name, f"does not apply to the {args.body} body (it is the cone's: --body cone)",
+                                 getattr(args, name))
+    return make_body(args.body, a=args.a, offset=args.offset, w=args.w, thickness=args.thickness,
+                     stem_length=getattr(args, "stem_length", None), stem_radius=getattr(args, "stem_radius", None), A=A, C=C)
+
+
 def _body(args):
     from .._runtime.errors import ParameterError, plain
-    from ..core.model import make_body
 
     try:
-        body = make_body(args.body, a=args.a, offset=args.offset, w=args.w, thickness=args.thickness, A=args.A, C=args.C)
+        body = _make_body(args, A=args.A, C=args.C)
     except ParameterError as exc:
         _moments_relation(args, exc)
         raise
@@ -40,12 +66,11 @@ def _moments_relation(args, exc) -> None:
     """C <= 2A fails: name the moment typed (the library names C, typed or not), and say which
     value is the body's default."""
     from .._runtime.errors import plain
-    from ..core.model import make_body
 
     if exc.param != "C" or "C <= 2A" not in exc.expected or (args.A is None and args.C is None):
         return
     try:  # the body's own moments, where a flag leaves one out
-        own = make_body(args.body, a=args.a, offset=args.offset, w=args.w, thickness=args.thickness)
+        own = _make_body(args)
     except ValueError:
         return
     A, C = (own.A if args.A is None else args.A), (own.C if args.C is None else args.C)
@@ -81,25 +106,25 @@ def _dissipation_of(args) -> dict:
 #: coefficients are kinds of phasekit.Scale of their own, air drag's need --mass)
 UNIT_OPTIONS = {"theta0": "angle", "omega0": "rate", "n0": "rate", "spin_about_vertical": "rate", "t_end": "time",
                 "psi0": "angle", "phi0": "angle", "X0": "length", "Y0": "length", "thickness": "length",
+                "height": "length", "stem_length": "length", "stem_radius": "length",
                 **{dest: dest for dest in DISSIPATION_FLAGS}}
 
 
 def _scale_of(args):
-    """The Scale of --size (or a disk's --radius) and --g, or None without either."""
+    """The Scale of --size (or a disk's or a cone's --radius) and --g, or None without either."""
     from ..core.units import STANDARD_GRAVITY, Scale
 
     radius = getattr(args, "radius", None)
     if radius is not None:
-        if args.body != "disk":
-            raise _UsageError(f"--radius is a disk's radius (with --body disk); the unit of length of the {args.body} "
-                              f"body is --size, got --radius {radius!r}.", "--radius")
+        if args.body not in RADIUS_OF:
+            raise _UsageError(f"--radius is a disk's or a cone's radius (with --body disk or cone); the unit of length "
+                              f"of the {args.body} body is --size, got --radius {radius!r}.", "--radius")
         if args.size is not None:
-            raise _UsageError(f"--radius and --size both set the unit of length b (the disk's radius): give one of them, "
-                              f"got --radius {radius!r} and --size {args.size!r}.", "--radius")
+            raise _UsageError(f"--radius and --size both set the unit of length b ({RADIUS_OF[args.body]}): give one "
+                              f"of them, got --radius {radius!r} and --size {args.size!r}.", "--radius")
     b = args.size if args.size is not None else radius
     if b is None:
-        size = "--radius (the disk's radius, e.g. --radius '3.7 cm')" if args.body == "disk" else \
-            "--size (the body's unit of length, e.g. --size '21.5 mm')"
+        size = _size_flag(args)
         for flag, value in (("--g", args.g), ("--mass", getattr(args, "mass", None))):
             if value is not None:
                 raise _UsageError(f"{flag} needs {size}, got {value!r}.", flag)
@@ -126,17 +151,22 @@ def _apply_units(args):
                                   f"{str(value)!r}.", flag)
             setattr(args, dest, float(q.to("rad").magnitude))
         elif scale is None:
-            size = "the disk's radius with --radius (e.g. --radius '3.7 cm')" if args.body == "disk" else \
+            size = f"{RADIUS_OF[args.body]} with --radius (e.g. --radius '3.7 cm')" if args.body in RADIUS_OF else \
                 "the body's size with --size (e.g. --size '21.5 mm')"
             raise _UsageError(f"{flag} {str(value)!r} has units: give {size} to express it in units of b and sqrt(b/g), "
                               f"or type a plain number.", flag)
         else:
             setattr(args, dest, _in_phasekit_units(scale, str(value), kind, dest))
     if getattr(args, "si", False) and scale is None:
-        size = "--radius (the disk's radius, e.g. --radius '3.7 cm')" if args.body == "disk" else \
-            "--size (the body's unit of length, e.g. --size '21.5 mm')"
-        raise _UsageError(f"--si needs {size}.", "--si")
+        raise _UsageError(f"--si needs {_size_flag(args)}.", "--si")
     return scale
+
+
+def _size_flag(args) -> str:
+    """The flag that gives the body's unit of length, as a message says it."""
+    if args.body in RADIUS_OF:
+        return f"--radius ({RADIUS_OF[args.body]}, e.g. --radius '3.7 cm')"
+    return "--size (the body's unit of length, e.g. --size '21.5 mm')"
 
 
 def _in_phasekit_units(scale, value: str, kind: str, dest: str) -> float:
@@ -179,8 +209,8 @@ def _paper_body(args) -> None:
     which = f"with --paper-start {label} (its body is the uniform spheroid a = {case.a:.6g})"
     if args.body != "spheroid":
         raise _UsageError(f"--body must be spheroid {which}, got {plain(args.body)}.", "--body")
-    for name in ("A", "C", "offset", "w", "thickness"):
-        if getattr(args, name) is not None:
+    for name in ("A", "C", "offset", "w", "thickness", "height", "on", "stem_length", "stem_radius"):
+        if getattr(args, name, None) is not None:
             raise _UsageError(f"{FLAGS[name]} must be left out {which}, got {plain(getattr(args, name))}.", FLAGS[name])
     if args.a is None:
         args.a = case.a

@@ -22,7 +22,7 @@ from ..core.observables import OBSERVABLES
 from ..core.simulate import simulate
 from ..core.starts import RATE_MAX, gyroscopic_start, raw_start, to_chart, vertical_spin_start
 from ..core.system import STOP_AT
-from ..friction.dissipation import COEFF_MAX, AirDrag, RollingResistance, SpinFriction
+from ..friction.dissipation import COEFF_MAX, AirDrag, AirLayer, RollingResistance, SpinFriction
 from ..friction.laws import friction_law
 
 __all__ = ["parse_stop", "run_start", "simulate_start", "real_units_report", "fixed_points_report", "gyroscopic_report",
@@ -97,13 +97,8 @@ def _start(body, law, start: dict, chart: str):
 def _check_range_of(body, theta: float, name: str) -> None:
     """A body with an edge is modelled on an open range of theta only (:mod:`phasekit.bodies.edged`):
     refuse a start outside it, naming ``name`` (beyond it another part of the body touches the table)."""
-    if not isinstance(body, EdgedBody):
-        return
-    lo, hi = body.theta_range
-    if not lo < theta < hi:
-        label, why = (("(0, pi)", "at 0 and pi it lies flat") if hi == np.pi else
-                      ("(0, pi/2)", "at 0 it lies flat, at pi/2 its side touches the table"))
-        raise ParameterError(name, f"must lie in {label} for this {body.kind} ({why})", theta)
+    if isinstance(body, EdgedBody):
+        body.check_theta(theta, name)
 
 
 def run_start(*, body: Body, friction="coulomb", mu, slip_eps=None, start: dict, t_end=200.0, stop_at="jump",
@@ -124,7 +119,7 @@ def run_start(*, body: Body, friction="coulomb", mu, slip_eps=None, start: dict,
 #: the dissipation laws' coefficients by plain name (the CLI's flags): (law, its coefficient), and
 #: the unit of each in the messages
 DISSIPATION = {"rolling_resistance": (RollingResistance, "delta", "b"), "spin_friction": (SpinFriction, "mu_s", "b"),
-               "air_drag": (AirDrag, "rotation", "M b^2 sqrt(g/b)"),
+               "air_drag": (AirDrag, "rotation", "M b^2 sqrt(g/b)"), "air_layer": (AirLayer, "k", "M b^2 sqrt(g/b)"),
                "air_drag_quadratic": (AirDrag, "rotation_quadratic", "M b^2"),
                "air_drag_force": (AirDrag, "translation", "M sqrt(g/b)"),
                "air_drag_force_quadratic": (AirDrag, "translation_quadratic", "M/b")}

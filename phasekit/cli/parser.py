@@ -23,6 +23,8 @@ EXAMPLES = """examples:
       --theta0 0.1 --spin-about-vertical 15 --stop-at theta=0.4 --t-end 30 --rtol 1e-10 --json
   phasekit simulate --body disk --radius "3.7 cm" --thickness "1.2 cm" --mu 0.5 --theta0 "60 deg" \\
       --spin-about-vertical "5 rev/s" --t-end "2 s"
+  phasekit simulate --body cone --on tip --radius "2 cm" --height "3 cm" --mu 0.5 --theta0 "175 deg" \
+      --spin-about-vertical "40 rev/s" --t-end "2 s"
   phasekit fixed-points --a 1.5 --mu 0.1 --omega0 10 --json
   phasekit steady-states --body spheroid --a 1.5 --offset 0.2 --mu 0.1 --friction viscous
   phasekit steady-states --body tippe-top --offset 0.3 --A 0.38 --C 0.4 --mu 0.3 --json
@@ -193,11 +195,11 @@ def _count(text: str) -> int:
 
 
 def _add_body(p, units: bool = False):
-    """The body's flags; with ``units`` (simulate, animate) the disk's --thickness may be typed with
-    units and --radius gives its radius (the unit of length, as --size)."""
-    g = p.add_argument_group("body (units: mass M, length b = equatorial radius, ball radius or disk radius, time "
-                             "sqrt(b/g))")
-    g.add_argument("--body", default="spheroid", help="spheroid | tippe-top | egg | disk (default: %(default)s)")
+    """The body's flags; with ``units`` (simulate, animate) the disk's --thickness and the cone's
+    --height may be typed with units and --radius gives their radius (the unit of length, as --size)."""
+    g = p.add_argument_group("body (units: mass M, length b = equatorial radius, ball radius or disk or cone radius, "
+                             "time sqrt(b/g))")
+    g.add_argument("--body", default="spheroid", help="spheroid | tippe-top | egg | disk | cone (default: %(default)s)")
     g.add_argument("--a", type=_real, default=None, help="aspect ratio: spheroid semi-axes (1, 1, a), egg length/breadth")
     g.add_argument("--offset", type=_real, default=None, help="tippe-top: centre of mass below the ball's centre, in [0, 1); spheroid: centre of mass "
                         "displaced from the centre toward the end at -k, in [0, a) (default 0)")
@@ -206,10 +208,23 @@ def _add_body(p, units: bool = False):
     g.add_argument("--thickness", type=_real_or_units if units else _real, default=None,
                    help=f"disk: full thickness over the radius, in [0, 1000] (0: a thin disk, Euler's disk; a coin "
                         f"~0.1; default 0){typed}")
+    g.add_argument("--height", type=_real_or_units if units else _real, default=None,
+                   help=f"cone: from the base to the tip over the base's radius, in (0, 1000] (default 1){typed}")
+    g.add_argument("--on", default=None, help="cone: where it touches the table, rim (of its base, theta below the "
+                                              "angle pi - atan(height) where its side lies on the table; default) or "
+                                              "tip (theta above it, up to pi: a top on its point)")
+    with_size = " (or with units, e.g. '12 mm', with --size)" if units else ""
+    g.add_argument("--stem-length", dest="stem_length", type=_real_or_units if units else _real, default=None,
+                   help="tippe-top: the top with its stem, standing this far out of the ball, over the ball's radius, in "
+                        "(0, 10] (default 0.375, a common commercial top; without --stem-length and --stem-radius the "
+                        f"ball alone){with_size}")
+    g.add_argument("--stem-radius", dest="stem_radius", type=_real_or_units if units else _real, default=None,
+                   help=f"tippe-top: the radius of the stem's rounded end over the ball's radius, in (0, 1) (default 0.2)"
+                        f"{with_size}")
     if units:
         g.add_argument("--radius", type=_quantity_text, default=None,
-                       help="disk: its radius with its unit, e.g. '3.7 cm': the unit of length b (as --size, which it "
-                            "replaces)")
+                       help="disk, cone: its (base's) radius with its unit, e.g. '3.7 cm': the unit of length b (as "
+                            "--size, which it replaces)")
     g.add_argument("--A", dest="A", type=_real, default=None,
                    help="transverse moment of inertia about G, units M b^2 (default: the body's, e.g. (1+a^2)/5)")
     g.add_argument("--C", dest="C", type=_real, default=None, help="axial moment of inertia about G (default: the body's, e.g. 2/5)")
@@ -252,6 +267,8 @@ DISSIPATION_FLAGS = {
     "spin_friction": ("MU_S", "spin (pivoting) friction: a couple -MU_S R sign(w_Z) about the vertical (MU_S = "
                       "3 pi mu a/16 for a contact patch of radius a)", "a length, units b", "'0.5 mm'"),
     "air_drag": ("K1", "air drag on the rotation: a couple -K1 w", "units M b^2 sqrt(g/b)", "'1e-7 N*m*s'"),
+    "air_layer": ("K", "the air layer under a disk on its rim (Moffatt): a couple whose power is -K psidot^2/sin(theta)",
+                  "units M b^2 sqrt(g/b)", "'1e-9 N*m*s'"),
     "air_drag_quadratic": ("K2", "quadratic air drag on the rotation: a couple -K2 |w| w", "units M b^2",
                            "'1e-9 N*m*s^2'"),
     "air_drag_force": ("C1", "air drag on the centre of mass: a force -C1 v at G", "units M sqrt(g/b)",

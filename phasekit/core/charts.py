@@ -68,8 +68,9 @@ class Chart:
         ``spin``, ``jellett``, ``cos_theta``, ``h``, ``paper`` (the paper's six variables), and
         ``w``, ``v`` (angular velocity, velocity of G, in axes with e_Z vertical) and ``lift``
         (the wrench's vertical force). ``H`` maps c = cos(theta) to the height of G (an SX
-        expression); ``wrench(w, v, R) -> (f, couple)``, optional, adds a dissipative force at G
-        and a couple (:mod:`phasekit.friction.dissipation`)."""
+        expression); ``wrench(w, v, R, k) -> (f, couple)``, optional, adds a dissipative force at
+        G and a couple (:mod:`phasekit.friction.dissipation`); ``k`` is the symmetry axis (a unit
+        vector in the same axes as w), also returned as the term ``k``."""
         raise NotImplementedError
 
     #: the state's positions (what a body at rest keeps; every other entry is a velocity)
@@ -142,7 +143,7 @@ class EulerChart(Chart):
         w = ca.vertcat((n - Om * c) * s, Lam, Om + (n - Om * c) * c)
         lift = ca.SX(0)
         if wrench is not None:
-            f, G = wrench(w, ca.vertcat(U, V, W), R)
+            f, G = wrench(w, ca.vertcat(U, V, W), R, ca.vertcat(s, 0, c))
             G_theta, G_k = c * G[0] - s * G[2], s * G[0] + c * G[2]
             xdot = xdot + ca.vertcat(f[0], f[1], -G_theta / (A * s), G[1] / A, 0, G_k / C)
             lift = f[2]
@@ -152,7 +153,7 @@ class EulerChart(Chart):
         jellett = A * Om * s * xP + C * n * zPm
         return dict(xdot=xdot, W=W, slip=slip, energy=energy, L_Z=L_Z, spin=n, jellett=jellett, cos_theta=c, h=h,
                     paper=ca.vertcat(U, V, Om, Lam, th, n), lift=lift, lever=ca.fabs(h1), w=w,
-                    v=ca.vertcat(U, V, W))
+                    v=ca.vertcat(U, V, W), k=ca.vertcat(s, 0, c))
 
     def from_paper(self, y) -> np.ndarray:
         return np.array(y, dtype=float)
@@ -212,7 +213,7 @@ class VectorChart(Chart):
         torque = _cross(rP, ca.vertcat(Fc[0], Fc[1], Fc[2])) - (C - A) * n * wxk
         force, lift = ca.vertcat(Fc[0], Fc[1]), ca.SX(0)
         if wrench is not None:  # a dissipative wrench: a force f at G and a couple G
-            f, G = wrench(w, ca.vertcat(vx, vy, W), Fc[2])
+            f, G = wrench(w, ca.vertcat(vx, vy, W), Fc[2], khat)
             torque, force, lift = torque + G, force + f[0:2], f[2]
         # I^{-1} = (1 - k k^T)/A + k k^T / C
         wdot = (torque - khat * ca.dot(khat, torque)) / A + khat * ca.dot(khat, torque) / C
@@ -229,7 +230,7 @@ class VectorChart(Chart):
         return dict(xdot=xdot, W=W, slip=slip, rot_energy=rot_energy, L_Z=Lvec[2], L=Lvec, spin=n,
                     jellett=-ca.dot(Lvec, rP), cos_theta=c, h=Hc, rP=rP, paper=paper, lift=lift, w=w,
                     lever=ca.sqrt(rP[0] ** 2 + rP[1] ** 2),
-                    v=ca.vertcat(vx, vy, W))
+                    v=ca.vertcat(vx, vy, W), k=khat)
 
     def terms(self, x, H, A, C, Fc, wrench=None) -> dict:
         T = self.rigid_terms(x, H, A, C, Fc, wrench)
@@ -275,7 +276,7 @@ class FlightChart(Chart):
         vz = Dd + Hdot
         lift = None
         if wrench is not None:  # in flight only the air acts (the contact laws vanish with R = 0)
-            T = VECTOR.rigid_terms(x[0:8], H, A, C, ca.SX.zeros(3), lambda w, v, R: wrench(w, ca.vertcat(v[0], v[1], vz), 0))
+            T = VECTOR.rigid_terms(x[0:8], H, A, C, ca.SX.zeros(3), lambda w, v, R, k: wrench(w, ca.vertcat(v[0], v[1], vz), 0, k))
             lift = T["lift"]
         rot = ca.vertcat(T["xdot"], 0, 0)
         Hddot = ca.jtimes(Hdot, x, rot)

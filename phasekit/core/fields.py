@@ -97,7 +97,7 @@ def compiled_model(body: Body, law: FrictionLaw, chart: Chart) -> CompiledModel:
     key = (body.structure_key, structure[0] if len(structure) == 1 else structure, chart.name)
     with _LOCK:
         if key not in _CACHE:
-            _CACHE[key] = _build(body, type(law), chart, key, law.dissipation)
+            _CACHE[key] = _build(body, type(law), chart, key, law.dissipation, law.creeps)
         return _CACHE[key]
 
 
@@ -115,15 +115,15 @@ def _common(fn: dict, T: dict, x, p) -> None:
 
 
 def _wrench(laws, p, first: int):
-    """The dissipation laws' total wrench (f, couple) as a function of (w, v, R), each law reading
-    its coefficients from p after index ``first``; None without laws."""
+    """The dissipation laws' total wrench (f, couple) as a function of (w, v, R, k), k the body's
+    axis, each law reading its coefficients from p after index ``first``; None without laws."""
     if not laws:
         return None
 
-    def wrench(w, v, R):
+    def wrench(w, v, R, k):
         f, G, i = ca.SX.zeros(3), ca.SX.zeros(3), first
         for law in laws:
-            fi, Gi = law.wrench(w, v, R, p[i:i + law.n_params])
+            fi, Gi = law.wrench(w, v, R, p[i:i + law.n_params], k)
             f, G, i = f + fi, G + Gi, i + law.n_params
         return f, G
 
@@ -142,20 +142,20 @@ def _dissipation_terms(fn, tag, T, x, p, rhs, Fc_mode, laws, first) -> None:
         speed = ca.sqrt(ca.sumsqr(T["w"][part]) + 1e-40)
         fn[f"{kind}_rate_{tag}"] = _function(f"{kind}_rate_{tag}", x, p, ca.jtimes(speed, x, rhs))
     power = [ca.dot(Fc_mode[0:2], T["slip"])]  # the slip and w, v depend on the state only
-    power += _powers(laws, p, first, T["w"], T["v"], Fc_mode[2])
+    power += _powers(laws, p, first, T["w"], T["v"], Fc_mode[2], T["k"])
     fn[f"power_{tag}"] = _function(f"power_{tag}", x, p, ca.vertcat(*power))
 
 
-def _powers(laws, p, first: int, w, v, R):
-    """Each dissipation law's power f.v + couple.w, in order."""
+def _powers(laws, p, first: int, w, v, R, k):
+    """Each dissipation law's power f.v + couple.w, in order (k: the body's axis)."""
     out, i = [], first
     for law in laws:
-        out.append(law.power(w, v, R, p[i:i + law.n_params]))
+        out.append(law.power(w, v, R, p[i:i + law.n_params], k))
         i += law.n_params
     return out
 
 
-def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=()) -> CompiledModel:
+def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=(), creep: bool = False) -> CompiledModel:
     nx, ns = chart.n_states, body.n_shape
     n_params = ns + 4 + sum(d.n_params for d in laws)
     x = ca.SX.sym("x", nx)
@@ -217,12 +217,7 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=()) -
     # Regularised law only: the slip has grown back above 100 eps (hysteresis against chatter).
     fn["unstick_guard"] = _function("unstick_guard", x, p, 100 * eps - ca.sqrt(speed2))
 
-    if law_cls.has_rolling_mode:
-        _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu)
-    elif law_cls.can_stick:
-        # a regularised law has one field: its "rolling" mode (slip below 10 eps) reuses it
-        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction", *(DISSIPATION_TERMS if laws else ())):
-            fn[f"{name}_rolling"] = fn[f"{name}_sliding"]
+    _build_zero_slip(fn, add_mode, law_cls, creep, bool(laws), x, p, Fc, T, constraint, G, g0, mu, eps)
 
     _common(fn, T, x, p)
     fn["gap"] = _function("gap", x, p, ca.SX(0))
@@ -262,10 +257,10 @@ def _build_held(fn, chart, x, p, Fc, H, laws, law_cls, ns, kind: str) -> tuple[M
     tau = ca.SX.sym("tau", n_tau)
     couple = ca.vertcat(0, 0, tau) if kind == "pivot" else ca.vertcat(tau, 0)
 
-    def wrench(w, v, R):
+    def wrench(w, v, R, k):
         f, G = ca.SX.zeros(3), couple
         for law, i in free:
-            fi, Gi = law.wrench(w, v, R, p[i:i + law.n_params])
+            fi, Gi = law.wrench(w, v, R, p[i:i + law.n_params], k)
             f, G = f + fi, G + Gi
         return f, G
 
@@ -286,7 +281,7 @@ def _build_held(fn, chart, x, p, Fc, H, laws, law_cls, ns, kind: str) -> tuple[M
                            (f"{kind}_margin", coef * coef * R * R - ca.dot(tau_m, tau_m)), (f"{kind}_couple", tau_m)):
             fn[f"{name}_{tag}"] = _function(f"{name}_{tag}", x, p, ca.substitute(expr, z, sub))
         w, v = T["w"], T["v"]
-        power = [ca.dot(Fc_m[0:2], slip)] + [law.power(w, v, R, p[i:i + law.n_params]) if not isinstance(law, cls)
+        power = [ca.dot(Fc_m[0:2], slip)] + [law.power(w, v, R, p[i:i + law.n_params], T["k"]) if not isinstance(law, cls)
                                              else ca.dot(tau_m, w[part]) for law, i in _offsets(laws, ns + 4)]
         fn[f"power_{tag}"] = _function(f"power_{tag}", x, p, ca.substitute(ca.vertcat(*power), z, sub))
         return Fc_m
@@ -347,6 +342,19 @@ def _build_rest(fn, T, x, p, ns, laws) -> None:
         fn[f"{kind}_guard"] = _function(f"{kind}_guard", x, p, speed - HOLD_RATE)
 
 
+def _build_zero_slip(fn, add_mode, law_cls, creep, laws, x, p, Fc, T, constraint, G, g0, mu, eps) -> None:
+    """The ROLLING mode: exact Coulomb's no-slip mode; a stiff regularised law's creep; for another
+    regularised law its own field under that name (the slip below 10 eps)."""
+    xdot, slip = T["xdot"], T["slip"]
+    if law_cls.has_rolling_mode:
+        _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu)
+    elif creep:
+        _build_creep(fn, add_mode, x, p, Fc, xdot, slip, constraint, mu, eps, T["w"])
+    elif law_cls.can_stick:
+        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction", *(DISSIPATION_TERMS if laws else ())):
+            fn[f"{name}_rolling"] = fn[f"{name}_sliding"]
+
+
 def _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu) -> None:
     """ROLLING (exact Coulomb): the constraint and du/dt = 0 fix all three components of Fc."""
     rows = ca.vertcat(constraint, ca.jtimes(slip, x, xdot))
@@ -366,6 +374,43 @@ def _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu) ->
                                    ["x", "p", "phi"], ["slip_acc", "R"])
 
 
+#: the rate (units sqrt(g/b)) at which the creep field pulls the slip onto the slow manifold u*(x):
+#: fast against the motion's slow drift, slow against the law's own relaxation mu R/eps
+CREEP_PULL = 20.0
+#: the creep holds while the law's relaxation rate on its slow manifold (see _build_creep) exceeds
+#: both (a smooth minimum) CREEP_STIFF, above which the law's own field is stiff for the Taylor
+#: method, and CREEP_RATIO times the motion's rate 1 + |w|, which keeps the reduction's error
+#: (~ rate/relaxation) small. Measured on the main study (146 thresholds, eps = 1e-4 ... 1e-8):
+#: every threshold identical; a ratio of 20 moved 9 of the eps = 1e-4 thresholds by up to 1.5%
+CREEP_STIFF = 2000.0
+CREEP_RATIO = 100.0
+
+
+def _build_creep(fn, add_mode, x, p, Fc, xdot, slip, constraint, mu, eps, w) -> None:
+    """ROLLING of a regularised law: creep on its slow manifold, non-stiff (docs/physics.md derives it).
+
+    With |u| << mu R/|dF/dt|, F = -mu R u/sqrt(|u|^2 + eps^2) relaxes the slip at a rate ~ mu R/eps
+    onto u*(x) = -eps F/sqrt(mu^2 R^2 - |F|^2), the slip that gives the force F needed (the law
+    inverted). The creep field imposes du/dt = du*/dt - CREEP_PULL (u - u*), with u* from the
+    rolling force F_roll(x) and its rate along the rolling field (Tikhonov's reduction, first order:
+    the field differs from the law's on its slow manifold by O(eps^2)), so that it keeps the creep's
+    dissipation F.u* = -eps |F|^2/sqrt(mu^2 R^2 - |F|^2), which decides where a long creep ends,
+    without the law's stiffness. It holds while the manifold attracts fast (``creep_margin``)."""
+    rows = ca.vertcat(constraint, ca.jtimes(slip, x, xdot))
+    M = ca.jacobian(rows, Fc)
+    b = ca.substitute(rows, Fc, ca.SX.zeros(3))
+    Fc_roll = -ca.solve(M, b)
+    rhs_roll = ca.substitute(xdot, Fc, Fc_roll)
+    room = (mu * Fc_roll[2]) ** 2 - ca.sumsqr(Fc_roll[0:2])
+    u_star = -eps * Fc_roll[0:2] / ca.sqrt(room)
+    target = ca.vertcat(0, ca.jtimes(u_star, x, rhs_roll) - CREEP_PULL * (slip - u_star))
+    add_mode(Mode.ROLLING, -ca.solve(M, b - target))
+    # >= 0 while the slow manifold attracts fast enough (CREEP_STIFF, CREEP_RATIO): the law's relaxation
+    # rate there, mu R (1 - f^2)^(3/2)/eps with f = |F|/(mu R), falls as R -> 0 or f -> 1, where creep ends
+    needed = (CREEP_STIFF ** -8 + (CREEP_RATIO * (1 + ca.sqrt(ca.sumsqr(w)))) ** -8) ** -0.125
+    fn["creep_margin"] = _function("creep_margin", x, p, room * ca.sqrt(room) - needed * eps * (mu * Fc_roll[2]) ** 2)
+
+
 def _build_flight(fn: dict, body: Body, ns: int, laws=()) -> None:
     """FLIGHT: the same rigid-body equations with no contact force, in the flight chart (the air
     still acts)."""
@@ -374,7 +419,7 @@ def _build_flight(fn: dict, body: Body, ns: int, laws=()) -> None:
     shape, A, C = p[:ns], p[ns], p[ns + 1]
     T = FLIGHT.terms(x, lambda c: body.height(c, shape), A, C, None, _wrench(laws, p, ns + 4))
     if laws:
-        fn["power_flight"] = _function("power_flight", x, p, ca.vertcat(0, *_powers(laws, p, ns + 4, T["w"], T["v"], 0)))
+        fn["power_flight"] = _function("power_flight", x, p, ca.vertcat(0, *_powers(laws, p, ns + 4, T["w"], T["v"], 0, T["k"])))
     rhs = T["xdot"]
     fn["rhs_flight"] = _function("rhs_flight", x, p, rhs)
     fn["rhs_jac_flight"] = _function("rhs_jac_flight", x, p, ca.jacobian(rhs, x))

@@ -15,6 +15,8 @@ import numpy as np
 from .._runtime.errors import ParameterError
 from .._runtime.validate import check_array, check_choice
 from ..bodies.body import Body
+from ..bodies.compound import TippeTop
+from ..bodies.cone import Cone
 from ..bodies.edged import Disk
 from ..bodies.egg import Egg
 from ..bodies.spheroid import EccentricSphere, Spheroid
@@ -348,7 +350,8 @@ class Model:
             raise ParameterError("model", f"must be given to rerun a {kind or 'user-defined'} body (only the built-in "
                                           "bodies can be rebuilt from their description)", show_value=False)
         body = make_body(kind, a=d.get("a"), offset=d.get("offset"), w=d.get("w"), thickness=d.get("thickness"),
-                         A=d["A"], C=d["C"])
+                         height=d.get("height"), on=d.get("on"), stem_length=d.get("stem_length"),
+                         stem_radius=d.get("stem_radius"), A=d["A"], C=d["C"])
         laws = {"coulomb": lambda: Coulomb(d["mu"]), "viscous": lambda: Viscous(d["mu"]),
                 "coulomb-regularised": lambda: RegularisedCoulomb(d["mu"], d["slip_eps"])}
         if d.get("law") not in laws:
@@ -465,16 +468,22 @@ class Model:
 
 
 #: the built-in bodies, by the name the CLI's --body and a model's description use
-BODIES = ("spheroid", "tippe-top", "egg", "disk")
+BODIES = ("spheroid", "tippe-top", "egg", "disk", "cone")
 
 
-def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, thickness=None, A=None, C=None) -> Body:
-    """A built-in body by name: ``spheroid`` (a, offset), ``tippe-top`` (offset), ``egg`` (a, w),
-    ``disk`` (thickness, over the radius; default 0, a thin disk) (the CLI's ``--body``, and
-    :meth:`Model.from_dict`)."""
+def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, thickness=None, height=None, on=None,
+              stem_length=None, stem_radius=None, A=None, C=None) -> Body:
+    """A built-in body by name: ``spheroid`` (a, offset), ``tippe-top`` (offset; with ``stem_length``
+    or ``stem_radius``, over the ball's radius, the top with its stem,
+    :class:`~phasekit.bodies.compound.TippeTop`, the other one at its default; without them the
+    ball alone), ``egg`` (a, w), ``disk`` (thickness, over the radius; default 0, a thin disk),
+    ``cone`` (height over the base's radius, default 1; on "rim" or "tip", default "rim") (the
+    CLI's ``--body``, and :meth:`Model.from_dict`)."""
     check_choice("body", kind, BODIES)
-    given = {"a": a, "offset": offset, "w": w, "thickness": thickness}
-    allowed = {"spheroid": ("a", "offset"), "tippe-top": ("offset",), "egg": ("a", "w"), "disk": ("thickness",)}[kind]
+    given = {"a": a, "offset": offset, "w": w, "thickness": thickness, "height": height, "on": on,
+             "stem_length": stem_length, "stem_radius": stem_radius}
+    allowed = {"spheroid": ("a", "offset"), "tippe-top": ("offset", "stem_length", "stem_radius"), "egg": ("a", "w"),
+               "disk": ("thickness",), "cone": ("height", "on")}[kind]
     for name, value in given.items():
         if value is not None and name not in allowed:
             raise ParameterError(name, f"does not apply to the {kind} body (its parameters: {', '.join(allowed)})", value)
@@ -486,9 +495,14 @@ def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, thickness=
         if offset is None:
             raise ParameterError("offset", "is required for the tippe-top body (centre of mass below the centre, in [0, 1))",
                                  show_value=False)
+        if stem_length is not None or stem_radius is not None:
+            stem = {k: v for k, v in (("stem_length", stem_length), ("stem_radius", stem_radius)) if v is not None}
+            return TippeTop(offset, A=A, C=C, **stem)
         return EccentricSphere(offset, A=A, C=C)
     if kind == "disk":
         return Disk(0.0 if thickness is None else thickness, A=A, C=C)
+    if kind == "cone":
+        return Cone(1.0 if height is None else height, "rim" if on is None else on, A=A, C=C)
     return Egg(1.3 if a is None else a, 0.0 if w is None else w, A=A, C=C)
 
 

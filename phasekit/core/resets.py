@@ -31,7 +31,7 @@ from .._runtime.errors import Status
 from .charts import FLIGHT, VECTOR, euler_to_vector
 from .fields import HOLD_RATE, REST_SPEED, STICK_SLIP
 from .hybrid import Mode, Record, Transition
-from .impact import _impact
+from .impact import _contact_point, _impact, _kinetic
 
 __all__ = [
     "SLIP_ONSET",
@@ -58,6 +58,7 @@ __all__ = [
     "HOLD_ONSET",
     "LiftOff",
     "Touchdown",
+    "Transfer",
 ]
 
 #: slip speed given to a body that starts sliding from zero slip. The true slip grows from 0
@@ -174,11 +175,11 @@ def zero_slip_start(model, x) -> tuple[Mode, np.ndarray, str] | None:
     return Mode.SLIDING, _set_slip(model, x0, SLIP_ONSET * found[0]), "zero slip, rolling infeasible"
 
 
-def contact_start(model, t: float, x, *, before: str = "start", stiff: bool = False) -> Transition:
+def contact_start(model, t: float, x, *, before: str = "start", creep: bool = False) -> Transition:
     """The contact mode a state starts in: at zero slip, ROLLING where static friction holds
     (exact Coulomb); else SLIDING. A regularised law whose slip is already below 10 eps starts
-    in its ROLLING mode only where that matters, i.e. where the field is ``stiff`` there and
-    another integrator takes over; elsewhere its two modes share one field and the first stick
+    in its ROLLING mode only where that matters, i.e. where the law creeps there (``creep``, a
+    field of its own) and its slow manifold holds; elsewhere its two modes share one field and the first stick
     event is left to the integration (which keeps runs bit-for-bit those of earlier versions).
     :attr:`Trajectory.stuck` reports such starts either way."""
     law = model.friction
@@ -192,7 +193,7 @@ def contact_start(model, t: float, x, *, before: str = "start", stiff: bool = Fa
             return _no_direction(t, x)
         mode, x, detail = out
         return Transition(mode, t, x, (Record("stick" if mode is Mode.ROLLING else "slip", before, mode.value, x, detail),))
-    if stiff and law.can_stick and not law.has_rolling_mode and speed < STICK_SLIP + 10 * law.eps:
+    if creep and speed < STICK_SLIP + 10 * law.eps and float(model.function("creep_margin")(x, model.p)) > 0:
         detail = "slip < 10 eps (regularised)"
         return Transition(Mode.ROLLING, t, x, (Record("stick", before, "rolling", x, detail),))
     return Transition(Mode.SLIDING, t, np.asarray(x, dtype=float))
@@ -250,6 +251,22 @@ class SwitchMode:
 
     def __call__(self, model, event, mode, t, x) -> Transition:
         return Transition(self.to, t, x, (Record(self.record_as, mode.value, self.to.value, x, self.detail),))
+
+
+@dataclass(frozen=True)
+class Creep:
+    """A regularised law's slip fell below 10 eps: it creeps (ROLLING, on the law's slow manifold)
+    where that attracts fast enough (``creep_margin`` > 0, :mod:`phasekit.core.fields`); otherwise
+    the law's own field is not stiff there, or the slip only passes a minimum and grows again:
+    stick and slip are logged at once and the sliding segment goes on (the guard fires again only
+    once the slip has risen above 10 eps)."""
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        stick = Record("stick", mode.value, Mode.ROLLING.value, x, "slip < 10 eps (regularised)")
+        if float(model.function("creep_margin")(x, model.p)) > 0.0:
+            return Transition(Mode.ROLLING, t, x, (stick,))
+        slip = Record("slip", Mode.ROLLING.value, Mode.SLIDING.value, x, "no creep here (|F| near mu R, or R small)")
+        return Transition(Mode.SLIDING, t, x, (stick, slip), resume=True)
 
 
 @dataclass(frozen=True)
@@ -491,19 +508,93 @@ class Touchdown:
                        f"{tail[2]:.3g} time units) summed")
         recs = [Record("touchdown", "flight", "impact", contact_state(model, x)),
                 Record("impact", "flight", "flight" if bounce else "contact", contact_state(model, x_post), detail)]
-        if bounce:
-            return Transition(Mode.FLIGHT, t, x_post, tuple(recs))
-        start = contact_start(model, t, contact_state(model, x_post), before="contact")
-        if start.stop is not None:
-            return Transition(None, t, start.x, tuple(recs), stop=start.stop, reason=start.reason)
-        if float(model._evaluate("R", start.x, start.mode)) <= 0.0:
-            # contact cannot hold (it would need R < 0): the body flies on from rest
-            recs.append(Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 after impact"))
-            return Transition(Mode.FLIGHT, t, flight_state(model, start.x), tuple(recs))
-        return Transition(start.mode, t, start.x, tuple(recs))
+        return _after_impact(model, t, x_post, recs, bounce)
+
+
+def _after_impact(model, t, x_post, recs, bounce: bool) -> Transition:
+    """Fly on from the post-impact flight state ``x_post`` if the body rebounds, else resume
+    contact (and fly at once if contact would need R <= 0)."""
+    if bounce:
+        return Transition(Mode.FLIGHT, t, x_post, tuple(recs))
+    start = contact_start(model, t, contact_state(model, x_post), before="contact")
+    if start.stop is not None:
+        return Transition(None, t, start.x, tuple(recs), stop=start.stop, reason=start.reason)
+    if float(model._evaluate("R", start.x, start.mode)) <= 0.0:
+        # contact cannot hold (it would need R < 0): the body flies on from rest
+        recs.append(Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 after impact"))
+        return Transition(Mode.FLIGHT, t, flight_state(model, start.x), tuple(recs))
+    return Transition(start.mode, t, start.x, tuple(recs))
 
 
 def flight_start_state(model, x) -> np.ndarray:
     """A state given to start in flight: a flight state as is, or a contact state lifted off."""
     x = np.asarray(x, dtype=float)
     return x.copy() if x.size == FLIGHT.n_states else flight_state(model, x)
+
+
+# -- compound bodies ----------------------------------------------------------------------------
+
+#: a transfer puts theta this far past the switch between two pieces (radians; heyoka takes a step's field from the side it
+#: starts on); its event fires SWITCH_EARLY before it, so that a segment ends on its own side (the located root can overshoot)
+SWITCH_NUDGE, SWITCH_EARLY = 1e-12, 1e-9
+#: the impacts alternated between the two pieces at most (each stops one piece's approach)
+TRANSFER_IMPACTS = 24
+#: a piece's contact point moving up slower than this (units sqrt(g b)) has not left the table
+TWO_PIECE_TOL = 1e-9
+#: the contact passing to and fro this many times within TWO_PIECE_SPAN (units sqrt(b/g)) is a
+#: body on both pieces at once (the passages accumulate, as a bounce train's impacts do)
+TWO_PIECE_PASSES, TWO_PIECE_SPAN = 6, 1e-3
+
+
+def _tilt(xf, theta: float) -> np.ndarray:
+    """The flight state ``xf`` with its axis at the inclination ``theta`` (same azimuth)."""
+    x = np.array(xf, dtype=float)
+    s = math.hypot(x[0], x[1])
+    x[0:3] = [x[0] / s * math.sin(theta), x[1] / s * math.sin(theta), math.cos(theta)]
+    return x
+
+
+@dataclass(frozen=True)
+class Transfer:
+    """A compound body's theta reached the switch between two pieces (its ``transfers``,
+    :mod:`phasekit.bodies.compound`). In flight the lowest piece changes: the segment is split
+    there (G's height and velocity kept, the gap and its rate taken from the new piece). In
+    contact the new piece hits the table while the old one touches it: the impact law of
+    :class:`Touchdown` at the new piece's contact point (theta just past the switch), then at
+    the old one's if it now approaches the table, alternating until neither does; a body left on
+    both pieces at once is reported (status "failed"), not integrated."""
+
+    transfer: object  # a bodies.compound.PieceTransfer
+    restitution: float = 0.0
+    bounce_stop: float = BOUNCE_STOP
+    uses_log = True
+
+    def __call__(self, model, event, mode, t, x, log=()) -> Transition:
+        tr, body = self.transfer, model.body
+        recent = [r for r in log[-4 * TWO_PIECE_PASSES:] if r.name in {p.name for p in body.transfers} and t - r.t < TWO_PIECE_SPAN]
+        old = _tilt(x if mode is Mode.FLIGHT else flight_state(model, x), tr.theta - tr.direction * SWITCH_NUDGE)
+        k, w, v = rigid_velocities(model, old)  # the old piece's side: its contact sets G's vertical velocity
+        k_new = _tilt(old, tr.theta + tr.direction * SWITCH_NUDGE)[0:3]
+        if mode is Mode.FLIGHT:
+            gap = old[8] + body.height_slope(k[2])[0] - body.height_slope(k_new[2])[0]  # G's height kept
+            xf = from_rigid(model, k_new, w, v, gap=gap)
+            return Transition(Mode.FLIGHT, t, xf, (Record(f"{tr.to_piece} lowest (in flight)", "flight", "flight", xf),))
+        E0, impacts, quiet = _kinetic(body, k_new, w, v), 0, 0
+        for i in range(TRANSFER_IMPACTS):
+            imp = _impact(body, (k_new, k)[i % 2], w, v, e=self.restitution, mu=model.friction.mu)
+            if imp.v_normal_before < -TWO_PIECE_TOL:
+                w, v, impacts, quiet = imp.w, imp.v, impacts + 1, 0
+            elif (quiet := quiet + 1) == 2:  # neither piece approaches the table
+                break
+        x_post = from_rigid(model, k_new, w, v)
+        vn_new, vn_old = ((v + np.cross(w, _contact_point(body, kk)))[2] for kk in (k_new, k))
+        detail = (f"{impacts} impact(s), e={self.restitution:g}, dE={_kinetic(body, k_new, w, v) - E0:.3e}, "
+                  f"{tr.from_piece} leaves at {vn_old:.3g}")
+        recs = [Record(tr.name, mode.value, "impact", contact_state(model, old), f"{tr.from_piece} -> {tr.to_piece}"),
+                Record("impact", mode.value, "flight" if vn_new > self.bounce_stop else "contact",
+                       contact_state(model, x_post), detail)]
+        if quiet < 2 or (vn_old <= TWO_PIECE_TOL or len(recent) >= TWO_PIECE_PASSES) and vn_new <= self.bounce_stop:
+            why = (f"the impacts between the {tr.from_piece} and the {tr.to_piece} did not settle" if quiet < 2 else
+                   f"the body rests on two pieces at once (the {tr.from_piece} and the {tr.to_piece}): not integrated")
+            return Transition(None, t, contact_state(model, x_post), tuple(recs), stop=Status.FAILED, reason=f"{why} (t = {t:.10g})")
+        return _after_impact(model, t, x_post, recs, vn_new > self.bounce_stop)

@@ -5,8 +5,8 @@ The table of events (guard, modes, friction laws, reset or outcome) is generated
 resets".
 
 Flows: SLIDING (``rhs_sliding``), ROLLING (``rhs_rolling``; for a regularised law the same
-field as sliding, integrated by CVODES when it is stiff), FLIGHT (``rhs_flight``, always
-the Taylor method). Contact flows record the minima of R, flight the maximum of the gap.
+field as sliding, or, where that is stiff, its creep on the slow manifold of the slip), FLIGHT
+(``rhs_flight``, always the Taylor method). Contact flows record the minima of R, flight the maximum of the gap.
 A new event is one more :class:`phasekit.core.hybrid.Event` passed to :func:`phasekit.simulate`.
 """
 
@@ -21,7 +21,9 @@ from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
 from .resets import (
     BOUNCE_STOP,
     BOUNCE_TAIL,
+    SWITCH_EARLY,
     BodyLimit,
+    Creep,
     Held,
     Hold,
     LiftOff,
@@ -31,6 +33,7 @@ from .resets import (
     Stick,
     SwitchMode,
     Touchdown,
+    Transfer,
     contact_start,
     flight_start_state,
     hold,
@@ -41,9 +44,10 @@ __all__ = ["declare", "STOP_AT", "STIFF_RATE", "GUARD_DELAY"]
 #: how far a run goes: the first lift-off, the first touchdown, or the end time; "rest" goes
 #: through flights as "none" does (with dissipation laws every run ends when the body rests)
 STOP_AT = ("jump", "touchdown", "none", "rest")
-#: "auto" hands a stuck regularised law to CVODES when its slip relaxation rate mu/eps
-#: exceeds this. Measured (prolate a = 1.5, mu = 0.1, literal seeds, t <= 3000): the Taylor
-#: method is faster for eps >= 1e-4 (rate 1e3) and runs out of steps at eps = 1e-5.
+#: "auto" hands a regularised law's modes with a part of w held (spin friction, rolling resistance:
+#: the law's own field there) to CVODES when its slip relaxation rate mu/eps exceeds this. Measured
+#: (prolate a = 1.5, mu = 0.1, literal seeds, t <= 3000): the Taylor method is faster for eps >= 1e-4
+#: (rate 1e3) and runs out of steps at eps = 1e-5. Its ROLLING mode creeps instead (fields, resets.Creep).
 STIFF_RATE = 2000.0
 #: At lift-off Delta = dDelta/dt = 0 and d2Delta/dt2 = -R vanish only to rounding and the
 #: event tolerance (~1e-16, ~1e-12), so the gap's Taylor polynomial can have spurious roots
@@ -62,11 +66,12 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     restitution = check_range("restitution", restitution, 0.0, 1.0, closed="lr")
     law = model.friction
     stiff = law.can_stick and not law.has_rolling_mode and law.mu / law.eps > STIFF_RATE
+    creep = law.creeps
     held = [m for m in model.modes if m.free is not m]  # spin friction, rolling resistance hold parts of w
     hold = Held if held else _same
     flows = (
         Flow(Mode.SLIDING, "rhs_sliding", monitor=("Rdot", +1)),
-        Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1), stiff=stiff),
+        Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1)),  # a regularised law's: its creep, or not stiff
         Flow(Mode.FLIGHT, "rhs_flight", monitor=("gap_rate", -1), engine="taylor", contact=False),
     ) + tuple(Flow(m, f"rhs_{m.value}", monitor=("Rdot", +1), stiff=stiff and m.free is Mode.ROLLING) for m in held)
     jump_ends = stop_at == "jump"
@@ -76,7 +81,8 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     evs = [Event("R", name="lift-off", direction=-1, modes=contact, rate="Rdot", stop=Status.JUMPED,
                  reset=None if jump_ends else LiftOff())]
     if law.can_stick:
-        to_roll = hold(Stick() if law.has_rolling_mode else SwitchMode(Mode.ROLLING, "stick", "slip < 10 eps (regularised)"))
+        to_roll = hold(Stick() if law.has_rolling_mode else Creep() if creep else
+                       SwitchMode(Mode.ROLLING, "stick", "slip < 10 eps (regularised)"))
         # the Taylor method watches |u| itself; pointwise integrators the dip of |u|^2 (see model)
         evs += [Event("stick_guard", name="stick", direction=-1, modes=sliding, reset=to_roll),
                 Event("stick_guard_sq", name="stick", direction=-1, modes=sliding, reset=to_roll,
@@ -85,8 +91,10 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
             evs += [Event("margin_rolling" if m is Mode.ROLLING else f"margin_{m.value}", name="slip", direction=-1,
                           modes={m}, reset=hold(SlipOnset())) for m in sorted(rolling, key=list(Mode).index)]
         else:
-            evs.append(Event("unstick_guard", name="slip", direction=-1, modes=rolling,
-                             reset=hold(SwitchMode(Mode.SLIDING, "slip", "slip > 100 eps (regularised)"))))
+            to_slide = hold(SwitchMode(Mode.SLIDING, "slip", "slip > 100 eps (regularised)"))
+            evs.append(Event("unstick_guard", name="slip", direction=-1, modes=rolling, reset=to_slide))
+            if creep:  # the creep holds while the law's slow manifold attracts fast (fields._build_creep)
+                evs.append(Event("creep_margin", name="slip", direction=-1, modes={Mode.ROLLING}, reset=to_slide))
     for kind in ("pivot", "roll"):  # a set-valued law stops its part of w, holds it, lets it go (resets)
         kept = [m for m in held if m in (Mode.SLIDING.held(kind), Mode.ROLLING.held(kind))]
         if kept:
@@ -101,18 +109,25 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
                      reset=None if stop_at == "touchdown" else hold(Touchdown(restitution, *bounce))))
     for lim in getattr(model.body, "limits", ()):  # a body with an edge: its model ends there (bodies.edged)
         evs.append(Event("theta", lim.theta, direction=lim.direction, name=lim.name, reset=BodyLimit(lim.reason)))
+    for tr in getattr(model.body, "transfers", ()):  # a compound body: the contact passes between its pieces
+        # watched in every mode, so that no step crosses the switch (bodies.compound)
+        level = tr.theta - tr.direction * SWITCH_EARLY
+        evs += [Event("theta", level, direction=tr.direction, name=tr.name, modes=contact,
+                      reset=hold(Transfer(tr, restitution, bounce[0]))),
+                Event("theta", level, direction=tr.direction, name=f"{tr.to_piece} lowest (in flight)",
+                      modes={Mode.FLIGHT}, reset=Transfer(tr))]
     for ev in events:
         if not isinstance(ev, Event):
             raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
         evs.append(ev)
-    return HybridSystem(flows, tuple(evs), _initial(stop_at, stiff, bool(held)))
+    return HybridSystem(flows, tuple(evs), _initial(stop_at, creep, bool(held)))
 
 
 def _same(reset):
     return reset
 
 
-def _initial(stop_at: str, stiff: bool, held: bool = False):
+def _initial(stop_at: str, creep: bool, held: bool = False):
     def initial(model, t, x, mode=None):
         """Start in contact (the mode from the slip), or in flight when asked; a contact
         state that would need R <= 0 lifts off at once."""
@@ -122,7 +137,7 @@ def _initial(stop_at: str, stiff: bool, held: bool = False):
         if speed > STICK_SLIP + 10 * model.friction.eps and R > 0.0:  # the common case, in one call
             tr = Transition(Mode.SLIDING, t, x)
             return hold(model, tr) if held else tr
-        start = contact_start(model, t, x, stiff=stiff)
+        start = contact_start(model, t, x, creep=creep)
         if held:
             start = hold(model, start)
         if start.stop is not None or float(model._evaluate("R", start.x, start.mode)) > 0.0:

@@ -10,8 +10,8 @@ Examples
 0.1
 """
 
-from .dissipation import AirDrag, Dissipation, RollingResistance, SpinFriction
+from .dissipation import AirDrag, AirLayer, Dissipation, RollingResistance, SpinFriction
 from .laws import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous
 
 __all__ = ["FrictionLaw", "Coulomb", "RegularisedCoulomb", "Viscous", "Dissipation", "RollingResistance", "SpinFriction",
-           "AirDrag"]
+           "AirDrag", "AirLayer"]

@@ -17,6 +17,10 @@ SpinFriction(mu_s)
 AirDrag(rotation, rotation_quadratic, translation, translation_quadratic)
     Gamma = -(k1 + k2 |w|) w and f = -(c1 + c2 |v|) v: linear (viscous, Stokes) and quadratic
     (form drag) resistance of the air, acting in contact and in flight.
+AirLayer(k)
+    Gamma = -(k psidot / sin^3(theta)) (e_Z - cos(theta) k), psidot the precession rate of the
+    axis k: viscous dissipation in the thin air layer under a disk rolling on its rim at a small
+    angle to the table (Moffatt 2000), power exactly -k psidot^2 / sin(theta) along any motion.
 
 The sign laws are set-valued at zero rate (stick in spin, stick in rolling). phasekit writes
 spin friction's as x/sqrt(x^2 + eps^2) and rolling resistance's as x|x|^2/(|x|^2 + eps^2)^(3/2)
@@ -41,7 +45,7 @@ import numpy as np
 from .._runtime.errors import ParameterError
 from .._runtime.validate import check_nonnegative
 
-__all__ = ["Dissipation", "RollingResistance", "SpinFriction", "AirDrag", "SIGN_EPS"]
+__all__ = ["Dissipation", "RollingResistance", "SpinFriction", "AirDrag", "AirLayer", "SIGN_EPS"]
 
 #: the regularisation of the sign laws at zero rate (units sqrt(g/b)); see the module notes
 SIGN_EPS = 1e-9
@@ -53,8 +57,9 @@ class Dissipation:
     """Base class of the dissipation laws: a wrench (f at G, couple Gamma) affine in R.
 
     Required of a subclass: ``name``, ``coefficients`` (the names of its parameters, in order),
-    and ``wrench(w, v, R, q)`` returning CasADi 3-vectors (f, Gamma) from the angular velocity
-    ``w``, the velocity ``v`` of G, the normal reaction ``R`` and the parameters ``q``.
+    and ``wrench(w, v, R, q, k)`` returning CasADi 3-vectors (f, Gamma) from the angular velocity
+    ``w``, the velocity ``v`` of G, the normal reaction ``R``, the parameters ``q`` and the unit
+    vector ``k`` of the symmetry axis (in the axes of w; most laws ignore it).
 
     Parameters
     ----------
@@ -91,12 +96,12 @@ class Dissipation:
     def n_params(self) -> int:
         return len(self.coefficients)
 
-    def wrench(self, w, v, R, q):
-        raise NotImplementedError("a Dissipation subclass must define wrench(w, v, R, q)")
+    def wrench(self, w, v, R, q, k):
+        raise NotImplementedError("a Dissipation subclass must define wrench(w, v, R, q, k)")
 
-    def power(self, w, v, R, q):
+    def power(self, w, v, R, q, k):
         """The power the law adds to the motion, f.v + Gamma.w (<= 0)."""
-        f, G = self.wrench(w, v, R, q)
+        f, G = self.wrench(w, v, R, q, k)
         return ca.dot(f, v) + ca.dot(G, w)
 
     def to_dict(self) -> dict:
@@ -146,7 +151,7 @@ class RollingResistance(Dissipation):
     def __init__(self, delta: float):
         super().__init__(delta)
 
-    def wrench(self, w, v, R, q):
+    def wrench(self, w, v, R, q, k):
         # w_h |w_h|^2 / (|w_h|^2 + eps^2)^(3/2): flat at w_h = 0, so a rolling part that is zero up
         # to rounding (a body spinning in place) meets no stiff couple
         w_h = ca.vertcat(w[0], w[1], 0)
@@ -181,7 +186,7 @@ class SpinFriction(Dissipation):
     def __init__(self, mu_s: float):
         super().__init__(mu_s)
 
-    def wrench(self, w, v, R, q):
+    def wrench(self, w, v, R, q, k):
         wz = w[2]
         return ca.SX.zeros(3), ca.vertcat(0, 0, -q[0] * R * wz / ca.sqrt(wz * wz + SIGN_EPS * SIGN_EPS))
 
@@ -223,15 +228,67 @@ class AirDrag(Dissipation):
         if not any(self.values):
             raise ParameterError("rotation", "or another air-drag coefficient must be > 0 (all four are 0)", 0.0)
 
-    def wrench(self, w, v, R, q):
+    def wrench(self, w, v, R, q, k):
         # |x| is smooth enough here: the quadratic term x|x| is C^1 at 0 and vanishes there
         wn = ca.sqrt(ca.dot(w, w) + SIGN_EPS * SIGN_EPS)
         vn = ca.sqrt(ca.dot(v, v) + SIGN_EPS * SIGN_EPS)
         return -(q[2] + q[3] * vn) * v, -(q[0] + q[1] * wn) * w
 
 
+class AirLayer(Dissipation):
+    """Viscous dissipation in the air layer under a disk on its rim (Moffatt 2000): a couple
+    -(k psidot / sin^3(theta)) (e_Z - cos(theta) k) whose power is exactly -k psidot^2 / sin(theta).
+
+    psidot = (w.e_Z - (w.k) cos(theta)) / sin^2(theta) is the precession rate of the axis k (the
+    rate Omega at which the contact point goes round; Omega itself in the Euler chart). Moffatt's
+    dissipation Phi = k Omega^2 / alpha, alpha the angle between the disk and the table (= theta,
+    the axis from the vertical), is derived for a disk spinning in place at small alpha; this
+    couple gives it, with sin(theta) for alpha, along *any* motion, so that the energy
+    balance is the law's and the exponents alpha ~ (t0 - t)^(1/3), Omega ~ (t0 - t)^(-1/6) follow
+    wherever the disk stays near spinning in place. The couple lies in the plane of e_Z and k,
+    orthogonal to k: it brakes the precession only (neither the spin about k nor the rate of
+    theta). It is singular at theta = 0 (a disk's run stops at ``FLAT_ANGLE``, face down): not for
+    bodies that pass through the poles. It does not scale with R (it acts in flight too).
+
+    Parameters
+    ----------
+    k : float
+        The air layer's coefficient (units M b^2 sqrt(g/b)), in [0, 1e3]: Phi = k Omega^2 / alpha.
+        For a disk of radius a in air of viscosity mu_air, Moffatt's estimate is of order
+        2 pi mu_air a^3 (docs/physics.md).
+
+    Raises
+    ------
+    ParameterError
+        If ``k`` is not a finite number in [0, 1e3].
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> pk.friction.AirLayer(1e-4).describe()
+    'air-layer(k=0.0001)'
+    """
+
+    name = "air-layer"
+    coefficients = ("k",)
+    contact = False
+
+    def __init__(self, k: float):
+        super().__init__(k)
+
+    def wrench(self, w, v, R, q, k):
+        # sin^2 from the horizontal part of k: exact near theta = 0, where 1 - cos^2 loses digits.
+        # In the Euler chart sin^2 is sq(sin): CasADi turns sqrt(sq(x)) (and the derivative of
+        # sq(x)^1.5) into |x|, which heyoka cannot take; 1e-300 keeps the sqrt and is lost to
+        # rounding wherever sin^2 > 1e-284 (the disk stops at sin^2 = 1e-6)
+        s2 = k[0] * k[0] + k[1] * k[1]
+        c = k[2]
+        psidot = (w[2] - ca.dot(w, k) * c) / s2
+        return ca.SX.zeros(3), -(q[0] * psidot / (s2 * ca.sqrt(s2 + 1e-300))) * (ca.vertcat(0, 0, 1) - c * k)
+
+
 #: the laws a model's description names, for rebuilding it
-LAWS = {c.name: c for c in (RollingResistance, SpinFriction, AirDrag)}
+LAWS = {c.name: c for c in (RollingResistance, SpinFriction, AirDrag, AirLayer)}
 
 
 def dissipation_from_dict(d: dict) -> Dissipation:

@@ -40,6 +40,10 @@ __all__ = ["FrictionLaw", "Coulomb", "RegularisedCoulomb", "Viscous", "friction_
 
 #: friction coefficients above this are not friction but numerical trouble (and overflow R mu)
 MU_MAX = 1e3
+#: a regularised law whose slip relaxation rate mu/eps exceeds this can creep at zero slip on its slow
+#: manifold (:attr:`FrictionLaw.creeps`; where the creep holds: phasekit.core.fields). Below it (eps =
+#: 1e-3 at mu = 0.1) the manifold never attracts fast enough and the law keeps its own field.
+CREEP_RATE = 500.0
 
 
 class FrictionLaw:
@@ -95,10 +99,17 @@ class FrictionLaw:
         return np.concatenate([[self.mu, self.eps], *(d.params for d in self.dissipation)]).astype(float)
 
     @property
+    def creeps(self) -> bool:
+        """True for a regularised law stiff at zero slip (mu/eps > :data:`CREEP_RATE`): its ROLLING
+        mode follows the slow manifold of its slip where that attracts fast, a non-stiff field
+        (:mod:`phasekit.core.fields`)."""
+        return self.can_stick and not self.has_rolling_mode and self.eps > 0 and self.mu / self.eps > CREEP_RATE
+
+    @property
     def structure(self) -> tuple:
-        """What the compiled equations depend on besides numbers: the law's class and the
-        kinds of its dissipation laws."""
-        return (type(self), *(type(d) for d in self.dissipation))
+        """What the compiled equations depend on besides numbers: the law's class, the kinds of its
+        dissipation laws, and "creep" when it :attr:`creeps`."""
+        return (type(self), *(type(d) for d in self.dissipation), *(("creep",) if self.creeps else ()))
 
     def with_dissipation(self, *laws: Dissipation) -> "FrictionLaw":
         """This sliding law with rolling resistance, spin friction or air drag acting besides it.

@@ -280,7 +280,7 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
     thetas = [] if _degeneracy(body) else precession_angles(body, omega0=omega0, n0=n0)
     found = _isolated_states(model_euler, model_vector, omega0, n0) + _precessions(model_euler, thetas, omega0, n0)
     lo, hi = getattr(body, "theta_range", (0.0, np.pi))  # a body with an edge: its model holds on a range
-    return [fp for fp in found if (lo, hi) == (0.0, np.pi) or lo < fp.y[4] < hi]
+    return [fp for fp in found if (lo, hi) == (0.0, np.pi) or body.in_range(float(fp.y[4]))]
 
 
 def _family_value(name: str, value) -> float | None:

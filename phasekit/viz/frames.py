@@ -6,8 +6,9 @@ is, for theta in [0, pi], the contact point of inclination theta, at z = h_t sin
 h cos(theta) along the axis k and at distance x_P = h sin(theta) + h_t cos(theta) from it
 (section 2; a spheroid, an egg, the tippe top's ball and any user body alike). It is placed
 by the run's pose (:mod:`phasekit.core.pose`): G at (X, Y, h + gap) and the rotation
-R = Rz(psi) Ry(theta) Rz(phi), so one frame is one row of :meth:`Trajectory.sample`. The
-tippe top's stem is decoration (the model's body is the ball). Coloured sectors make the
+R = Rz(psi) Ry(theta) Rz(phi), so one frame is one row of :meth:`Trajectory.sample`. A body
+with an outline (an edge, or pieces: the tippe top with its stem) is drawn from it; the stem of
+the tippe top modelled as a ball alone is decoration. Coloured sectors make the
 spin about the axis visible; the contact point's path is traced on the table.
 """
 

@@ -42,7 +42,7 @@ def body_mesh(body, *, n_theta: int = 64, n_azimuth: int = 48):
     """
     import pyvista as pv
 
-    if hasattr(body, "outline"):  # an edged body: its support function traces only the rim
+    if hasattr(body, "outline"):  # an edged body's support traces only the rim; a compound's misses the joins
         z, r = body.outline(max(2, n_theta // 3))
     else:
         th = np.linspace(0.0, np.pi, n_theta)
@@ -61,7 +61,9 @@ def body_mesh(body, *, n_theta: int = 64, n_azimuth: int = 48):
 
 
 def decorations(body):
-    """Body-frame meshes drawn with the body: the tippe top's stem on +k (decoration only)."""
+    """Body-frame meshes drawn with the body: the stem of the tippe top modelled as a ball
+    (:class:`~phasekit.bodies.spheroid.EccentricSphere`) on +k, decoration only; the top with its
+    stem (:class:`~phasekit.bodies.compound.TippeTop`) is drawn whole from its outline."""
     import pyvista as pv
 
     from ..bodies.spheroid import EccentricSphere

@@ -161,7 +161,8 @@ def usage_error(args, flag):
     return d["message"]
 
 
-UNITS = {"rolling_resistance": "b", "spin_friction": "b", "air_drag": "M b^2 sqrt(g/b)", "air_drag_quadratic": "M b^2",
+UNITS = {"rolling_resistance": "b", "spin_friction": "b", "air_drag": "M b^2 sqrt(g/b)", "air_layer": "M b^2 sqrt(g/b)",
+         "air_drag_quadratic": "M b^2",
          "air_drag_force": "M sqrt(g/b)", "air_drag_force_quadratic": "M/b"}
 
 

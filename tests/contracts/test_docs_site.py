@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs"
 sys.path.insert(0, str(DOCS / "_ext"))  # pkdocs, imported by the tests that use it
 
-RESULTS = ["reproduction", "findings", "maps", "bodies", "steady_structure", "performance", "robustness", "dissipation"]
+RESULTS = ["reproduction", "findings", "maps", "bodies", "steady_structure", "performance", "robustness", "dissipation", "euler_disk"]
 
 
 def sphinx(out: Path, *options: str, quiet: bool = True) -> subprocess.CompletedProcess:

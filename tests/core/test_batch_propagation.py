@@ -76,17 +76,16 @@ def test_batch_runs_equal_scalar_runs_through_jumps_rises_and_sticking():
     assert kinds == {"jump", "rise", "stuck"} and stats.scalar == 0 and stats.batched == len(items)
 
 
-@pytest.mark.parametrize("eps, batched", [(1e-4, True), (1e-5, False)])
-def test_regularised_sticking_in_batch_or_handed_back(eps, batched):
-    """A regularised law that sticks: with mu/eps below the stiff rate the slow-slip mode is
-    run in batch too; above it the mode is CVODES', and those starts are rerun by simulate."""
+@pytest.mark.parametrize("eps", [1e-4, 1e-5])
+def test_regularised_sticking_in_batch(eps):
+    """A regularised law that sticks: its slow-slip mode is run in batch too, whether it follows
+    the law's own field (mu/eps below the creep rate) or its creep (above: no longer stiff)."""
     defn = Definition("literal", "literal", eps=eps, t_max=60.0)
     values = [10.0, 12.0]
     stats = BatchStats()
     got = defn.outcomes(1.5, values, engine="batch", stats=stats)
     want = [defn.outcome(1.5, v) for v in values]
-    assert (stats.batched, stats.scalar) == ((2, 0) if batched else (0, 2))
-    assert batched or "stiff" in " ".join(stats.reasons)
+    assert (stats.batched, stats.scalar) == (2, 0)
     for g, w in zip(got, want):
         assert (g.kind, g.status, g.stuck) == (w.kind, w.status, w.stuck) and g.t == pytest.approx(w.t, rel=1e-9)
     assert {g.kind for g in got} == {"stuck"}

@@ -9,7 +9,6 @@ from phasekit.core.starts import to_chart, vertical_spin_start
 import numpy as np
 import pytest
 
-CHARTS = ("euler", "vector")
 BUDGET = dict(max_wall=60.0, max_steps=200_000)
 #: relative agreement required of every closed form
 CLOSED_FORM_RTOL = 1e-8
@@ -21,7 +20,7 @@ def _rolling_spinning_start(model, v0, w0):
 
 
 @pytest.mark.timeout(300)
-@pytest.mark.parametrize("chart", CHARTS)
+@pytest.mark.parametrize("chart", ["euler", pytest.param("vector", marks=pytest.mark.slow)])  # vector: ~20 s cold
 @pytest.mark.parametrize("delta, c1, k1, s0", [(0.01, 0.02, 0.01, 0.5), (0.02, 0.05, 0.0, 1.0), (0.005, 0.0, 0.03, 0.3)])
 def test_rolling_resistance_and_linear_air_drag_stop_a_rolling_sphere_at_the_closed_form_time(chart, delta, c1, k1, s0):
     """A unit sphere (Spheroid(1.0), C = 2/5) rolling straight at s = -V = n: the drag force
@@ -48,7 +47,7 @@ def test_rolling_resistance_and_linear_air_drag_stop_a_rolling_sphere_at_the_clo
 
 
 @pytest.mark.timeout(300)
-@pytest.mark.parametrize("chart", CHARTS)
+@pytest.mark.parametrize("chart", ["euler", pytest.param("vector", marks=pytest.mark.slow)])  # vector: ~25 s cold
 @pytest.mark.parametrize("w0", [1.0, -2.5])
 def test_the_spin_stops_first_and_is_held_then_the_rolling_stops(chart, w0):
     """A sphere rolling at v0 = 0.5 and spinning about the vertical at w0: spin friction stops the

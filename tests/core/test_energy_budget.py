@@ -44,7 +44,9 @@ def _hopping(chart):
 RUNS = {"stick-slip": _stick_slip, "hopping": _hopping}
 
 
-@pytest.fixture(scope="module", params=[(k, c) for k in RUNS for c in CHARTS], ids=lambda p: f"{p[0]}-{p[1]}")
+# the vector chart's runs compile their own integrators (~40 s cold): the full run only
+@pytest.fixture(scope="module", params=[pytest.param((k, c), marks=[pytest.mark.slow] if c == "vector" else [])
+                                        for k in RUNS for c in CHARTS], ids=lambda p: f"{p[0]}-{p[1]}")
 def run(request):
     kind, chart = request.param
     model, traj = RUNS[kind](chart)

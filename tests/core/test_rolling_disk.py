@@ -12,7 +12,6 @@ from phasekit.steady.precessions import intermediate_omega, precession_state
 import numpy as np
 import pytest
 
-CHARTS = ["euler", "vector"]
 THIN, COIN = pk.Disk(0.0), pk.Disk(0.1)
 
 
@@ -35,7 +34,7 @@ def steady_circle(body, theta, omega):
     return np.array([0.0, -omega * ht - (n - omega * c), omega, 0.0, theta, n])
 
 
-@pytest.mark.parametrize("chart", CHARTS)
+@pytest.mark.parametrize("chart", ["euler", pytest.param("vector", marks=pytest.mark.slow)])  # vector: ~15 s cold
 @pytest.mark.parametrize("disk", [THIN, COIN], ids=["thin", "coin"])
 def test_frictionless_disk_keeps_energy_L_Z_and_spin(disk, chart):
     """Viscous(0): no horizontal force; the vertical reaction at the rim has no couple about the
@@ -66,7 +65,7 @@ def test_thin_disk_rolling_upright_keeps_its_speed_and_goes_straight(chart):
     assert np.max(np.abs(pose["X"])) < 1e-10 and np.max(np.abs(pose["Y"] + n0 * ts)) < 1e-9
 
 
-@pytest.mark.parametrize("chart", CHARTS)
+@pytest.mark.parametrize("chart", ["euler", pytest.param("vector", marks=pytest.mark.slow)])  # vector: ~30 s cold
 @pytest.mark.parametrize("disk", [THIN, COIN], ids=["thin", "coin"])
 def test_disk_rolling_in_a_steady_circle_stays_on_it(disk, chart):
     y0 = steady_circle(disk, 1.2, 1.5)

@@ -706,6 +706,20 @@ BENCH_RATIOS = [
 ]
 
 
+def _study_profile(t) -> dict:
+    """Where the main study's task time goes, by threshold definition (its committed table keeps
+    each search's simulations and wall time)."""
+    t = t.assign(sims=t["n_sims"] + t["n_check_sims"])
+    g = t.groupby("name", sort=False).agg(points=("a", "size"), sims=("sims", "sum"), task=("wall_s", "sum"),
+                                          longest=("wall_s", "max"))
+    g = g.sort_values("task", ascending=False)
+    total = float(g["task"].sum())
+    rows = [[name, int(r.points), int(r.sims), sig(r.task, 3), f"{100 * r.task / total:.0f}%", sig(r.longest, 3)]
+            for name, r in g.iterrows()]
+    return {"study_task_s": sig(total, 3), "study_sims": int(g["sims"].sum()),
+            "study_table": table(["definition", "points", "simulations", "task time (s)", "share", "longest search (s)"], rows)}
+
+
 @group("performance")
 def performance(src: Sources) -> dict:
     w = src.csv("work_precision.csv")
@@ -735,6 +749,7 @@ def performance(src: Sources) -> dict:
     out["stiff_drift"] = sci(inv["invariant_drift"].max(), 0)
     fail = s[s["status"] == "failed"]
     out["stiff_failed"] = "; ".join(f"{r.case}: {r.reason}" for r in fail.itertuples()) or "none"
+    out.update(_study_profile(src.csv("threshold_vs_aspect.csv")))
     try:
         b = src.report("bench_performance.json")
     except LookupError:

@@ -1,0 +1,76 @@
+"""--body tippe-top with --stem-length and --stem-radius: the top with its stem, over the ball's radius
+or with units by --size; the issue's command inverts it onto its stem; without the stem flags the
+tippe top is the ball alone, every number as before; bad input is one line naming the flag typed,
+its range and the value typed."""
+
+from phasekit import cli
+
+import pytest
+
+from ..helpers import run_cli, strict_json
+
+TOP = ["simulate", "--body", "tippe-top", "--offset", "0.3", "--A", "0.38", "--C", "0.4", "--mu", "0.3", "--theta0", "0.1",
+       "--spin-about-vertical", "15"]
+
+
+@pytest.fixture(autouse=True)
+def _bugs_raise(monkeypatch):
+    monkeypatch.setenv(cli.DEBUG_ENV, "1")
+
+
+def usage_error(args, flag):
+    """Exit 2, one stderr line, the JSON error object naming ``flag``; the same without --json."""
+    code, out, err = run_cli(*args, "--json")
+    d = strict_json(out)
+    assert code == 2 and d == {"status": "error", "parameter": flag, "message": d["message"]}, (code, err)
+    assert err == f"phasekit: error: {d['message']}\n" and "Traceback" not in err
+    assert run_cli(*args) == (2, "", err)
+    return d["message"]
+
+
+@pytest.mark.timeout(600)
+def test_the_issues_command_with_the_stem_ends_on_the_stem():
+    code, out, _ = run_cli(*TOP, "--stop-at", "none", "--t-end", "70", "--stem-length", "0.375", "--stem-radius", "0.2",
+                           "--json")
+    d = strict_json(out)
+    assert code == 0 and d["status"] == "completed" and d["theta_end"] > 2.9
+    assert (d["model"]["stem_length"], d["model"]["stem_radius"]) == (0.375, 0.2)
+    kinds = [e["kind"] for e in d["events"]]
+    assert "stem touches" in kinds and "ball touches" not in kinds[kinds.index("stem touches"):]
+
+
+def test_the_stem_flags_take_units_with_size_and_default_to_the_commercial_top():
+    code, out, _ = run_cli(*TOP, "--t-end", "1", "--size", "16 mm", "--stem-length", "6 mm", "--stem-radius", "3.2 mm",
+                           "--json")
+    model = strict_json(out)["model"]
+    assert code == 0 and model["stem_length"] == pytest.approx(0.375, rel=1e-14)
+    assert model["stem_radius"] == pytest.approx(0.2, rel=1e-14)
+    code, out, _ = run_cli(*TOP, "--t-end", "1", "--stem-radius", "0.3", "--json")
+    model = strict_json(out)["model"]
+    assert code == 0 and (model["stem_length"], model["stem_radius"]) == (0.375, 0.3)
+
+
+def test_without_the_stem_flags_the_tippe_top_is_the_ball_alone():
+    code, out, _ = run_cli(*TOP, "--t-end", "3", "--json")
+    d = strict_json(out)
+    assert code == 0 and "stem_length" not in d["model"] and d["model"]["body"] == "tippe-top"
+    assert d["model"]["description"] == "EccentricSphere(offset=0.3, A=0.38, C=0.4)"
+
+
+@pytest.mark.parametrize("flag, value, words", [("--stem-radius", "1.5", "must lie in (0, 1)"),
+                                                ("--stem-radius", "0", "must lie in (0, 1)"),
+                                                ("--stem-length", "0", "must lie in (0, 10]"),
+                                                ("--stem-length", "12", "must lie in (0, 10]")])
+def test_a_stem_out_of_range_is_refused_naming_the_flag(flag, value, words):
+    message = usage_error([*TOP, "--t-end", "1", flag, value], flag)
+    assert message == f"{flag} {words} (over the ball's radius), got {float(value)}."  # as --thickness prints it
+
+
+def test_the_stem_flags_on_another_body_are_refused_naming_them():
+    base = ["simulate", "--mu", "0.3", "--theta0", "0.5", "--spin-about-vertical", "5", "--t-end", "1"]
+    message = usage_error([*base, "--body", "spheroid", "--a", "1.5", "--stem-length", "0.3"], "--stem-length")
+    assert "does not apply to the spheroid body" in message and "0.3" in message
+    message = usage_error([*base, "--body", "cone", "--stem-radius", "0.2"], "--stem-radius")
+    assert "does not apply to the cone body" in message
+    message = usage_error([*TOP, "--t-end", "1", "--stem-length", "6 mm"], "--stem-length")
+    assert "--size" in message and "'6 mm'" in message
