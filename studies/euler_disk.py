@@ -10,8 +10,10 @@ theta = 30 deg (G at rest, the contact point rolling round the rim: Omega = 1/sq
 n = 0), exact Coulomb friction mu = 10 (high enough to roll: the drift off spinning in place
 needs up to |F|/R ~ 4), the Euler chart, rtol 1e-10, dense output, to face down (theta = 1e-3)
 or t_end, with each law alone: the air layer (pk.friction.AirLayer, k = 1e-4), rolling resistance
-(delta = 0.01), spin friction (mu_s = 0.02), and sliding (mu = 0.1, the rim slipping at the
-start: an extra spin 0.5 about the axis). Fits: log(theta) and log(Omega) against log(t0 - t) on
+(delta = 0.01; mu = 1000, the largest accepted, so that it rolls to the end, and face down at
+theta = 1e-6: theta ~ (t0 - t)^2 needs the deeper end for two decades of t0 - t), spin friction
+(mu_s = 0.02), and sliding (mu = 0.1, the rim slipping at the start: an extra spin 0.5 about
+the axis). Fits: log(theta) and log(Omega) against log(t0 - t) on
 a window of t0 - t (fractions of t0) with t0 extrapolated (the end that makes the log-log line
 straightest) and, for comparison, t0 = the face-down time; 95% intervals from the regression's
 standard error. Closed forms: the energy balance on the spin-in-place manifold (docs/physics.md).
@@ -34,13 +36,13 @@ from phasekit.studies.euler_disk import THIN, disk_report, end_curves, plot_expo
 from phasekit.viz import animate
 
 RTOL = 1e-10
-#: law -> (coefficient, mu, t_end, window of t0 - t as fractions of t0, extra spin, max_steps)
-FULL = {"air-layer": (1e-4, 10.0, 1e4, (3e-3, 0.3), 0.0, 2_000_000),
-        "rolling-resistance": (0.01, 10.0, 1e4, (0.01, 0.95), 0.0, 2_000_000),
-        "spin-friction": (0.02, 10.0, 3000.0, None, 0.0, 2_000_000),
-        "sliding": (0.0, 0.1, 300.0, None, 0.5, 2_000_000)}
-QUICK = {"air-layer": FULL["air-layer"], "rolling-resistance": (0.05, 10.0, 1e3, (0.01, 0.95), 0.0, 400_000),
-         "spin-friction": (0.2, 10.0, 100.0, None, 0.0, 200_000), "sliding": (0.0, 0.1, 50.0, None, 0.5, 200_000)}
+#: law -> (coefficient, mu, t_end, window of t0 - t as fractions of t0, extra spin, max_steps, face-down angle)
+FULL = {"air-layer": (1e-4, 10.0, 1e4, (3e-3, 0.3), 0.0, 2_000_000, 1e-3),
+        "rolling-resistance": (0.01, 1000.0, 1e4, (1e-3, 0.3), 0.0, 2_000_000, 1e-6),
+        "spin-friction": (0.02, 10.0, 3000.0, None, 0.0, 2_000_000, 1e-3),
+        "sliding": (0.0, 0.1, 300.0, None, 0.5, 2_000_000, 1e-3)}
+QUICK = {"air-layer": FULL["air-layer"], "rolling-resistance": (0.05, 1000.0, 1e3, (1e-3, 0.3), 0.0, 400_000, 1e-6),
+         "spin-friction": (0.2, 10.0, 100.0, None, 0.0, 200_000, 1e-3), "sliding": (0.0, 0.1, 50.0, None, 0.5, 200_000, 1e-3)}
 MAX_WALL = 120.0
 
 
@@ -79,8 +81,9 @@ def main(argv=None) -> dict:
     args = st.parse(argv)
     cfg = QUICK if args.quick else FULL
     reports, curves, runs = {}, {}, {}
-    for law, (coef, mu, t_end, window, spin, steps) in cfg.items():
-        traj = runs[law] = run_disk(law, coef, mu, t_end=t_end, rtol=RTOL, max_steps=steps, max_wall=MAX_WALL, spin=spin)
+    for law, (coef, mu, t_end, window, spin, steps, flat) in cfg.items():
+        traj = runs[law] = run_disk(law, coef, mu, t_end=t_end, rtol=RTOL, max_steps=steps, max_wall=MAX_WALL, spin=spin,
+                                    flat_angle=flat)
         rep = disk_report(traj, law, coef, mu, window=window or (0.03, 0.9))
         rep["spin_extra"] = spin
         reports[law] = rep

@@ -46,6 +46,9 @@ __all__ = ["Disk", "EdgedBody", "Limit", "FLAT_ANGLE", "THICKNESS_MAX", "EDGE_TO
 #: opposite the contact is then 2e-3 radii above the table; H is exact to ~1e-13 there in both
 #: charts, while sqrt(1 - c^2) loses digits as c -> 1)
 FLAT_ANGLE = 1e-3
+#: the lowest face-down angle a Disk accepts: c = cos(theta) is then rounded to ~1e-4 of 1 - c in the
+#: Euler chart (H to ~1e-4 relative), still far below what the end's power laws resolve
+FLAT_ANGLE_MIN = 1e-6
 #: the largest thickness, in radii (a rod 500 times as long as it is wide)
 THICKNESS_MAX = 1e3
 #: a meridian radius of curvature within this of 0 (relative to |h| + |h_thetatheta|), or within
@@ -208,18 +211,25 @@ class Disk(EdgedBody):
     A, C : float, optional
         Moments about G, units M b^2. Default: the uniform cylinder's, C = 1/2 and
         A = 1/4 + L^2/12.
+    flat_angle : float in [1e-6, 0.1], optional
+        The inclination, radians, at which the face is taken to be down and a run stops
+        (default :data:`FLAT_ANGLE`, 1e-3, where H is exact to ~1e-13). Lower values follow more
+        of the end (theta ~ (t0 - t)^2 under rolling resistance: each factor 100 is a decade of
+        t0 - t) while the Euler chart's H loses digits as ~1e-16/theta^2 (1e-4 at 1e-6).
 
     Attributes
     ----------
     thickness : float
-        L, as given. (``theta_range``: (0, pi) for a thin disk, (0, pi/2) for L > 0, open: the
+        L, as given.
+    flat_angle : float
+        The face-down angle, as given. (``theta_range``: (0, pi) for a thin disk, (0, pi/2) for L > 0, open: the
         ends are not states of the model; ``limits``: the ends a run stops at, "face down" at
-        theta = FLAT_ANGLE (and pi - FLAT_ANGLE for a thin disk), "side down" at pi/2 for L > 0.)
+        theta = ``flat_angle`` (and pi - ``flat_angle`` for a thin disk), "side down" at pi/2 for L > 0.)
 
     Raises
     ------
     ParameterError
-        If ``thickness`` is not a finite number in [0, 1e3]; ``A`` or ``C`` is not a finite
+        If ``thickness`` is not a finite number in [0, 1e3]; ``flat_angle`` not one in [1e-6, 0.1]; ``A`` or ``C`` is not a finite
         number > 0, or C > 2 A; or ``C`` exceeds 1 (M b^2: no mass lies farther than the
         radius from the axis).
 
@@ -235,9 +245,12 @@ class Disk(EdgedBody):
     0.543301
     """
 
-    def __init__(self, thickness: float = 0.0, A: float | None = None, C: float | None = None):
+    def __init__(self, thickness: float = 0.0, A: float | None = None, C: float | None = None, *,
+                 flat_angle: float = FLAT_ANGLE):
         self.thickness = check_range("thickness", thickness, 0.0, THICKNESS_MAX, closed="lr",
                                      label=f"[0, {THICKNESS_MAX:g}] (the full thickness over the radius)")
+        self.flat_angle = check_range("flat_angle", flat_angle, FLAT_ANGLE_MIN, 0.1, closed="lr",
+                                      label=f"[{FLAT_ANGLE_MIN:g}, 0.1] (radians)")
         super().__init__(0.25 + self.thickness**2 / 12.0 if A is None else A, 0.5 if C is None else C)
         if self.C > 1.0 * (1 + 1e-12):
             raise ParameterError("C", "must be at most 1 (M b^2, b the radius: no mass lies farther than the radius "
@@ -260,9 +273,9 @@ class Disk(EdgedBody):
     @property
     def limits(self) -> tuple[Limit, ...]:
         face = "the flat face reached the table at t = {t:.10g}: the " + self.kind + " lies flat"
-        down = Limit("face down", FLAT_ANGLE, -1, face)
+        down = Limit("face down", self.flat_angle, -1, face)
         if self.thickness == 0.0:
-            return (down, Limit("face down", math.pi - FLAT_ANGLE, +1, face))
+            return (down, Limit("face down", math.pi - self.flat_angle, +1, face))
         return (down, Limit("side down", math.pi / 2, +1, "the side touched the table at t = {t:.10g}: a " + self.kind +
                             " on its side (a line contact) is not modelled"))
 
@@ -330,9 +343,19 @@ class Disk(EdgedBody):
         return f"{self.kind}, thickness {self.thickness:g} radii (rolling on its rim), A={self.A:.6g}, C={self.C:.6g}"
 
     def to_dict(self) -> dict:
-        return {"body": "disk", "thickness": self.thickness, "A": self.A, "C": self.C, "description": self.describe()}
+        # the face-down angle only when it is not the default: descriptions written before it stay as they were
+        flat = {} if self.flat_angle == FLAT_ANGLE else {"flat_angle": self.flat_angle}
+        return {"body": "disk", "thickness": self.thickness, "A": self.A, "C": self.C, **flat,
+                "description": self.describe()}
+
+    def __eq__(self, other) -> bool:  # the limits are not in the compiled structure: compare them here
+        return super().__eq__(other) and other.flat_angle == self.flat_angle
+
+    def __hash__(self) -> int:
+        return hash((super().__hash__(), self.flat_angle))
 
     def __repr__(self) -> str:
+        flat = "" if self.flat_angle == FLAT_ANGLE else f", flat_angle={self.flat_angle:g}"
         if self.uniform:
-            return f"Disk(thickness={self.thickness:g})"
-        return f"Disk(thickness={self.thickness:g}, A={self.A:g}, C={self.C:g})"
+            return f"Disk(thickness={self.thickness:g}{flat})"
+        return f"Disk(thickness={self.thickness:g}, A={self.A:g}, C={self.C:g}{flat})"

@@ -26,7 +26,7 @@ FLAGS = {
     "rolling_resistance": "--rolling-resistance", "spin_friction": "--spin-friction", "air_drag": "--air-drag", "air_layer": "--air-layer",
     "air_drag_quadratic": "--air-drag-quadratic", "air_drag_force": "--air-drag-force",
     "air_drag_force_quadratic": "--air-drag-force-quadratic", "thickness": "--thickness", "radius": "--radius",
-    "height": "--height", "on": "--on", "stem_length": "--stem-length", "stem_radius": "--stem-radius",
+    "height": "--height", "on": "--on", "flat_angle": "--flat-angle", "stem_length": "--stem-length", "stem_radius": "--stem-radius",
 }
 #: API parameters that more than one flag feeds: (flag typed, name to print), the first typed one wins
 #: (e.g. `n0` is --spin-about-vertical's value in that start, and theta its --theta0)

@@ -33,7 +33,7 @@ def _make_body(args, A=None, C=None):
 
     check_choice("body", args.body, tuple(dict.fromkeys((*BODIES, "cone"))))
     if args.body == "cone":
-        for name in ("a", "offset", "w", "thickness", "stem_length", "stem_radius"):
+        for name in ("a", "offset", "w", "thickness", "flat_angle", "stem_length", "stem_radius"):
             if getattr(args, name, None) is not None:
                 raise ParameterError(name, "does not apply to the cone body (its parameters: height, on)",
                                      getattr(args, name))
@@ -43,7 +43,8 @@ def _make_body(args, A=None, C=None):
             raise ParameterError(name, f"does not apply to the {args.body} body (it is the cone's: --body cone)",
                                  getattr(args, name))
     return make_body(args.body, a=args.a, offset=args.offset, w=args.w, thickness=args.thickness,
-                     stem_length=getattr(args, "stem_length", None), stem_radius=getattr(args, "stem_radius", None), A=A, C=C)
+                     flat_angle=getattr(args, "flat_angle", None), stem_length=getattr(args, "stem_length", None),
+                     stem_radius=getattr(args, "stem_radius", None), A=A, C=C)
 
 
 def _body(args):
@@ -105,7 +106,7 @@ def _dissipation_of(args) -> dict:
 #: options that take a value with units: dest -> kind (angles need no --size; the dissipation laws'
 #: coefficients are kinds of phasekit.Scale of their own, air drag's need --mass)
 UNIT_OPTIONS = {"theta0": "angle", "omega0": "rate", "n0": "rate", "spin_about_vertical": "rate", "t_end": "time",
-                "psi0": "angle", "phi0": "angle", "X0": "length", "Y0": "length", "thickness": "length",
+                "psi0": "angle", "phi0": "angle", "X0": "length", "Y0": "length", "thickness": "length", "flat_angle": "angle",
                 "height": "length", "stem_length": "length", "stem_radius": "length",
                 **{dest: dest for dest in DISSIPATION_FLAGS}}
 
@@ -209,7 +210,7 @@ def _paper_body(args) -> None:
     which = f"with --paper-start {label} (its body is the uniform spheroid a = {case.a:.6g})"
     if args.body != "spheroid":
         raise _UsageError(f"--body must be spheroid {which}, got {plain(args.body)}.", "--body")
-    for name in ("A", "C", "offset", "w", "thickness", "height", "on", "stem_length", "stem_radius"):
+    for name in ("A", "C", "offset", "w", "thickness", "flat_angle", "height", "on", "stem_length", "stem_radius"):
         if getattr(args, name, None) is not None:
             raise _UsageError(f"{FLAGS[name]} must be left out {which}, got {plain(getattr(args, name))}.", FLAGS[name])
     if args.a is None:

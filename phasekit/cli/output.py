@@ -20,6 +20,24 @@ def _fmt(v, spec: str = ".10g") -> str:
     return format(v, spec) if isinstance(v, float) else "undefined" if v is None else str(v)
 
 
+def _end_text(e: dict) -> str:
+    """A branch's end as the structure's text prints it (phasekit.steady.branches.BranchEnd)."""
+    text = f"{e['kind']} at theta = {_fmt(e['theta'], '.10f')}"
+    if e["kind"] == "pole":
+        return text + f" (spin n = {_fmt(e['n'], '.8g')})"
+    if e["kind"] == "switch":  # a compound body's switch: its piece's limits there
+        return text + f" (the contact passes to the {e['to_piece']}; Omega = {_fmt(e['Omega'], '.8g')}, spin n = {_fmt(e['n'], '.8g')})"
+    if e["kind"] == "limit":  # an edged body's range ends: the limits there (Omega diverges as a face comes down)
+        lim = lambda k: "infinite" if k in e["diverges"] else _fmt(e[k], ".8g")  # noqa: E731
+        return text + f" ({e['limit']}: {e['description']}; Omega = {lim('Omega')}, spin n = {lim('n')})"
+    return text
+
+
+def _on(item: dict) -> str:
+    """", on the stem" for an item of a compound body's structure; "" on a one-piece body."""
+    return f", on the {item['piece']}" if item.get("piece") else ""
+
+
 def _print_structure(out: dict) -> None:
     print(f"signature: {out['signature']}   (linearisation: {out['linearised_law']})")
     if out.get("degenerate"):
@@ -27,23 +45,23 @@ def _print_structure(out: dict) -> None:
     if out.get("note"):  # what the dissipation laws leave of the structure
         print(f"note: {out['note']}")
     for i, b in enumerate(out["branches"]):
-        ends = " -> ".join(f"{e['kind']} at theta = {_fmt(e['theta'], '.10f')}"
-                           + (f" (spin n = {_fmt(e['n'], '.8g')})" if e["kind"] == "pole" else "") for e in b["ends"])
+        ends = " -> ".join(_end_text(e) for e in b["ends"])
         n_stable = sum(s["stable"] for s in b["samples"])
-        print(f"branch {i + 1}: {ends}; {len(b['samples'])} samples, {n_stable} stable")
+        piece = f" (on the {b['piece']})" if b.get("piece") else ""
+        print(f"branch {i + 1}{piece}: {ends}; {len(b['samples'])} samples, {n_stable} stable")
         for c in b["stability_changes"]:
             print(f"  stability changes at theta = {_fmt(c['theta'], '.9f')} ({c['kind']}; n_unstable "
                   f"{c['n_unstable_below']} -> {c['n_unstable_above']}; Omega = {_fmt(c['Omega'], '.6g')}, "
                   f"n = {_fmt(c['n'], '.6g')})")
     for st in out["static_equilibria"]:
-        print(f"static equilibrium at theta = {_fmt(st['theta'], '.10f')} ({st['kind']}): {st['static_stability']}")
+        print(f"static equilibrium at theta = {_fmt(st['theta'], '.10f')} ({st['kind']}{_on(st)}): {st['static_stability']}")
     for f in out["families"]:
         side = lambda v: "not computed" if v is None else "stable" if v else "unstable"  # noqa: E731
         crit = ("no change of stability: " + side(f["stable_on_intervals"][0])) if not f["criticals"] else (
             f"stability changes at |{f['parameter']}| = {', '.join(_fmt(c, '.10g') for c in f['criticals'])}; "
             f"{side(f['stable_above_critical'])} above")
         what = {"pole": "spin about the vertical", "precession": "precession", "rolling": "straight rolling"}[f["kind"]]
-        print(f"{what} family at theta = {_fmt(f['theta'], '.6f')} (any {f['parameter']}): {crit}"
+        print(f"{what} family at theta = {_fmt(f['theta'], '.6f')} (any {f['parameter']}{_on(f)}): {crit}"
               + ("; a branch meets it there" if f["branch_meets"] else ""))
     if out.get("states"):
         for fp in out["states"]:

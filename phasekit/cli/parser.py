@@ -208,6 +208,9 @@ def _add_body(p, units: bool = False):
     g.add_argument("--thickness", type=_real_or_units if units else _real, default=None,
                    help=f"disk: full thickness over the radius, in [0, 1000] (0: a thin disk, Euler's disk; a coin "
                         f"~0.1; default 0){typed}")
+    g.add_argument("--flat-angle", dest="flat_angle", type=_real_or_units if units else _real, default=None,
+                   help="disk: the tilt at which its face is taken to be down and a run stops, radians in [1e-6, 0.1] "
+                        "(default 1e-3; lower follows more of Euler's disk's end)" + (", or e.g. '0.01 deg'" if units else ""))
     g.add_argument("--height", type=_real_or_units if units else _real, default=None,
                    help=f"cone: from the base to the tip over the base's radius, in (0, 1000] (default 1){typed}")
     g.add_argument("--on", default=None, help="cone: where it touches the table, rim (of its base, theta below the "

@@ -351,7 +351,7 @@ class Model:
                                           "bodies can be rebuilt from their description)", show_value=False)
         body = make_body(kind, a=d.get("a"), offset=d.get("offset"), w=d.get("w"), thickness=d.get("thickness"),
                          height=d.get("height"), on=d.get("on"), stem_length=d.get("stem_length"),
-                         stem_radius=d.get("stem_radius"), A=d["A"], C=d["C"])
+                         stem_radius=d.get("stem_radius"), flat_angle=d.get("flat_angle"), A=d["A"], C=d["C"])
         laws = {"coulomb": lambda: Coulomb(d["mu"]), "viscous": lambda: Viscous(d["mu"]),
                 "coulomb-regularised": lambda: RegularisedCoulomb(d["mu"], d["slip_eps"])}
         if d.get("law") not in laws:
@@ -472,18 +472,19 @@ BODIES = ("spheroid", "tippe-top", "egg", "disk", "cone")
 
 
 def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, thickness=None, height=None, on=None,
-              stem_length=None, stem_radius=None, A=None, C=None) -> Body:
+              stem_length=None, stem_radius=None, flat_angle=None, A=None, C=None) -> Body:
     """A built-in body by name: ``spheroid`` (a, offset), ``tippe-top`` (offset; with ``stem_length``
     or ``stem_radius``, over the ball's radius, the top with its stem,
     :class:`~phasekit.bodies.compound.TippeTop`, the other one at its default; without them the
-    ball alone), ``egg`` (a, w), ``disk`` (thickness, over the radius; default 0, a thin disk),
+    ball alone), ``egg`` (a, w), ``disk`` (thickness, over the radius; default 0, a thin disk;
+    ``flat_angle``, default :data:`~phasekit.bodies.edged.FLAT_ANGLE`),
     ``cone`` (height over the base's radius, default 1; on "rim" or "tip", default "rim") (the
     CLI's ``--body``, and :meth:`Model.from_dict`)."""
     check_choice("body", kind, BODIES)
     given = {"a": a, "offset": offset, "w": w, "thickness": thickness, "height": height, "on": on,
-             "stem_length": stem_length, "stem_radius": stem_radius}
+             "stem_length": stem_length, "stem_radius": stem_radius, "flat_angle": flat_angle}
     allowed = {"spheroid": ("a", "offset"), "tippe-top": ("offset", "stem_length", "stem_radius"), "egg": ("a", "w"),
-               "disk": ("thickness",), "cone": ("height", "on")}[kind]
+               "disk": ("thickness", "flat_angle"), "cone": ("height", "on")}[kind]
     for name, value in given.items():
         if value is not None and name not in allowed:
             raise ParameterError(name, f"does not apply to the {kind} body (its parameters: {', '.join(allowed)})", value)
@@ -500,7 +501,8 @@ def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, thickness=
             return TippeTop(offset, A=A, C=C, **stem)
         return EccentricSphere(offset, A=A, C=C)
     if kind == "disk":
-        return Disk(0.0 if thickness is None else thickness, A=A, C=C)
+        flat = {} if flat_angle is None else {"flat_angle": flat_angle}
+        return Disk(0.0 if thickness is None else thickness, A=A, C=C, **flat)
     if kind == "cone":
         return Cone(1.0 if height is None else height, "rim" if on is None else on, A=A, C=C)
     return Egg(1.3 if a is None else a, 0.0 if w is None else w, A=A, C=C)

@@ -22,7 +22,17 @@ theta on which q rho_2 / D > 0 (rho_2 > 0 on a convex body). An interval ends wh
   finite spin n = Omega h0 / rho with rho = h0 + h_tt the radius of curvature at the pole;
   squared, n^2 rho (A rho - C h0) = h_tt h0^2, the closed-form pole criterion of
   :func:`phasekit.theory.criteria.pole_stability_threshold`: the branch is born where the pole
-  changes stability).
+  changes stability), or
+* on a compound body (one with ``transfers``, :mod:`phasekit.bodies.compound`), at a
+  **switch** angle, where the contact passes from one piece to the next: H has a kink there
+  (H' jumps), so q, rho_2, z and D jump and the branch is cut; each part lies on one piece
+  and is that piece's own (phasekit.steady.pieces), ending at the switch at the finite
+  (Omega, n) its piece's closed forms give there, or
+* on a body with an edge (one with ``theta_range``, :mod:`phasekit.bodies.edged`), at an end
+  of that range, a **limit** where another part of the body comes down onto the table (the
+  face of a disk at theta = 0, its side at pi/2): the model ends there, and so does the
+  branch, at the limits of (Omega, n) there (a face coming down, where H' diverges: Omega ->
+  infinity, n -> 0, the disk's Omega^2 = 1 / (A sin theta)).
 
 Where q and D vanish together (a static equilibrium with its axis horizontal, theta = pi/2 for
 a flip-symmetric body; or any static equilibrium when A = C), every Omega is steady there: a
@@ -36,6 +46,7 @@ Omega > 0 represents each branch; (-Omega, -n) is the same branch seen in a mirr
 from __future__ import annotations
 
 import functools
+import math
 import threading
 from dataclasses import dataclass
 
@@ -45,14 +56,17 @@ import numpy as np
 __all__ = ["BranchEnd", "END_KINDS", "precession_on_branch"]
 
 #: how a branch ends (see the module notes)
-END_KINDS = ("pole", "static", "infinite-spin")
+END_KINDS = ("pole", "static", "infinite-spin", "switch", "limit")
 #: grid on which the roots of q and D are bracketed before Brent's method refines them (two
 #: roots closer than its spacing show as a dip of |q| or |D| toward zero and are found too)
 ROOT_GRID = 2049
+#: a limit's name (bodies.edged.Limit) in a branch end's words
+LIMIT_WORDS = {"face down": "the face comes down onto the table", "side down": "the side touches the table"}
 #: roots of q and D closer than this (in theta) are one point where both vanish (a family)
 COINCIDENT = 1e-10
 #: the samples of a branch stop this far (in theta) from a static or infinite-spin end: the
-#: closed forms lose digits as q or D -> 0 (relative error ~1e-16 / distance)
+#: closed forms lose digits as q or D -> 0 (relative error ~1e-16 / distance); and from a
+#: switch, so that the whole body's fields (its linearisation) are the piece's at every sample
 END_GAP = 1e-6
 #: ... and this far from a pole, where the branch meets the spin about the vertical exactly
 POLE_GAP = 1e-6
@@ -70,16 +84,39 @@ MAX_SAMPLES = 1200
 
 @dataclass(frozen=True)
 class BranchEnd:
-    """One end of a branch: ``kind`` in END_KINDS, its ``theta`` (located to ~1e-15 by Brent's
-    method on q or D, exactly 0 or pi at a pole) and, at a pole, the signed spin ``n`` (on the
-    Omega > 0 branch) with which the branch meets the spin about the vertical, and that pole's
-    ``Omega`` limit."""
+    """One end of a branch (module notes).
+
+    Attributes
+    ----------
+    kind : str
+        One of END_KINDS: "pole", "static", "infinite-spin", "switch" (a compound body's
+        switch angle, where the contact passes to another piece) or "limit" (an end of an
+        edged body's range of theta).
+    theta : float
+        Where the branch ends: located to ~1e-15 by Brent's method on q or D; exactly 0 or pi
+        at a pole; the body's switch angle at a switch; the end of the body's range at a limit.
+    pole : str or None
+        "0" or "pi" at a pole, else None.
+    n, Omega : float or None
+        At a pole, the signed spin with which the branch (Omega > 0) meets the spin about the
+        vertical, and the pole's rate limit; at a switch, the limits of the branch's spin and
+        rate there on its own piece (the next piece's branch, if any, starts elsewhere in
+        (Omega, n): H' jumps); at a limit, their limits there (``inf`` where Omega diverges,
+        at a face coming down); else None.
+    to_piece : str or None
+        At a switch, the piece the contact passes to ("stem" at the tippe top's switch from the
+        ball); else None.
+    limit : str or None
+        At a limit, its name as a run's event names it ("face down", "side down"); else None.
+    """
 
     kind: str
     theta: float
     pole: str | None = None  # "0" or "pi"
     n: float | None = None
     Omega: float | None = None
+    to_piece: str | None = None
+    limit: str | None = None
 
     @property
     def label(self) -> str:
@@ -87,10 +124,33 @@ class BranchEnd:
             return "pole0" if self.pole == "0" else "polePi"
         return "inf" if self.kind == "infinite-spin" else self.kind
 
+    def describe(self) -> str:
+        """The end in words, e.g. "the contact passes to the stem at theta = 2.31972".
+
+        Returns
+        -------
+        str
+        """
+        if self.kind == "switch":
+            return f"the contact passes to the {self.to_piece} at theta = {self.theta:.6g}"
+        if self.kind == "limit":
+            what = LIMIT_WORDS.get(self.limit, f"the body's range ends ({self.limit})")
+            return f"{what} at theta = {self.theta:.6g}"
+        if self.kind == "pole":
+            return f"the spin about the vertical at theta = {'0' if self.pole == '0' else 'pi'}"
+        return f"{'a static equilibrium' if self.kind == 'static' else 'an infinite-spin asymptote'} at theta = {self.theta:.6g}"
+
     def to_dict(self) -> dict:
         d = {"kind": self.kind, "theta": self.theta}
         if self.kind == "pole":
             d.update(pole=self.pole, n=self.n, spin=abs(self.n), Omega=self.Omega)
+        elif self.kind == "switch":
+            d.update(to_piece=self.to_piece, n=self.n, spin=abs(self.n), Omega=self.Omega, description=self.describe())
+        elif self.kind == "limit":  # a value that diverges there (Omega as a face comes down): null, named in "diverges"
+            fin = lambda v: v if math.isfinite(v) else None  # noqa: E731
+            d.update(limit=self.limit, n=fin(self.n), spin=fin(abs(self.n)), Omega=fin(self.Omega),
+                     diverges=[k for k, v in (("Omega", self.Omega), ("n", self.n)) if not math.isfinite(v)],
+                     description=self.describe())
         return d
 
 
@@ -154,6 +214,16 @@ def precession_on_branch(body, theta) -> tuple[np.ndarray, np.ndarray]:
     return om, n
 
 
+def _holds(body, theta: float) -> bool:
+    """Whether a steady state at ``theta`` is one of ``body``'s model that a run can hold: always,
+    but for an edged body (phasekit.bodies.edged) only inside its range and short of its
+    ``limits``, where a run stops at once (the face is down: theta below the disk's flat_angle)."""
+    if not hasattr(body, "theta_range"):
+        return True
+    return body.in_range(theta) and all(theta > lim.theta if lim.direction < 0 else theta < lim.theta
+                                        for lim in body.limits)
+
+
 # -- a degenerate body ---------------------------------------------------------------------------
 
 #: q vanishing to this (relative to rho_2) at every theta is q = 0 identically
@@ -182,7 +252,7 @@ def _degeneracy(body) -> str | None:
 
 
 def _roots(fun, grid: np.ndarray, values: np.ndarray) -> list[float]:
-    """Every root of ``fun`` in the open interval of ``grid``: sign changes refined by Brent's
+    """Every root of ``fun`` in the open interval of ``grid`` (inside (0, pi)): sign changes refined by Brent's
     method, exact zeros on the grid, and pairs of roots hidden between grid points (a local
     extremum of |f| that is near zero: the extremum is located and tested for a sign change)."""
     from scipy.optimize import brentq, minimize_scalar
@@ -201,12 +271,13 @@ def _roots(fun, grid: np.ndarray, values: np.ndarray) -> list[float]:
             t0 = float(res.x)
             roots.append(float(brentq(fun, grid[k - 1], t0, xtol=1e-16)))
             roots.append(float(brentq(fun, t0, grid[k + 1], xtol=1e-16)))
-    return sorted(r for r in roots if 0.0 < r < np.pi)
+    return sorted(r for r in roots if grid[0] < r < grid[-1] and 0.0 < r < np.pi)
 
 
-def _special_points(body) -> list[dict]:
-    """The interior points where q, D or both vanish, in theta order."""
-    grid = np.linspace(0.0, np.pi, ROOT_GRID)
+def _special_points(body, lo: float = 0.0, hi: float = np.pi) -> list[dict]:
+    """The interior points of (lo, hi) where q, D or both vanish, in theta order (a compound
+    body's piece: its own range)."""
+    grid = np.linspace(lo, hi, ROOT_GRID)
     _geometry_function(body)
     f = _mapped(_GEOMETRY[body.structure_key + ":qD"], ROOT_GRID)
     shape = np.tile(np.asarray(body.shape_params, dtype=float)[:, None], (1, ROOT_GRID))
@@ -241,9 +312,15 @@ def _family_rate2(body, theta: float) -> float:
 # -- branches -----------------------------------------------------------------------------------
 
 
-def _pieces(body, pts: list[dict]) -> list[dict]:
-    """The maximal intervals with Omega^2 > 0, joined across family points."""
-    edges = [{"theta": 0.0, "pole": "0"}] + pts + [{"theta": np.pi, "pole": "pi"}]
+#: the ends of the range of a one-piece body (a compound body's pieces end at switches too:
+#: ``{"theta": t, "switch": the piece beyond}``)
+POLE_EDGES = ({"theta": 0.0, "pole": "0"}, {"theta": np.pi, "pole": "pi"})
+
+
+def _pieces(body, pts: list[dict], edges: tuple[dict, dict] = POLE_EDGES) -> list[dict]:
+    """The maximal intervals with Omega^2 > 0 between the two ``edges``, joined across family
+    points."""
+    edges = [dict(edges[0])] + pts + [dict(edges[1])]
     pieces = []
     for lo, hi in zip(edges[:-1], edges[1:]):
         mid = 0.5 * (lo["theta"] + hi["theta"])
@@ -259,6 +336,12 @@ def _pieces(body, pts: list[dict]) -> list[dict]:
 def _end(body, edge: dict, side: int) -> BranchEnd:
     """Classify a piece's end at ``edge`` (side -1: the piece lies above it in theta)."""
     t = float(edge["theta"])
+    if "switch" in edge:  # the piece's own closed forms, analytic up to the switch
+        q, rho2, z, D = (float(v[0]) for v in _geometry(body, t)[:4])
+        om = float(np.sqrt(q * rho2 / D)) if q * rho2 / D > 0 else 0.0
+        return BranchEnd("switch", t, n=om * z / rho2, Omega=om, to_piece=edge["switch"])
+    if "limit" in edge:
+        return _limit_end(body, t, side, edge["limit"])
     if "pole" in edge:
         q, rho2, z, D = (float(v[0]) for v in _geometry(body, t)[:4])
         if D == 0.0:
@@ -275,6 +358,43 @@ def _end(body, edge: dict, side: int) -> BranchEnd:
     near = _omega2(body, t - side * 1e-4)
     far = _omega2(body, t - side * 1e-2)
     return BranchEnd("static" if near < far else "infinite-spin", t)
+
+
+#: distances from a limit at which the closed forms' trend is read where H has a branch point
+#: there (c = cos(theta) keeps ~8 digits of 1 - c at 1e-4, ~4 at 1e-6), and the ratio of the two
+#: values beyond which a value is taken to diverge (or, inverted, to vanish): a power of the
+#: distance, ~10 for the face's 1/sqrt
+LIMIT_PROBES, LIMIT_RATIO = (1e-4, 1e-6), 3.0
+#: a spin below this times the rate at the nearer probe is 0 (the thin disk's n = 0: z is 0 to
+#: the rounding of c there, ~1e-16 / distance^2)
+LIMIT_SPIN_FLOOR = 1e-9
+
+
+def _limit_end(body, t: float, side: int, name: str) -> BranchEnd:
+    """The end at a limit ``t`` of an edged body's range (side -1: the branch lies above it): the
+    closed forms there where H is analytic (a side touching), else their limits, read off their
+    trend as theta -> t (a face coming down, H' -> infinity: q and rho_2 grow as 1 / |theta - t|,
+    z stays finite, so Omega -> infinity and n = Omega z / rho_2 -> 0)."""
+    q, rho2, z, D = (float(v[0]) for v in _geometry(body, t)[:4])
+    with np.errstate(all="ignore"):
+        om2 = q * rho2 / D
+        if np.isfinite(om2) and np.isfinite(z) and rho2 > 0:
+            om = float(np.sqrt(max(om2, 0.0)))
+            return BranchEnd("limit", t, n=om * z / rho2, Omega=om, limit=name)
+    (om_far, n_far), (om_near, n_near) = ((float(v[0]) for v in precession_on_branch(body, t - side * d))
+                                          for d in LIMIT_PROBES)
+    n = 0.0 if abs(n_near) <= LIMIT_SPIN_FLOOR * om_near else _trend(n_far, n_near)
+    return BranchEnd("limit", t, n=n, Omega=_trend(om_far, om_near), limit=name)
+
+
+def _trend(far: float, near: float) -> float:
+    """The limit of a value read at two distances from an end (LIMIT_PROBES): infinite (with its
+    sign) if it grows by LIMIT_RATIO or more, 0 if it falls by as much, else the nearer value."""
+    if near == 0.0 or abs(near) * LIMIT_RATIO <= abs(far):
+        return 0.0
+    if abs(near) >= LIMIT_RATIO * abs(far):
+        return math.copysign(math.inf, near)
+    return near
 
 
 # -- sampling -----------------------------------------------------------------------------------

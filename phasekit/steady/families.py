@@ -14,7 +14,7 @@ import numpy as np
 from ..core.charts import EULER
 from ..theory.criteria import PoleCriterion, pole_stability_threshold
 from .branch_stability import linearise_precession
-from .branches import _family_rate2, _geometry
+from .branches import _family_rate2, _geometry, _holds
 from .budget import spend_wall
 from .linearisation import linearise
 from .rolling import rolling_state
@@ -96,6 +96,8 @@ def _families(model, body, pts, pieces, stability: bool) -> tuple[SpinFamily, ..
     static_ends = {e.theta for p in pieces for e in (p["lo_end"], p["hi_end"]) if e.kind == "static"}
     out = []
     for pole, t in (("upright", 0.0), ("inverted", np.pi)):
+        if not _holds(body, t):  # an edged body's pole off its range (a disk lying flat)
+            continue
         crit = pole_stability_threshold(body, pole)
         side = (not crit.stable_above, crit.stable_above) if crit.threshold else (crit.stable(1.0),)
         out.append(SpinFamily("pole", t, "n", (crit.threshold,) if crit.threshold else (), side,

@@ -21,7 +21,7 @@ from ..core.hybrid import Mode
 from ..core.model import Model
 from ..friction.laws import Viscous
 from ..theory.criteria import pole_stability_threshold
-from .branches import _degeneracy
+from .branches import _degeneracy, _holds
 from .budget import spend_wall
 from .dissipative import acting_laws
 from .linearisation import FixedPoint, _check_model, _mode_for, linearise
@@ -278,9 +278,14 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
     omega0, n0 = _family_value("omega0", omega0), _family_value("n0", n0)
     body = model_euler.body
     thetas = [] if _degeneracy(body) else precession_angles(body, omega0=omega0, n0=n0)
-    found = _isolated_states(model_euler, model_vector, omega0, n0) + _precessions(model_euler, thetas, omega0, n0)
-    lo, hi = getattr(body, "theta_range", (0.0, np.pi))  # a body with an edge: its model holds on a range
-    return [fp for fp in found if (lo, hi) == (0.0, np.pi) or body.in_range(float(fp.y[4]))]
+    return _on_range(body, _isolated_states(model_euler, model_vector, omega0, n0)
+                     + _precessions(model_euler, thetas, omega0, n0))
+
+
+def _on_range(body, found: list[FixedPoint]) -> list[FixedPoint]:
+    """The states of ``found`` that ``body``'s model holds: a body with an edge, those inside its
+    range and short of its limits (phasekit.steady.branches._holds)."""
+    return [fp for fp in found if _holds(body, float(fp.y[4]))]
 
 
 def _family_value(name: str, value) -> float | None:
@@ -310,8 +315,9 @@ def _isolated_states(model_euler: Model, model_vector: Model, omega0, n0) -> lis
             return []
         return _kept(lambda: [find_fixed_point(model_euler, horizontal_state(omega0), kind="horizontal", value=omega0)],
                      model_euler)
-    out = _kept(lambda: [_pole(model_vector, n0, "upright")], model_vector)
-    if not body.flip_symmetric:
+    # an edged body's pole off its range (a disk lying flat) is not a state of its model
+    out = _kept(lambda: [_pole(model_vector, n0, "upright")], model_vector) if _holds(body, 0.0) else []
+    if not body.flip_symmetric and _holds(body, np.pi):
         out += _kept(lambda: [_pole(model_vector, n0, "inverted")], model_vector)
     return out
 

@@ -159,10 +159,11 @@ def _regular(body, theta):
     c = np.cos(theta)
     H, dH = _height_slope_many(body, c)
     q = -dH
-    h, ht, s = H, q * np.sin(theta), np.sin(theta)
-    rho2 = h + q * c  # x_P / sin = h + h_theta cos / sin
-    z = h * c - ht * s
-    D = (body.A - body.C) * c * rho2 + body.C * q
+    with np.errstate(invalid="ignore"):  # NaN where H' diverges: an edged body's end (a face), off its range
+        h, ht, s = H, q * np.sin(theta), np.sin(theta)
+        rho2 = h + q * c  # x_P / sin = h + h_theta cos / sin
+        z = h * c - ht * s
+        D = (body.A - body.C) * c * rho2 + body.C * q
     return q, rho2, z, D
 
 
@@ -203,7 +204,9 @@ def precession_angles(body, *, omega0: float | None = None, n0: float | None = N
     horizontal family at pi/2 (where it vanishes identically), so precessions however close to
     pi/2 are found and pi/2 itself is not; with ``n0`` = 0 (|n0| < SPIN_FLOOR) the roots are
     those of q (the tilted static equilibria) and of z on a branch (spin 0, n = Omega z / rho_2),
-    which the residual has only as double roots.
+    which the residual has only as double roots (none where z = 0 identically, the thin disk's
+    precessions, which all have spin 0: a continuum). For a body with an edge the scan also
+    takes EDGE_PROBES from each end, where a face coming down crowds the states.
 
     Parameters
     ----------
@@ -240,14 +243,34 @@ def precession_angles(body, *, omega0: float | None = None, n0: float | None = N
     if theta_range is None:
         theta_range = (0.0, np.pi / 2) if flip else (0.0, np.pi)
     grid = np.linspace(theta_range[0], theta_range[1], n_grid)
+    if hasattr(body, "theta_range"):  # a body with an edge: H' may diverge at an end (a face), where the states crowd
+        grid = np.union1d(grid, np.concatenate([theta_range[0] + EDGE_PROBES, theta_range[1] - EDGE_PROBES]))
     if n0 is not None and abs(n0) < SPIN_FLOOR:
         statics = _angles(lambda t: _reduced(_regular(body, t)[0], t, flip), grid)
+        if _spinless(body, grid):  # n = 0 all along (the thin disk spinning in place): a continuum, not states
+            return statics
         spinless = _angles(lambda t: _reduced(_regular(body, t)[2], t, flip), grid)
         return sorted(statics + [t for t in spinless if _omega_squared(body, t) > 0.0])
     # the spin residual has a double root where z = 0 (n changes sign): a pair of states with
     # spin +-n0 straddles it, found from z's own root however close together they are
     double = None if n0 is None else (lambda t: _reduced(_regular(body, t)[2], t, flip))
     return _angles(lambda t: _reduced(precession_residual(body, t, omega0=omega0, n0=n0), t, flip), grid, double)
+
+
+#: the distances from an end of an edged body's range added to the scan: roots within the first
+#: grid step of a face coming down (Omega^2 ~ 1 / (A sin theta) there) bracketed down to 1e-7
+EDGE_PROBES = np.geomspace(1e-7, 1e-3, 9)
+#: z within this of 0, relative to rho_2, at every scanned theta: n = Omega z / rho_2 = 0 all along
+SPINLESS_RTOL = 1e-12
+
+
+def _spinless(body, grid) -> bool:
+    """Whether n = 0 on every steady precession of ``body`` (z = 0 at every finite point of
+    ``grid``: H = k sqrt(1 - c^2), the thin disk, whose precessions all spin in place)."""
+    with np.errstate(all="ignore"):
+        _, rho2, z, _ = _regular(body, grid)
+        ok = np.isfinite(z) & np.isfinite(rho2)
+        return bool(ok.any() and np.all(np.abs(z[ok]) <= SPINLESS_RTOL * np.abs(rho2[ok])))
 
 
 def _root_float(body, theta: float, *, omega0: float | None = None, n0: float | None = None) -> float:

@@ -4,7 +4,7 @@ phasekit.steady.structure), found along its branches, independently of :func:`ph
 
 A branch is followed from end to end: its samples, closed by the exact limits at its two ends
 (Omega -> infinity at an infinite-spin asymptote, Omega and n -> 0 at a static equilibrium, the
-pole's rate and spin at a pole; phasekit.steady.branches), with every interior extremum of Omega
+pole's rate and spin at a pole, the limits at an edged body's limit; phasekit.steady.branches), with every interior extremum of Omega
 (or n) located and added. Between two consecutive points the value is then monotone, so a state
 with a given rate lies between two points exactly where the rate lies between their values: no
 state is lost near an end however fast or slow the rate (the samples stop short of the ends,
@@ -23,9 +23,9 @@ from .._runtime.errors import ConvergenceError, ParameterError, Status
 from ..core.charts import EULER
 from .branches import _curve, _geometry, _sample
 from .budget import spend_wall
-from .fixedpoints import HORIZONTAL_GAP, _family_value, _isolated_states, _precessions
+from .fixedpoints import HORIZONTAL_GAP, _family_value, _isolated_states, _on_range, _precessions
 from .linearisation import FixedPoint
-from .precessions import SPIN_FLOOR
+from .precessions import SPIN_FLOOR, SPINLESS_RTOL
 
 __all__ = ["states_at"]
 
@@ -49,7 +49,7 @@ def states_at(structure, omega0, n0) -> list[FixedPoint]:
             thetas += _branch_angles(body, b, omega0, n0)
         thetas += [f.theta for f in structure.families if f.kind == "precession" and _member(body, f.theta, n0)]
     thetas = _distinct(sorted(t for t in thetas if 0.0 < t < (np.pi / 2 if body.flip_symmetric else np.pi)))
-    return _isolated_states(me, model.with_chart("vector"), omega0, n0) + _precessions(me, thetas, omega0, n0)
+    return _on_range(body, _isolated_states(me, model.with_chart("vector"), omega0, n0) + _precessions(me, thetas, omega0, n0))
 
 
 def _member(body, theta: float, n0) -> bool:
@@ -80,6 +80,8 @@ def _branch_angles(body, branch, omega0, n0) -> list[float]:
     """The angles on ``branch`` where Omega = |omega0| (or n = +-n0), its ends included where
     the value is the end's own (a static end at rate or spin 0)."""
     theta, om, n = _points(body, branch)
+    if n0 is not None and np.all(np.abs(n) <= SPINLESS_RTOL * om):  # n = 0 all along (the thin disk): a continuum
+        return []
     which, values = (1, n) if n0 is not None else (0, om)
     theta, values = _with_extrema(body, branch, theta, values, which)
     if omega0 is not None:
@@ -110,9 +112,10 @@ def _points(body, branch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def _limit(body, end, n_near) -> tuple[float, float]:
-    """(Omega, n) at a branch's end: the pole's, 0 at a static end, infinite (n with the sign it
-    has next to the end, that of z) at an infinite-spin end."""
-    if end.kind == "pole":
+    """(Omega, n) at a branch's end: the pole's, the switch's (on its own piece) or the limit's (an
+    edged body's range: infinite Omega at a face coming down), 0 at a static end, infinite (n
+    with the sign it has next to the end, that of z) at an infinite-spin end."""
+    if end.kind in ("pole", "switch", "limit"):  # a switch: the limits on the branch's own piece
         return end.Omega, end.n
     if end.kind == "static":
         return 0.0, 0.0

@@ -9,11 +9,20 @@ III's abstract calls the branches non-isolated fixed-point branches; the four ki
 are not spelled out in the abstract, and phasekit classifies each branch by its two ends
 instead (:attr:`SteadyStructure.signature`).
 
+A compound body (one with ``transfers``: the tippe top with its stem) has a kink in H at each
+switch angle, where the contact passes from one piece to the next: its structure is computed
+piece by piece with each piece's own support (phasekit.steady.pieces), every branch cut at the
+switches (an end of kind "switch"), each part of a branch, static equilibrium and family
+naming the piece it stands on (``piece``; None on a one-piece body, whose structure is
+computed as it always was). A body with an edge (``theta_range``: pk.Disk, pk.Cone) has its
+structure on that range, every branch ending at a limit of it (an end of kind "limit": "face
+down", "side down"); on a tip (rho_2 = 0) it is degenerate (phasekit.steady.pieces).
+
 Here: the structure (:func:`steady_structure`, :class:`SteadyStructure` and its branches), its
 states at one rate or spin, and the event between two classes (:func:`bifurcation_between`).
 The parts: phasekit.steady.branches (the curve, its ends and samples),
-phasekit.steady.branch_stability (stability along a branch) and phasekit.steady.families (the
-static equilibria and the families).
+phasekit.steady.branch_stability (stability along a branch), phasekit.steady.families (the
+static equilibria and the families) and phasekit.steady.pieces (a compound body's pieces).
 """
 
 from __future__ import annotations
@@ -31,8 +40,9 @@ from ..friction.laws import FrictionLaw, Viscous
 from .branch_stability import StabilityChange, _stability, linearise_precession
 from .branches import BranchEnd, _degeneracy, _end, _pieces, _sample, _special_points, precession_on_branch
 from .dissipative import acting_laws, dissipation_note
-from .families import SpinFamily, StaticEquilibrium, _families, _statics
+from .families import SpinFamily, StaticEquilibrium
 from .linearisation import FixedPoint
+from .pieces import Part, in_theta_order, parts, statics_and_families, tip_degeneracy
 from .precessions import inverted_state, precession_state, vertical_state
 from .rolling import rolling_state
 
@@ -43,7 +53,27 @@ __all__ = ["SteadyBranch", "SteadyStructure", "steady_structure", "bifurcation_b
 class SteadyBranch:
     """A branch of steady precessions: its two ends (ordered by theta), samples (theta, Omega, n)
     adaptive in arc length, and at each sample the linearisation of the law (``points``: a
-    :class:`FixedPoint` each), the stability changes and the families it crosses."""
+    :class:`FixedPoint` each), the stability changes and the families it crosses.
+
+    Attributes
+    ----------
+    ends : tuple of BranchEnd
+        The two ends (phasekit.steady.branches.BranchEnd), lower theta first.
+    theta, Omega, n : numpy.ndarray
+        The samples (empty without them).
+    points : tuple of FixedPoint
+        The linearisation at each sample (empty without stability).
+    changes : tuple of StabilityChange
+        Where the stability changes along the branch.
+    crossings : tuple of float
+        The families it crosses (theta).
+    sliding_stable : numpy.ndarray or None
+        Under exact Coulomb friction, the sliding-friction criterion at each sample.
+    piece : str or None
+        On a compound body, the piece the branch stands on ("ball", "stem"): the branch lies
+        within that piece's range of theta, an end at a switch has kind "switch"; None on a
+        one-piece body.
+    """
 
     ends: tuple[BranchEnd, BranchEnd]
     theta: np.ndarray = field(repr=False)
@@ -53,6 +83,7 @@ class SteadyBranch:
     changes: tuple[StabilityChange, ...] = ()
     crossings: tuple[float, ...] = ()
     sliding_stable: np.ndarray | None = field(default=None, repr=False)
+    piece: str | None = None
 
     @property
     def label(self) -> str:
@@ -92,7 +123,8 @@ class SteadyBranch:
                 s["eigenvalues"] = [[float(v.real), float(v.imag)] for v in p.eigenvalues]
                 s["error_bounds"] = [float(b) if np.isfinite(b) else None for b in p.bounds]
             samples.append(s)
-        return {"ends": [e.to_dict() for e in self.ends], "label": self.label, "crossings": list(self.crossings),
+        return {**({"piece": self.piece} if self.piece is not None else {}), "ends": [e.to_dict() for e in self.ends],
+                "label": self.label, "crossings": list(self.crossings),
                 "stability_changes": [c.to_dict() for c in self.changes], "samples": samples}
 
 
@@ -105,11 +137,15 @@ class SteadyStructure:
     model : Model
         The body and friction law (Euler chart).
     branches : tuple of SteadyBranch
-        The branches of steady precessions, in theta order.
+        The branches of steady precessions, in theta order; on a compound body each on one
+        piece (:attr:`SteadyBranch.piece`), cut at the switches (ends of kind "switch").
     static_equilibria : tuple of StaticEquilibrium
-        The static equilibria of the body.
+        The static equilibria of the body; on a compound body each with the ``piece`` it rests
+        on (phasekit.steady.pieces.StaticOnPiece).
     families : tuple of SpinFamily
-        The families (the horizontal state; the spins about the vertical).
+        The families (the horizontal state; the spins about the vertical); on a compound body
+        each with its ``piece`` (phasekit.steady.pieces.FamilyOnPiece: the tippe top's spin
+        about the vertical at theta = pi is on the stem).
     status : Status
         ``Status.COMPLETED``, or ``Status.FAILED`` if a root or a limit could not be computed or
         the wall budget ran out.
@@ -124,7 +160,9 @@ class SteadyStructure:
         With dissipation laws (``friction.dissipation``): which steady states they leave and
         why (phasekit.steady.dissipative: a steady state keeps its energy, so only those at
         which every law's power vanishes remain: no branch of steady precessions under rolling
-        resistance, spin friction or air drag on rotation); else None.
+        resistance, spin friction or air drag on rotation); on a compound body one of whose
+        pieces is degenerate (the tippe top with offset 0: its ball centred on G), which and
+        why; else None.
 
     Examples
     --------
@@ -259,7 +297,8 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, sam
     SteadyStructure
         With status "failed" and the reason if a root or a limit could not be computed or the
         budget ran out; with :attr:`SteadyStructure.degenerate` set (and no branches) for a body
-        whose steady states fill a continuum (a sphere with G at its centre); with
+        whose steady states fill a continuum (a sphere with G at its centre; a cone on its tip,
+        whose precessions are the Lagrange top's, held by friction); with
         :attr:`SteadyStructure.note` set under dissipation laws.
 
     Examples
@@ -293,20 +332,38 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, sam
 
 def _structure(model: Model, stability: bool, samples: bool) -> SteadyStructure:
     body, friction = model.body, model.friction
-    if hasattr(body, "theta_range"):  # its poles are off its range: the structure's tools assume them
-        return SteadyStructure(model, (), (), (), Status.FAILED, f"the steady-state structure of a body with an edge "
-                               f"({body.describe()}, valid for theta in ({body.theta_range[0]:.6g}, "
-                               f"{body.theta_range[1]:.6g})) is not computed yet: use fixed_points at a rate")
     why = _degeneracy(body)
     if why is not None:  # a continuum of statics (and precessions): nothing to sample
         return SteadyStructure(model, (), (), (), degenerate=why)
-    pts = _special_points(body)
-    pieces = _pieces(body, pts)
-    for p in pieces:
-        p["lo_end"], p["hi_end"] = _end(body, p["lo"], -1), _end(body, p["hi"], +1)
-    branches = []
+    ranges = parts(body)
+    if hasattr(body, "theta_range") and (why := tip_degeneracy(body)) is not None:  # no branches: the statics, the pole
+        pts = _special_points(body, ranges[0].lo, ranges[0].hi)
+        statics, families = statics_and_families(model, ranges[0], pts, [], stability)
+        return SteadyStructure(model, (), statics, families, degenerate=why)
     sliding = Model(body, Viscous(friction.mu)) if stability and friction.has_rolling_mode else None
-    empty = np.array([])
+    branches, statics, families, notes = [], [], [], []
+    for part in ranges:  # the whole range of a one-piece body; a compound body's pieces
+        if part.name is not None and (why := _degeneracy(part.support)) is not None:
+            notes.append(f"on the {part.name} ({part.lo:.6g} <= theta <= {part.hi:.6g}): {why}")
+            continue
+        pts = _special_points(part.support, part.lo, part.hi)
+        pieces = _pieces(part.support, pts, part.edges)
+        for p in pieces:
+            p["lo_end"], p["hi_end"] = _end(part.support, p["lo"], -1), _end(part.support, p["hi"], +1)
+        branches += _branches(model, part, pieces, stability, samples, sliding)
+        on_part = statics_and_families(model, part, pts, pieces, stability)
+        statics += on_part[0]
+        families += on_part[1]
+    if len(ranges) > 1:
+        families = in_theta_order(families)
+    return SteadyStructure(model, tuple(branches), tuple(statics), tuple(families), note="; ".join(notes) or None)
+
+
+def _branches(model: Model, part: Part, pieces: list[dict], stability: bool, samples: bool,
+              sliding: Model | None) -> list[SteadyBranch]:
+    """The branches on ``part`` (its intervals ``pieces`` with their ends): samples by the part's
+    own support, the linearisation by the whole body's model."""
+    body, empty, out = part.support, np.array([]), []
     for p in pieces:
         theta, om, n = _sample(body, p["lo_end"], p["hi_end"], p["crossings"]) if samples else (empty, empty, empty)
         points, changes, slide = (), (), None
@@ -315,9 +372,9 @@ def _structure(model: Model, stability: bool, samples: bool) -> SteadyStructure:
             if sliding is not None:
                 slide = np.array([linearise_precession(sliding, float(t), float(o), float(m)).stable
                                   for t, o, m in zip(theta, om, n)])
-        branches.append(SteadyBranch((p["lo_end"], p["hi_end"]), theta, om, n, points, changes,
-                                     tuple(p["crossings"]), slide))
-    return SteadyStructure(model, tuple(branches), _statics(body, pts), _families(model, body, pts, pieces, stability))
+        out.append(SteadyBranch((p["lo_end"], p["hi_end"]), theta, om, n, points, changes, tuple(p["crossings"]), slide,
+                                part.name))
+    return out
 
 
 def _surviving(model: Model, bare: SteadyStructure) -> SteadyStructure:
@@ -343,8 +400,9 @@ def _surviving(model: Model, bare: SteadyStructure) -> SteadyStructure:
             removed.append(f"the {f.kind} family at theta = {f.theta:.6g}")
         else:
             families.append(f)
+    note = dissipation_note(model, removed, len(branches), len(families))
     return SteadyStructure(model, tuple(branches), bare.static_equilibria, tuple(families), bare.status, bare.reason,
-                           bare.degenerate, dissipation_note(model, removed, len(branches), len(families)))
+                           bare.degenerate, "; ".join(n for n in (bare.note, note) if n) or None)
 
 
 # -- between classes ------------------------------------------------------------------------------

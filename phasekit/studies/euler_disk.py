@@ -28,7 +28,7 @@ import math
 import numpy as np
 from scipy import optimize, special, stats
 
-from ..bodies.edged import Disk
+from ..bodies.edged import FLAT_ANGLE, Disk
 from ..core.model import Model
 from ..core.simulate import simulate
 from ..friction.dissipation import AirLayer, RollingResistance, SpinFriction
@@ -71,14 +71,14 @@ def quasi_static(law: str, coef: float, theta0: float, theta: np.ndarray | float
 
 
 def run_disk(law: str, coef: float, mu: float, *, theta0: float = math.pi / 6, t_end: float = 1e4, rtol: float = 1e-10,
-             max_steps: int = 2_000_000, max_wall: float = 120.0, spin: float = 0.0):
+             max_steps: int = 2_000_000, max_wall: float = 120.0, spin: float = 0.0, flat_angle: float = FLAT_ANGLE):
     """The thin disk spinning in place at ``theta0`` (plus ``spin`` about its axis: the rim then
     slips at that speed) under exact Coulomb friction ``mu`` and one law ("air-layer" k,
     "rolling-resistance" delta, "spin-friction" mu_s, or "sliding": none), in the Euler chart with
-    dense output, to face down (FLAT_ANGLE) or ``t_end``: the trajectory."""
+    dense output, to face down (``flat_angle``) or ``t_end``: the trajectory."""
     laws = {"air-layer": AirLayer, "rolling-resistance": RollingResistance, "spin-friction": SpinFriction}
     friction = Coulomb(mu) if law == "sliding" else Coulomb(mu).with_dissipation(laws[law](coef))
-    m = Model(THIN, friction, "euler")
+    m = Model(THIN if flat_angle == FLAT_ANGLE else Disk(0.0, flat_angle=flat_angle), friction, "euler")
     y0 = spin_in_place(theta0) + np.array([0.0, 0.0, 0.0, 0.0, 0.0, spin])
     return simulate(m, y0, t_end, rtol=rtol, stop_at="none", dense=True, max_steps=max_steps,
                     max_wall=max_wall)

@@ -133,6 +133,7 @@ def test_a_frictionless_top_on_its_point_keeps_energy_L_Z_and_spin(chart):
     assert np.ptp(theta) > 0.02 and theta.min() > 2.6  # it nutates, well clear of its side
 
 
+@pytest.mark.slow  # its own vector-chart integrator (~20 s cold); tests/cli/test_body_cone.py runs the sleeping top by default
 @pytest.mark.timeout(600)
 def test_a_top_sleeping_on_its_point_stays_put():
     """Upright on its point (theta = pi, the vector chart) spinning, Coulomb friction: no force is

@@ -113,6 +113,7 @@ def test_a_concave_profile_is_refused_naming_the_parameter():
 @pytest.mark.parametrize("kwargs, name", [
     (dict(thickness=-0.1), "thickness"), (dict(thickness=float("nan")), "thickness"), (dict(thickness=2e3), "thickness"),
     (dict(thickness=0.1, A=0.7, C=1.2), "C"), (dict(thickness=0.1, A=0.2, C=0.5), "C"), (dict(thickness=0.1, A=-1), "A"),
+    (dict(flat_angle=1e-7), "flat_angle"), (dict(flat_angle=0.2), "flat_angle"), (dict(flat_angle=float("inf")), "flat_angle"),
 ])
 def test_bad_parameters_are_named(kwargs, name):
     with pytest.raises(pk.ParameterError) as err:
@@ -128,10 +129,14 @@ def test_a_moment_beyond_the_rims_distance_is_refused_when_a_model_is_built():
 
 def test_disks_share_one_compiled_structure_and_round_trip_through_their_description():
     assert pk.Disk(0.0).structure_key == pk.Disk(0.1).structure_key == pk.Disk(3.0).structure_key
-    for disk in (pk.Disk(0.0), pk.Disk(0.12), pk.Disk(0.3, A=0.3, C=0.45)):
+    for disk in (pk.Disk(0.0), pk.Disk(0.12), pk.Disk(0.3, A=0.3, C=0.45), pk.Disk(0.0, flat_angle=1e-6)):
         m = pk.Model(disk, pk.Coulomb(0.4))
         back = pk.Model.from_dict(m.to_dict())
         assert back == m and back.body.to_dict() == disk.to_dict() and back.body.to_dict()["body"] == "disk"
+        assert back.body.limits == disk.limits
+    # a description written before the face-down angle was a parameter reads as the default
+    assert "flat_angle" not in pk.Disk(0.1).to_dict() and pk.Disk(0.0, flat_angle=1e-5) != pk.Disk(0.0)
+    assert [lim.theta for lim in pk.Disk(0.0, flat_angle=1e-5).limits] == [1e-5, math.pi - 1e-5]
     assert make_body("disk") == pk.Disk(0.0) and make_body("disk", thickness=0.1) == pk.Disk(0.1)
     with pytest.raises(pk.ParameterError) as err:
         make_body("disk", a=1.5)

@@ -123,8 +123,8 @@ def test_cone_flags_elsewhere_are_refused_naming_them(args, flag):
 
 def test_the_steady_states_of_a_cone_on_its_rim_lie_on_its_rim():
     """fixed-points keeps the states inside the rim's range: at Omega = 3 the precession that
-    continues the balance on the rim (tan(theta) = 4/l) and an intermediate one; steady-states says
-    the structure of a body with an edge is not computed (status failed, exit 1)."""
+    continues the balance on the rim (tan(theta) = 4/l) and an intermediate one; steady-states gives
+    the structure on the rim's range, its branch ending where the base and the side come down."""
     code, out, _ = run_cli("fixed-points", "--body", "cone", "--height", "2", "--mu", "0.3", "--omega0", "3", "--json")
     d = strict_json(out)
     assert code == 0 and d["model"]["body"] == "cone"
@@ -133,4 +133,5 @@ def test_the_steady_states_of_a_cone_on_its_rim_lie_on_its_rim():
     assert thetas[1] == pytest.approx(math.atan(2.0), rel=1e-12)  # h_theta = 0: the spin-free balance, spun
     code, out, _ = run_cli("steady-states", "--body", "cone", "--height", "2", "--mu", "0.3", "--json")
     d = strict_json(out)
-    assert code == 1 and d["status"] == "failed" and "cone, height 2 radii (on its rim)" in d["reason"]
+    assert code == 0 and d["status"] == "completed" and d["signature"] == "limit-cross-limit"
+    assert [e["limit"] for e in d["branches"][0]["ends"]] == ["face down", "side down"]

@@ -64,7 +64,9 @@ def test_radius_sets_the_unit_of_length_as_size_does():
     (["--thickness", "nan"], "--thickness", "must lie in [0, 1000]"),
     (["--radius", "3.7 s"], "--radius", "must be a length"),
     (["--radius", "3.7 cm", "--thickness", "2 s"], "--thickness", "must be a length"),
-    (["--a", "1.5"], "--a", "does not apply to the disk body (its parameters: thickness)"),
+    (["--a", "1.5"], "--a", "does not apply to the disk body (its parameters: thickness, flat_angle)"),
+    (["--flat-angle", "1e-8"], "--flat-angle", "must lie in [1e-06, 0.1] (radians), got 1e-08."),
+    (["--flat-angle", "1 cm"], "--flat-angle", "must be an angle"),
     (["--mass", "20 g"], "--mass", "--mass needs --radius"),
     (["--A", "0.7", "--C", "1.2"], "--C", "must be at most 1"),
 ])
@@ -109,3 +111,14 @@ def test_a_disk_run_stopped_as_the_face_comes_down():
     d = strict_json(out)
     assert code == 0 and d["status"] == "stopped" and d["t_end"] == pytest.approx(20.8348090098, rel=1e-9)
     assert d["state_end"]["theta"] == pytest.approx(1e-3, rel=1e-9) and d["state_end"]["Omega"] > 20 * omega
+
+
+def test_the_face_comes_down_at_the_flat_angle_typed():
+    """A disk released at rest at 2 deg falls flat: the run ends at the --flat-angle typed (1 deg),
+    which the model's description carries (pk.rerun rebuilds the same limit)."""
+    code, out, _ = run_cli("simulate", "--body", "disk", "--mu", "0.5", "--state", "0", "0", "0", "0", "0.035", "0",
+                           "--t-end", "5", "--flat-angle", "1 deg", "--json")
+    d = strict_json(out)
+    assert code == 0 and d["status"] == "stopped" and d["events"][-1]["kind"] == "face down"
+    assert d["state_end"]["theta"] == pytest.approx(math.radians(1.0), rel=1e-9)
+    assert d["model"]["flat_angle"] == pytest.approx(math.radians(1.0), rel=1e-15)

@@ -87,6 +87,9 @@ def test_the_text_says_where_the_energy_went_and_when_the_body_rests():
     assert not any(ln.startswith("pure rolling") for ln in lines)
 
 
+# the spinning sphere compiles its own integrators (~14 s cold each): the full run only; the closed forms are
+# tests/friction/test_dissipation_laws.py's, the flags' units test_air_drag_typed_with_units_is_converted_with_the_mass
+@pytest.mark.slow
 @pytest.mark.timeout(600)
 def test_spin_friction_in_mm_with_size_is_the_same_run_as_in_units_of_b():
     """--spin-friction '0.5 mm' with --size '1 cm' is mu_s = 0.05; a sphere spinning in place
@@ -103,6 +106,7 @@ def test_spin_friction_in_mm_with_size_is_the_same_run_as_in_units_of_b():
     assert abs(budget["residual"]) < 1e-8 * budget["lost"]
 
 
+@pytest.mark.slow  # see above
 @pytest.mark.timeout(600)
 def test_linear_air_drag_spins_a_sphere_down_exponentially():
     """--air-drag K1 is the couple -K1 w: a sphere spinning in place slows as n0 exp(-K1 t / C)."""

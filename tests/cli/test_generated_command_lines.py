@@ -240,6 +240,9 @@ def check_cli(suite: str, argv: list[str]) -> None:
     COUNTS[suite][classify_cli(argv, code, out, err)] += 1
 
 
+# ~50 s of runs: the full run only (the default run keeps the fixed simulate cases of this file's
+# real-process test, tests/cli's refusals and the generated fixed-points and gyroscopic suites)
+@pytest.mark.slow
 @hang_guard(1800)
 @generated(simulate_argv, **fuzz(500))
 def test_cli_simulate(argv):

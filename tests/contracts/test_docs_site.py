@@ -362,6 +362,7 @@ def test_a_changed_manifest_changes_the_generated_numbers(tmp_path):
     assert readme.render(readme_text, after) != readme_text
 
 
+@pytest.mark.slow  # a second Sphinx build (~13 s); the generated numbers are checked without it above
 def test_a_changed_manifest_changes_the_built_page(tmp_path):
     figs = _copy_figures(tmp_path)
     changed = _change_numbers(figs)

@@ -118,6 +118,10 @@ SIM_NAMES = {"model", "x0", "t_end", "t0", "stop_at", "restitution", "events", "
              *pk.SolverOptions.names()}
 
 
+# the suites that run simulations (~95 s of the default run, much of it compiling integrators for
+# their odd tolerances and laws) run in the full run only; the default run calls the same functions in
+# the fixed cases of tests/core, tests/thresholds and tests/sweep, and keeps the other suites here
+@pytest.mark.slow
 @hang_guard(1200)
 @generated(models,
           states,
@@ -214,6 +218,7 @@ def test_api_linearise(model, x, kind):
 DEF_NAMES = {"name", "seed", "mu", "amplitude", "eps", "rtol", "rise_margin", "t_max", "max_steps"}
 
 
+@pytest.mark.slow  # runs simulations: see test_api_simulate
 @hang_guard(1200)
 @generated(lambda: st.fixed_dictionaries({"seed": st.sampled_from(["viscous", "sliding", "literal", "other"])}, optional={
     "mu": real_or_wrong(0.1, 0.3), "amplitude": real_or_wrong(0.01, 0.1), "eps": real_or_wrong(1e-3, 1e-20),
@@ -302,6 +307,7 @@ def test_api_solver_options(kw):
     record("api SolverOptions", outcome)
 
 
+@pytest.mark.slow  # runs simulations: see test_api_simulate
 @hang_guard(1800)
 @generated(lambda: mostly(st.sampled_from(["theta", "R", "Lambda", "energy"]), st.sampled_from(["", "nonsense"]), wrong(),
               n_good=10),
@@ -353,6 +359,7 @@ def starts():
 ENSEMBLE_NAMES = SIM_NAMES | {"starts", "scheduler", "processes", "progress", "max_wall_total"}
 
 
+@pytest.mark.slow  # runs simulations: see test_api_simulate
 @hang_guard(1200)
 @generated(lambda: st.sampled_from(sorted(LAWS)),
           lambda: starts(),
@@ -414,6 +421,7 @@ def _threshold_checks(th) -> str:
     return "failed" if th.status is pk.SearchStatus.FAILED else "valid"
 
 
+@pytest.mark.slow  # runs simulations: see test_api_simulate
 @hang_guard(1200)
 @generated(lambda: definition_kwargs(),
           lambda: st.sampled_from([1.5, 0.6, 2.0]),
@@ -592,6 +600,7 @@ def test_api_new_solver_options(kw):
     record("api SolverOptions (settle, bounces, switches)", outcome)
 
 
+@pytest.mark.slow  # runs simulations: see test_api_simulate
 @hang_guard(2400)
 @generated(lambda: st.sampled_from([10.0, 20.0, 30.0]),
           lambda: real_or_wrong(0.5, 0.0, 0.95, 1.0),

@@ -113,6 +113,7 @@ def test_energy_never_increases_along_the_run_but_by_the_slip_onset_nudge(run):
         assert sum(lost for end, lost in jumps if end == "touchdown") > 0.01
 
 
+@pytest.mark.slow  # the vector chart's integrators (~27 s cold); the per-law vector budgets below stay in the default run
 @pytest.mark.timeout(600)
 def test_the_two_charts_agree_on_the_budget():
     """The stick-slip run in both charts: the same work of each law (the motion is the same)."""

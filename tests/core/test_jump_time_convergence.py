@@ -40,6 +40,9 @@ def test_t_jump_converges_in_eps_and_rtol(runs):
     assert abs(runs["exact", 1e-11].t_jump - runs["eps1e-8", 1e-11].t_jump) / ref < 1e-9
 
 
+# the vector chart's integrator (~13 s cold): the full run only (the charts agree on the oblate spheroid's
+# jump in tests/core/test_euler_and_vector_charts.py, CVODES gives t* to 1e-7 in test_cvodes_error_falls_with_rtol)
+@pytest.mark.slow
 def test_euler_and_vector_and_cvodes_agree_on_t_jump(prolate, standard_start):
     ref = pk.simulate(pk.Model(prolate, pk.Coulomb(0.1)), standard_start, 200.0, rtol=1e-12).t_jump
     rv = pk.simulate(pk.Model(prolate, pk.Coulomb(0.1), "vector"), pk.core.to_chart("vector", standard_start), 200.0, rtol=1e-12)

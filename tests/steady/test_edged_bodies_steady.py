@@ -1,6 +1,7 @@
 """Steady states of a body with an edge (pk.Disk): its model holds only on its range of theta, so
 fixed_points lists the states inside it (the precessions a scan of the whole [0, pi] finds outside
-it are left out), and steady_structure, whose tools assume the poles, says it is not computed."""
+it are left out), and steady_structure computes its structure on that range (its branches end at
+the range's limits: tests/steady/test_edged_structure.py)."""
 
 from __future__ import annotations
 
@@ -24,6 +25,7 @@ def test_fixed_points_of_a_disk_are_the_steady_states_inside_its_range():
         assert np.max(np.abs(model.rhs(fp.y, "rolling"))) < 1e-10
 
 
-def test_the_structure_of_a_disk_says_it_is_not_computed():
+def test_the_structure_of_a_disk_is_computed_on_its_range():
     s = pk.steady_structure(pk.Disk(0.1), pk.Coulomb(0.3))
-    assert s.status is pk.Status.FAILED and "(0, 1.5708)" in s.reason and not s.branches
+    assert s.status is pk.Status.COMPLETED and s.signature == "limit-inf | static-limit"
+    assert all(0.0 <= e.theta <= np.pi / 2 for b in s.branches for e in b.ends)

@@ -110,6 +110,7 @@ def _pack_size(prev, i):
     return i
 
 
+@pytest.mark.slow  # 12 scatters of a pack that holds every integrator the session compiled: ~40 s in the full suite
 def test_runs_one_after_another_on_one_client_share_the_pack_without_losing_it():
     """The same model pack scattered run after run (a study's searches then its grid; a
     benchmark's serial and Dask passes): each run gets its own copy, so the release of the last

@@ -72,6 +72,9 @@ def test_jellett_survives_flights_and_impacts(top):
 
 
 # -- two charts ---------------------------------------------------------------------------------
+# its own integrators (~10 s cold): the full run only (the charts agree on the tippe top with its stem in
+# tests/core/test_piece_transfer.py, and on spheroids in tests/core/test_euler_and_vector_charts.py)
+@pytest.mark.slow
 def test_both_charts_agree_on_event_times(top):
     """Euler and vector charts (independent formulations): every event to 1e-9 in time, here the
     crossings of theta = 0.4 (a non-terminal user event) and the lift-off."""
