@@ -104,7 +104,8 @@ def _print_energy(out: dict) -> None:
         laws = ", ".join(f"{law} {_fmt(e, '.4g')}" for law, e in budget["dissipated"].items())
         print(f"energy: {_fmt(budget['energy_start'], '.8g')} -> {_fmt(budget['energy_end'], '.8g')} {unit}, lost "
               f"{_fmt(budget['lost'], '.6g')}: {laws}, at events {_fmt(budget['at_events'], '.4g')} (balance residual "
-              f"{_fmt(budget['residual'], '.2g')})" + (" (give --mass for mJ)" if si and unit != "mJ" else ""))
+              f"{_fmt(budget['residual'], '.2g')}, largest along the run {_fmt(budget['residual_max'], '.2g')})"
+              + (" (give --mass for mJ)" if si and unit != "mJ" else ""))
     if si.get("t_rest") is not None:
         print(f"at rest at t = {_fmt(si['t_rest'] / 1e3, '.6g')} s")
 

@@ -41,6 +41,10 @@ class EnergyBudget:
         The energy each took out of the motion (>= 0): minus the integral of its power.
     at_events : float
         The energy lost in jumps at events (impacts; the slip-onset nudge), summed.
+    residual_max : float
+        The largest |residual| of the balance taken from the start to the end of any Taylor
+        step (or output interval) along the run: the balance holds along it, not only at its
+        end.
     """
 
     energy_start: float
@@ -48,6 +52,7 @@ class EnergyBudget:
     laws: tuple
     dissipated: tuple
     at_events: float
+    residual_max: float = 0.0
 
     @property
     def lost(self) -> float:
@@ -62,7 +67,7 @@ class EnergyBudget:
     def to_dict(self) -> dict:
         return {"energy_start": self.energy_start, "energy_end": self.energy_end, "lost": self.lost,
                 "dissipated": dict(zip(self.laws, self.dissipated)), "at_events": self.at_events,
-                "residual": self.residual}
+                "residual": self.residual, "residual_max": self.residual_max}
 
 
 def energy_budget(traj) -> EnergyBudget:
@@ -79,6 +84,9 @@ def energy_budget(traj) -> EnergyBudget:
                              show_value=False)
     names = ("sliding friction", *(d.name for d in model.friction.dissipation))
     work, jumps, e_prev = np.zeros(len(names)), 0.0, None
+    first = traj.segments[0]
+    e_start = float(model.function("energy", first.mode)(first.x0, model.p))
+    worst = 0.0
     for seg in traj.segments:
         energy = model.function("energy", seg.mode)
         e0 = float(energy(seg.x0, model.p))
@@ -86,10 +94,15 @@ def energy_budget(traj) -> EnergyBudget:
         if e_prev is not None:
             jumps += e_prev - e0
         e_prev = e1
-        work += _segment_work(model, seg, len(names))
-    first = traj.segments[0]
-    e_start = float(model.function("energy", first.mode)(first.x0, model.p))
-    return EnergyBudget(e_start, e_prev, names, tuple(float(v) for v in -work), jumps)
+        seg_work, ends, X_ends, cumulative = _segment_work(model, seg, len(names))
+        if len(ends):  # the balance at every step's end: lost - dissipated - at events, so far
+            E = np.atleast_1d(evaluate_function(model.function("energy", seg.mode), model.p, X_ends)).reshape(-1)
+            along = (e_start - E) + (np.sum(work) + cumulative) - jumps
+            worst = max(worst, float(np.max(np.abs(along))))
+        work += seg_work
+    dissipated = tuple(float(v) for v in -work)
+    end = (e_start - e_prev) - float(np.sum(dissipated)) - jumps  # EnergyBudget.residual, as it computes it
+    return EnergyBudget(e_start, e_prev, names, dissipated, jumps, max(worst, abs(end)))
 
 
 def _power_function(model, mode: Mode):
@@ -100,11 +113,13 @@ def _power_function(model, mode: Mode):
     return None  # a model without dissipation laws: only sliding friction works
 
 
-def _segment_work(model, seg, n_laws: int) -> np.ndarray:
-    """The integral over the segment of each law's power."""
+def _segment_work(model, seg, n_laws: int):
+    """The integral over the segment of each law's power; and, at the end of each Taylor step
+    (or output interval), the time, the state and the work of all laws together so far."""
     P = _power_function(model, seg.mode)
     nodes, weights = np.polynomial.legendre.leggauss(GAUSS_NODES)
     total = np.zeros(n_laws)
+    all_ends, all_X, steps = [], [], []
     for span in seg.dense:
         try:
             starts, ends, _ = span.pieces()
@@ -126,4 +141,10 @@ def _segment_work(model, seg, n_laws: int) -> np.ndarray:
             vals = np.atleast_2d(evaluate_function(P, model.p, X))
             vals = vals.reshape(len(ts), -1)
         total += w @ vals
-    return total
+        if len(b):
+            steps.append((w[:, None] * vals).sum(axis=1).reshape(len(b), GAUSS_NODES).sum(axis=1))
+            all_ends.append(b)
+            all_X.append(span(b))
+    if not steps:
+        return total, np.zeros(0), np.zeros((0, 0)), np.zeros(0)
+    return total, np.concatenate(all_ends), np.concatenate(all_X), np.cumsum(np.concatenate(steps))

@@ -152,7 +152,8 @@ def disk_report(traj, law: str, coef: float, mu: float, *, window: tuple[float, 
            "t_first_stick": sticks[0] if sticks else None, "t_pivot_stick": pivots[0] if pivots else None,
            "theta_end": float(end["theta"].iloc[0]), "Omega_end": float(end["Omega"].iloc[0]),
            "energy_start": budget.energy_start, "energy_end": budget.energy_end,
-           "residual": budget.residual / budget.energy_start, "n_steps": traj.n_steps, "n_events": len(traj.events)}
+           "residual": budget.residual / budget.energy_start,
+           "residual_max": budget.residual_max / budget.energy_start, "n_steps": traj.n_steps, "n_events": len(traj.events)}
     expected = EXPONENTS[law]
     if expected is None or t_face is None:
         return out

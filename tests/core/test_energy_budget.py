@@ -76,13 +76,31 @@ def test_energy_lost_equals_the_work_of_the_laws_and_the_jumps_at_events(run):
     b = traj.energy_budget()
     assert b.laws == ("sliding friction", "rolling-resistance", "spin-friction", "air-drag")
     assert b.lost > 0.1 * b.energy_start  # a run that lost much of its energy
-    assert abs(b.residual) <= BALANCE_RTOL * b.lost
+    assert abs(b.residual) <= b.residual_max <= BALANCE_RTOL * b.lost  # along the run, not only at its end
     assert all(w > 0 for w in b.dissipated)  # every law acted, and only took energy out
     assert b.at_events == pytest.approx(sum(j for _, j in _jumps(model, traj)), rel=1e-12, abs=1e-15)
     if kind == "hopping":
         assert b.at_events > 1e-3 * b.lost  # the impacts (e = 0.5)
     d = b.to_dict()
     assert d["dissipated"] == dict(zip(b.laws, b.dissipated)) and d["residual"] == b.residual
+    assert d["residual_max"] == b.residual_max
+
+
+@pytest.mark.timeout(600)
+def test_the_largest_residual_along_a_run_bounds_the_balance_of_every_shorter_run():
+    """The same run stopped earlier takes the same steps (the last one cut short): the balance of
+    each shorter run is one of the balances along the full run, so the full run's residual_max
+    bounds it; and at the full length the two agree."""
+    model, full = _stick_slip("euler")
+    worst = full.energy_budget().residual_max
+    seen = []
+    for t_end in (3.0, 7.5, 12.0, 20.0):
+        m = pk.Model(PROLATE, pk.Coulomb(0.2).with_dissipation(*_laws(1.0)), "euler")
+        short = pk.simulate(m, m.chart.from_paper([0.0, 0.0, 0.5, 0.0, 1.0, 0.0]), t_end, stop_at="rest", **BUDGET)
+        b = short.energy_budget()
+        seen.append(abs(b.residual))
+        assert b.residual_max <= worst * (1 + 1e-6) + 1e-15
+    assert max(seen) <= worst * (1 + 1e-6) + 1e-15 and max(seen) > 0.0
 
 
 def _jumps(model, traj):
