@@ -42,9 +42,29 @@ def _make_body(args, A=None, C=None):
         if getattr(args, name, None) is not None:
             raise ParameterError(name, f"does not apply to the {args.body} body (it is the cone's: --body cone)",
                                  getattr(args, name))
+    stem = {"stem_length": getattr(args, "stem_length", None), "stem_radius": getattr(args, "stem_radius", None)}
+    if args.body == "tippe-top":  # the toy, with its stem (bodies.compound); --stem-length 0: the ball alone
+        stem = _stem(**stem)
     return make_body(args.body, a=args.a, offset=args.offset, w=args.w, thickness=args.thickness,
-                     flat_angle=getattr(args, "flat_angle", None), stem_length=getattr(args, "stem_length", None),
-                     stem_radius=getattr(args, "stem_radius", None), A=A, C=C)
+                     flat_angle=getattr(args, "flat_angle", None), A=A, C=C, **stem)
+
+
+def _stem(stem_length, stem_radius) -> dict:
+    """The tippe top's stem flags as make_body takes them: the default stem when neither is
+    given, none (the ball alone, EccentricSphere) with --stem-length 0."""
+    from .._runtime.errors import ParameterError
+    from .._runtime.validate import check_range
+    from ..bodies.compound import STEM, STEM_LENGTH_MAX
+
+    if stem_length is not None:  # 0 is the CLI's "no stem": its range is the API's with 0
+        check_range("stem_length", stem_length, 0.0, STEM_LENGTH_MAX, closed="lr",
+                    label=f"[0, {STEM_LENGTH_MAX:g}] (over the ball's radius; 0: the ball alone)")
+    if stem_length == 0.0:
+        if stem_radius is not None:
+            raise ParameterError("stem_radius", "does not apply with --stem-length 0 (the ball alone, no stem)",
+                                 stem_radius)
+        return {"stem_length": None, "stem_radius": None}
+    return {"stem_length": STEM[0] if stem_length is None else stem_length, "stem_radius": stem_radius}
 
 
 def _body(args):

@@ -76,7 +76,7 @@ def _print_cache(out: dict) -> None:
     verb = "deleted" if out["cleared"] else "holds"
     mb = lambda part: f"{out[part]['files']} files, {out[part]['bytes'] / 1e6:.1f} MB"  # noqa: E731
     print(f"{out['directory']} {verb}: compiled integrators {mb('integrators')}; heyoka's object code "
-          f"{mb('heyoka')} (kept under {out['heyoka_limit_bytes'] / 2**30:g} GiB)")
+          f"{mb('heyoka')} (limit {out['heyoka_limit_bytes'] / 2**30:g} GiB: heyoka trims it as it adds to it)")
 
 
 def _print_contact(out: dict) -> None:

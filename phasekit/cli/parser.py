@@ -218,9 +218,9 @@ def _add_body(p, units: bool = False):
                                               "tip (theta above it, up to pi: a top on its point)")
     with_size = " (or with units, e.g. '12 mm', with --size)" if units else ""
     g.add_argument("--stem-length", dest="stem_length", type=_real_or_units if units else _real, default=None,
-                   help="tippe-top: the top with its stem, standing this far out of the ball, over the ball's radius, in "
-                        "(0, 10] (default 0.375, a common commercial top; without --stem-length and --stem-radius the "
-                        f"ball alone){with_size}")
+                   help="tippe-top: how far its stem stands out of the ball, over the ball's radius, in [0, 10] "
+                        "(default 0.375, a common commercial top; 0: the ball alone, no stem, as the tippe top was "
+                        f"modelled before it had one){with_size}")
     g.add_argument("--stem-radius", dest="stem_radius", type=_real_or_units if units else _real, default=None,
                    help=f"tippe-top: the radius of the stem's rounded end over the ball's radius, in (0, 1) (default 0.2)"
                         f"{with_size}")

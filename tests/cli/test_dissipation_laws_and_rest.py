@@ -14,7 +14,8 @@ import pytest
 
 from ..helpers import run_cli, strict_json
 
-BALL = ["simulate", "--body", "tippe-top", "--offset", "0", "--mu", "0.2", "--max-wall", "120"]  # a uniform sphere
+BALL = ["simulate", "--body", "tippe-top", "--offset", "0", "--stem-length", "0", "--mu", "0.2",  # a uniform sphere
+        "--max-wall", "120"]
 #: rolling straight along -e_Y at speed V0 (axis horizontal along e_X, spin n = V0: no slip at the contact)
 V0 = 0.5
 ROLLING = [*BALL, "--state", "0", repr(-V0), "0", "0", repr(math.pi / 2), repr(V0), "--t-end", "100"]

@@ -48,7 +48,8 @@ def test_cli_fixed_points_for_the_tippe_top():
 
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
-        code = main(["fixed-points", "--body", "tippe-top", "--offset", "0.3", "--mu", "0.3", "--n0", "5", "--json"])
+        code = main(["fixed-points", "--body", "tippe-top", "--offset", "0.3", "--stem-length", "0", "--mu", "0.3", "--n0", "5",
+                     "--json"])
     assert code == 0
     out = json.loads(buf.getvalue())
     kinds = [p["kind"] for p in out["fixed_points"]]

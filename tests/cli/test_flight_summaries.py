@@ -13,7 +13,7 @@ import pytest
 from ..helpers import run_cli, strict_json
 
 #: the tippe top of the README: 61 flights in 70 time units
-TOP = ["simulate", "--body", "tippe-top", "--offset", "0.3", "--A", "0.38", "--C", "0.4", "--mu", "0.3", "--theta0",
+TOP = ["simulate", "--body", "tippe-top", "--stem-length", "0", "--offset", "0.3", "--A", "0.38", "--C", "0.4", "--mu", "0.3", "--theta0",
        "0.1", "--spin-about-vertical", "15", "--stop-at", "none", "--t-end", "70"]
 B = 0.015  # --size '15 mm': the time unit is sqrt(b/g) seconds
 T = math.sqrt(B / 9.81)

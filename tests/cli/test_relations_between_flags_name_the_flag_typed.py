@@ -17,7 +17,7 @@ COMMANDS = {"fixed-points": ["fixed-points", *LAW, "--omega0", "10"],
             "simulate": ["simulate", *LAW, "--gyroscopic", "--theta0", "1.5", "--omega0", "10", "--t-end", "1"],
             "gyroscopic": ["gyroscopic", "--mu", "0.1", "--omega0", "10", "--theta0", "1.5", "--t", "0"]}
 #: (body flags, the body's default A, its default C)
-BODIES = {"spheroid": (["--a", "1.5"], 0.65, 0.4), "tippe-top": (["--body", "tippe-top", "--offset", "0.3"], 0.31, 0.4)}
+BODIES = {"spheroid": (["--a", "1.5"], 0.65, 0.4), "tippe-top": (["--body", "tippe-top", "--offset", "0.3", "--stem-length", "0"], 0.31, 0.4)}
 
 
 @pytest.fixture(autouse=True)

@@ -1,8 +1,9 @@
 """--body tippe-top with --stem-length and --stem-radius: the top with its stem, over the ball's radius
-or with units by --size; the issue's command inverts it onto its stem; without the stem flags the
-tippe top is the ball alone, every number as before; bad input is one line naming the flag typed,
-its range and the value typed."""
+or with units by --size; the issue's command inverts it onto its stem, which it has by default (a
+common commercial top's); with --stem-length 0 the tippe top is the ball alone, every number as
+before; bad input is one line naming the flag typed, its range and the value typed."""
 
+import phasekit as pk
 from phasekit import cli
 
 import pytest
@@ -29,9 +30,8 @@ def usage_error(args, flag):
 
 
 @pytest.mark.timeout(600)
-def test_the_issues_command_with_the_stem_ends_on_the_stem():
-    code, out, _ = run_cli(*TOP, "--stop-at", "none", "--t-end", "70", "--stem-length", "0.375", "--stem-radius", "0.2",
-                           "--json")
+def test_the_issues_command_ends_on_the_stem():
+    code, out, _ = run_cli(*TOP, "--stop-at", "none", "--t-end", "70", "--json")  # no stem flag: the default stem
     d = strict_json(out)
     assert code == 0 and d["status"] == "completed" and d["theta_end"] > 2.9
     assert (d["model"]["stem_length"], d["model"]["stem_radius"]) == (0.375, 0.2)
@@ -50,20 +50,27 @@ def test_the_stem_flags_take_units_with_size_and_default_to_the_commercial_top()
     assert code == 0 and (model["stem_length"], model["stem_radius"]) == (0.375, 0.3)
 
 
-def test_without_the_stem_flags_the_tippe_top_is_the_ball_alone():
-    code, out, _ = run_cli(*TOP, "--t-end", "3", "--json")
+def test_with_stem_length_0_the_tippe_top_is_the_ball_alone():
+    code, out, _ = run_cli(*TOP, "--t-end", "3", "--stem-length", "0", "--json")
     d = strict_json(out)
     assert code == 0 and "stem_length" not in d["model"] and d["model"]["body"] == "tippe-top"
     assert d["model"]["description"] == "EccentricSphere(offset=0.3, A=0.38, C=0.4)"
+    # the same run as the library's ball alone, number for number
+    top = pk.EccentricSphere(0.3, A=0.38, C=0.4)
+    traj = pk.simulate(pk.Model(top, pk.Coulomb(0.3)), pk.core.vertical_spin_start(0.1, 15.0), 3.0)
+    assert d["t_end"] == traj.t and list(d["state_end"].values()) == [float(v) for v in traj.x]
+    message = usage_error([*TOP, "--t-end", "1", "--stem-length", "0", "--stem-radius", "0.2"], "--stem-radius")
+    assert message == "--stem-radius does not apply with --stem-length 0 (the ball alone, no stem), got 0.2."
 
 
-@pytest.mark.parametrize("flag, value, words", [("--stem-radius", "1.5", "must lie in (0, 1)"),
-                                                ("--stem-radius", "0", "must lie in (0, 1)"),
-                                                ("--stem-length", "0", "must lie in (0, 10]"),
-                                                ("--stem-length", "12", "must lie in (0, 10]")])
+@pytest.mark.parametrize("flag, value, words", [
+    ("--stem-radius", "1.5", "must lie in (0, 1) (over the ball's radius)"),
+    ("--stem-radius", "0", "must lie in (0, 1) (over the ball's radius)"),
+    ("--stem-length", "-0.1", "must lie in [0, 10] (over the ball's radius; 0: the ball alone)"),
+    ("--stem-length", "12", "must lie in [0, 10] (over the ball's radius; 0: the ball alone)")])
 def test_a_stem_out_of_range_is_refused_naming_the_flag(flag, value, words):
     message = usage_error([*TOP, "--t-end", "1", flag, value], flag)
-    assert message == f"{flag} {words} (over the ball's radius), got {float(value)}."  # as --thickness prints it
+    assert message == f"{flag} {words}, got {float(value)}."  # as --thickness prints it
 
 
 def test_the_stem_flags_on_another_body_are_refused_naming_them():

@@ -12,7 +12,7 @@ from ..helpers import run_cli, strict_json
 RUN = ["--a", "1.5", "--mu", "0.1", "--gyroscopic", "--theta0", "1.56", "--omega0", "11", "--stop-at", "touchdown",
        "--size", "21.5 mm"]
 #: a unit without its number for each kind of value, and the same with a number (accepted)
-BARE = {"--thickness": ("cm", "1.2 cm"), "--height": ("cm", "4 cm"), "--stem-length": ("mm", "6 mm"), "--air-layer": ("N*m*s", "1e-9 N*m*s"), "--stem-radius": ("mm", "3.2 mm"), "--radius": ("cm", "3.7 cm"), "--theta0": ("deg", "89 deg"), "--omega0": ("rev/s", "41 rev/s"), "--n0": ("rpm", "2000 rpm"),
+BARE = {"--thickness": ("cm", "1.2 cm"), "--flat-angle": ("deg", "0.05 deg"), "--height": ("cm", "4 cm"), "--stem-length": ("mm", "6 mm"), "--air-layer": ("N*m*s", "1e-9 N*m*s"), "--stem-radius": ("mm", "3.2 mm"), "--radius": ("cm", "3.7 cm"), "--theta0": ("deg", "89 deg"), "--omega0": ("rev/s", "41 rev/s"), "--n0": ("rpm", "2000 rpm"),
         "--spin-about-vertical": ("rev/s", "10 rev/s"), "--t-end": ("s", "0.5 s"), "--psi0": ("deg", "30 deg"),
         "--phi0": ("turn", "0.5 turn"), "--X0": ("mm", "3 mm"), "--Y0": ("cm", "1 cm"), "--size": ("mm", "21.5 mm"),
         "--g": ("m/s^2", "9.81 m/s^2"), "--mass": ("g", "57 g"), "--rolling-resistance": ("mm", "0.2 mm"),
