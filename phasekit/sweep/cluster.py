@@ -184,10 +184,8 @@ def make_client(scheduler: str | None = None, workers: int | None = None, *, tim
     main_thread = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
     try:
-        # no dashboard, the scheduler's small HTTP server on any free port (8787 may be taken);
-        # Dask's own log lines off: its warnings (each task cancelled when a run is stopped) and
-        # its errors, which here are shutdown races (a worker's heartbeat to a scheduler that a
-        # Ctrl-C has just closed); a task's failure reaches the client as its exception
+        # no dashboard, the scheduler's HTTP server on a free port; Dask's log lines off (cancelled tasks,
+        # a heartbeat racing a Ctrl-C's shutdown): a task's failure reaches the client as its exception
         with main_not_reimported():  # spawn would re-import the calling script (see phasekit._runtime.pool)
             cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
                                    scheduler_kwargs={"dashboard_address": ":0"}, silence_logs=logging.CRITICAL)
