@@ -44,6 +44,20 @@ def run_cli(*args):
     return code, out.getvalue(), err.getvalue()
 
 
+def usage_error(args, flag):
+    """The CLI run with and without --json refuses ``args``: exit 2, one stderr line naming ``flag``
+    first, the JSON error object (and nothing else) on stdout, no traceback, the same line without
+    --json and nothing on stdout. Returns the message."""
+    code, out, err = run_cli(*args, "--json")
+    assert code == 2, (code, err)
+    d = strict_json(out)
+    assert d == {"status": "error", "parameter": flag, "message": d["message"]}
+    assert err == f"phasekit: error: {d['message']}\n"
+    assert "Traceback" not in err and "np.float64" not in err
+    assert run_cli(*args) == (2, "", err)
+    return d["message"]
+
+
 class UserSpheroid(pk.bodies.Body):
     """A spheroid as a user writes it: only ``height`` and ``shape_params``."""
 

@@ -9,7 +9,7 @@ from phasekit import cli
 
 import pytest
 
-from ..helpers import run_cli, strict_json
+from ..helpers import run_cli, strict_json, usage_error
 
 CONE = ["simulate", "--body", "cone", "--mu", "0.5", "--theta0", "1.0", "--spin-about-vertical", "5", "--t-end", "2"]
 #: a cone of base radius 2 cm and height 4 cm on its tip, launched at 170 deg spinning at 20 rev/s
@@ -20,15 +20,6 @@ REAL = ["--on", "tip", "--theta0", "170 deg", "--spin-about-vertical", "20 rev/s
 def _bugs_raise(monkeypatch):
     monkeypatch.setenv(cli.DEBUG_ENV, "1")
 
-
-def usage_error(args, flag):
-    """Exit 2, one stderr line, the JSON error object naming ``flag``; the same without --json."""
-    code, out, err = run_cli(*args, "--json")
-    d = strict_json(out)
-    assert code == 2 and d == {"status": "error", "parameter": flag, "message": d["message"]}, (code, err)
-    assert err == f"phasekit: error: {d['message']}\n" and "Traceback" not in err
-    assert run_cli(*args) == (2, "", err)
-    return d["message"]
 
 
 def test_a_cone_is_on_its_rim_by_default_and_its_height_is_in_radii():

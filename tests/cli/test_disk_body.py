@@ -8,7 +8,7 @@ from phasekit import cli
 
 import pytest
 
-from ..helpers import run_cli, strict_json
+from ..helpers import run_cli, strict_json, usage_error
 
 DISK = ["simulate", "--body", "disk", "--mu", "0.5", "--theta0", "1.0", "--spin-about-vertical", "5", "--t-end", "2"]
 #: a disk of radius 3.7 cm and thickness 1.2 cm launched at 60 deg spinning at 5 rev/s about the vertical
@@ -19,15 +19,6 @@ REAL = ["--theta0", "60 deg", "--spin-about-vertical", "5 rev/s", "--t-end", "0.
 def _bugs_raise(monkeypatch):
     monkeypatch.setenv(cli.DEBUG_ENV, "1")
 
-
-def usage_error(args, flag):
-    """Exit 2, one stderr line, the JSON error object naming ``flag``; the same without --json."""
-    code, out, err = run_cli(*args, "--json")
-    d = strict_json(out)
-    assert code == 2 and d == {"status": "error", "parameter": flag, "message": d["message"]}, (code, err)
-    assert err == f"phasekit: error: {d['message']}\n" and "Traceback" not in err
-    assert run_cli(*args) == (2, "", err)
-    return d["message"]
 
 
 def test_a_disk_is_thin_by_default_and_its_thickness_is_in_radii():

@@ -12,7 +12,7 @@ from phasekit.friction.dissipation import AirDrag, RollingResistance, SpinFricti
 
 import pytest
 
-from ..helpers import run_cli, strict_json
+from ..helpers import run_cli, strict_json, usage_error
 
 BALL = ["simulate", "--body", "tippe-top", "--offset", "0", "--stem-length", "0", "--mu", "0.2",  # a uniform sphere
         "--max-wall", "120"]
@@ -154,16 +154,6 @@ def test_air_drag_typed_with_units_is_converted_with_the_mass():
     assert args.rolling_resistance == pytest.approx(0.002, rel=1e-14) and args.spin_friction == pytest.approx(0.03)
     assert _parsed("--air-drag", "0.25").air_drag == 0.25  # a bare number is in phasekit's units
 
-
-def usage_error(args, flag):
-    """Exit 2, one stderr line naming ``flag`` first, the same message as strict JSON on stdout."""
-    code, out, err = run_cli(*args, "--json")
-    assert code == 2, (code, err)
-    d = strict_json(out)
-    assert d == {"status": "error", "parameter": flag, "message": d["message"]}
-    assert err == f"phasekit: error: {d['message']}\n" and "Traceback" not in err
-    assert run_cli(*args)[:2] == (2, "")
-    return d["message"]
 
 
 UNITS = {"rolling_resistance": "b", "spin_friction": "b", "air_drag": "M b^2 sqrt(g/b)", "air_layer": "M b^2 sqrt(g/b)",

@@ -11,7 +11,7 @@ from phasekit import cli
 
 import pytest
 
-from ..helpers import run_cli, run_module, strict_json
+from ..helpers import run_cli, run_module, strict_json, usage_error
 
 SIM = ["simulate", "--a", "1.5", "--mu", "0.1"]
 TOP = ["simulate", "--body", "tippe-top", "--offset", "0.3", "--mu", "0.3"]
@@ -28,19 +28,6 @@ def _bugs_raise(monkeypatch):
     """An unexpected exception inside the CLI is a test failure, not a one-line message."""
     monkeypatch.setenv(cli.DEBUG_ENV, "1")
 
-
-def usage_error(args, flag):
-    """Run with and without --json: exit 2, one stderr line naming ``flag`` first, the JSON error
-    object (and nothing else) on stdout. Returns the message."""
-    code, out, err = run_cli(*args, "--json")
-    assert code == 2, (code, err)
-    d = strict_json(out)
-    assert d == {"status": "error", "parameter": flag, "message": d["message"]}
-    assert err == f"phasekit: error: {d['message']}\n"
-    assert "Traceback" not in err and "np.float64" not in err
-    code, out, err_plain = run_cli(*args)
-    assert (code, out, err_plain) == (2, "", err)
-    return d["message"]
 
 
 @pytest.mark.parametrize("value", ["0", "1e6", "nan", "inf", "2e5", "-inf"])

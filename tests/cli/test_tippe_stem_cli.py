@@ -8,7 +8,7 @@ from phasekit import cli
 
 import pytest
 
-from ..helpers import run_cli, strict_json
+from ..helpers import run_cli, strict_json, usage_error
 
 TOP = ["simulate", "--body", "tippe-top", "--offset", "0.3", "--A", "0.38", "--C", "0.4", "--mu", "0.3", "--theta0", "0.1",
        "--spin-about-vertical", "15"]
@@ -18,15 +18,6 @@ TOP = ["simulate", "--body", "tippe-top", "--offset", "0.3", "--A", "0.38", "--C
 def _bugs_raise(monkeypatch):
     monkeypatch.setenv(cli.DEBUG_ENV, "1")
 
-
-def usage_error(args, flag):
-    """Exit 2, one stderr line, the JSON error object naming ``flag``; the same without --json."""
-    code, out, err = run_cli(*args, "--json")
-    d = strict_json(out)
-    assert code == 2 and d == {"status": "error", "parameter": flag, "message": d["message"]}, (code, err)
-    assert err == f"phasekit: error: {d['message']}\n" and "Traceback" not in err
-    assert run_cli(*args) == (2, "", err)
-    return d["message"]
 
 
 @pytest.mark.timeout(600)
