@@ -96,7 +96,7 @@ def energy_budget(traj) -> EnergyBudget:
         e_prev = e1
         seg_work, ends, X_ends, cumulative = _segment_work(model, seg, len(names))
         if len(ends):  # the balance at every step's end: lost - dissipated - at events, so far
-            E = np.atleast_1d(evaluate_function(model.function("energy", seg.mode), model.p, X_ends)).reshape(-1)
+            E = np.atleast_1d(evaluate_function(energy, model.p, X_ends)).reshape(-1)
             along = (e_start - E) + (np.sum(work) + cumulative) - jumps
             worst = max(worst, float(np.max(np.abs(along))))
         work += seg_work
