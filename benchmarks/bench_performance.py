@@ -4,7 +4,8 @@ Standard workload: prolate a = 1.5, mu = 0.1, Coulomb (exact stick-slip), gyrosc
 theta0 = pi/2 - 0.01, Omega0 = 10.5, to the jump (t* = 45.256). phasekit is timed two ways:
 the *sweep path* (``dense=False, track_minima=False``: what the threshold sweeps run, t* only)
 and the *default options* of ``pk.simulate`` (dense output kept for ``traj.sample`` and every
-minimum of R located, which costs a few times the bare integration).
+minimum of R located, from the expansion of the integral of R that the integrator carries: the same
+steps as the sweep path, docs/results/performance.md#the-default-path).
 
 1. phasekit against scipy BDF on a plain NumPy right-hand side, at equal or better t* error:
    goal >= 1000x (the sweep path; the default options are printed beside it).

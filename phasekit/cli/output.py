@@ -75,7 +75,8 @@ def _print_cache(out: dict) -> None:
         return
     verb = "deleted" if out["cleared"] else "holds"
     mb = lambda part: f"{out[part]['files']} files, {out[part]['bytes'] / 1e6:.1f} MB"  # noqa: E731
-    print(f"{out['directory']} {verb}: compiled integrators {mb('integrators')}; heyoka's object code "
+    print(f"{out['directory']} {verb}: compiled integrators {mb('integrators')} (limit "
+          f"{out['integrators_limit_bytes'] / 2**30:g} GiB: the least recently used go first); heyoka's object code "
           f"{mb('heyoka')} (limit {out['heyoka_limit_bytes'] / 2**30:g} GiB: heyoka trims it as it adds to it)")
 
 

@@ -30,8 +30,9 @@ limit set to its time) until it is refilled; cooldowns are reset lane by lane, s
 that grazed a guard keeps its cooldown, as the scalar loop's ``resume`` does.
 
 Agreement with the scalar path: same steps, so states and event times agree to ~1e-12
-(tests/core/test_batch_propagation.py). Runs that track the minima of R (``track_minima=True``) are not
-batched: the non-terminal monitor changes heyoka's steps.
+(tests/core/test_batch_propagation.py). Runs that track the minima of R (``track_minima=True``) or keep
+dense output are not batched: both are read from each step's Taylor coefficients, recorded by the
+scalar engine's step callback, which the batch engine has not.
 """
 
 from __future__ import annotations

@@ -274,3 +274,6 @@ class CompiledFlow:
     monitor: CompiledGuard | None
     signature: str
     rate_hint: object = None  # x -> fastest rotation rate (pointwise integrators' grid)
+    #: P(x, p) whose time derivative is the monitor's function (R for dR/dt), or None: the Taylor
+    #: engine then finds the monitor's zeros from P's expansion (:mod:`phasekit.core.engines.roots`)
+    monitor_primitive: object = None

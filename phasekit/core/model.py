@@ -454,17 +454,24 @@ class Model:
                         scalar = sorted(k for k, f in fns.items() if f.n_in() == 2 and f.numel_out(0) == 1 and "jac" not in k)
                         raise ParameterError("rate", f"must name a scalar model function ({', '.join(scalar)})", e.rate)
                 guards.append(CompiledGuard(e.name, gf, e.direction, rate, _digest(gf) + (_digest(rate) if rate else "")))
-            monitor = None
+            monitor = primitive = None
             if flow.monitor is not None:
                 mf = self.guard_function(flow.monitor[0], mode)
                 monitor = CompiledGuard("monitor", mf, flow.monitor[1], None, _digest(mf))
+                primitive = fns.get(f"{_PRIMITIVES[flow.monitor[0]]}_{mode.value}") if flow.monitor[0] in _PRIMITIVES else None
             field = fns[flow.field]
             parts = [self.compiled.signature, mode.value, flow.field] + [f"{g.signature}:{g.direction}" for g in guards]
             parts.append(monitor.signature + f":{monitor.direction}" if monitor else "-")
+            parts.append(_digest(primitive) if primitive is not None else "-")
             chart = FLIGHT if mode is Mode.FLIGHT else self.chart
             cache[key] = CompiledFlow(mode, field, chart.n_states, tuple(guards), monitor,
-                                      hashlib.sha256("|".join(parts).encode()).hexdigest(), chart.rotation_rate)
+                                      hashlib.sha256("|".join(parts).encode()).hexdigest(), chart.rotation_rate, primitive)
         return cache[key]
+
+
+#: monitors that are the time derivative of another model function (dR/dt of R): the Taylor engine
+#: finds their zeros from that function's expansion, far cheaper than the monitor's own
+_PRIMITIVES = {"Rdot": "R"}
 
 
 #: the built-in bodies, by the name the CLI's --body and a model's description use

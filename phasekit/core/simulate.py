@@ -449,7 +449,9 @@ def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump",
     events : sequence of Event
         User events whose levels are appended to the mode's guards.
     track_minima : bool
-        False gives the integrator simulate uses with that option (no monitor of the minima of R).
+        True gives the integrator of simulate's default, with one more state, last: z' = 2^-40 R,
+        from whose expansion the minima of R are found (:mod:`phasekit.core.engines.roots`);
+        False the integrator simulate uses with ``track_minima=False``.
 
     Returns
     -------

@@ -117,7 +117,8 @@ def flight_constants(body: Body, euler_state, W: float) -> FlightConstants:
     --------
     >>> import numpy as np, phasekit as pk
     >>> body = pk.Spheroid(1.5)
-    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 200.0, stop_at='touchdown')
+    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 200.0,
+    ...                    stop_at='touchdown', rtol=1e-12)
     >>> fl = traj.flights[0]
     >>> k = pk.theory.flight_constants(body, traj.x_jump, fl.W_star)
     >>> isinstance(k, pk.theory.FlightConstants), round(k.W, 6)

@@ -23,9 +23,13 @@ from ..helpers import UserSpheroid
 #: with its own code on the standard workload: a = 1.5, mu = 0.1, exact Coulomb, gyroscopic start
 #: theta0 = pi/2 - 0.01): t_jump at Omega0 = 10.5 for rtol 1e-9 and 1e-12, and the first flight
 #: after the Omega0 = 11 jump (rtol 1e-12, stop_at="touchdown"). They pin that the general-body
-#: code path changed no number.
+#: code path changed no number beyond its integration error (MOVED).
 PREVIOUS = {"t_jump_1e-9": 45.25600409154059, "t_jump_1e-12": 45.2560040399911,
             "t_touchdown": 42.20664946618272, "gap_max": 1.5747519453889918e-07}
+#: How far each may move when the steps change: the runs track the minima of R (the default),
+#: which since phasekit/core/engines/roots.py no longer shortens the steps, so each number moved
+#: within its integration error (measured against rtol 1e-15: 3.6e-7, 5.9e-11, 6.0e-10, 1.8e-14)
+MOVED = {"t_jump_1e-9": 5e-7, "t_jump_1e-12": 1e-10, "t_touchdown": 1e-9, "gap_max": 3e-14}
 A15 = 1.5
 
 
@@ -55,20 +59,20 @@ def standard_runs(body):
 
 # -- Must show: the spheroid through the general path ------------------------------------------
 def test_general_path_spheroid_equals_spheroid_and_the_previous_version(prolate, custom15):
-    """Spheroid reproduces the previous version's numbers to 1e-12 (it now runs through the
-    general support-function code); CustomBody(H(c)), which shares no code with Spheroid but
+    """Spheroid reproduces the previous version's numbers within their integration error (it now
+    runs through the general support-function code, and the minima no longer shorten the steps); CustomBody(H(c)), which shares no code with Spheroid but
     the formula for H, gives t* to 1e-12 and the flight to within its rounding sensitivity.
 
     The touchdown time and the gap maximum are ill-conditioned: a 1-ulp change of the start
     moves t_touchdown by ~3e-10 and their integration error at rtol 1e-12 (against 1e-14) is
-    1e-10 in t_touchdown and 4e-15 in gap_max (measured). Evaluating H with its coefficient
+    5e-10 in t_touchdown and 1.3e-14 in gap_max (measured). Evaluating H with its coefficient
     as a constant rather than a parameter changes rounding only, and moves them by 5e-11
     (1.2e-12 relative) and 2e-15 (1.1e-8 relative)."""
     assert custom15.A == pytest.approx(prolate.A, abs=1e-15) and custom15.C == pytest.approx(0.4, abs=1e-15)
     assert custom15.structure_key != prolate.structure_key  # a separately compiled model
     sph, cus = standard_runs(prolate), standard_runs(custom15)
     for key, ref in PREVIOUS.items():
-        assert sph[key] == pytest.approx(ref, rel=1e-12, abs=0), key
+        assert sph[key] == pytest.approx(ref, rel=0, abs=MOVED[key]), key
     for key in ("t_jump_1e-9", "t_jump_1e-12"):
         assert cus[key] == pytest.approx(sph[key], rel=1e-12, abs=0), key
     assert cus["t_touchdown"] == pytest.approx(sph["t_touchdown"], rel=2e-12, abs=0)

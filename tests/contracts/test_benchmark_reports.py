@@ -26,7 +26,8 @@ from pkdocs.sources import Sources  # noqa: E402
 
 BENCHMARKS = {"bench_performance.json": ("bench_performance.py", facts._bench_performance),
               "bench_threshold_sweep.json": ("bench_threshold_sweep.py", facts._bench_sweep),
-              "bench_steady_structure.json": ("bench_steady_structure.py", facts._bench_structure)}
+              "bench_steady_structure.json": ("bench_steady_structure.py", facts._bench_structure),
+              "bench_first_run.json": ("bench_first_run.py", facts._bench_first_run)}
 
 PERFORMANCE = {"repeats": 50, "phasekit_rtol": 1e-8, "sweep_ms": 0.75, "default_ms": 1.4, "scipy_bdf_ms": 900.0,
                "ratio_scipy_bdf_sweep": 1200.0, "ratio_scipy_bdf_default": 640.0, "ratio_sweep_bare_heyoka": 1.3,
@@ -43,6 +44,12 @@ STRUCTURE = {"structure_wall_s": {"a": {}, "b": {}}, "structure_worst_s": 0.1234
              "grid": "full", "atlas_wall_serial_s": 30.0, "atlas_wall_dask_s": 18.75, "cluster_start_s": 1.5,
              "efficiency": 0.8, "same_signatures_serial_and_dask": True, "goals": {"efficiency": 0.85},
              "goals_met": {"efficiency": False}}
+
+FIRST_RUN = {"bodies": {"egg": {"command": "phasekit simulate --body egg", "first_s": 3.45, "second_s": 1.62, "notices": 1,
+                                "longest_noticed_compile_s": 1.4},
+                        "cone": {"command": "phasekit simulate --body cone", "first_s": 1.83, "second_s": 0.98, "notices": 0,
+                                 "longest_noticed_compile_s": 0.0}},
+             "worst_first_s": 3.45, "goals": {"first_s": 5.0}, "goals_met": {"first_s": True}}
 
 
 def _write(data: Path, name: str, result: dict, argv=("--quick",)) -> dict:
@@ -86,7 +93,7 @@ def test_a_report_into_a_missing_directory_is_refused_before_the_run(tmp_path, c
 
 def test_the_page_shows_each_report_with_its_goals(tmp_path):
     for name, result in (("bench_performance.json", PERFORMANCE), ("bench_threshold_sweep.json", SWEEP),
-                         ("bench_steady_structure.json", STRUCTURE)):
+                         ("bench_steady_structure.json", STRUCTURE), ("bench_first_run.json", FIRST_RUN)):
         _write(tmp_path, name, result)
     src = Sources(data=tmp_path)
     bench = facts.lookup(src, "performance.bench_report")
@@ -99,7 +106,10 @@ def test_the_page_shows_each_report_with_its_goals(tmp_path):
     structure = facts.lookup(src, "performance.structure_report")
     assert "| 123 ms |" in structure and "3300 bodies, 812 boundary points" in structure
     assert re.search(r"\| 0\.80 \| >= 0\.85 \| \*\*no\*\* \|", structure)
-    assert "not measured" not in (bench + sweep + structure).lower()
+    first = facts.lookup(src, "performance.first_run_report")
+    assert "| egg: `phasekit simulate --body egg` | 3.5 s | 1.6 s | 1 |  |" in first
+    assert re.search(r"\| the slowest first run \| 3\.5 s \|  \|  \| <= 5 s: yes \|", first)
+    assert "not measured" not in (bench + sweep + structure + first).lower()
 
 
 def test_a_missing_report_is_not_measured_and_an_older_one_gets_its_ratio_from_its_times(tmp_path):
@@ -108,7 +118,8 @@ def test_a_missing_report_is_not_measured_and_an_older_one_gets_its_ratio_from_i
     _write(tmp_path, "bench_performance.json", old)
     src = Sources(data=tmp_path)
     assert re.search(r"its sweep path \(rtol 1e-9\) \| 1\.90 \|  \|  \|", facts.lookup(src, "performance.bench_report"))
-    for key, name in (("sweep", "bench_threshold_sweep.json"), ("structure", "bench_steady_structure.json")):
+    for key, name in (("sweep", "bench_threshold_sweep.json"), ("structure", "bench_steady_structure.json"),
+                      ("first_run", "bench_first_run.json")):
         block = facts.lookup(src, f"performance.{key}_report")
         assert block.startswith("Not measured") and name in block and "|" not in block
 

@@ -67,7 +67,9 @@ def test_the_switch_budget_scales_with_the_span_and_an_explicit_one_is_a_budget(
     assert opts.switch_limit(400.0) == 100 * 400 and opts.switch_limit(5.0) == 10_000
     r = pk.simulate(model, _start(body, 30.0), 400.0, stop_at="none", restitution=E, dense=False, max_switches=2000)
     assert r.status is pk.Status.FAILED and r.reason.startswith("more than 2000 mode switches by t = ")
-    assert len(r.events) == 2000
+    # stopped at the first transition that reached the budget (a touchdown records two events)
+    last = [e for e in r.events if e.t == r.events[-1].t]
+    assert len(r.events) - len(last) < 2000 <= len(r.events)
 
 
 def test_a_hopping_ensemble_has_no_failed_run(model, body):

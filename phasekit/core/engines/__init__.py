@@ -14,7 +14,9 @@ compilation costs seconds to minutes).
     expressions (:mod:`phasekit._runtime.translate`), LLVM-compiled once per (flow, guards,
     tolerance) and cached in memory and on disk. Events are located by polynomial root
     finding on each step's Taylor expansion, i.e. to about machine precision in time.
-    Dense output is heyoka's continuous output (the steps' Taylor polynomials).
+    Dense output is the steps' Taylor polynomials. The minima of R come from the expansion of
+    one more state, the integral of R, whose steps are the run's own
+    (:mod:`~phasekit.core.engines.roots`).
 ``cvodes`` / ``cvodes-adams`` / ``idas``
     SUNDIALS through CasADi. CasADi's event support is experimental, so events are
     bracketed on an output grid fine enough to resolve the fast oscillation (20 points per
@@ -34,7 +36,8 @@ either, or a non-finite state, ends with :attr:`End.FAILED` and the reason, neve
 The modules: :mod:`~phasekit.core.engines.protocol` (the protocol and what a call returns),
 :mod:`~phasekit.core.engines.cache` (the compiled integrators, in memory and on disk),
 :mod:`~phasekit.core.engines.taylor_build` (heyoka's integrators of a flow),
-:mod:`~phasekit.core.engines.dense` (dense output), :mod:`~phasekit.core.engines.taylor`,
+:mod:`~phasekit.core.engines.dense` (dense output), :mod:`~phasekit.core.engines.roots` (zeros of
+the steps' polynomials), :mod:`~phasekit.core.engines.taylor`,
 :mod:`~phasekit.core.engines.batch` and :mod:`~phasekit.core.engines.cvodes` (the engines) and
 :mod:`~phasekit.core.engines.registry` (the engines by name).
 """

@@ -1,6 +1,7 @@
 """One cache for every engine's compiled integrators: :func:`compiled` builds an entry once and keeps
 it in memory and (heyoka's, whose LLVM compilation costs seconds to minutes) on disk, under
-``$PHASEKIT_CACHE`` (default ``~/.cache/phasekit``; empty: no disk cache). heyoka's own cache of
+``$PHASEKIT_CACHE`` (default ``~/.cache/phasekit``; empty: no disk cache; at most
+:data:`INTEGRATOR_CACHE_LIMIT` bytes, the least recently used deleted first). heyoka's own cache of
 compiled object code lives under the same directory (``heyoka/``, at most :data:`HEYOKA_CACHE_LIMIT`
 bytes), so that one place holds, shows and clears everything compiled. :func:`snapshot` and
 :func:`install` move the picklable entries between processes (:class:`phasekit.sweep.ModelPack`).
@@ -27,10 +28,13 @@ from pathlib import Path
 
 from .taylor_build import _heyoka
 
-#: bump when the layout of the pickled cache entries changes
-CACHE_FORMAT = 4
+#: bump when the layout of the pickled cache entries, or how they are built, changes
+CACHE_FORMAT = 5
 #: bytes of heyoka's object-code cache under the cache directory (heyoka's own default is 20 GiB)
 HEYOKA_CACHE_LIMIT = 1 << 30
+#: bytes of phasekit's compiled integrators there: past it, the least recently used are deleted
+#: when a new one is written (an integrator is 1-60 MB; 2.1 GB had gathered on one machine)
+INTEGRATOR_CACHE_LIMIT = 1 << 30
 
 _LOG = logging.getLogger("phasekit").getChild("compile")
 _WHAT = {"taylor": "the Taylor integrator of this model", "taylor-batch": "the batch Taylor integrator of this model"}
@@ -172,6 +176,7 @@ def _load_or_build(key: tuple, build: Callable[[], object], disk: str | None, la
         try:
             with open(path, "rb") as fh:
                 entry = pickle.load(fh)
+            os.utime(path)  # used now: the last to be trimmed
         except Exception:  # a stale or partial file: rebuild it
             entry = None
     if entry is None:
@@ -184,6 +189,7 @@ def _load_or_build(key: tuple, build: Callable[[], object], disk: str | None, la
                 with open(tmp, "wb") as fh:
                     pickle.dump(entry, fh)
                 os.replace(tmp, path)
+                _trim(path.parent, keep=path)
             except Exception:
                 pass
     with _LOCK:
@@ -191,6 +197,25 @@ def _load_or_build(key: tuple, build: Callable[[], object], disk: str | None, la
         if disk is not None:
             _PERSISTENT.add(key)
     return entry
+
+
+def _trim(cache: Path, keep: Path) -> None:
+    """Delete the least recently used integrators (oldest modification time: a load touches its
+    file) until they hold at most INTEGRATOR_CACHE_LIMIT bytes; ``keep`` (just written) stays."""
+    files = []
+    for q in cache.glob("*.pkl"):
+        try:
+            st = q.stat()
+        except OSError:  # another process trimmed it
+            continue
+        files.append((st.st_mtime, st.st_size, q))
+    total = sum(size for _, size, _ in files)
+    for _, size, q in sorted(files, key=lambda f: f[0]):
+        if total <= INTEGRATOR_CACHE_LIMIT:
+            break
+        if q != keep:
+            q.unlink(missing_ok=True)
+            total -= size
 
 
 def snapshot() -> dict:
@@ -220,7 +245,7 @@ def disk_usage() -> dict:
     if cache is None:
         return {"directory": None, "integrators": {"files": 0, "bytes": 0}, "heyoka": {"files": 0, "bytes": 0}}
     pickles = [q for q in cache.glob("*.pkl") if q.is_file()]
-    return {"directory": str(cache), "heyoka_limit_bytes": HEYOKA_CACHE_LIMIT,
+    return {"directory": str(cache), "heyoka_limit_bytes": HEYOKA_CACHE_LIMIT, "integrators_limit_bytes": INTEGRATOR_CACHE_LIMIT,
             "integrators": {"files": len(pickles), "bytes": sum(q.stat().st_size for q in pickles)},
             "heyoka": _files(cache / "heyoka")}
 

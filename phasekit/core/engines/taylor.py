@@ -61,7 +61,7 @@ class TaylorEngine:
         """
         ta, npar = compiled((flow.signature, self.rtol), partial(_build_taylor, flow, n_params, self.rtol, None),
                             disk="taylor", label=f"the Taylor integrator of the {flow.mode.value} mode")
-        if flow.monitor is None:
+        if flow.monitor is None or flow.monitor_primitive is not None:
             return ta, None, npar
         # the recorder inside the integrator is the one that records (heyoka copied ours, and
         # one loaded from disk or a snapshot is a new object): look it up in the integrator
@@ -107,19 +107,23 @@ class TaylorEngine:
         """
         hy = _heyoka()
         ta, recorder, npar = self.integrator(flow, len(p))
+        n = flow.n_states
         if not resume:
             ta.time = float(t0)
-            ta.state[:] = np.asarray(x0, dtype=float)
+            ta.state[:n] = np.asarray(x0, dtype=float)
+            ta.state[n:] = 0.0  # z, the integral of the monitor's primitive (its expansion is what counts)
             ta.pars[:] = np.concatenate([np.asarray(p, dtype=float), np.asarray(levels, dtype=float)])[:npar]
             ta.reset_cooldowns()
         if recorder is not None:
             recorder.points = []
-        prop = Propagation(t=float(ta.time), x=np.array(ta.state), outcome=End.TIME)
+        prop = Propagation(t=float(ta.time), x=np.array(ta.state[:n]), outcome=End.TIME)
+        zeros = flow.monitor is not None and recorder is None  # the monitor's zeros from z's expansion
+        tc = ta.tc if dense or zeros else None
         while True:
-            record = _TaylorSteps(float(ta.time)) if dense else None
+            record = _TaylorSteps(float(ta.time), tc) if tc is not None else None
             try:
                 res = ta.propagate_until(float(t_end), max_steps=int(max(1, min(budget.steps - prop.n_steps, STEP_CHUNK))),
-                                         write_tc=dense, callback=record)
+                                         write_tc=tc is not None, callback=record.callback if record else None)
             except Exception as exc:  # heyoka raises on e.g. a non-finite state in an event
                 prop.outcome, prop.reason = End.FAILED, f"taylor: {exc}"
                 break
@@ -127,7 +131,10 @@ class TaylorEngine:
             prop.n_steps += steps
             if record is not None and steps > 0:
                 record.finish(ta)
-                prop.dense.append(record.span())
+                if zeros:
+                    prop.monitored += record.zeros(n, flow.monitor.direction)
+                if dense:
+                    prop.dense.append(record.span(n))
             end, event = taylor_end(hy, res[0])
             if end is None:  # the step chunk ran out
                 if prop.n_steps >= budget.steps:
@@ -144,7 +151,7 @@ class TaylorEngine:
                 prop.reason = (f"non-finite state at t = {ta.time:.6g}" if res[0] == hy.taylor_outcome.err_nf_state
                                else f"taylor integrator stopped: {res[0]}")
             break
-        prop.t, prop.x = float(ta.time), np.array(ta.state, copy=True)
+        prop.t, prop.x = float(ta.time), np.array(ta.state[:n], copy=True)
         prop.n_rhs = prop.n_steps * (ta.order + 1)
         if recorder is not None:
             prop.monitored = list(recorder.points)
