@@ -117,7 +117,7 @@ class TaylorEngine:
         if recorder is not None:
             recorder.points = []
         prop = Propagation(t=float(ta.time), x=np.array(ta.state[:n]), outcome=End.TIME)
-        zeros = flow.monitor is not None and recorder is None  # the monitor's zeros from z's expansion
+        zeros = flow.monitor is not None and flow.monitor_primitive is not None  # the monitor's zeros from z's expansion
         tc = ta.tc if dense or zeros else None
         while True:
             record = _TaylorSteps(float(ta.time), tc) if tc is not None else None

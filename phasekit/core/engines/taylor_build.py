@@ -92,8 +92,8 @@ def _build_taylor(flow: CompiledFlow, n_params: int, rtol: float, lanes: int | N
     used = hy.get_params([r for _, r in system] + [e.expression for e in t_events] + [e.expression for e in nt_events])
     npar = 1 + max((int(str(q)[1:]) for q in used), default=-1)
     size = flow.field.n_instructions() + sum(g.function.n_instructions() for g in flow.guards)
-    monitor = flow.monitor_primitive if flow.monitor_primitive is not None else getattr(flow.monitor, "function", None)
-    size += monitor.n_instructions() if flow.monitor else 0
+    if flow.monitor is not None:
+        size += (flow.monitor.function if flow.monitor_primitive is None else flow.monitor_primitive).n_instructions()
     compact = size > COMPACT_ABOVE
     level = {"compact_mode": compact, "opt_level": COMPACT_OPT_LEVEL if compact else 3}
     if batch:
