@@ -8,7 +8,7 @@ Taylor step of the dense output with Gauss-Legendre nodes (the step's polynomial
 the quadrature is exact to rounding), so ``lost - dissipated - at_events`` measures how well
 the run conserved the balance: the integrator's error, not the quadrature's. Energy also
 changes at events: an impact (restitution e < 1, or friction in the impulse) and the nudge
-that starts sliding from zero slip (:data:`phasekit.core.resets.SLIP_ONSET`).
+that starts sliding from zero slip (:data:`phasekit.core.zero_slip.SLIP_ONSET`).
 """
 
 from __future__ import annotations

@@ -4,7 +4,7 @@ stick      SLIDING -> ROLLING when the slip reaches zero and the required fricti
            |F_req| <= mu R. The guard fires at |u| = STICK_SLIP; the zero of |u| is then
            extrapolated (|u| is linear in time as it vanishes under Coulomb friction), so
            the switch is located to O(STICK_SLIP^2). Where static friction cannot hold, the
-           body slides on in the self-consistent direction (:func:`sliding_direction`).
+           body slides on in the self-consistent direction (:func:`phasekit.core.zero_slip.sliding_direction`).
 slip onset ROLLING -> SLIDING when |F_req| reaches mu R. The friction force is continuous,
            so sliding starts with slip direction -F_req/|F_req|, at |u| = SLIP_ONSET.
 lift-off   contact -> FLIGHT: positions and velocities carry over (R = 0, so the friction,
@@ -32,15 +32,12 @@ from .charts import FLIGHT, VECTOR, euler_to_vector
 from .fields import HOLD_RATE, REST_SPEED, STICK_SLIP
 from .hybrid import Mode, Record, Transition
 from .impact import _contact_point, _impact, _kinetic
+from .zero_slip import SLIP_ONSET, creep_entry, project_no_slip, set_slip, zero_slip_start
 
 __all__ = [
-    "SLIP_ONSET",
     "BOUNCE_STOP",
     "BOUNCE_TAIL",
     "bounce_tail",
-    "project_no_slip",
-    "sliding_direction",
-    "zero_slip_start",
     "contact_start",
     "flight_state",
     "contact_state",
@@ -61,12 +58,6 @@ __all__ = [
     "Transfer",
 ]
 
-#: slip speed given to a body that starts sliding from zero slip. The true slip grows from 0
-#: like t^2 (the friction is continuous at the onset), and while it is tiny the field is stiff
-#: (the slip direction locks at ~mu R/|u|): measured, starting at 4e-10 cost the Taylor method
-#: ~51 000 steps per onset, and the cost falls like SLIP_ONSET^(-1/2). Starting at 1e-6 skips
-#: that stretch at the price of a 1e-6 perturbation of the velocity of G at each onset.
-SLIP_ONSET = 1e-6
 #: after an impact, a normal rebound velocity below this (units sqrt(g b)) ends the bounce
 #: train and contact resumes: e < 1 would otherwise give infinitely many bounces in finite
 #: time. Such a hop lasts ~2e-4 and rises ~5e-9 b, still 20 times the unguarded start of a
@@ -85,96 +76,6 @@ TAIL_SPREAD = 0.1
 #: (measured: 0.6 x the rebound speed in Lambda, against the train integrated to a cut-off ten
 #: times smaller)
 TAIL_SPEED = 10.0
-#: directions sampled (periodically) when solving for the sliding direction at zero slip
-N_DIRECTIONS = 144
-
-
-# -- zero slip ---------------------------------------------------------------------------------
-
-
-def project_no_slip(model, x) -> np.ndarray:
-    """Shift the velocity of G so that the slip is exactly zero."""
-    x = np.array(x, dtype=float)
-    u = np.asarray(model.function("slip")(x, model.p)).ravel()
-    i, j = model.chart.velocity_slots
-    x[i] -= u[0]
-    x[j] -= u[1]
-    return x
-
-
-def _set_slip(model, x, u_new) -> np.ndarray:
-    x = project_no_slip(model, x)
-    i, j = model.chart.velocity_slots
-    x[i] += u_new[0]
-    x[j] += u_new[1]
-    return x
-
-
-def sliding_direction(model, x) -> tuple[np.ndarray, float] | None:
-    """The direction e in which slip develops from zero slip where rolling is infeasible.
-
-    Sliding along e means friction -mu R e; it is self-consistent when the slip acceleration
-    a(e) it produces is parallel to e and points along it (a x e = 0, a.e > 0), with R > 0.
-    Solved as a periodic root search in the angle of e: the cross product is sampled on a
-    uniform grid over the circle (no end point, the wrap from the last sample to the first
-    included), every sign change is refined by Brent's method, and the consistent root with
-    the largest a.e is returned as (e, a.e); None if there is none.
-    """
-    from scipy.optimize import brentq
-
-    f = model.function("slip_onset")
-    p = model.p
-    phis = 2 * np.pi * np.arange(N_DIRECTIONS) / N_DIRECTIONS
-    acc, R = f.map(N_DIRECTIONS)(np.tile(x[:, None], (1, N_DIRECTIONS)), np.tile(p[:, None], (1, N_DIRECTIONS)), phis[None, :])
-    acc, R = np.asarray(acc), np.asarray(R).ravel()
-    # R(e) = -g0 / (G.d(e)) has poles (Painleve's directions, G.d(e) = 0) where the cross
-    # product changes sign through infinity; divided by R it is smooth, with the same roots.
-    with np.errstate(divide="ignore", invalid="ignore"):
-        cross = (np.cos(phis) * acc[1] - np.sin(phis) * acc[0]) / R
-
-    def cross_at(phi):
-        a, Rphi = (np.asarray(v).ravel() for v in f(x, p, phi))
-        return (np.cos(phi) * a[1] - np.sin(phi) * a[0]) / Rphi[0]
-
-    best = None
-    for k in range(N_DIRECTIONS):
-        lo, hi = phis[k], phis[k] + 2 * np.pi / N_DIRECTIONS
-        c0, c1 = cross[k], cross[(k + 1) % N_DIRECTIONS]
-        if not (np.isfinite(c0) and np.isfinite(c1)):
-            continue
-        if c0 == 0.0:
-            phi = lo
-        elif c0 * c1 < 0.0:
-            try:
-                phi = brentq(cross_at, lo, hi, xtol=1e-14)
-            except ValueError:  # a non-finite value inside the bracket (R exactly infinite), or
-                # the wrap, where 2 pi evaluated afresh differs in sign from the grid's 0 by rounding
-                # (a root at 0 itself: planar motions)
-                try:
-                    phi = brentq(lambda q: cross_at(q % (2 * np.pi)), lo, hi, xtol=1e-14) % (2 * np.pi)
-                except ValueError:
-                    continue
-        else:
-            continue
-        a, Rphi = (np.asarray(v).ravel() for v in f(x, p, phi))
-        along = np.cos(phi) * a[0] + np.sin(phi) * a[1]
-        if along > 0 and Rphi[0] > 0 and (best is None or along > best[1]):
-            best = (np.array([np.cos(phi), np.sin(phi)]), float(along))
-    return best
-
-
-def zero_slip_start(model, x) -> tuple[Mode, np.ndarray, str] | None:
-    """At zero slip: ROLLING if static friction can hold, else SLIDING in the consistent
-    direction (at |u| = SLIP_ONSET). None when no direction is consistent."""
-    x0 = project_no_slip(model, x)
-    if float(model.function("margin_rolling")(x0, model.p)) >= 0.0:
-        return Mode.ROLLING, x0, "zero slip and |F_req| <= mu R"
-    found = sliding_direction(model, x0)
-    if found is None:
-        return None
-    return Mode.SLIDING, _set_slip(model, x0, SLIP_ONSET * found[0]), "zero slip, rolling infeasible"
-
-
 def contact_start(model, t: float, x, *, before: str = "start", creep: bool = False) -> Transition:
     """The contact mode a state starts in: at zero slip, ROLLING where static friction holds
     (exact Coulomb); else SLIDING. A regularised law whose slip is already below 10 eps starts
@@ -193,9 +94,10 @@ def contact_start(model, t: float, x, *, before: str = "start", creep: bool = Fa
             return _no_direction(t, x)
         mode, x, detail = out
         return Transition(mode, t, x, (Record("stick" if mode is Mode.ROLLING else "slip", before, mode.value, x, detail),))
-    if creep and speed < STICK_SLIP + 10 * law.eps and float(model.function("creep_margin")(x, model.p)) > 0:
-        detail = "slip < 10 eps (regularised)"
-        return Transition(Mode.ROLLING, t, x, (Record("stick", before, "rolling", x, detail),))
+    if creep and speed < STICK_SLIP + 10 * law.eps:
+        x_on = creep_entry(model, x)
+        if float(model.function("creep_margin")(x_on, model.p)) > 0:
+            return Transition(Mode.ROLLING, t, x_on, (Record("stick", before, "rolling", x_on, "slip < 10 eps (regularised)"),))
     return Transition(Mode.SLIDING, t, np.asarray(x, dtype=float))
 
 
@@ -237,7 +139,7 @@ class SlipOnset:
                 return _no_direction(t, x)
             new, x_new, detail = out
         else:
-            new, x_new, detail = Mode.SLIDING, _set_slip(model, x, -SLIP_ONSET * F / norm), "|F_req| reached mu R"
+            new, x_new, detail = Mode.SLIDING, set_slip(model, x, -SLIP_ONSET * F / norm), "|F_req| reached mu R"
         return Transition(new, t, x_new, (Record("slip", mode.value, new.value, x_new, detail),))
 
 
@@ -262,9 +164,10 @@ class Creep:
     once the slip has risen above 10 eps)."""
 
     def __call__(self, model, event, mode, t, x) -> Transition:
+        x_on = creep_entry(model, x)
+        if float(model.function("creep_margin")(x_on, model.p)) > 0.0:
+            return Transition(Mode.ROLLING, t, x_on, (Record("stick", mode.value, Mode.ROLLING.value, x_on, "slip < 10 eps (regularised)"),))
         stick = Record("stick", mode.value, Mode.ROLLING.value, x, "slip < 10 eps (regularised)")
-        if float(model.function("creep_margin")(x, model.p)) > 0.0:
-            return Transition(Mode.ROLLING, t, x, (stick,))
         slip = Record("slip", Mode.ROLLING.value, Mode.SLIDING.value, x, "no creep here (|F| near mu R, or R small)")
         return Transition(Mode.SLIDING, t, x, (stick, slip), resume=True)
 

@@ -139,7 +139,7 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     opts = solver_options(options, **option_fields)
     pose0 = Pose.of(pose0)
     x0, t0, t_end, start_mode, te = _checked_arguments(model, x0, t0, t_end, mode, throw, events, t_eval, opts.max_wall)
-    system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail))
+    system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail), opts.settle is not None)
     run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
     run.loop(system.initial(model, t0, x0, start_mode), progress)
     traj = run.result(x0, stop_at, restitution, events, te, pose0)
@@ -196,20 +196,20 @@ def _checked_span(model, x0, t0, t_end, start_mode):
     return x0, t0, t_end
 
 
-def _declared(model, stop_at, restitution, events, bounce):
+def _declared(model, stop_at, restitution, events, bounce, periodic=False):
     """:func:`phasekit.core.system.declare`, kept for runs that declare the same system again (a
     sweep calls simulate thousands of times; declaring costs ~25 us a call, a few % of a run)."""
     events = tuple(events)
     try:  # events compare without their reset: key on the reset objects too
-        return _declare_cached(model, stop_at, restitution, events, bounce,
+        return _declare_cached(model, stop_at, restitution, events, bounce, periodic,
                                tuple(id(getattr(e, "reset", None)) for e in events))
     except TypeError:  # unhashable arguments: declare (which validates them)
-        return declare(model, stop_at=stop_at, restitution=restitution, events=events, bounce=bounce)
+        return declare(model, stop_at=stop_at, restitution=restitution, events=events, bounce=bounce, periodic=periodic)
 
 
 @functools.lru_cache(maxsize=64)
-def _declare_cached(model, stop_at, restitution, events, bounce, _reset_ids):
-    return declare(model, stop_at=stop_at, restitution=restitution, events=events, bounce=bounce)
+def _declare_cached(model, stop_at, restitution, events, bounce, periodic, _reset_ids):
+    return declare(model, stop_at=stop_at, restitution=restitution, events=events, bounce=bounce, periodic=periodic)
 
 
 @functools.lru_cache(maxsize=64)
@@ -245,23 +245,24 @@ class RunState:
         a settled body with the option ``settle``)."""
         for r in tr.records:
             self.record(r.name, tr.t, r.mode_before, r.mode_after, r.x, r.detail)
-        if tr.resume:
+        if tr.resume:  # the segment goes on (a turn of theta, a graze): only the settle rule applies
             self.resume = True
-            return
-        if tr.carried and self.segments and tr.t > self.segments[-1].t1:  # see Transition
-            self.segments[-1] = extended(self.segments[-1], tr.t, np.asarray(tr.x, dtype=float))
-            self.t, self.x = tr.t, np.asarray(tr.x, dtype=float)
-        if tr.stop is not None:
-            self.status, self.reason = tr.stop, tr.reason
-            if not self.segments:  # stopped before any integration: keep the start
-                self.t, self.x, self.mode = tr.t, np.asarray(tr.x, dtype=float), tr.mode or self.mode
-            return
-        self.mode, self.t, self.x = tr.mode, tr.t, np.asarray(tr.x, dtype=float)
-        if len(self.records) >= self.switch_limit:
-            self.status = Status.FAILED
-            self.reason = f"more than {self.switch_limit} mode switches by t = {self.t:.6g} (chattering)"
-        elif self.opts.settle is not None and tr.records:
-            why = settled(self.model, self.records, self.t_start, self.opts.settle)
+        else:
+            if tr.carried and self.segments and tr.t > self.segments[-1].t1:  # see Transition
+                self.segments[-1] = extended(self.segments[-1], tr.t, np.asarray(tr.x, dtype=float))
+                self.t, self.x = tr.t, np.asarray(tr.x, dtype=float)
+            if tr.stop is not None:
+                self.status, self.reason = tr.stop, tr.reason
+                if not self.segments:  # stopped before any integration: keep the start
+                    self.t, self.x, self.mode = tr.t, np.asarray(tr.x, dtype=float), tr.mode or self.mode
+                return
+            self.mode, self.t, self.x = tr.mode, tr.t, np.asarray(tr.x, dtype=float)
+            if len(self.records) >= self.switch_limit:
+                self.status = Status.FAILED
+                self.reason = f"more than {self.switch_limit} mode switches by t = {self.t:.6g} (chattering)"
+                return
+        if self.opts.settle is not None and tr.records:
+            why = settled(self.model, self.records, self.t_start, self.opts.settle, self.opts.rtol)
             if why is not None:
                 self.status, self.reason = Status.SETTLED, why
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from .._runtime.errors import ParameterError, Status
 from .._runtime.validate import check_choice, check_range
-from .fields import STICK_SLIP
+from .fields import CREEP_TOL, STICK_SLIP
 from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
 from .resets import (
     BOUNCE_STOP,
@@ -38,6 +38,7 @@ from .resets import (
     flight_start_state,
     hold,
 )
+from .settle import TURN, Turn, rolls_periodically_here
 
 __all__ = ["declare", "STOP_AT", "STIFF_RATE", "GUARD_DELAY"]
 
@@ -58,10 +59,11 @@ GUARD_DELAY = 1e-5
 
 
 def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=(),
-            bounce: tuple[float, int | None] = (BOUNCE_STOP, BOUNCE_TAIL)) -> HybridSystem:
+            bounce: tuple[float, int | None] = (BOUNCE_STOP, BOUNCE_TAIL), periodic: bool = False) -> HybridSystem:
     """The modes, events and resets of ``model``'s law, with the run's stop rule, the end of a
     bounce train (``bounce``: the rebound-speed cut-off and the geometric tail resolved, see
-    :class:`phasekit.core.resets.Touchdown`) and the user's ``events`` appended."""
+    :class:`phasekit.core.resets.Touchdown`) and the user's ``events`` appended. ``periodic``: watch
+    the turns of theta while rolling, where rolling is periodic (:func:`phasekit.core.settle.rolls_periodically`)."""
     check_choice("stop_at", stop_at, STOP_AT)
     restitution = check_range("restitution", restitution, 0.0, 1.0, closed="lr")
     law = model.friction
@@ -71,7 +73,8 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     hold = Held if held else _same
     flows = (
         Flow(Mode.SLIDING, "rhs_sliding", monitor=("Rdot", +1)),
-        Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1)),  # a regularised law's: its creep, or not stiff
+        # a regularised law's: its creep (at a finer tolerance, fields.CREEP_TOL), or not stiff
+        Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1), tol_scale=CREEP_TOL if creep else 1.0),
         Flow(Mode.FLIGHT, "rhs_flight", monitor=("gap_rate", -1), engine="taylor", contact=False),
     ) + tuple(Flow(m, f"rhs_{m.value}", monitor=("Rdot", +1), stiff=stiff and m.free is Mode.ROLLING) for m in held)
     jump_ends = stop_at == "jump"
@@ -102,6 +105,8 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
                              reset=Hold(kind)))
             evs += [Event(f"{kind}_margin_{m.value}", name=f"{kind} slip", direction=-1, modes={m}, reset=Release(kind))
                     for m in kept]
+    if periodic and rolls_periodically_here(model):  # a run with a settle rule ends one period into a roll
+        evs.append(Event("Lambda", 0.0, direction=-1, name=TURN, modes={Mode.ROLLING}, reset=Turn()))
     if law.dissipation:  # the body comes to rest in finite time (see resets.Rest)
         evs.append(Event("rest_guard", name="rest", direction=-1, modes=contact, reset=Rest(), stop=Status.REST))
     evs.append(Event("gap", name="touchdown", direction=-1, modes={Mode.FLIGHT}, arm_after=GUARD_DELAY,

@@ -332,7 +332,7 @@ class Definition:
         value = 2.0 * self.lower_bound(body)
         model, x0 = self.start(body, value)
         simulate(model, x0, 1e-3, rtol=self.rtol, events=[self.rise_event(body)], track_minima=False, dense=False,
-                 progress=False)
+                 settle=self.settle, progress=False)
         if check_choice("engine", engine, EVALUATION) == "batch":
             from ..core.batch import compile_batch
 

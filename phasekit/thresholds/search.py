@@ -186,9 +186,17 @@ class ThresholdSearch:
         outcomes = [replace(o, value=v) if o.value != v else o for o, v in zip(outcomes, self._asked)]
         self.n_rounds += 1
         self._asked = []
+        # a run cut by the caller's wall budget decides nothing: the search ends where it is, saying so
+        # (read as "no outcome", the cut runs below a threshold made the scan see jumps everywhere)
+        cut = next((o.reason for o in outcomes if (o.reason or "").startswith(WALL_REASON)), None)
         if self.flag is not None:
             outcomes = [replace(o, jumped=self.flag(o)) for o in outcomes]
         self.outcomes.extend(outcomes)
+        if cut is not None:
+            if self.phase == "scan":
+                self._after_scan()  # the transitions among the runs that ended
+            self.phase, self.stopped = "done", cut.split(" at t = ")[0]
+            return
         if self.phase == "scan":
             self._after_scan()
         else:

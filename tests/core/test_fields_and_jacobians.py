@@ -1,7 +1,7 @@
 """The compiled model: (6.1), R against (2.8) on a computed trajectory, exact Jacobians."""
 
 import phasekit as pk
-from phasekit.core.resets import project_no_slip
+from phasekit.core.zero_slip import project_no_slip
 
 import numpy as np
 import pytest

@@ -2,6 +2,7 @@
 law's own field integrated by an implicit method, and its dissipation against the closed form."""
 
 import phasekit as pk
+from phasekit.core.system import declare
 
 import numpy as np
 import pytest
@@ -64,3 +65,76 @@ def test_creep_dissipates_as_the_law_does(creep_run):
         power = -EPS * F2 / np.sqrt((MU * R) ** 2 - F2)
         assert power < 0
         assert dEdt == pytest.approx(power, rel=1e-3)
+
+
+def _law_field(model, x0, t0, t1, rtol=1e-12):
+    """The regularised law's own field from (t0, x0) to t1, by Radau (a second formulation)."""
+    f, jac = model.function("rhs_sliding"), model.function("rhs_jac_sliding")
+    ref = solve_ivp(lambda t, x: np.asarray(f(x, model.p)).ravel(), (t0, t1), x0, method="Radau", rtol=rtol,
+                    atol=rtol * 1e-2, jac=lambda t, x: np.asarray(jac(x, model.p)))
+    assert ref.success
+    return ref.y[:, -1]
+
+
+def test_the_creep_is_entered_by_the_laws_fast_transient_in_one_impulse():
+    """A start with slip 9.4 eps (the paper's seed at a = 1.1, Omega0 = 28.3, eps = 1e-4) creeps at once.
+    The contact impulse that takes the slip to u* is the limit of the law's own relaxation: one time
+    unit later the state is that of the law's own field to 3.1e-7 (measured; the creep's pull alone,
+    spreading the impulse over 1/CREEP_PULL, leaves 5.5e-6)."""
+    model, x0 = pk.Definition("literal", "literal", eps=1e-4).start(pk.Spheroid(1.1), 28.3)
+    assert np.linalg.norm(np.asarray(model.function("slip")(x0, model.p)).ravel()) > 9 * 1e-4
+    run = pk.simulate(model, x0, 1.0, stop_at="none", dense=True, track_minima=False, progress=False)
+    assert run.events[0].name == "stick" and run.events[0].t == 0.0 and run.mode == "rolling"
+    ref = _law_field(model, x0, 0.0, 1.0)
+    x1 = run._chart_states(np.array([1.0]))[0]
+    assert np.max(np.abs(x1 - ref) / (1.0 + np.abs(ref))) < 1e-6
+
+
+def test_a_fast_spin_creeps_where_the_force_needed_turns_slowly():
+    """a = 3, Omega0 = 7.4, eps = 1e-4: the body rises to theta ~ 0.15 and spins at n ~ 13 with
+    R ~ 1. The force rolling needs turns at |du*/dt|/|u*| ~ 0.35 against a relaxation rate ~ 900,
+    so the creep holds (a rule on |w| refused it, and the law's own field took 2,541,525 steps to
+    t = 3000). The creep's state follows the law's own field to 1e-8 over two time units late in the run."""
+    body = pk.Spheroid(3.0)
+    defn = pk.Definition("literal", "literal", eps=1e-4)
+    model, x0 = defn.start(body, 7.4)
+    run = pk.simulate(model, x0, defn.t_max, events=[defn.rise_event(body)], track_minima=False, dense=True,
+                      progress=False)
+    assert run.status is pk.Status.COMPLETED and run.mode == "rolling"
+    assert run.n_steps < 50_000  # measured 10 548
+    for t0 in (400.0, 2500.0):
+        xa = run._chart_states(np.array([t0]))[0]
+        assert float(model.function("creep_margin")(xa, model.p)) > 0
+        ref = _law_field(model, xa, t0, t0 + 2.0, rtol=1e-11)
+        xb = run._chart_states(np.array([t0 + 2.0]))[0]
+        assert np.max(np.abs(xb - ref) / (1.0 + np.abs(ref))) < 1e-8  # measured 1.2e-9, 1.4e-9
+        u, u_ref = (np.asarray(model.function("slip")(x, model.p)).ravel() for x in (xb, ref))
+        assert np.linalg.norm(u - u_ref) < 1e-3 * np.linalg.norm(u_ref)  # measured 8.7e-5
+
+
+def test_where_the_force_needed_turns_fast_the_law_keeps_its_own_field():
+    """The paper's oblate start (5.1) at n0 = 10, eps = 10^-4.25 (mu/eps = 1778), a near-threshold
+    run: the creep is refused all along, and the run jumps at the published t* = 328.5165 (the
+    paper-pairs table; the law's own field converges there, 328.516526 at rtol 1e-10 and 1e-11).
+    A rule on |w| let it creep, and that run rose instead (t = 341.89)."""
+    case = pk.theory.PAPER_CASES["5.1"]
+    model, x0 = pk.paper_start("5.1", friction=pk.RegularisedCoulomb(0.1, 10 ** -4.25), **{case.parameter: 10.0})
+    m = model.with_chart("vector")
+    x = pk.core.to_chart("vector", model.chart.to_paper(x0))
+    rise = pk.Event("theta", np.pi / 2 - 0.1, direction=+1, name="rise-complete")
+    run = pk.simulate(m, x, 600.0, events=[rise], track_minima=False, dense=False, progress=False)
+    assert {s.mode.value for s in run.segments} == {"sliding"}
+    assert run.status is pk.Status.JUMPED and run.t_jump == pytest.approx(328.516526, abs=2e-5)
+
+
+def test_the_creep_runs_at_a_hundredth_of_the_tolerance():
+    """The law's own field takes the short steps its stiffness allows, so its error over a long creep
+    is far below its tolerance; the creep takes the steps the tolerance allows. At a = 1.1, Omega0 =
+    28.3 (eps = 1e-4, near the threshold) the run creeps for 134 time units off an unstable state: at
+    rtol 1e-9 the creep integrated at 1e-9 jumped at t = 266.4, the law's own field rises
+    (306.97 at rtol 1e-9, 305.41 converged); at a hundredth of the tolerance the creep rises too."""
+    flow = declare(pk.Model(pk.Spheroid(1.1), pk.RegularisedCoulomb(0.1, 1e-4))).flow(pk.core.Mode.ROLLING)
+    assert flow.tol_scale == pytest.approx(0.01)
+    defn = pk.Definition("literal", "literal", eps=1e-4)
+    out = defn.outcome(1.1, 28.3)
+    assert out.status is pk.Status.STOPPED and out.stuck and out.t == pytest.approx(305.41, abs=2.0)

@@ -59,7 +59,8 @@ class TaylorEngine:
         tuple
             (integrator, recorder or None, number of parameters).
         """
-        ta, npar = compiled((flow.signature, self.rtol), partial(_build_taylor, flow, n_params, self.rtol, None),
+        tol = flow.tolerance(self.rtol)
+        ta, npar = compiled((flow.signature, tol), partial(_build_taylor, flow, n_params, tol, None),
                             disk="taylor", label=f"the Taylor integrator of the {flow.mode.value} mode")
         if flow.monitor is None or flow.monitor_primitive is not None:
             return ta, None, npar
@@ -73,7 +74,8 @@ class TaylorEngine:
     def prefetch(self, flow: CompiledFlow, n_params: int) -> None:
         """Start compiling :meth:`integrator` of ``flow`` in the background (see
         :func:`phasekit.core.engines.cache.prefetch`)."""
-        prefetch((flow.signature, self.rtol), partial(_build_taylor, flow, n_params, self.rtol, None), disk="taylor",
+        tol = flow.tolerance(self.rtol)
+        prefetch((flow.signature, tol), partial(_build_taylor, flow, n_params, tol, None), disk="taylor",
                  label=f"the Taylor integrator of the {flow.mode.value} mode, in the background,")
 
     def propagate(self, flow: CompiledFlow, x0, t0, t_end, p, levels, *, budget: Budget, dense: bool = False,
