@@ -64,7 +64,9 @@ class Chart:
         return len(self.state_names)
 
     def terms(self, x, H, A, C, Fc, wrench=None) -> dict:
-        """Symbolic terms: ``xdot`` (affine in Fc), ``W``, ``slip``, ``energy``, ``L_Z``,
+        """Symbolic terms: ``xdot`` (affine in Fc), ``W``, ``slip`` (in the chart's horizontal axes,
+        which turn about the vertical at ``frame_rate``: Omega for the Euler chart, 0 for the vector
+        chart's fixed axes), ``energy``, ``L_Z``,
         ``spin``, ``jellett``, ``cos_theta``, ``h``, ``paper`` (the paper's six variables), and
         ``w``, ``v`` (angular velocity, velocity of G, in axes with e_Z vertical) and ``lift``
         (the wrench's vertical force). ``H`` maps c = cos(theta) to the height of G (an SX
@@ -153,7 +155,7 @@ class EulerChart(Chart):
         jellett = A * Om * s * xP + C * n * zPm
         return dict(xdot=xdot, W=W, slip=slip, energy=energy, L_Z=L_Z, spin=n, jellett=jellett, cos_theta=c, h=h,
                     paper=ca.vertcat(U, V, Om, Lam, th, n), lift=lift, lever=ca.fabs(h1), w=w,
-                    v=ca.vertcat(U, V, W), k=ca.vertcat(s, 0, c))
+                    v=ca.vertcat(U, V, W), k=ca.vertcat(s, 0, c), frame_rate=Om)
 
     def from_paper(self, y) -> np.ndarray:
         return np.array(y, dtype=float)
@@ -230,7 +232,7 @@ class VectorChart(Chart):
         return dict(xdot=xdot, W=W, slip=slip, rot_energy=rot_energy, L_Z=Lvec[2], L=Lvec, spin=n,
                     jellett=-ca.dot(Lvec, rP), cos_theta=c, h=Hc, rP=rP, paper=paper, lift=lift, w=w,
                     lever=ca.sqrt(rP[0] ** 2 + rP[1] ** 2),
-                    v=ca.vertcat(vx, vy, W), k=khat)
+                    v=ca.vertcat(vx, vy, W), k=khat, frame_rate=ca.SX(0))
 
     def terms(self, x, H, A, C, Fc, wrench=None) -> dict:
         T = self.rigid_terms(x, H, A, C, Fc, wrench)

@@ -349,7 +349,7 @@ def _build_zero_slip(fn, add_mode, law_cls, creep, laws, x, p, Fc, T, constraint
     if law_cls.has_rolling_mode:
         _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu)
     elif creep:
-        _build_creep(fn, add_mode, x, p, Fc, xdot, slip, constraint, mu, eps)
+        _build_creep(fn, add_mode, x, p, Fc, xdot, slip, constraint, mu, eps, T["frame_rate"])
     elif law_cls.can_stick:
         for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction", *(DISSIPATION_TERMS if laws else ())):
             fn[f"{name}_rolling"] = fn[f"{name}_sliding"]
@@ -384,16 +384,9 @@ CREEP_PULL = 20.0
 #: (docs/physics.md)
 CREEP_STIFF = 2000.0
 CREEP_RATIO = 100.0
-#: the creep is integrated at this fraction of the run's tolerance. The law's own field takes the
-#: steps its stiffness allows (~7/relaxation rate), far shorter than its tolerance asks, so its error
-#: over a creep is far below the tolerance; the creep takes the steps the tolerance asks for, and off
-#: an unstable state its error grows with the departure. Measured on the main study (rtol 1e-9): at
-#: 1, six eps = 1e-4 thresholds moved by up to 1.9%; at 1e-1, two by one bracket; at 1e-2, none
-#: (docs/physics.md)
-CREEP_TOL = 1e-2
 
 
-def _build_creep(fn, add_mode, x, p, Fc, xdot, slip, constraint, mu, eps) -> None:
+def _build_creep(fn, add_mode, x, p, Fc, xdot, slip, constraint, mu, eps, frame_rate) -> None:
     """ROLLING of a regularised law: creep on its slow manifold, non-stiff (docs/physics.md derives it).
 
     With |u| << mu R/|dF/dt|, F = -mu R u/sqrt(|u|^2 + eps^2) relaxes the slip at a rate ~ mu R/eps
@@ -416,8 +409,10 @@ def _build_creep(fn, add_mode, x, p, Fc, xdot, slip, constraint, mu, eps) -> Non
     # >= 0 while the slow manifold attracts fast enough (CREEP_STIFF, CREEP_RATIO): the law's relaxation
     # rate there, mu R (1 - f^2)^(3/2)/eps with f = |F|/(mu R), falls as R -> 0 or f -> 1, where creep ends.
     # The manifold's own rate |du*/dt|/|u*|, not the body's |w|: a fast spin about a near-vertical axis
-    # turns the force needed slowly (measured 0.35 against |w| = 13 on a = 3, Omega0 = 7.4)
-    size, drift = ca.norm_2(u_star), ca.norm_2(du_star)
+    # turns the force needed slowly (about 2 against |w| = 13 on a = 3, Omega0 = 7.4). Its rate in
+    # fixed axes, the same in every chart: the chart's axes turn at frame_rate about the vertical
+    turning = frame_rate * ca.vertcat(-u_star[1], u_star[0])
+    size, drift = ca.norm_2(u_star), ca.norm_2(du_star + turning)
     needed = (CREEP_STIFF ** -8 + (size / (CREEP_RATIO * (size + drift) + 1e-300)) ** 8) ** -0.125
     fn["creep_margin"] = _function("creep_margin", x, p, room * ca.sqrt(room) - needed * eps * (mu * Fc_roll[2]) ** 2)
     # entering the creep: the law's fast transient in the limit of its relaxation rate, a contact impulse

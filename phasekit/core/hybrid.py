@@ -89,8 +89,6 @@ class Flow:
     ``engine`` forces an integrator for this flow; ``stiff`` makes "auto" pick CVODES.
     ``contact``: the body touches the table (a run that stops at the first lift-off, as
     :func:`phasekit.core.simulate_batch`'s do, stays in the contact flows).
-    ``tol_scale``: the flow is integrated at this fraction of the run's tolerance (a regularised
-    law's creep, see :data:`phasekit.core.fields.CREEP_TOL`).
     """
 
     mode: Mode
@@ -99,7 +97,6 @@ class Flow:
     engine: str | None = None
     stiff: bool = False
     contact: bool = True
-    tol_scale: float = 1.0
 
 
 @dataclass(frozen=True)
@@ -280,10 +277,3 @@ class CompiledFlow:
     #: P(x, p) whose time derivative is the monitor's function (R for dR/dt), or None: the Taylor
     #: engine then finds the monitor's zeros from P's expansion (:mod:`phasekit.core.engines.roots`)
     monitor_primitive: object = None
-    #: the flow's tolerance as a fraction of the run's (:class:`Flow`)
-    tol_scale: float = 1.0
-
-    def tolerance(self, rtol: float) -> float:
-        """The tolerance this flow is integrated at in a run at ``rtol`` (not below 1e-14, a hundred
-        roundings, unless ``rtol`` itself is)."""
-        return max(rtol * self.tol_scale, min(rtol, 1e-14))

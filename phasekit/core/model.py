@@ -465,8 +465,7 @@ class Model:
             parts.append(_digest(primitive) if primitive is not None else "-")
             chart = FLIGHT if mode is Mode.FLIGHT else self.chart
             cache[key] = CompiledFlow(mode, field, chart.n_states, tuple(guards), monitor,
-                                      hashlib.sha256("|".join(parts).encode()).hexdigest(), chart.rotation_rate, primitive,
-                                      flow.tol_scale)
+                                      hashlib.sha256("|".join(parts).encode()).hexdigest(), chart.rotation_rate, primitive)
         return cache[key]
 
 

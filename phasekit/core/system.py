@@ -16,7 +16,7 @@ import numpy as np
 
 from .._runtime.errors import ParameterError, Status
 from .._runtime.validate import check_choice, check_range
-from .fields import CREEP_TOL, STICK_SLIP
+from .fields import STICK_SLIP
 from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
 from .resets import (
     BOUNCE_STOP,
@@ -73,8 +73,7 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     hold = Held if held else _same
     flows = (
         Flow(Mode.SLIDING, "rhs_sliding", monitor=("Rdot", +1)),
-        # a regularised law's: its creep (at a finer tolerance, fields.CREEP_TOL), or not stiff
-        Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1), tol_scale=CREEP_TOL if creep else 1.0),
+        Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1)),  # a regularised law's: its creep, or not stiff
         Flow(Mode.FLIGHT, "rhs_flight", monitor=("gap_rate", -1), engine="taylor", contact=False),
     ) + tuple(Flow(m, f"rhs_{m.value}", monitor=("Rdot", +1), stiff=stiff and m.free is Mode.ROLLING) for m in held)
     jump_ends = stop_at == "jump"

@@ -2,7 +2,6 @@
 law's own field integrated by an implicit method, and its dissipation against the closed form."""
 
 import phasekit as pk
-from phasekit.core.system import declare
 
 import numpy as np
 import pytest
@@ -77,31 +76,31 @@ def _law_field(model, x0, t0, t1, rtol=1e-12):
 
 
 def test_the_creep_is_entered_by_the_laws_fast_transient_in_one_impulse():
-    """A start with slip 9.4 eps (the paper's seed at a = 1.1, Omega0 = 28.3, eps = 1e-4) creeps at once.
-    The contact impulse that takes the slip to u* is the limit of the law's own relaxation: one time
-    unit later the state is that of the law's own field to 3.1e-7 (measured; the creep's pull alone,
-    spreading the impulse over 1/CREEP_PULL, leaves 5.5e-6)."""
-    model, x0 = pk.Definition("literal", "literal", eps=1e-4).start(pk.Spheroid(1.1), 28.3)
-    assert np.linalg.norm(np.asarray(model.function("slip")(x0, model.p)).ravel()) > 9 * 1e-4
+    """The paper's seed at a = 3, Omega0 = 7.4, eps = 1e-4 slides until its slip falls to 10 eps
+    (t = 0.0167) and creeps. The contact impulse that takes the slip to u* is the limit of the law's
+    own relaxation: one time unit after the start the state is that of the law's own field to
+    8.0e-6 (measured; the creep's pull alone, spreading the impulse over 1/CREEP_PULL, leaves 1.3e-4)."""
+    model, x0 = pk.Definition("literal", "literal", eps=1e-4).start(pk.Spheroid(3.0), 7.4)
     run = pk.simulate(model, x0, 1.0, stop_at="none", dense=True, track_minima=False, progress=False)
-    assert run.events[0].name == "stick" and run.events[0].t == 0.0 and run.mode == "rolling"
+    assert run.events[0].name == "stick" and run.events[0].t == pytest.approx(0.0167, abs=1e-4) and run.mode == "rolling"
     ref = _law_field(model, x0, 0.0, 1.0)
     x1 = run._chart_states(np.array([1.0]))[0]
-    assert np.max(np.abs(x1 - ref) / (1.0 + np.abs(ref))) < 1e-6
+    assert np.max(np.abs(x1 - ref) / (1.0 + np.abs(ref))) < 3e-5
 
 
 def test_a_fast_spin_creeps_where_the_force_needed_turns_slowly():
     """a = 3, Omega0 = 7.4, eps = 1e-4: the body rises to theta ~ 0.15 and spins at n ~ 13 with
-    R ~ 1. The force rolling needs turns at |du*/dt|/|u*| ~ 0.35 against a relaxation rate ~ 900,
-    so the creep holds (a rule on |w| refused it, and the law's own field took 2,541,525 steps to
-    t = 3000). The creep's state follows the law's own field to 1e-8 over two time units late in the run."""
+    R ~ 1. The force rolling needs turns at |du*/dt|/|u*| ~ 2 in fixed axes against a relaxation
+    rate ~ 900, so the creep holds (a rule on |w| refused it, and the law's own field took 2,541,525
+    steps to t = 3000). The creep's state follows the law's own field to 1e-8 over two time units
+    late in the run."""
     body = pk.Spheroid(3.0)
     defn = pk.Definition("literal", "literal", eps=1e-4)
     model, x0 = defn.start(body, 7.4)
     run = pk.simulate(model, x0, defn.t_max, events=[defn.rise_event(body)], track_minima=False, dense=True,
                       progress=False)
     assert run.status is pk.Status.COMPLETED and run.mode == "rolling"
-    assert run.n_steps < 50_000  # measured 10 548
+    assert run.n_steps < 100_000  # measured 32 362
     for t0 in (400.0, 2500.0):
         xa = run._chart_states(np.array([t0]))[0]
         assert float(model.function("creep_margin")(xa, model.p)) > 0
@@ -127,14 +126,25 @@ def test_where_the_force_needed_turns_fast_the_law_keeps_its_own_field():
     assert run.status is pk.Status.JUMPED and run.t_jump == pytest.approx(328.516526, abs=2e-5)
 
 
-def test_the_creep_runs_at_a_hundredth_of_the_tolerance():
-    """The law's own field takes the short steps its stiffness allows, so its error over a long creep
-    is far below its tolerance; the creep takes the steps the tolerance allows. At a = 1.1, Omega0 =
-    28.3 (eps = 1e-4, near the threshold) the run creeps for 134 time units off an unstable state: at
-    rtol 1e-9 the creep integrated at 1e-9 jumped at t = 266.4, the law's own field rises
-    (306.97 at rtol 1e-9, 305.41 converged); at a hundredth of the tolerance the creep rises too."""
-    flow = declare(pk.Model(pk.Spheroid(1.1), pk.RegularisedCoulomb(0.1, 1e-4))).flow(pk.core.Mode.ROLLING)
-    assert flow.tol_scale == pytest.approx(0.01)
-    defn = pk.Definition("literal", "literal", eps=1e-4)
-    out = defn.outcome(1.1, 28.3)
-    assert out.status is pk.Status.STOPPED and out.stuck and out.t == pytest.approx(305.41, abs=2.0)
+def test_the_creep_rule_reads_the_same_in_both_charts():
+    """Where the creep holds depends on the rate of u* in fixed axes: the Euler chart's axes turn
+    with the precession, so its own components' rate misses Omega x u* (with them, the creep held
+    in the Euler chart and not in the vector chart at the same state of the oblate start (5.1)).
+    The margin at the same physical state, in both charts (measured agreement 5e-4 or better); and
+    where the force rolling needs turns with a fast precession (a = 1.1, Omega0 = 28.3), the law
+    keeps its own field."""
+    from phasekit.core.zero_slip import creep_entry
+
+    for a, value, eps, sign in ((1.5, 10.19, 1e-4, -1), (3.0, 7.4, 1e-4, +1), (1.1, 28.3, 1e-4, -1), (1.5, 66.0, 1e-8, +1)):
+        model, x0 = pk.Definition("literal", "literal", eps=eps).start(pk.Spheroid(a), value)
+        y = model.chart.to_paper(x0)
+        margins = []
+        for chart in ("euler", "vector"):
+            m = pk.Model(pk.Spheroid(a), pk.RegularisedCoulomb(0.1, eps), chart)
+            x = pk.core.to_chart(chart, y)
+            margins.append(float(m.function("creep_margin")(creep_entry(m, x), m.p)))
+        assert np.sign(margins[0]) == np.sign(margins[1]) == sign
+        assert margins[0] == pytest.approx(margins[1], rel=2e-3)
+    model, x0 = pk.Definition("literal", "literal", eps=1e-4).start(pk.Spheroid(1.1), 28.3)
+    run = pk.simulate(model, x0, 300.0, track_minima=False, dense=False, progress=False)
+    assert {s.mode.value for s in run.segments} == {"sliding"}

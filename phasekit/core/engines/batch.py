@@ -57,9 +57,8 @@ class TaylorBatchEngine:
         tuple
             (batch integrator, number of parameters).
         """
-        tol = flow.tolerance(self.rtol)
-        return compiled(("batch", flow.signature, tol, self.lanes),
-                        partial(_build_taylor, flow, n_params, tol, self.lanes), disk="taylor-batch")
+        return compiled(("batch", flow.signature, self.rtol, self.lanes),
+                        partial(_build_taylor, flow, n_params, self.rtol, self.lanes), disk="taylor-batch")
 
     def propagate(self, ta, limits, max_steps: int) -> list[tuple[End | None, int | None, int, str]]:
         """One call of heyoka's propagate on every lane (to ``limits``, at most ``max_steps``

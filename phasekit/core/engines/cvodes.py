@@ -63,8 +63,7 @@ class CvodesEngine:
 
     def _functions(self, flow: CompiledFlow, n_params: int):
         # CasADi builds these in milliseconds: kept in memory only
-        key = ("cvodes", flow.signature, flow.tolerance(self.rtol), flow.tolerance(self.atol), self.method, self.plugin,
-               self.n_grid)
+        key = ("cvodes", flow.signature, self.rtol, self.atol, self.method, self.plugin, self.n_grid)
         return compiled(key, partial(self._build, flow, n_params))
 
     def _build(self, flow: CompiledFlow, n_params: int):
@@ -75,8 +74,7 @@ class CvodesEngine:
         T = ca.SX.sym("T")
         dae = {"x": x, "p": ca.vertcat(p, T), "ode": T * flow.field(x, p)}
         # SUNDIALS would print its warnings (mxstep, ...) itself; the reason of a failed run carries them
-        opts = {"reltol": flow.tolerance(self.rtol), "abstol": flow.tolerance(self.atol), "max_num_steps": self.mxstep,
-                "disable_internal_warnings": True}
+        opts = {"reltol": self.rtol, "abstol": self.atol, "max_num_steps": self.mxstep, "disable_internal_warnings": True}
         if self.plugin == "cvodes":
             opts["linear_multistep_method"] = self.method
             if self.method == "adams":

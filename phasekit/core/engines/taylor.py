@@ -59,8 +59,7 @@ class TaylorEngine:
         tuple
             (integrator, recorder or None, number of parameters).
         """
-        tol = flow.tolerance(self.rtol)
-        ta, npar = compiled((flow.signature, tol), partial(_build_taylor, flow, n_params, tol, None),
+        ta, npar = compiled((flow.signature, self.rtol), partial(_build_taylor, flow, n_params, self.rtol, None),
                             disk="taylor", label=f"the Taylor integrator of the {flow.mode.value} mode")
         if flow.monitor is None or flow.monitor_primitive is not None:
             return ta, None, npar
@@ -74,8 +73,7 @@ class TaylorEngine:
     def prefetch(self, flow: CompiledFlow, n_params: int) -> None:
         """Start compiling :meth:`integrator` of ``flow`` in the background (see
         :func:`phasekit.core.engines.cache.prefetch`)."""
-        tol = flow.tolerance(self.rtol)
-        prefetch((flow.signature, tol), partial(_build_taylor, flow, n_params, tol, None), disk="taylor",
+        prefetch((flow.signature, self.rtol), partial(_build_taylor, flow, n_params, self.rtol, None), disk="taylor",
                  label=f"the Taylor integrator of the {flow.mode.value} mode, in the background,")
 
     def propagate(self, flow: CompiledFlow, x0, t0, t_end, p, levels, *, budget: Budget, dense: bool = False,
