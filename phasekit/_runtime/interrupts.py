@@ -7,6 +7,10 @@ fit": it tries the next one, or raises a TypeError / NotImplementedError of its 
 on as if nothing happened (measured: 3 of 40 interrupts of a loop of ``steady_structure``
 calls vanished, 11 became other errors). :func:`interrupt_guard` remembers the signal and
 raises KeyboardInterrupt again until it gets through.
+
+Where Python cannot raise at all (a weakref callback, as the import system's module locks have, a
+``__del__``), it reports the exception through ``sys.unraisablehook`` ("Exception ignored in ...",
+with a traceback) and goes on; since the guard raises the interrupt again, that report is dropped.
 """
 
 from __future__ import annotations
@@ -73,7 +77,11 @@ def interrupt_guard(late_s: float = 0.5, *, mute: bool = True):
         return
     state = {"at": None, "seen": False, "handled": False}
     stop = threading.Event()
-    stderr, previous_trace = sys.stderr, sys.gettrace()
+    stderr, previous_trace, previous_hook = sys.stderr, sys.gettrace(), sys.unraisablehook
+
+    def unraisable(report) -> None:  # an interrupt swallowed where Python cannot raise: raised again
+        if not isinstance(report.exc_value, KeyboardInterrupt):
+            previous_hook(report)
 
     def again(frame, event, arg):  # a trace function: runs before each line of Python in this thread
         if state["at"] is None or state["handled"]:
@@ -119,10 +127,12 @@ def interrupt_guard(late_s: float = 0.5, *, mute: bool = True):
         raise KeyboardInterrupt
 
     signal.signal(signal.SIGINT, interrupted)
+    sys.unraisablehook = unraisable
     try:
         yield state
     finally:
         stop.set()
+        sys.unraisablehook = previous_hook
         if state["at"] is not None:
             state["at"] = None
             sys.settrace(previous_trace)
