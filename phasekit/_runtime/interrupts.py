@@ -18,7 +18,9 @@ from __future__ import annotations
 import _thread
 import contextlib
 import io
+import signal
 import sys
+import threading
 import time
 
 __all__ = ["interrupt_guard", "chained_to_interrupt"]
@@ -52,6 +54,23 @@ def _untouched(frame) -> bool:
 
 
 @contextlib.contextmanager
+def _swallowed_interrupts_unreported():
+    """Drop sys.unraisablehook's reports of a KeyboardInterrupt (raised where Python cannot raise:
+    the guard raises it again)."""
+    previous = sys.unraisablehook
+
+    def hook(report) -> None:
+        if not isinstance(report.exc_value, KeyboardInterrupt):
+            previous(report)
+
+    sys.unraisablehook = hook
+    try:
+        yield
+    finally:
+        sys.unraisablehook = previous
+
+
+@contextlib.contextmanager
 def interrupt_guard(late_s: float = 0.5, *, mute: bool = True):
     """While the block runs, Ctrl-C (SIGINT) raises KeyboardInterrupt as usual, and also:
 
@@ -62,26 +81,19 @@ def interrupt_guard(late_s: float = 0.5, *, mute: bool = True):
       KeyboardInterrupt is raised again at the first line of Python outside CasADi's own frames
       that runs in a handler of another exception (where an error made of it is caught), or,
       ``late_s`` after the signal, at such a line anywhere; and every RETRY_S (a simulated
-      SIGINT from a helper thread) until the program handles it (``handled``) or the block
-      ends, except in the cleanup of the KeyboardInterrupt itself (``except`` / ``finally`` / ``__exit__`` blocks on its way out
-      run undisturbed). A second Ctrl-C raises at once.
+      SIGINT from a helper thread) until the program handles it (``handled``) or the block ends,
+      never in its own cleanup (the ``except``, ``finally``, ``__exit__`` blocks on its way out);
+      one Python had to drop is not reported (module notes). A second Ctrl-C raises at once.
 
     Yields a dict whose ``seen`` is True once a Ctrl-C arrived (whatever compiled code made of
     it); the program's handler of KeyboardInterrupt sets its ``handled`` to stop the re-raising.
     """
-    import signal
-    import threading
-
     if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
         yield {}
         return
     state = {"at": None, "seen": False, "handled": False}
     stop = threading.Event()
-    stderr, previous_trace, previous_hook = sys.stderr, sys.gettrace(), sys.unraisablehook
-
-    def unraisable(report) -> None:  # an interrupt swallowed where Python cannot raise: raised again
-        if not isinstance(report.exc_value, KeyboardInterrupt):
-            previous_hook(report)
+    stderr, previous_trace = sys.stderr, sys.gettrace()
 
     def again(frame, event, arg):  # a trace function: runs before each line of Python in this thread
         if state["at"] is None or state["handled"]:
@@ -127,12 +139,11 @@ def interrupt_guard(late_s: float = 0.5, *, mute: bool = True):
         raise KeyboardInterrupt
 
     signal.signal(signal.SIGINT, interrupted)
-    sys.unraisablehook = unraisable
     try:
-        yield state
+        with _swallowed_interrupts_unreported():
+            yield state
     finally:
         stop.set()
-        sys.unraisablehook = previous_hook
         if state["at"] is not None:
             state["at"] = None
             sys.settrace(previous_trace)
