@@ -36,7 +36,8 @@ def plot_threshold_curves(rows, definitions, *, default: str, styles: dict, hi: 
     oblate (right), one curve per definition (``rows``: :class:`phasekit.studies.ThresholdRow` of
     group "main"; ``styles``: the plot keywords per definition name; ``default``: the name of
     the default definition). A definition that does not jump up to ``hi`` is an arrow at ``hi``;
-    ``brackets`` maps an aspect ratio to the paper's (no jump, jump) pair of single runs.
+    ``brackets`` maps an aspect ratio to the paper's (no jump, jump) pair of single runs. A point
+    whose self-consistency check failed (:func:`phasekit.studies.threshold_task`) is ringed.
 
     Examples
     --------
@@ -62,6 +63,10 @@ def plot_threshold_curves(rows, definitions, *, default: str, styles: dict, hi: 
             none = [a for a, r in pts if r.status == "no_jump_in_range"]
             if ok:
                 ax.plot(*zip(*ok), label=label, **styles.get(defn.name, {}))
+            failed = [(a, r.threshold) for a, r in pts if r.threshold is not None and r.consistent is False]
+            if failed:  # set by the integration error, not the body (threshold_task's check)
+                ax.plot(*zip(*failed), ls="none", marker="o", ms=11, mfc="none", mec="k", mew=1.2,
+                        label="check failed: 0.98x or 1.02x of it changes outcome at rtol / 10")
             if none:
                 ax.plot(none, [hi] * len(none), ls="none", marker=r"$\uparrow$", ms=10, color=styles[defn.name]["color"],
                         label=(label + f": no jump up to {hi:g}") if not ok else None)

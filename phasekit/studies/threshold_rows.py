@@ -14,17 +14,18 @@ from __future__ import annotations
 import hashlib
 import json
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from functools import partial
 
 from .._runtime.errors import SearchStatus, Status
+from ..core.options import RTOL_RANGE
 from ..sweep.tasks import TaskSpec
 from ..thresholds.definition import Definition
 from ..thresholds.search import find_threshold, run_searches, threshold_result, threshold_searches
 from ..thresholds.stick import stick_search
 
-__all__ = ["ThresholdRow", "threshold_task", "threshold_key", "threshold_chain", "SearchRow", "search_job",
-           "search_group_task", "group_search_tasks"]
+__all__ = ["ThresholdRow", "threshold_task", "threshold_key", "threshold_chain", "check_definition", "SearchRow",
+           "search_job", "search_group_task", "group_search_tasks"]
 
 
 # -- threshold rows --------------------------------------------------------------------------
@@ -68,6 +69,27 @@ class ThresholdRow:
     n_check_sims: int
     wall_s: float
     reason: str
+    check_rtol: float | None  # the tolerance the check ran at (:func:`check_definition`)
+
+
+#: the self-consistency check runs at the definition's tolerance divided by this: neighbours 2%
+#: above and below that keep their outcomes at a ten times tighter tolerance show a threshold set
+#: by the body, not by the integration error. Near a = 1 the literal recipe's are not: there the
+#: outcome at one Omega0 changes with every tolerance from 1e-8 to 1e-13 (docs/results/maps.md).
+CHECK_TIGHTER = 10
+
+
+def check_definition(defn: Definition) -> Definition:
+    """The definition :func:`threshold_task`'s self-consistency check runs: ``defn`` at its
+    tolerance divided by :data:`CHECK_TIGHTER` (not below the smallest one accepted).
+
+    Examples
+    --------
+    >>> import phasekit as pk, phasekit.studies as ps
+    >>> ps.check_definition(pk.Definition('sliding', 'sliding')).rtol
+    1e-10
+    """
+    return replace(defn, rtol=max(float(f"{defn.rtol / CHECK_TIGHTER:.12g}"), RTOL_RANGE[0]))  # 1e-11, not 1.0000000000000001e-11
 
 
 def threshold_key(defn, a: float, search: dict) -> str:
@@ -85,8 +107,8 @@ def threshold_key(defn, a: float, search: dict) -> str:
 def threshold_task(prev: ThresholdRow | None, defn_fields: dict, a: float, group: str, is_default: bool,
                    search: dict, engine: str = "scalar", levels: int = 1) -> ThresholdRow:
     """One sweep task: the threshold at aspect ratio ``a`` (the search seeded by the previous
-    point's row ``prev``), then the self-consistency check (1.02 x jumps, 0.98 x does not).
-    ``engine`` and ``levels`` (k-section) change the cost, not the bracket, and are not
+    point's row ``prev``), then the self-consistency check: 1.02 x jumps and 0.98 x does not, at a
+    ten times tighter tolerance (:func:`check_definition`). ``engine`` and ``levels`` (k-section) change the cost, not the bracket, and are not
     part of the key. Failures become a row with status "failed" and the reason.
 
     Examples
@@ -110,18 +132,19 @@ def threshold_task(prev: ThresholdRow | None, defn_fields: dict, a: float, group
         return ThresholdRow(**base, threshold=None, bracket_lo=None, bracket_hi=None, n_sims=0, status=Status.FAILED.value,
                             transitions="[]", stuck_near=None, check_above_jumped=None, check_below_jumped=None,
                             consistent=None, n_check_sims=0, wall_s=time.perf_counter() - t0,
-                            reason=f"{type(exc).__name__}: {exc}")
-    above = below = consistent = None
+                            reason=f"{type(exc).__name__}: {exc}", check_rtol=None)
+    above = below = consistent = check_rtol = None
     n_check = 0
     if th.value is not None and th.status in (SearchStatus.CONVERGED, SearchStatus.NON_MONOTONE):  # not for bracket_only
-        above, below = (o.jumped for o in defn.outcomes(a, [1.02 * th.value, 0.98 * th.value], engine=engine))
-        n_check = 2
+        check = check_definition(defn)
+        above, below = (o.jumped for o in check.outcomes(a, [1.02 * th.value, 0.98 * th.value], engine=engine))
+        n_check, check_rtol = 2, check.rtol
         consistent = bool(above) and below is False
     return ThresholdRow(**base, threshold=th.value, bracket_lo=th.bracket[0], bracket_hi=th.bracket[1], n_sims=th.n_sims,
                         status=th.status.value, transitions=json.dumps([list(t) for t in th.transitions]),
                         stuck_near=th.stuck_near, check_above_jumped=above, check_below_jumped=below,
                         consistent=consistent, n_check_sims=n_check, wall_s=time.perf_counter() - t0,
-                        reason=th.reason or "")
+                        reason=th.reason or "", check_rtol=check_rtol)
 
 
 def threshold_chain(defn, a_values, search: dict, *, group: str = "main", is_default: bool = False,

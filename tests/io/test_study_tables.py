@@ -23,11 +23,18 @@ def _cells(text: str) -> list[list[str]]:
     return list(csv.reader(io.StringIO(text, newline="")))
 
 
+#: columns a later change gave a new meaning, by table: the main study's self-consistency check runs
+#: at a ten times tighter tolerance since it was found that near a = 1 the literal recipe's
+#: thresholds are set by the integration error (docs/results/maps.md)
+RECHECKED = {"threshold_vs_aspect": ("check_above_jumped", "check_below_jumped", "consistent")}
+
+
 @pytest.mark.parametrize("name", CONVERTED)
 def test_committed_csvs_changed_format_only(name):
     """Every cell of the committed study tables is what it was before the format change, except
     the spellings of "none": eps's "exact" (exact Coulomb has no regularisation width) and a
-    missing number's "nan" became empty cells."""
+    missing number's "nan" became empty cells. Columns added later come after the old ones; a
+    column given a new meaning (RECHECKED) may change, and only where its check now fails."""
     try:
         old = subprocess.run(["git", "-C", str(ROOT), "show", f"{BEFORE}:figures/{name}.csv"], capture_output=True,
                              text=True, timeout=30, check=True).stdout
@@ -37,20 +44,23 @@ def test_committed_csvs_changed_format_only(name):
         pytest.skip("no git history of the committed tables here")
     new = (ROOT / "figures" / f"{name}.csv").read_text()
     a, b = _cells(old), _cells(new)
-    assert a[0] == b[0] and len(a) == len(b)
+    assert b[0][:len(a[0])] == a[0] and len(a) == len(b)
     j = a[0].index("eps") if "eps" in a[0] else None
     # a search's wall time is a measurement of the run that wrote the table, not a result (the main
     # study's table was rewritten by a faster run with every other cell the same)
     timed = a[0].index("wall_s") if "wall_s" in a[0] else None
+    rechecked = {a[0].index(c) for c in RECHECKED.get(name, ())}
     changed = 0
     for ra, rb in zip(a[1:], b[1:]):
-        assert len(ra) == len(rb)
+        assert len(rb) == len(b[0])
         for k, (x, y) in enumerate(zip(ra, rb)):
             if k == timed:
                 continue
             if (k == j and x == "exact") or x == "nan":
                 assert y == ""
                 changed += 1
+            elif k in rechecked and x != y:
+                assert rb[a[0].index("consistent")] == "False"
             else:
                 assert x == y
     assert changed > 0

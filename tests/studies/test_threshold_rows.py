@@ -1,0 +1,32 @@
+"""The main study's threshold rows (phasekit/studies/threshold_rows.py): the self-consistency check
+runs at a ten times tighter tolerance, so that a threshold set by the integration error fails it."""
+
+from dataclasses import asdict
+
+import phasekit as pk
+import phasekit.studies as ps
+
+SEARCH = dict(hi=120.0, tol=0.01)
+
+
+def test_a_threshold_set_by_the_integration_error_fails_its_check():
+    # the paper's literal recipe near a = 1 (eps = 1e-3, a = 1.05): at rtol 1e-9 the search finds a
+    # transition, but 1.02 x that value does not jump at rtol 1e-10 (measured: the transition moves
+    # from 46.8 to 52.2, and at rtol 1e-11 no value up to 120 jumps)
+    defn = pk.Definition("literal-eps1e-3", "literal", eps=1e-3)
+    row = ps.threshold_task(None, asdict(defn), 1.05, "main", False, SEARCH)
+    assert row.status == "converged" and 40.0 < row.threshold < 50.0
+    assert row.check_rtol == 1e-10 and row.consistent is False
+    # the same two runs, directly: the outcome above the threshold changes with the tolerance alone
+    above = 1.02 * row.threshold
+    assert defn.outcome(pk.Spheroid(1.05), above).jumped
+    assert not ps.check_definition(defn).outcome(pk.Spheroid(1.05), above).jumped
+
+
+def test_a_threshold_set_by_the_body_passes_its_check():
+    defn = pk.Definition("sliding", "sliding")
+    row = ps.threshold_task(None, asdict(defn), 1.5, "main", True, SEARCH)
+    assert row.check_rtol == 1e-10 and row.consistent is True
+    assert row.check_above_jumped is True and row.check_below_jumped is False
+    # the published default threshold at a = 1.5 (figures/threshold_vs_aspect.csv: 9.7477 to 1e-3)
+    assert abs(row.threshold / 9.7477 - 1) < 0.011
