@@ -53,6 +53,15 @@ def _untouched(frame) -> bool:
     return str(frame.f_globals.get("__name__", "")).startswith(_UNTOUCHED)
 
 
+def _resend(stop, state: dict) -> None:
+    """A simulated Ctrl-C every RETRY_S until the program has handled one (``state["handled"]``) or
+    ``stop`` is set (:func:`interrupt_guard`)."""
+    while not stop.wait(RETRY_S):
+        if state["handled"]:
+            return
+        _thread.interrupt_main()
+
+
 @contextlib.contextmanager
 def _swallowed_interrupts_unreported():
     """Drop sys.unraisablehook's reports of a KeyboardInterrupt (raised where Python cannot raise:
@@ -114,12 +123,6 @@ def interrupt_guard(late_s: float = 0.5, *, mute: bool = True):
             f = f.f_back
         sys.settrace(again)
 
-    def watchdog() -> None:  # a simulated Ctrl-C every RETRY_S until the program has handled one
-        while not stop.wait(RETRY_S):
-            if state["handled"]:
-                return
-            _thread.interrupt_main()
-
     def interrupted(signum, frame):
         state["seen"] = True
         if state["at"] is None:
@@ -130,7 +133,8 @@ def interrupt_guard(late_s: float = 0.5, *, mute: bool = True):
                 logging.getLogger(name).setLevel(logging.CRITICAL + 1)
             if mute:
                 sys.stderr = _Muted()
-            threading.Thread(target=watchdog, name="phasekit-interrupt", daemon=True).start()
+            state["watchdog"] = threading.Thread(target=_resend, args=(stop, state), name="phasekit-interrupt", daemon=True)
+            state["watchdog"].start()
         if state["handled"]:
             return
         arm(frame)
@@ -144,6 +148,8 @@ def interrupt_guard(late_s: float = 0.5, *, mute: bool = True):
             yield state
     finally:
         stop.set()
+        if state.get("watchdog") is not None:  # its last simulated Ctrl-C meets `interrupted`, which lets
+            state["watchdog"].join()  # it pass once handled, not the default handler (exit by SIGINT)
         if state["at"] is not None:
             state["at"] = None
             sys.settrace(previous_trace)

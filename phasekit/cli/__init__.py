@@ -110,9 +110,8 @@ def _main(argv, guard: dict) -> int:
     except PhasekitError as exc:
         say()
         return _error(str(exc), None, as_json, code=1, names=names)
-    except KeyboardInterrupt:
+    except KeyboardInterrupt:  # one line: the warnings of an abandoned run (a file an interrupted import left open) go
         guard["handled"] = True
-        say()
         return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
     except Exception as exc:  # a bug: one line, not a traceback (PHASEKIT_DEBUG=1 shows it)
         if guard.get("seen"):  # Ctrl-C that compiled code turned into an error of its own

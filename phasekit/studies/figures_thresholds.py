@@ -37,7 +37,8 @@ def plot_threshold_curves(rows, definitions, *, default: str, styles: dict, hi: 
     group "main"; ``styles``: the plot keywords per definition name; ``default``: the name of
     the default definition). A definition that does not jump up to ``hi`` is an arrow at ``hi``;
     ``brackets`` maps an aspect ratio to the paper's (no jump, jump) pair of single runs. A point
-    whose self-consistency check failed (:func:`phasekit.studies.threshold_task`) is ringed.
+    whose self-consistency check failed (:func:`phasekit.studies.threshold_task`) is ringed; one
+    searched again in the vector chart is boxed, the paper's chart's threshold there a cross.
 
     Examples
     --------
@@ -67,6 +68,12 @@ def plot_threshold_curves(rows, definitions, *, default: str, styles: dict, hi: 
             if failed:  # set by the integration error, not the body (threshold_task's check)
                 ax.plot(*zip(*failed), ls="none", marker="o", ms=11, mfc="none", mec="k", mew=1.2,
                         label="check failed: 0.98x or 1.02x of it changes outcome at rtol / 10")
+            again = [(a, r.threshold, r.euler_threshold) for a, r in pts if getattr(r, "euler_threshold", None) is not None]
+            if again:  # the paper's chart failed the check there; the vector chart's search is the point
+                ax.plot([q[0] for q in again], [q[1] for q in again], ls="none", marker="s", ms=10, mfc="none", mec="0.3",
+                        label="searched again in the vector chart: the paper's variables failed the check")
+                ax.plot([q[0] for q in again], [q[2] for q in again], ls="none", marker="x", ms=7, color="0.3",
+                        label="the threshold in the paper's variables there")
             if none:
                 ax.plot(none, [hi] * len(none), ls="none", marker=r"$\uparrow$", ms=10, color=styles[defn.name]["color"],
                         label=(label + f": no jump up to {hi:g}") if not ok else None)

@@ -70,6 +70,13 @@ class ThresholdRow:
     wall_s: float
     reason: str
     check_rtol: float | None  # the tolerance the check ran at (:func:`check_definition`)
+    chart: str | None  # the chart of the search reported: None, the start's choice (see threshold_task)
+    euler_threshold: float | None  # the paper's chart's threshold, where it failed its check
+
+
+#: the chart a threshold that fails its check in the paper's variables is searched again in:
+#: regular at theta = 0, where a prolate body rising near a = 1 needs it (docs/results/maps.md)
+RECHART = "vector"
 
 
 #: the self-consistency check runs at the definition's tolerance divided by this: neighbours 2%
@@ -108,16 +115,20 @@ def threshold_task(prev: ThresholdRow | None, defn_fields: dict, a: float, group
                    search: dict, engine: str = "scalar", levels: int = 1) -> ThresholdRow:
     """One sweep task: the threshold at aspect ratio ``a`` (the search seeded by the previous
     point's row ``prev``), then the self-consistency check: 1.02 x jumps and 0.98 x does not, at a
-    ten times tighter tolerance (:func:`check_definition`). ``engine`` and ``levels`` (k-section) change the cost, not the bracket, and are not
-    part of the key. Failures become a row with status "failed" and the reason.
+    ten times tighter tolerance (:func:`check_definition`). A threshold that fails it in the
+    start's chart (the paper's variables but within 1e-5 of a pole) is searched again, seeded by
+    it, in the vector chart (:data:`RECHART`), and that search, checked the same way, is the row's
+    (``chart``; the first result is kept as ``euler_threshold``). ``engine`` and ``levels`` (k-section) change the cost,
+    not the bracket, and are not part of the key. Failures become a row with status "failed" and
+    the reason.
 
     Examples
     --------
     >>> import phasekit as pk, phasekit.studies as ps
     >>> from dataclasses import asdict
     >>> row = ps.threshold_task(None, asdict(pk.Definition('sliding', 'sliding')), 1.5, 'main', True, dict(hi=120.0, tol=0.05))
-    >>> row.branch, row.status, round(row.threshold, 1)
-    ('prolate', 'converged', 9.7)
+    >>> row.branch, row.status, round(row.threshold, 1), row.chart
+    ('prolate', 'converged', 9.7, None)
     """
     defn = Definition(**defn_fields)
     t0 = time.perf_counter()
@@ -127,24 +138,39 @@ def threshold_task(prev: ThresholdRow | None, defn_fields: dict, a: float, group
                 eps=defn.eps or None)
     guess = prev.threshold if prev is not None else None
     try:
-        th = find_threshold(defn, a, guess=guess, engine=engine, levels=levels, **search)
+        th, check = _checked_search(defn, a, guess, engine, levels, search)
     except Exception as exc:  # a sweep tabulates failures instead of stopping
         return ThresholdRow(**base, threshold=None, bracket_lo=None, bracket_hi=None, n_sims=0, status=Status.FAILED.value,
                             transitions="[]", stuck_near=None, check_above_jumped=None, check_below_jumped=None,
                             consistent=None, n_check_sims=0, wall_s=time.perf_counter() - t0,
-                            reason=f"{type(exc).__name__}: {exc}", check_rtol=None)
-    above = below = consistent = check_rtol = None
-    n_check = 0
+                            reason=f"{type(exc).__name__}: {exc}", check_rtol=None, chart=defn.chart, euler_threshold=None)
+    first, spent, note = None, (0, 0), ""
+    if check["consistent"] is False and defn.chart != RECHART:
+        try:
+            th2, check2 = _checked_search(replace(defn, chart=RECHART), a, th.value, engine, levels, search)
+        except Exception as exc:  # the first search stands, with its failed check
+            th2, note = None, f"; the {RECHART} chart's search failed: {type(exc).__name__}: {exc}"
+        if th2 is not None and th2.value is not None:
+            first, spent = th.value, (th.n_sims, check["n_check_sims"])
+            th, check = th2, check2
+    return ThresholdRow(**base, threshold=th.value, bracket_lo=th.bracket[0], bracket_hi=th.bracket[1],
+                        n_sims=th.n_sims + spent[0], status=th.status.value,
+                        transitions=json.dumps([list(t) for t in th.transitions]), stuck_near=th.stuck_near,
+                        **{**check, "n_check_sims": check["n_check_sims"] + spent[1]}, wall_s=time.perf_counter() - t0,
+                        reason=(th.reason or "") + note, chart=defn.chart if first is None else RECHART, euler_threshold=first)
+
+
+def _checked_search(defn: Definition, a: float, guess, engine: str, levels: int, search: dict) -> tuple:
+    """find_threshold, then the self-consistency check at :func:`check_definition`'s tolerance:
+    (the threshold result, the check's row fields)."""
+    th = find_threshold(defn, a, guess=guess, engine=engine, levels=levels, **search)
+    check = dict(check_above_jumped=None, check_below_jumped=None, consistent=None, n_check_sims=0, check_rtol=None)
     if th.value is not None and th.status in (SearchStatus.CONVERGED, SearchStatus.NON_MONOTONE):  # not for bracket_only
-        check = check_definition(defn)
-        above, below = (o.jumped for o in check.outcomes(a, [1.02 * th.value, 0.98 * th.value], engine=engine))
-        n_check, check_rtol = 2, check.rtol
-        consistent = bool(above) and below is False
-    return ThresholdRow(**base, threshold=th.value, bracket_lo=th.bracket[0], bracket_hi=th.bracket[1], n_sims=th.n_sims,
-                        status=th.status.value, transitions=json.dumps([list(t) for t in th.transitions]),
-                        stuck_near=th.stuck_near, check_above_jumped=above, check_below_jumped=below,
-                        consistent=consistent, n_check_sims=n_check, wall_s=time.perf_counter() - t0,
-                        reason=th.reason or "", check_rtol=check_rtol)
+        tight = check_definition(defn)
+        above, below = (o.jumped for o in tight.outcomes(a, [1.02 * th.value, 0.98 * th.value], engine=engine))
+        check.update(check_above_jumped=above, check_below_jumped=below, consistent=bool(above) and below is False,
+                     n_check_sims=2, check_rtol=tight.rtol)
+    return th, check
 
 
 def threshold_chain(defn, a_values, search: dict, *, group: str = "main", is_default: bool = False,

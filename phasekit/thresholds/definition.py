@@ -50,7 +50,7 @@ from ..core.model import Model
 from ..core.options import RTOL_RANGE
 from ..core.settle import Settle, check_settle
 from ..core.simulate import simulate
-from ..core.starts import gyroscopic_start, to_chart
+from ..core.starts import gyroscopic_start, to_chart, to_paper
 from ..friction.dissipation import check_dissipation
 from ..friction.laws import Coulomb, RegularisedCoulomb, Viscous
 from ..steady.manifolds import unstable_manifold_start
@@ -103,6 +103,11 @@ class Definition:
         :class:`phasekit.SpinFriction`, :class:`phasekit.AirDrag`), default none: the runs
         simulate ``friction().with_dissipation(*dissipation)`` (seeds as without them); a run
         in which the body comes to rest counts as no jump.
+    chart : {None, "vector"}, optional
+        The coordinates the runs are integrated in (:mod:`phasekit.core.charts`): None, the
+        start's choice (:func:`phasekit.core.choose_chart`: the paper's variables, the vector chart
+        within 1e-5 of a pole); "vector", regular at theta = 0, which a prolate body rising to the
+        vertical needs near a = 1 (docs/results/maps.md). The seeds are the same.
 
     Raises
     ------
@@ -132,6 +137,7 @@ class Definition:
     #: a body that settles tilted (an egg) would otherwise stick and slip until t_max
     settle: Settle | None = DEFAULT_SETTLE
     dissipation: tuple = ()
+    chart: str | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "settle", check_settle(self.settle))
@@ -145,6 +151,8 @@ class Definition:
         check_range("rise_margin", self.rise_margin, 0.0, math.pi / 2)
         check_positive("t_max", self.t_max)
         check_int("max_steps", self.max_steps, minimum=1)
+        if self.chart is not None:
+            check_choice("chart", self.chart, ("vector",))
 
     @property
     def law_label(self) -> str:
@@ -157,13 +165,13 @@ class Definition:
     def label(self) -> str:
         what = {"viscous": f"eigenvector delta={self.amplitude:g}", "sliding": f"sliding branch d={self.amplitude:g}",
                 "literal": f"viscous eigenvector delta={self.amplitude:g}"}[self.seed]
-        return f"{self.law_label}; seed: {what}"
+        return f"{self.law_label}; seed: {what}" + (f"; {self.chart} chart" if self.chart else "")
 
     def key(self) -> str:
         """Identifies results that can be reused: every field that changes the answer. The
         default settle rule is left out: it ends only runs that would not jump (checked on the
-        published studies), so results computed before it existed keep their keys; so is an
-        empty ``dissipation``."""
+        published studies), so results computed before it existed keep their keys; so are an
+        empty ``dissipation`` and the default chart."""
         d = asdict(self)
         d.pop("name")
         if self.settle == DEFAULT_SETTLE:
@@ -171,6 +179,8 @@ class Definition:
         d["dissipation"] = [x.describe() for x in self.dissipation]
         if not self.dissipation:
             d.pop("dissipation")
+        if self.chart is None:
+            d.pop("chart")
         return ";".join(f"{k}={v}" for k, v in sorted(d.items()))
 
     def friction(self):
@@ -237,11 +247,14 @@ class Definition:
                 y0 = gyroscopic_start(body, math.pi / 2 - self.amplitude, omega0=value)
             else:
                 y0 = gyroscopic_start(body, self.amplitude, n0=value)
-            return Model(body, law, "euler"), to_chart("euler", y0)
+            chart = self.chart or "euler"
+            return Model(body, law, chart), to_chart(chart, y0)
         kw = {"omega0": value} if prolate else {"n0": value}
         state = "horizontal" if prolate else "vertical"
         model, x0, _ = unstable_manifold_start(body, law, state=state, delta=self.amplitude, seed_law="viscous", **kw)
-        return model, x0
+        if self.chart is None or model.chart.name == self.chart:
+            return model, x0
+        return model.with_chart(self.chart), to_chart(self.chart, to_paper(model.chart, x0))
 
     def rise_event(self, body) -> Event:
         """The stop that ends a rise: theta within rise_margin of 0 (prolate) or pi/2 (oblate).

@@ -48,3 +48,4 @@ SCRIPT = textwrap.dedent("""
 def test_an_interrupt_python_cannot_raise_is_raised_again_and_not_reported(where):
     proc = subprocess.run([sys.executable, "-c", SCRIPT, where], capture_output=True, text=True, timeout=60)
     assert proc.stderr.splitlines() == ["interrupted"], proc.stderr
+

@@ -23,18 +23,14 @@ def _cells(text: str) -> list[list[str]]:
     return list(csv.reader(io.StringIO(text, newline="")))
 
 
-#: columns a later change gave a new meaning, by table: the main study's self-consistency check runs
-#: at a ten times tighter tolerance since it was found that near a = 1 the literal recipe's
-#: thresholds are set by the integration error (docs/results/maps.md)
-RECHECKED = {"threshold_vs_aspect": ("check_above_jumped", "check_below_jumped", "consistent")}
-
-
 @pytest.mark.parametrize("name", CONVERTED)
 def test_committed_csvs_changed_format_only(name):
     """Every cell of the committed study tables is what it was before the format change, except
     the spellings of "none": eps's "exact" (exact Coulomb has no regularisation width) and a
-    missing number's "nan" became empty cells. Columns added later come after the old ones; a
-    column given a new meaning (RECHECKED) may change, and only where its check now fails."""
+    missing number's "nan" became empty cells. Columns added later come after the old ones. A main
+    study's threshold searched again in the vector chart (its check failed in the paper's
+    variables, docs/results/maps.md) keeps the published value as its ``euler_threshold``, to
+    within the check's 2%."""
     try:
         old = subprocess.run(["git", "-C", str(ROOT), "show", f"{BEFORE}:figures/{name}.csv"], capture_output=True,
                              text=True, timeout=30, check=True).stdout
@@ -49,18 +45,21 @@ def test_committed_csvs_changed_format_only(name):
     # a search's wall time is a measurement of the run that wrote the table, not a result (the main
     # study's table was rewritten by a faster run with every other cell the same)
     timed = a[0].index("wall_s") if "wall_s" in a[0] else None
-    rechecked = {a[0].index(c) for c in RECHECKED.get(name, ())}
     changed = 0
     for ra, rb in zip(a[1:], b[1:]):
         assert len(rb) == len(b[0])
+        if "euler_threshold" in b[0] and rb[b[0].index("chart")] == "vector":
+            # searched first as before (seeded by its neighbour's row, which may itself be the
+            # vector chart's: to within the check's 2%), that failed its check, the second passed
+            assert abs(float(rb[b[0].index("euler_threshold")]) / float(ra[a[0].index("threshold")]) - 1) < 0.02
+            assert rb[b[0].index("consistent")] == "True"
+            continue
         for k, (x, y) in enumerate(zip(ra, rb)):
             if k == timed:
                 continue
             if (k == j and x == "exact") or x == "nan":
                 assert y == ""
                 changed += 1
-            elif k in rechecked and x != y:
-                assert rb[a[0].index("consistent")] == "False"
             else:
                 assert x == y
     assert changed > 0
