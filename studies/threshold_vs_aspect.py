@@ -10,8 +10,10 @@ integrated with Coulomb friction regularised with eps = 1e-3, 1e-4, or exact.
 
 Each threshold is bracketed by a coarse scan (seeded by the previous aspect ratio) and
 bisected to 1e-3 relative, then checked: 1.02 x threshold must jump, 0.98 x must not, at a
-ten times tighter tolerance (near a = 1 the literal recipe's thresholds fail it: they are set by
-the integration error).
+ten times tighter tolerance. One that fails the check in the paper's variables (the Euler chart;
+near a = 1 the literal recipe's do: they are set by its integration error) is searched again in
+the vector chart, regular at theta = 0, and that search is the point (columns chart and
+euler_threshold).
 Sensitivity at a = 1.5 and 2/3: d or delta in {0.005, 0.01, 0.02}, eps in {1e-4, 1e-6,
 1e-8, exact}, rtol in {1e-8, 1e-10}.
 

@@ -81,8 +81,9 @@ RECHART = "vector"
 
 #: the self-consistency check runs at the definition's tolerance divided by this: neighbours 2%
 #: above and below that keep their outcomes at a ten times tighter tolerance show a threshold set
-#: by the body, not by the integration error. Near a = 1 the literal recipe's are not: there the
-#: outcome at one Omega0 changes with every tolerance from 1e-8 to 1e-13 (docs/results/maps.md).
+#: by the body, not by the integration error. Near a = 1 the literal recipe's are not, in the
+#: paper's variables: there the outcome at one Omega0 changes with the tolerance from 1e-8 to 1e-13
+#: (docs/results/maps.md).
 CHECK_TIGHTER = 10
 
 
@@ -96,7 +97,8 @@ def check_definition(defn: Definition) -> Definition:
     >>> ps.check_definition(pk.Definition('sliding', 'sliding')).rtol
     1e-10
     """
-    return replace(defn, rtol=max(float(f"{defn.rtol / CHECK_TIGHTER:.12g}"), RTOL_RANGE[0]))  # 1e-11, not 1.0000000000000001e-11
+    tight = float(f"{defn.rtol / CHECK_TIGHTER:.12g}")  # 1e-11, not 1.0000000000000001e-11
+    return replace(defn, rtol=max(tight, RTOL_RANGE[0]))
 
 
 def threshold_key(defn, a: float, search: dict) -> str:
@@ -118,9 +120,9 @@ def threshold_task(prev: ThresholdRow | None, defn_fields: dict, a: float, group
     ten times tighter tolerance (:func:`check_definition`). A threshold that fails it in the
     start's chart (the paper's variables but within 1e-5 of a pole) is searched again, seeded by
     it, in the vector chart (:data:`RECHART`), and that search, checked the same way, is the row's
-    (``chart``; the first result is kept as ``euler_threshold``). ``engine`` and ``levels`` (k-section) change the cost,
-    not the bracket, and are not part of the key. Failures become a row with status "failed" and
-    the reason.
+    (``chart``; the first result is kept as ``euler_threshold``). ``engine`` and ``levels``
+    (k-section) change the cost, not the bracket, and are not part of the key. Failures become a
+    row with status "failed" and the reason.
 
     Examples
     --------
