@@ -103,11 +103,12 @@ class Definition:
         :class:`phasekit.SpinFriction`, :class:`phasekit.AirDrag`), default none: the runs
         simulate ``friction().with_dissipation(*dissipation)`` (seeds as without them); a run
         in which the body comes to rest counts as no jump.
-    chart : {None, "vector"}, optional
+    chart : {None, "euler", "vector"}, optional
         The coordinates the runs are integrated in (:mod:`phasekit.core.charts`): None, the
         start's choice (:func:`phasekit.core.choose_chart`: the paper's variables, the vector chart
-        within 1e-5 of a pole); "vector", regular at theta = 0, which a prolate body rising to the
-        vertical needs near a = 1 (docs/results/maps.md). The seeds are the same.
+        within 1e-5 of a pole); "euler", the paper's variables always; "vector", regular at
+        theta = 0, which a prolate body rising to the vertical needs near a = 1
+        (docs/results/maps.md). The seeds are the same.
 
     Raises
     ------
@@ -152,7 +153,7 @@ class Definition:
         check_positive("t_max", self.t_max)
         check_int("max_steps", self.max_steps, minimum=1)
         if self.chart is not None:
-            check_choice("chart", self.chart, ("vector",))
+            check_choice("chart", self.chart, ("euler", "vector"))
 
     @property
     def law_label(self) -> str:

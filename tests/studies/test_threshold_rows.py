@@ -49,3 +49,7 @@ def test_the_vector_chart_is_part_of_a_definitions_key_and_label_and_its_seed_is
     assert m1.chart.name == "euler" and m2.chart.name == "vector"
     # the same state: its paper's variables agree to rounding
     assert abs(pk.core.to_paper(m2.chart, x2) - x1).max() < 1e-12
+    # asked for by name, the paper's variables are a chart of their own key, with the same start
+    named = replace(euler, chart="euler")
+    assert "chart=euler" in named.key() and named.start(1.5, 10.0)[0].chart.name == "euler"
+    assert abs(named.start(1.5, 10.0)[1] - x1).max() == 0.0
