@@ -89,11 +89,12 @@ def ms(t: Timing) -> str:
 
 def bare_heyoka(model, y0, rtol):
     """The compiled Taylor integrator of the sliding mode, driven directly."""
-    ta, _ = pk.baseline.taylor_integrator(model, rtol=rtol, track_minima=False)
+    ta, pars = pk.baseline.taylor_integrator(model, rtol=rtol, track_minima=False, x0=y0)
+    start = np.array(ta.state)  # y0 in the integrator's scaled variables
 
     def run():
         ta.time = 0.0
-        ta.state[:] = y0
+        ta.state[:] = start
         ta.reset_cooldowns()
         return ta.propagate_until(200.0)
 

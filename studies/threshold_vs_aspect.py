@@ -9,11 +9,10 @@ the sliding (gyroscopic-balance) branch at d = 0.01 from the fixed point, the DE
 integrated with Coulomb friction regularised with eps = 1e-3, 1e-4, or exact.
 
 Each threshold is bracketed by a coarse scan (seeded by the previous aspect ratio) and
-bisected to 1e-3 relative, then checked: 1.02 x threshold must jump, 0.98 x must not, at a
-ten times tighter tolerance. One that fails the check in the paper's variables (the Euler chart;
-near a = 1 the literal recipe's do: they are set by its integration error) is searched again in
-the vector chart, regular at theta = 0, and that search is the point (columns chart and
-euler_threshold).
+bisected to 1e-3 relative, then checked by the library (pk.find_threshold's verification): the
+bracket's ends must keep their outcomes at a ten times tighter tolerance; one whose check fails is
+searched again at that tolerance, and that search is the point (columns consistent, check_rtol,
+first_threshold, check_worst).
 Sensitivity at a = 1.5 and 2/3: d or delta in {0.005, 0.01, 0.02}, eps in {1e-4, 1e-6,
 1e-8, exact}, rtol in {1e-8, 1e-10}.
 
@@ -66,7 +65,7 @@ def warm_up() -> None:
     checks' at their tighter tolerance too)."""
     definitions = list(DEFAULT_DEFINITIONS) + ps.sensitivity_definitions(False)
     ps.prepare_definitions(definitions, (1.5, 2 / 3))
-    ps.prepare_definitions([ps.check_definition(d) for d in definitions], (1.5,), engine="scalar")
+    ps.prepare_definitions([d.tighter() for d in definitions], (1.5,), engine="scalar")
 
 
 def report(rows: list, wall: float, n_new: int, mode: str) -> dict:

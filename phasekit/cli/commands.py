@@ -92,7 +92,8 @@ def _simulate_args(args, runner, scale=None):
     body = _body(args)
     start = _start_of(args, body)
     friction, mu, eps = _law_args(args)
-    opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall)
+    opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall,
+                creep=not args.no_creep)
     solver_options(**opts)
     _check_reach(args, scale)
     restitution = 0.0 if args.restitution is None else check_range("restitution", args.restitution, 0.0, 1.0,
@@ -106,9 +107,11 @@ def _simulate_args(args, runner, scale=None):
     if args.stop_at == "rest" and not any(dissipation.values()):
         warnings.warn("--stop-at rest runs as --stop-at none without a dissipation law: the body never comes to rest "
                       "(give --rolling-resistance, --spin-friction or an --air-drag option)")
+    if args.no_creep and eps is None:
+        warnings.warn("--no-creep has no effect without --slip-eps (only a regularised law creeps)")
     return runner(body=body, friction=friction, mu=mu, slip_eps=eps, start=start, t_end=args.t_end,
                   stop_at=args.stop_at, restitution=restitution, chart=args.chart, options=opts, pose0=_pose_of(args),
-                  dissipation=dissipation)
+                  dissipation=dissipation, verify=args.verify)
 
 
 def _check_reach(args, scale) -> None:

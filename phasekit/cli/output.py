@@ -171,6 +171,11 @@ def _print_human(out: dict, events: bool) -> None:
         if si.get("state_end"):
             st = si["state_end"]
             print(f"  at the end: Omega={_fmt(st['Omega'], '.5g')} {u['rate']}, n={_fmt(st['n'], '.5g')} {u['rate']}")
+    if out.get("approximations"):
+        print("approximations: " + "; ".join(a["name"] + ("" if a["bound"] is None else f" ({_fmt(a['bound'], '.2g')})")
+                                            for a in out["approximations"]))
+    if out.get("verification"):
+        print(f"verified: {out['verification']['detail']}")
     print(f"{out['n_events']} events, {out['n_steps']} steps, {out['chart']} chart, {out['backend']}"
           + ("" if events else " (list the events with --events)"))
     print(f"computed in {_wall_clock(out['wall_s'])} of wall-clock time")

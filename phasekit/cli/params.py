@@ -102,17 +102,19 @@ def _check_range_of(body, theta: float, name: str) -> None:
 
 
 def run_start(*, body: Body, friction="coulomb", mu, slip_eps=None, start: dict, t_end=200.0, stop_at="jump",
-              restitution=0.0, chart="auto", options: dict | None = None, pose0=None, dissipation=None):
+              restitution=0.0, chart="auto", options: dict | None = None, pose0=None, dissipation=None,
+              verify: bool = False):
     """Run one simulation described by plain parameters: (Trajectory, seed info or None).
     The dense output is kept: the pose (psi, phi, X, Y, X_P, Y_P) at the events and the end
     comes from it (and the energy budget), and keeping it changes no number of the run.
-    ``dissipation``: the coefficients of the dissipation laws (:func:`_law_of`)."""
+    ``dissipation``: the coefficients of the dissipation laws (:func:`_law_of`); ``verify``: repeat
+    the run at rtol / 10 in the other chart (:meth:`phasekit.core.Trajectory.verify`)."""
     law = _law_of(friction, mu, slip_eps, dissipation)
     check_choice("chart", chart, ("auto", "euler", "vector"))
     stop, events = parse_stop(stop_at)
     model, x0, seed = _start(body, law, start, chart)
     res = simulate(model, x0, t_end, stop_at=stop, restitution=restitution, events=events, dense=True, pose0=pose0,
-                   **(options or {}))
+                   verify=verify, **(options or {}))
     return res, seed
 
 

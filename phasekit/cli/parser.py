@@ -308,6 +308,12 @@ def _add_solver(p):
     g.add_argument("--max-wall", type=_real, default=600.0,
                    help="wall-time budget in seconds; a --t-end it cannot reach is refused at once (default: "
                         "%(default)s)")
+    g.add_argument("--verify", action="store_true",
+                   help="repeat the run at rtol/10 in the other chart and report how far it is from converged "
+                        "(\"converged to ~X\", or \"not converged\" with what differs); costs that run")
+    g.add_argument("--no-creep", action="store_true",
+                   help="a stiff regularised law (mu/eps > 500) integrates its own field at zero slip instead of "
+                        "creeping on its slow manifold (docs/physics.md)")
 
 
 def _add_wall(p) -> None:

@@ -20,11 +20,12 @@ from .model import Model
 from .observables import OBSERVABLES
 from .options import SolverOptions
 from .pose import Pose
+from .records import EventRecord, Flight, Segment
 from .sections import poincare
 from .settle import Settle
 from .simulate import simulate
 from .starts import gyroscopic_start, to_chart, to_paper, vertical_spin_start
-from .trajectory import EventRecord, Flight, Segment, Trajectory
+from .trajectory import Trajectory
 from .units import Scale, egg_of_size, tippe_top_of_size
 
 __all__ = [

@@ -46,8 +46,11 @@ import numpy as np
 from .._runtime.errors import ParameterError
 from .._runtime.validate import check_int
 from .._runtime.watch import deadline as watch_deadline
+from .audit import audited_options, audited_start
 from .charts import POLE_GUARD
 from .engines import End, TaylorBatchEngine
+from .engines.scaling import initial_scales, next_rescale, next_scales
+from .engines.taylor_build import scales_at, taylor_pars
 from .model import Model
 from .options import SolverOptions
 from .simulate import RunState, simulate, solver_options
@@ -119,6 +122,9 @@ def _prepare(i, model, x0, t_end, events, opts) -> "_Job | str":
     """The job of one start, or the reason it goes to the scalar path."""
     if not isinstance(model, Model):
         raise ParameterError("models", "must be phasekit Models", model)
+    if not opts.creep and model.friction.creeps:  # the law's own field at zero slip, as simulate does
+        model = Model(model.body, model.friction.without_creep(), model.chart)
+    model, x0 = audited_start(model, x0)  # PHASEKIT_AUDIT, as simulate (core/audit.py)
     if x0.size != model.n_states:
         raise ParameterError("starts", f"must have {model.n_states} columns in the {model.chart.name} chart", x0.size)
     if opts.track_minima or opts.dense:
@@ -167,6 +173,20 @@ class _Lanes:
             self.ta, self.npar = self.engine.integrator(self.cflow, self.n_params)
         return self.ta
 
+    def state(self, k: int) -> np.ndarray:
+        """Lane ``k``'s state in the flow's variables (the integrator's are scaled, engines.scaling)."""
+        first = scales_at(self.cflow, self.n_params)
+        return self.ta.state[:, k] * self.ta.pars[first:first + self.cflow.n_states, k]
+
+    def rescale(self, k: int, job) -> None:
+        """Lane ``k`` reached a grid time of its scales (not its end): renew them, as the scalar engine does."""
+        first, n = scales_at(self.cflow, self.n_params), self.cflow.n_states
+        x = self.state(k)
+        scale = next_scales(x, self.ta.pars[first:first + n, k])
+        self.ta.pars[first:first + n, k] = scale
+        self.ta.state[:, k] = x / scale
+        self.limit[k] = min(job.t_end, next_rescale(float(self.ta.time[k])))
+
     def busy(self) -> bool:
         return bool(self.queue) or any(j is not None for j in self.slot)
 
@@ -186,10 +206,10 @@ class _Lanes:
         for k in range(self.lanes):
             if self.slot[k] is None and self.queue:
                 job = self.slot[k] = self.queue.popleft()
-                ta.state[:, k] = job.x
-                pars = np.concatenate([job.model.p, [e.level for e in self.guards]])
-                ta.pars[:, k] = pars[:self.npar]
-                hi[k], lo[k], self.limit[k] = job.t, 0.0, job.t_end
+                scale = initial_scales(job.x)
+                ta.state[:, k] = job.x / scale
+                ta.pars[:, k] = taylor_pars(job.model.p, [e.level for e in self.guards], scale)
+                hi[k], lo[k], self.limit[k] = job.t, 0.0, min(job.t_end, next_rescale(job.t))
                 fresh.append(k)
             elif self.slot[k] is None:
                 idle.append(k)
@@ -270,8 +290,11 @@ def simulate_batch(models, starts, t_end, *, events=(), lanes: int = LANES, opti
     wall0 = time.perf_counter()
     out: list[Trajectory | None] = [None] * m
     groups: dict = {}
+    lane_opts = audited_options(opts)  # the scalar path (simulate) applies the audit itself
     for i, (model, x0) in enumerate(zip(models, starts)):
-        job = _prepare(i, model, x0, float(t_ends[i]), events, opts)
+        job = _prepare(i, model, x0, float(t_ends[i]), events, lane_opts)
+        if not isinstance(job, str):
+            job.source = (model, x0)  # what a job handed back to simulate starts from (simulate audits it itself)
         if isinstance(job, str):
             stats.handed_back(job)
             out[i] = simulate(model, x0, float(t_ends[i]), events=events, options=opts, progress=False)
@@ -281,13 +304,15 @@ def simulate_batch(models, starts, t_end, *, events=(), lanes: int = LANES, opti
         else:
             groups.setdefault(model.compiled.signature, []).append(job)
     for jobs in groups.values():
-        _run_group(jobs, events, opts, lanes, out, stats)
+        _run_group(jobs, events, lane_opts, lanes, out, stats, opts)
     stats.wall_s += time.perf_counter() - wall0
     return out
 
 
-def _run_group(jobs, events, opts, lanes, out, stats) -> None:
-    """Run the jobs of one compiled model through one batch integrator per contact flow."""
+def _run_group(jobs, events, opts, lanes, out, stats, scalar_opts=None) -> None:
+    """Run the jobs of one compiled model through one batch integrator per contact flow (a job
+    handed back runs from its start through simulate with ``scalar_opts``, default ``opts``)."""
+    scalar_opts = opts if scalar_opts is None else scalar_opts
     first = jobs[0]
     modes = {f.mode: _Lanes(first.model, first.system, f.mode, opts, lanes) for f in _batched(first.model, first.system, opts)}
     deadline = {}
@@ -295,7 +320,7 @@ def _run_group(jobs, events, opts, lanes, out, stats) -> None:
     def finish(job, why=None):
         if why is not None:
             stats.handed_back(why)
-            out[job.index] = simulate(job.model, job.x0, job.t_end, events=events, options=opts, progress=False)
+            out[job.index] = simulate(*job.source, job.t_end, events=events, options=scalar_opts, progress=False)
         else:
             stats.batched += 1
             out[job.index] = job.result()
@@ -348,7 +373,10 @@ def _lane_step(lane_end, k, L, job, opts, late) -> str:
     (to route: next mode or ended), or a reason to hand it to the scalar path."""
     end, event, steps, what = lane_end
     job.seg_steps += steps
-    t, x = float(L.ta.time[k]), np.array(L.ta.state[:, k], copy=True)
+    t, x = float(L.ta.time[k]), L.state(k)
+    if end is End.TIME and t < job.t_end:  # a grid time of the scales
+        L.rescale(k, job)
+        end = None
     if end is None:
         if not np.all(np.isfinite(x)):
             return "non-finite state in a lane"

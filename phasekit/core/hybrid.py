@@ -191,7 +191,7 @@ class Event:
 
 @dataclass(frozen=True)
 class Record:
-    """One line of a trajectory's event log (see :class:`phasekit.core.trajectory.EventRecord`)."""
+    """One line of a trajectory's event log (see :class:`phasekit.core.records.EventRecord`)."""
 
     name: str
     mode_before: str

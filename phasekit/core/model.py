@@ -360,6 +360,8 @@ class Model:
         law = laws[d["law"]]()
         if d.get("dissipation"):
             law = law.with_dissipation(*(dissipation_from_dict(x) for x in d["dissipation"]))
+        if d.get("creep") is False:
+            law = law.without_creep()
         return cls(body, law, d.get("chart", d.get("formulation", "euler")))
 
     def __eq__(self, other) -> bool:

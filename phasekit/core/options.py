@@ -69,6 +69,10 @@ class SolverOptions:
         Keep the integrator's dense output (heyoka's Taylor polynomials) so that
         :meth:`Trajectory.sample` can evaluate any instant without re-integration. Costs
         ~2.5x the integration time of a bare run; sweeps turn it off.
+    creep : bool, default True
+        Let a stiff regularised law (mu/eps > 500) creep on its slow manifold while its slip is
+        below 10 eps (an asymptotic reduction, listed in ``Trajectory.approximations``;
+        docs/physics.md); False integrates the law's own field there (CVODES where mu/eps > 2000).
 
     Raises
     ------
@@ -77,7 +81,7 @@ class SolverOptions:
         ``max_wall`` not a finite number > 0, ``backend`` not a registered engine,
         ``max_steps``, ``max_switches`` or ``bounce_tail`` not an integer >= 1,
         ``bounce_stop`` outside (0, 1], ``settle`` not None, a bool, a Settle or its dict, or
-        ``track_minima`` or ``dense`` not a bool.
+        ``track_minima``, ``dense`` or ``creep`` not a bool.
 
     Examples
     --------
@@ -99,6 +103,7 @@ class SolverOptions:
     settle: Settle | None = None
     track_minima: bool = True
     dense: bool = True
+    creep: bool = True
 
     def __post_init__(self):
         lo, hi = RTOL_RANGE
@@ -116,6 +121,7 @@ class SolverOptions:
         object.__setattr__(self, "settle", check_settle(self.settle))
         object.__setattr__(self, "track_minima", check_bool("track_minima", self.track_minima))
         object.__setattr__(self, "dense", check_bool("dense", self.dense))
+        object.__setattr__(self, "creep", check_bool("creep", self.creep))
 
     @classmethod
     def names(cls) -> tuple[str, ...]:

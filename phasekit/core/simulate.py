@@ -17,18 +17,22 @@ import numpy as np
 from .._runtime.errors import ConvergenceError, ParameterError, Status
 from .._runtime.validate import check_bool, check_finite, check_range, check_times, check_vector
 from .._runtime.watch import WALL_REASON, deadline, progress_bar, show_progress
+from .audit import audited
 from .charts import FLIGHT, POLE_GUARD
 from .engines import Budget, End, Propagation, TaylorEngine, engine_for
 from .engines.dense import linear_span
+from .engines.scaling import initial_scales
+from .engines.taylor_build import taylor_pars
 from .hybrid import Event, Mode, Transition
 from .model import Model
 from .options import SolverOptions
 from .pose import Pose
+from .records import EventRecord, Segment
 from .resets import contact_state
 from .settle import settled
 from .starts import RATE_MAX
 from .system import declare, watched
-from .trajectory import EventRecord, Segment, Trajectory
+from .trajectory import Trajectory
 
 __all__ = ["simulate", "solver_options", "taylor_integrator", "RunState"]
 
@@ -69,7 +73,7 @@ def _solver_options(options: SolverOptions | None = None, **overrides) -> Solver
 
 def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = "jump", restitution: float = 0.0,
              events=(), t_eval=None, mode=None, options: SolverOptions | None = None, throw: bool = False,
-             pose0=None, progress: bool | None = None, **option_fields) -> Trajectory:
+             pose0=None, progress: bool | None = None, verify: bool = False, **option_fields) -> Trajectory:
     """Integrate the dynamics of ``model`` from ``x0`` until ``t_end``, a stop, or failure.
 
     Parameters
@@ -101,6 +105,9 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
         Start psi, phi, X, Y (default 0) of :meth:`Trajectory.pose`, after-run quadratures the run does not use.
     progress : bool or None
         A progress bar on stderr after PROGRESS_DELAY (2 s); None (default): on a terminal or in a notebook.
+    verify : bool
+        Also repeat the run at rtol / 10 in the other chart and keep how far it is from converged as
+        ``traj.verification`` (:meth:`Trajectory.verify`; costs that run).
     **option_fields
         Fields of :class:`SolverOptions`, replacing those of ``options``.
 
@@ -139,10 +146,15 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     opts = solver_options(options, **option_fields)
     pose0 = Pose.of(pose0)
     x0, t0, t_end, start_mode, te = _checked_arguments(model, x0, t0, t_end, mode, throw, events, t_eval, opts.max_wall)
+    if not opts.creep and model.friction.creeps:  # the law's own field at zero slip (SolverOptions.creep)
+        model = Model(model.body, model.friction.without_creep(), model.chart)
+    model, x0, opts = audited(model, x0, opts, flight=start_mode is Mode.FLIGHT)  # PHASEKIT_AUDIT (core/audit.py)
     system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail), opts.settle is not None)
     run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
     run.loop(system.initial(model, t0, x0, start_mode), progress)
     traj = run.result(x0, stop_at, restitution, events, te, pose0)
+    if check_bool("verify", verify) and traj.status is not Status.FAILED:
+        traj = replace(traj, verification=traj.verify())
     if throw and traj.status is Status.FAILED:
         raise ConvergenceError(f"simulation failed: {traj.reason}", traj)
     return traj
@@ -308,7 +320,8 @@ class RunState:
         return Trajectory(model=self.model, x0=x0, t0=self.t_start, t_end=self.t_end, options=self.opts,
                           status=self.status, reason=self.reason, segments=self.segments, events=self.records,
                           wall_s=wall_s, stop_at=stop_at, restitution=restitution, user_events=user_events, pose0=pose0,
-                          ts=ts, ys=ys, x_stop=self.x if here else None, mode_stop=self.mode if here else None)
+                          ts=ts, ys=ys, x_stop=self.x if here else None, mode_stop=self.mode if here else None,
+                          runner=simulate)
 
 
 class _Run(RunState):
@@ -431,11 +444,16 @@ class _Run(RunState):
 
 
 def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump", rtol: float = 1e-9, events=(),
-                      track_minima: bool = True):
+                      track_minima: bool = True, x0=None):
     """The compiled heyoka integrator phasekit uses for one mode, for users (and benchmarks)
     who want to drive heyoka directly: returns (integrator, parameters). Its terminal events
-    are the mode's guards (lift-off first, ...) with the levels of ``events`` appended; set
-    ``integrator.pars[:] = parameters`` (done here) and ``integrator.state``/``.time``.
+    are the mode's guards (lift-off first, ...) with the levels of ``events`` appended, and its
+    last parameters are the scales of the states: the integrator's state is the model's divided by
+    them, which makes heyoka's one tolerance an error test per component
+    (:mod:`phasekit.core.engines.scaling`). With ``x0`` they are the scales simulate starts a
+    segment at ``x0`` with, and the state is set to ``x0`` scaled; without it they are 1 (the state is
+    the model's, the error test heyoka's own). Set ``integrator.pars[:] = parameters`` (done here)
+    and ``integrator.state``/``.time``; read the model's state as ``state * parameters[-n:]``.
 
     Parameters
     ----------
@@ -453,25 +471,32 @@ def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump",
         True gives the integrator of simulate's default, with one more state, last: z' = 2^-40 R,
         from whose expansion the minima of R are found (:mod:`phasekit.core.engines.roots`);
         False the integrator simulate uses with ``track_minima=False``.
+    x0 : array_like, optional
+        A start state in the model's chart: sets the scales and the (scaled) state.
 
     Returns
     -------
     tuple
         (heyoka.taylor_adaptive, numpy.ndarray): the integrator with its parameters set, and those
-        parameters (the model's, then the event levels).
+        parameters (the model's, the event levels, the states' scales).
 
     Examples
     --------
     >>> import phasekit as pk
     >>> ta, pars = pk.baseline.taylor_integrator(pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)))
     >>> type(ta).__name__, len(pars)
-    ('taylor_adaptive_dbl', 7)
+    ('taylor_adaptive_dbl', 13)
     """
     mode = Mode(mode)
     system = declare(model, stop_at=stop_at, events=events)
     evs = watched(system, mode, TaylorEngine)
     cflow = model.compile_flow(_tracked(system.flow(mode), track_minima), evs)
     ta, _, npar = TaylorEngine(solver_options(rtol=rtol).rtol).integrator(cflow, len(model.p))
-    pars = np.concatenate([model.p, [e.level for e in evs]])[:npar]
+    scale = np.ones(cflow.n_states) if x0 is None else initial_scales(check_vector("x0", x0, cflow.n_states))
+    pars = taylor_pars(model.p, [e.level for e in evs], scale)
     ta.pars[:] = pars
+    if x0 is not None:
+        ta.time = 0.0
+        ta.state[:] = 0.0
+        ta.state[:cflow.n_states] = np.asarray(x0, dtype=float) / scale
     return ta, pars

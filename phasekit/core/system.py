@@ -73,7 +73,8 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     hold = Held if held else _same
     flows = (
         Flow(Mode.SLIDING, "rhs_sliding", monitor=("Rdot", +1)),
-        Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1)),  # a regularised law's: its creep, or not stiff
+        # a regularised law's: its creep, or its own field (CVODES where stiff: the creep turned off)
+        Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1), stiff=stiff and not creep),
         Flow(Mode.FLIGHT, "rhs_flight", monitor=("gap_rate", -1), engine="taylor", contact=False),
     ) + tuple(Flow(m, f"rhs_{m.value}", monitor=("Rdot", +1), stiff=stiff and m.free is Mode.ROLLING) for m in held)
     jump_ends = stop_at == "jump"

@@ -16,6 +16,7 @@ import numpy as np
 
 from .._runtime.errors import ParameterError, Status
 from .._runtime.validate import check_times
+from .approximations import Approximation, approximations_of
 from .charts import FLIGHT
 from .energy import EnergyBudget, energy_budget
 from .fields import STICK_SLIP
@@ -23,11 +24,10 @@ from .hybrid import Mode
 from .model import Model
 from .observables import evaluate_function
 from .pose import POSE_COLUMNS, Pose
+from .records import EventRecord, Flight, Segment
 from .trajectory_io import (
     STATE_COLUMNS,
-    event_dict,
     events_table,
-    flight_dict,
     pose_table,
     sample_table,
     trajectory_dict,
@@ -36,184 +36,13 @@ from .trajectory_io import (
     write_parquet,
     write_run_table,
 )
+from .verify import RunCheck, check_run
 
-__all__ = ["EventRecord", "Segment", "Flight", "Trajectory", "SAMPLE_COLUMNS"]
+__all__ = ["Trajectory", "SAMPLE_COLUMNS"]
 
 #: columns of :meth:`Trajectory.sample` after t and mode: the state's observables, then where
 #: the body is and how it is turned (:mod:`phasekit.core.pose`)
 SAMPLE_COLUMNS = (*STATE_COLUMNS, *POSE_COLUMNS)
-
-
-@dataclass(frozen=True)
-class EventRecord:
-    """A located event: its name, time, the modes before and after, the state and a detail.
-
-    Attributes
-    ----------
-    name : str
-        Stick, slip, lift-off, touchdown, impact, a stop or a user event.
-    t : float
-        Its time.
-    mode_before, mode_after : str
-        The modes before and after.
-    x : numpy.ndarray or None
-        The state, in the model's chart.
-    detail : str
-        A detail (e.g. an impact's bounce train resolved).
-    y : numpy.ndarray or None
-        The state in the paper's variables.
-
-    Examples
-    --------
-    >>> import numpy as np, phasekit as pk
-    >>> body = pk.Spheroid(1.5)
-    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
-    >>> ev = traj.events[0]
-    >>> isinstance(ev, pk.core.EventRecord), ev.name, ev.mode_before, ev.mode_after
-    (True, 'lift-off', 'sliding', 'end')
-    """
-
-    name: str
-    t: float
-    mode_before: str
-    mode_after: str
-    x: np.ndarray | None = field(default=None, repr=False, compare=False)
-    detail: str = ""
-    y: np.ndarray | None = field(default=None, repr=False, compare=False)  # the paper's variables
-
-    @property
-    def kind(self) -> str:  # the name, as older code called it
-        return self.name
-
-    def to_dict(self) -> dict:
-        return event_dict(self)
-
-
-@dataclass(frozen=True)
-class Segment:
-    """A stretch of one mode: from (t0, x0) to (t1, x1), states in the mode's chart (the
-    model's chart in contact, the flight chart in flight).
-
-    Attributes
-    ----------
-    mode : Mode
-        The mode.
-    t0, t1 : float
-        Start and end times.
-    x0, x1 : numpy.ndarray
-        Start and end states.
-    engine : str
-        The engine that integrated it.
-    end : str
-        What ended it (an event, "time" or "failed").
-    n_steps, n_rhs : int
-        Steps taken and evaluations of the field.
-    monitored : tuple
-        The (t, x) where the flow's monitor crossed zero (minima of R; the maximum of the gap in flight).
-    dense : tuple
-        The dense output, callables t -> states in time order (empty without ``dense=True``).
-
-    Examples
-    --------
-    >>> import numpy as np, phasekit as pk
-    >>> body = pk.Spheroid(1.5)
-    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
-    >>> seg = traj.segments[0]
-    >>> isinstance(seg, pk.core.Segment), seg.mode.value, seg.end
-    (True, 'sliding', 'lift-off')
-    """
-
-    mode: Mode
-    t0: float
-    t1: float
-    x0: np.ndarray = field(repr=False)
-    x1: np.ndarray = field(repr=False)
-    engine: str = ""
-    end: str = ""
-    n_steps: int = 0
-    n_rhs: int = 0
-    monitored: tuple = field(default=(), repr=False)
-    dense: tuple = field(default=(), repr=False)
-
-    def states(self, ts) -> np.ndarray:
-        """States at times inside [t0, t1] from the dense output.
-
-        Parameters
-        ----------
-        ts : array_like
-            The times; a time outside [t0, t1] is clipped into it.
-
-        Returns
-        -------
-        numpy.ndarray
-            One row per time, in the mode's chart.
-
-        Raises
-        ------
-        ValueError
-            If no dense output was kept.
-        """
-        ts = np.asarray(ts, dtype=float)
-        out = np.empty((ts.size, self.x0.size))
-        if not self.dense:
-            raise ValueError("no dense output was kept: simulate with dense=True")
-        starts = np.array([s.t0 for s in self.dense])
-        idx = np.clip(np.searchsorted(starts, ts, side="right") - 1, 0, len(self.dense) - 1)
-        for k in np.unique(idx):
-            sel = idx == k
-            span = self.dense[k]
-            out[sel] = span(np.clip(ts[sel], span.t0, span.t1))
-        exact0, exact1 = ts == self.t0, ts == self.t1
-        out[exact0], out[exact1] = self.x0, self.x1
-        return out
-
-
-@dataclass(frozen=True)
-class Flight:
-    """One flight: from lift-off to touchdown.
-
-    Attributes
-    ----------
-    status : Status
-        ``touchdown``, ``failed``, or ``completed`` (it ended otherwise).
-    t_liftoff : float
-        Time of lift-off.
-    t_touchdown : float or None
-        Time of touchdown, None if it did not end in one.
-    x_liftoff, x_end : numpy.ndarray
-        The states at its start and end, in the flight chart.
-    gap_max, t_gap_max : float or None
-        The located maximum of the gap and its time.
-    W_star : float
-        Vertical velocity of G at lift-off.
-    Omega_star : float
-        Precession rate at lift-off.
-    n_steps : int
-        Steps taken.
-
-    Examples
-    --------
-    >>> import numpy as np, phasekit as pk
-    >>> body = pk.Spheroid(1.5)
-    >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 200.0, stop_at='touchdown')
-    >>> fl = traj.flights[0]
-    >>> isinstance(fl, pk.core.Flight), fl.status.value, f'{fl.gap_max:.2e}'
-    (True, 'touchdown', '1.57e-07')
-    """
-
-    status: Status
-    t_liftoff: float
-    t_touchdown: float | None
-    x_liftoff: np.ndarray = field(repr=False)
-    x_end: np.ndarray = field(repr=False)
-    gap_max: float | None
-    t_gap_max: float | None
-    W_star: float
-    Omega_star: float
-    n_steps: int = 0
-
-    def to_dict(self) -> dict:
-        return flight_dict(self)
 
 
 @dataclass(frozen=True, eq=False, repr=False, kw_only=True)
@@ -264,6 +93,10 @@ class Trajectory:
     #: where a run that ended without a segment of its own (or as it settled) stopped
     x_stop: np.ndarray | None = None
     mode_stop: Mode | None = None
+    #: what made the run (:func:`phasekit.simulate`), to repeat it (:meth:`verify`)
+    runner: object = field(default=None, repr=False, compare=False)
+    #: the run against its repeat at rtol / 10 in the other chart (:meth:`verify`; simulate's ``verify=True``)
+    verification: object = field(default=None, repr=False, compare=False)
 
     def __post_init__(self):
         set_ = object.__setattr__  # frozen: the inputs are normalised once, here
@@ -365,6 +198,16 @@ class Trajectory:
     def energy_budget(self) -> EnergyBudget:
         """Where the energy went, law by law, and at events (:mod:`phasekit.core.energy`)."""
         return energy_budget(self)
+
+    @functools.cached_property
+    def approximations(self) -> tuple[Approximation, ...]:
+        """The approximations the run used, each with its bound (:mod:`phasekit.core.approximations`)."""
+        return approximations_of(self)
+
+    def verify(self) -> RunCheck:
+        """The run repeated at rtol / 10 in the other chart, and how far it is from converged
+        (:mod:`phasekit.core.verify`); ``simulate(..., verify=True)`` keeps it as ``verification``."""
+        return self.verification if self.verification is not None else check_run(self)
 
     @property
     def minima(self) -> np.ndarray:

@@ -186,7 +186,7 @@ def pose_table(traj, ts):
 
 
 def event_dict(event) -> dict:
-    """The JSON form of an :class:`~phasekit.core.trajectory.EventRecord` (its ``to_dict``).
+    """The JSON form of an :class:`~phasekit.core.records.EventRecord` (its ``to_dict``).
 
     Parameters
     ----------
@@ -207,7 +207,7 @@ def event_dict(event) -> dict:
 
 
 def flight_dict(flight) -> dict:
-    """The JSON form of a :class:`~phasekit.core.trajectory.Flight` (its ``to_dict``).
+    """The JSON form of a :class:`~phasekit.core.records.Flight` (its ``to_dict``).
 
     Parameters
     ----------
@@ -264,6 +264,8 @@ def trajectory_dict(traj, *, events: bool = True) -> dict:
         "formulation": chart.name,  # the old name of "chart", kept for readers of older output
         "backend": traj.backend,
         "rtol": traj.options.rtol,
+        "approximations": [a.to_dict() for a in traj.approximations],
+        "verification": None if traj.verification is None else traj.verification.to_dict(),
     }
     stops = [e for e in traj.events if e.mode_after == "end" and e.name not in ("lift-off", "touchdown")]
     if traj.status is Status.STOPPED and stops:

@@ -83,6 +83,8 @@ class FrictionLaw:
     name = "friction"
     #: the dissipation laws acting besides sliding (:meth:`with_dissipation`)
     dissipation: tuple[Dissipation, ...] = ()
+    #: whether a stiff regularised law may creep on its slow manifold (:attr:`creeps`; :meth:`without_creep`)
+    allow_creep: bool = True
 
     def __init__(self, mu: float):
         self.mu = check_nonnegative("mu", mu, upper=MU_MAX)
@@ -103,7 +105,23 @@ class FrictionLaw:
         """True for a regularised law stiff at zero slip (mu/eps > :data:`CREEP_RATE`): its ROLLING
         mode follows the slow manifold of its slip where that attracts fast, a non-stiff field
         (:mod:`phasekit.core.fields`)."""
-        return self.can_stick and not self.has_rolling_mode and self.eps > 0 and self.mu / self.eps > CREEP_RATE
+        return (self.allow_creep and self.can_stick and not self.has_rolling_mode and self.eps > 0
+                and self.mu / self.eps > CREEP_RATE)
+
+    def without_creep(self) -> "FrictionLaw":
+        """This law with its ROLLING mode its own field (the slip below 10 eps integrated as it is,
+        stiff where mu/eps is large: CVODES takes it over there), not the creep's reduction.
+
+        Examples
+        --------
+        >>> import phasekit as pk
+        >>> law = pk.RegularisedCoulomb(0.1, 1e-4)
+        >>> law.creeps, law.without_creep().creeps, law.without_creep().describe()
+        (True, False, 'coulomb-regularised(mu=0.1, eps=0.0001, no creep)')
+        """
+        out = copy.copy(self)
+        out.allow_creep = False
+        return out
 
     @property
     def structure(self) -> tuple:
@@ -196,14 +214,16 @@ class FrictionLaw:
         out = {"law": self.name, "mu": self.mu, "slip_eps": self.eps if self.eps > 0 else None}
         if self.dissipation:  # absent without it: descriptions written before are unchanged
             out["dissipation"] = [d.to_dict() for d in self.dissipation]
+        if not self.allow_creep:  # likewise
+            out["creep"] = False
         return out
 
     def __eq__(self, other) -> bool:
         return (type(other) is type(self) and other.dissipation == self.dissipation
-                and np.array_equal(other.params, self.params))
+                and np.array_equal(other.params, self.params) and other.allow_creep == self.allow_creep)
 
     def __hash__(self) -> int:
-        return hash((type(self), tuple(self.params)))
+        return hash((type(self), tuple(self.params), self.allow_creep))
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}(mu={self.mu!r})" + self._repr_tail()
@@ -286,7 +306,7 @@ class RegularisedCoulomb(FrictionLaw):
         return ca.SX.zeros(3), ca.vertcat(-mu * u[0] / s, -mu * u[1] / s, 1)
 
     def describe(self) -> str:
-        return self._with_description(f"{self.name}(mu={self.mu:g}, eps={self.eps:g})")
+        return self._with_description(f"{self.name}(mu={self.mu:g}, eps={self.eps:g}{'' if self.allow_creep else ', no creep'})")
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}(mu={self.mu!r}, eps={self.eps!r})" + self._repr_tail()

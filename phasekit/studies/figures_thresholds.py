@@ -65,15 +65,15 @@ def plot_threshold_curves(rows, definitions, *, default: str, styles: dict, hi: 
             if ok:
                 ax.plot(*zip(*ok), label=label, **styles.get(defn.name, {}))
             failed = [(a, r.threshold) for a, r in pts if r.threshold is not None and r.consistent is False]
-            if failed:  # set by the integration error, not the body (threshold_task's check)
+            if failed:  # set by the integration error, not the body (the library's check)
                 ax.plot(*zip(*failed), ls="none", marker="o", ms=11, mfc="none", mec="k", mew=1.2,
-                        label="check failed: 0.98x or 1.02x of it changes outcome at rtol / 10")
-            again = [(a, r.threshold, r.euler_threshold) for a, r in pts if getattr(r, "euler_threshold", None) is not None]
-            if again:  # the paper's chart failed the check there; the vector chart's search is the point
+                        label="not verified: a bracket end changes its outcome at rtol / 10")
+            again = [(a, r.threshold, r.first_threshold) for a, r in pts if getattr(r, "first_threshold", None) is not None]
+            if again:  # the first search failed its check; the search at rtol / 10 is the point
                 ax.plot([q[0] for q in again], [q[1] for q in again], ls="none", marker="s", ms=10, mfc="none", mec="0.3",
-                        label="searched again in the vector chart: the paper's variables failed the check")
+                        label="searched again at rtol / 10: the first search failed its check")
                 ax.plot([q[0] for q in again], [q[2] for q in again], ls="none", marker="x", ms=7, color="0.3",
-                        label="the threshold in the paper's variables there")
+                        label="the first search's threshold there")
             if none:
                 ax.plot(none, [hi] * len(none), ls="none", marker=r"$\uparrow$", ms=10, color=styles[defn.name]["color"],
                         label=(label + f": no jump up to {hi:g}") if not ok else None)

@@ -92,8 +92,8 @@ def threshold_against_d(rows, a_values, mus) -> dict:
 def threshold_table(rows, *, first: str) -> str:
     """The main rows of a threshold sweep (:class:`ThresholdRow` of group "main") as a text
     table, the definition named ``first`` first: definition, branch, a, threshold, status,
-    simulations and the self-consistency check (1.02 x jumps, 0.98 x does not, at a ten times
-    tighter tolerance); then how many of the checked points pass it.
+    simulations and the library's check (:mod:`phasekit.thresholds.verify`: the bracket's ends keep
+    their outcomes at a ten times tighter tolerance); then how many of the checked points pass it.
 
     Examples
     --------
@@ -102,7 +102,7 @@ def threshold_table(rows, *, first: str) -> str:
     >>> r = Row(group="main", name="sliding", definition="sliding", branch="prolate", a=1.5, threshold=9.75,
     ...         status="converged", n_sims=30, consistent=True)
     >>> print(ps.threshold_table([r], first="sliding").splitlines()[-1])
-    self-consistency (1.02 x jumps, 0.98 x does not, at rtol / 10): 1 of 1 points pass
+    verified (the bracket's ends keep their outcomes at rtol / 10): 1 of 1 points
     """
     main = [r for r in rows if r.group == "main"]
     lines = [f"{'definition':<58s} {'branch':<8s} {'a':>6s} {'threshold':>10s} {'status':<17s} {'sims':>4s} {'check':>5s}"]
@@ -112,8 +112,8 @@ def threshold_table(rows, *, first: str) -> str:
         lines.append(f"{r.definition[:58]:<58s} {r.branch:<8s} {r.a:6.3f} {th:>10s} {r.status:<17s} {r.n_sims:>4d} {check:>5s}")
     bad = [r for r in main if r.consistent is False]
     checked = [r for r in main if r.consistent is not None]
-    lines.append(f"self-consistency (1.02 x jumps, 0.98 x does not, at rtol / 10): {len(checked) - len(bad)} of {len(checked)} "
-                 "points pass")
+    lines.append(f"verified (the bracket's ends keep their outcomes at rtol / 10): {len(checked) - len(bad)} of {len(checked)} "
+                 "points")
     return "\n".join(lines)
 
 

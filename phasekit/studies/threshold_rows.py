@@ -17,14 +17,15 @@ import time
 from dataclasses import asdict, dataclass, replace
 from functools import partial
 
-from .._runtime.errors import SearchStatus, Status
-from ..core.options import RTOL_RANGE
+from .._runtime.errors import Status
 from ..sweep.tasks import TaskSpec
 from ..thresholds.definition import Definition
-from ..thresholds.search import find_threshold, run_searches, threshold_result, threshold_searches
+from ..thresholds.result import Threshold
+from ..thresholds.search import ThresholdSearch, find_threshold, run_searches, threshold_result, threshold_searches
 from ..thresholds.stick import stick_search
+from ..thresholds.verify import verify_thresholds
 
-__all__ = ["ThresholdRow", "threshold_task", "threshold_key", "threshold_chain", "check_definition", "SearchRow",
+__all__ = ["ThresholdRow", "threshold_task", "threshold_key", "threshold_chain", "SearchRow",
            "search_job", "search_group_task", "group_search_tasks"]
 
 
@@ -63,42 +64,15 @@ class ThresholdRow:
     rtol: float
     transitions: str  # JSON list of [lo, hi] brackets
     stuck_near: bool | None
-    check_above_jumped: bool | None
-    check_below_jumped: bool | None
-    consistent: bool | None
+    check_above_jumped: bool | None  # the bracket's upper end at check_rtol (it jumped in the search)
+    check_below_jumped: bool | None  # the bracket's lower end at check_rtol (it did not jump in the search)
+    consistent: bool | None  # the library's verdict: "verified" (phasekit.thresholds.verify)
     n_check_sims: int
     wall_s: float
     reason: str
-    check_rtol: float | None  # the tolerance the check ran at (:func:`check_definition`)
-    chart: str | None  # the chart of the search reported: None, the start's choice (see threshold_task)
-    euler_threshold: float | None  # the paper's chart's threshold, where it failed its check
-
-
-#: the chart a threshold that fails its check in the paper's variables is searched again in:
-#: regular at theta = 0, where a prolate body rising near a = 1 needs it (docs/results/maps.md)
-RECHART = "vector"
-
-
-#: the self-consistency check runs at the definition's tolerance divided by this: neighbours 2%
-#: above and below that keep their outcomes at a ten times tighter tolerance show a threshold set
-#: by the body, not by the integration error. Near a = 1 the literal recipe's are not, in the
-#: paper's variables: there the outcome at one Omega0 changes with the tolerance from 1e-8 to 1e-13
-#: (docs/results/maps.md).
-CHECK_TIGHTER = 10
-
-
-def check_definition(defn: Definition) -> Definition:
-    """The definition :func:`threshold_task`'s self-consistency check runs: ``defn`` at its
-    tolerance divided by :data:`CHECK_TIGHTER` (not below the smallest one accepted).
-
-    Examples
-    --------
-    >>> import phasekit as pk, phasekit.studies as ps
-    >>> ps.check_definition(pk.Definition('sliding', 'sliding')).rtol
-    1e-10
-    """
-    tight = float(f"{defn.rtol / CHECK_TIGHTER:.12g}")  # 1e-11, not 1.0000000000000001e-11
-    return replace(defn, rtol=max(tight, RTOL_RANGE[0]))
+    check_rtol: float | None  # the tolerance of the check of the reported bracket
+    first_threshold: float | None  # the first search's threshold, where it failed its check and was searched again
+    check_worst: float | None  # the largest relative change of a bracket end's end time at check_rtol
 
 
 def threshold_key(defn, a: float, search: dict) -> str:
@@ -116,63 +90,43 @@ def threshold_key(defn, a: float, search: dict) -> str:
 def threshold_task(prev: ThresholdRow | None, defn_fields: dict, a: float, group: str, is_default: bool,
                    search: dict, engine: str = "scalar", levels: int = 1) -> ThresholdRow:
     """One sweep task: the threshold at aspect ratio ``a`` (the search seeded by the previous
-    point's row ``prev``), then the self-consistency check: 1.02 x jumps and 0.98 x does not, at a
-    ten times tighter tolerance (:func:`check_definition`). A threshold that fails it in the
-    start's chart (the paper's variables but within 1e-5 of a pole) is searched again, seeded by
-    it, in the vector chart (:data:`RECHART`), and that search, checked the same way, is the row's
-    (``chart``; the first result is kept as ``euler_threshold``). ``engine`` and ``levels``
-    (k-section) change the cost, not the bracket, and are not part of the key. Failures become a
-    row with status "failed" and the reason.
+    point's row ``prev``), checked by the library (:func:`phasekit.find_threshold`'s verification:
+    the bracket's ends at a ten times tighter tolerance, the search repeated there if they change
+    their outcome). ``engine`` and ``levels`` (k-section) change the cost, not the bracket, and are
+    not part of the key. Failures become a row with status "failed" and the reason.
 
     Examples
     --------
     >>> import phasekit as pk, phasekit.studies as ps
     >>> from dataclasses import asdict
     >>> row = ps.threshold_task(None, asdict(pk.Definition('sliding', 'sliding')), 1.5, 'main', True, dict(hi=120.0, tol=0.05))
-    >>> row.branch, row.status, round(row.threshold, 1), row.chart
-    ('prolate', 'converged', 9.7, None)
+    >>> row.branch, row.status, round(row.threshold, 1), row.consistent
+    ('prolate', 'converged', 9.7, True)
     """
     defn = Definition(**defn_fields)
     t0 = time.perf_counter()
     base = dict(key=threshold_key(defn, a, search), branch="prolate" if a > 1 else "oblate", a=a,
                 definition=defn.label, default=is_default, group=group, name=defn.name, seed=defn.seed,
-                amplitude=defn.amplitude, mu=defn.mu, rtol=defn.rtol,
-                eps=defn.eps or None)
+                amplitude=defn.amplitude, mu=defn.mu, rtol=defn.rtol, eps=defn.eps or None)
     guess = prev.threshold if prev is not None else None
     try:
-        th, check = _checked_search(defn, a, guess, engine, levels, search)
+        th = find_threshold(defn, a, guess=guess, engine=engine, levels=levels, **search)
     except Exception as exc:  # a sweep tabulates failures instead of stopping
         return ThresholdRow(**base, threshold=None, bracket_lo=None, bracket_hi=None, n_sims=0, status=Status.FAILED.value,
                             transitions="[]", stuck_near=None, check_above_jumped=None, check_below_jumped=None,
                             consistent=None, n_check_sims=0, wall_s=time.perf_counter() - t0,
-                            reason=f"{type(exc).__name__}: {exc}", check_rtol=None, chart=defn.chart, euler_threshold=None)
-    first, spent, note = None, (0, 0), ""
-    if check["consistent"] is False and defn.chart != RECHART:
-        try:
-            th2, check2 = _checked_search(replace(defn, chart=RECHART), a, th.value, engine, levels, search)
-        except Exception as exc:  # the first search stands, with its failed check
-            th2, note = None, f"; the {RECHART} chart's search failed: {type(exc).__name__}: {exc}"
-        if th2 is not None and th2.value is not None:
-            first, spent = th.value, (th.n_sims, check["n_check_sims"])
-            th, check = th2, check2
+                            reason=f"{type(exc).__name__}: {exc}", check_rtol=None, first_threshold=None, check_worst=None)
+    v = th.verification
+    final = {c.side: c for c in v.checks[:2]} if v is not None else {}
     return ThresholdRow(**base, threshold=th.value, bracket_lo=th.bracket[0], bracket_hi=th.bracket[1],
-                        n_sims=th.n_sims + spent[0], status=th.status.value,
+                        n_sims=th.n_sims, status=th.status.value,
                         transitions=json.dumps([list(t) for t in th.transitions]), stuck_near=th.stuck_near,
-                        **{**check, "n_check_sims": check["n_check_sims"] + spent[1]}, wall_s=time.perf_counter() - t0,
-                        reason=(th.reason or "") + note, chart=defn.chart if first is None else RECHART, euler_threshold=first)
-
-
-def _checked_search(defn: Definition, a: float, guess, engine: str, levels: int, search: dict) -> tuple:
-    """find_threshold, then the self-consistency check at :func:`check_definition`'s tolerance:
-    (the threshold result, the check's row fields)."""
-    th = find_threshold(defn, a, guess=guess, engine=engine, levels=levels, **search)
-    check = dict(check_above_jumped=None, check_below_jumped=None, consistent=None, n_check_sims=0, check_rtol=None)
-    if th.value is not None and th.status in (SearchStatus.CONVERGED, SearchStatus.NON_MONOTONE):  # not for bracket_only
-        tight = check_definition(defn)
-        above, below = (o.jumped for o in tight.outcomes(a, [1.02 * th.value, 0.98 * th.value], engine=engine))
-        check.update(check_above_jumped=above, check_below_jumped=below, consistent=bool(above) and below is False,
-                     n_check_sims=2, check_rtol=tight.rtol)
-    return th, check
+                        check_above_jumped=final["hi"].jumped if final else None,
+                        check_below_jumped=final["lo"].jumped if final else None,
+                        consistent=None if v is None else v.verified, n_check_sims=0 if v is None else len(v.checks),
+                        wall_s=time.perf_counter() - t0, reason=th.reason or ("" if v is None or v.verified else v.detail),
+                        check_rtol=final["hi"].rtol if final else None, first_threshold=None if v is None else v.first_value,
+                        check_worst=None if v is None else v.worst)
 
 
 def threshold_chain(defn, a_values, search: dict, *, group: str = "main", is_default: bool = False,
@@ -245,6 +199,9 @@ class SearchRow:
     sens_dominant: str
     wall_s: float
     reason: str
+    verified: bool | None = None  # the library's check of a threshold (phasekit.thresholds.verify); None: not checked
+    check_worst: float | None = None  # the largest relative change of a bracket end's end time at rtol / 10
+    first_threshold: float | None = None  # the first search's threshold, where its check failed and it was searched again
 
 
 def search_key(defn, a: float, search: dict, kind: str = "threshold", value: float | None = None,
@@ -296,11 +253,34 @@ def search_group_task(prev, jobs: list[dict], *, study: str = "", engine: str = 
         for i, defn, _ in plans:
             rows[i] = _search_row(jobs[i], defn, None, study, engine, time.perf_counter() - t0, f"{type(exc).__name__}: {exc}")
         return rows
+    results = {i: searches[0].result() if jobs[i]["kind"] == "stick" else threshold_result(searches) for i, _, searches in plans}
+    checked = [i for i, _, _ in plans if jobs[i]["kind"] == "threshold"]
+    try:  # the library's check of every threshold of the group, in one round (re-searches one by one)
+        done = verify_thresholds([(Definition(**jobs[i]["defn"]), searches_of(plans, i)[0].body, results[i]) for i in checked],
+                                 engine=engine, research=partial(_research, plans=plans, engine=engine))
+        results.update(zip(checked, done))
+    except Exception as exc:  # the unchecked results stand, saying why
+        results = {i: replace(th, reason=th.reason or f"not verified: {type(exc).__name__}: {exc}") for i, th in results.items()}
     wall = (time.perf_counter() - t0) / max(1, len(plans))  # lock-step: the group's time, shared
-    for i, defn, searches in plans:
-        th = searches[0].result(wall) if jobs[i]["kind"] == "stick" else threshold_result(searches, wall)
+    for i, defn, _ in plans:
+        th = replace(results[i], wall_s=wall)
         rows[i] = _search_row(jobs[i], defn, th, study, engine, wall, th.reason or "")
     return rows
+
+
+def searches_of(plans, i: int) -> list:
+    """The searches of job ``i`` in :func:`search_group_task`'s plans (the threshold's own first)."""
+    searches = next(ss for j, _, ss in plans if j == i)
+    return [searches[1], searches[0], searches[2]] if len(searches) == 3 else searches
+
+
+def _research(d, body, guess, *, plans, engine) -> Threshold:
+    """A threshold search repeated (:func:`phasekit.thresholds.verify.verify_thresholds`) with the range of the
+    group's search of that body."""
+    main = next(searches_of(plans, i)[0] for i, _, _ in plans if searches_of(plans, i)[0].body is body)
+    again = ThresholdSearch(d, body, lo=main.lo, hi=main.hi, guess=guess, n_coarse=main.n_coarse, window=main.window,
+                            tol=main.tol, levels=main.levels)
+    return threshold_result([again], run=True, engine=engine)
 
 
 def _job_key(job: dict) -> str:
@@ -349,7 +329,9 @@ def _search_row(job, defn, th, study, engine, wall, reason) -> SearchRow:
         return SearchRow(**base, threshold=None, bracket_lo=None, bracket_hi=None, status=Status.FAILED.value, n_sims=0,
                          n_rounds=0, transitions="[]", stuck_near=False, sens_half=None, sens_double=None, sens_slope=None,
                          sens_shift=None, sens_dominant="")
-    sens = th.sensitivity
+    sens, v = th.sensitivity, getattr(th, "verification", None)
+    base.update(verified=None if v is None else v.verified, check_worst=None if v is None else v.worst,
+                first_threshold=None if v is None else v.first_value)
     return SearchRow(**base, threshold=th.value, bracket_lo=th.bracket[0], bracket_hi=th.bracket[1], status=th.status.value,
                      n_sims=th.n_sims + (0 if sens is None else sens.n_sims), n_rounds=th.n_rounds,
                      transitions=json.dumps([list(t) for t in th.transitions]),

@@ -15,8 +15,9 @@ from .definition import DEFAULT_DEFINITIONS, Definition, Outcome, evaluate_outco
 from .result import Threshold
 from .search import ThresholdSearch, find_threshold, run_searches
 from .stick import find_stick_boundary
+from .verify import Verification
 
 __all__ = [
     "Definition", "Threshold", "DEFAULT_DEFINITIONS", "find_threshold", "continue_threshold", "find_stick_boundary",
-    "ThresholdSearch", "run_searches", "evaluate_outcomes", "Outcome",
+    "ThresholdSearch", "run_searches", "evaluate_outcomes", "Outcome", "Verification",
 ]

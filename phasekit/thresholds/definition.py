@@ -37,7 +37,7 @@ for thousands of cycles (measured: a = 2, Omega0 = 7.19), which the 0.1 margin c
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
@@ -183,6 +183,30 @@ class Definition:
         if self.chart is None:
             d.pop("chart")
         return ";".join(f"{k}={v}" for k, v in sorted(d.items()))
+
+    def tighter(self, factor: float = 10.0) -> "Definition":
+        """This definition at its tolerance divided by ``factor`` (not below the smallest accepted),
+        written short (1e-10, not 1.0000000000000001e-10): what a threshold's check runs
+        (:mod:`phasekit.thresholds.verify`).
+
+        Parameters
+        ----------
+        factor : float, optional
+            How much tighter, > 1 (default 10).
+
+        Returns
+        -------
+        Definition
+            The same definition at the tighter tolerance.
+
+        Examples
+        --------
+        >>> import phasekit as pk
+        >>> pk.Definition('sliding', 'sliding').tighter().rtol
+        1e-10
+        """
+        factor = check_range("factor", factor, 1.0, 1e16, closed="r")
+        return replace(self, rtol=max(float(f"{self.rtol / factor:.12g}"), RTOL_RANGE[0]))
 
     def friction(self):
         if self.seed == "viscous":

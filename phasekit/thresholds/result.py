@@ -110,6 +110,9 @@ class Threshold:
         Filled when asked (``find_threshold(..., sensitivity=True)``).
     n_rounds : int
         Rounds of mutually independent simulations the search needed (its critical path).
+    verification : Verification or None
+        What its check found (:mod:`phasekit.thresholds.verify`: the bracket's ends at a ten times
+        tighter tolerance); None when not checked (``verify=False``, or no bracket).
 
     Examples
     --------
@@ -130,6 +133,12 @@ class Threshold:
     reason: str | None = None
     sensitivity: Sensitivity | None = None
     n_rounds: int = 0
+    verification: "Verification | None" = None  # noqa: F821 (thresholds.verify, which imports this module)
+
+    @property
+    def verified(self) -> bool | None:
+        """Did the bracket's ends keep their outcomes at a tighter tolerance (None: not checked)?"""
+        return None if self.verification is None else self.verification.verified
 
     @property
     def stuck_near(self) -> bool:

@@ -15,11 +15,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .._runtime.errors import ConvergenceError, ParameterError, SearchStatus
-from .._runtime.validate import check_choice, check_int, check_positive, check_range
+from .._runtime.validate import check_bool, check_choice, check_int, check_positive, check_range
 from .._runtime.watch import WALL_REASON, check_max_wall, deadline, passed, progress_bar, wall_deadline
 from ..bodies.spheroid import Spheroid
 from .definition import EVALUATION, Definition, Outcome, as_body, evaluate_outcomes
 from .result import Sensitivity, Threshold
+from .verify import verify_thresholds
 
 __all__ = ["ThresholdSearch", "run_searches", "threshold_searches", "threshold_result", "find_threshold"]
 
@@ -353,8 +354,11 @@ def threshold_searches(defn: Definition, body, *, lo: float | None = None, hi: f
             ThresholdSearch(replace(defn, amplitude=min(2 * d, 0.5)), body, **kw)]
 
 
-def threshold_result(searches: list[ThresholdSearch], wall_s: float = 0.0) -> Threshold:
-    """The Threshold of finished :func:`threshold_searches` (with the sensitivity if asked)."""
+def threshold_result(searches: list[ThresholdSearch], wall_s: float = 0.0, *, run: bool = False, **run_kw) -> Threshold:
+    """The Threshold of finished :func:`threshold_searches` (with the sensitivity if asked); ``run``
+    runs them first (:func:`run_searches` with ``run_kw``)."""
+    if run:
+        run_searches(searches, **run_kw)
     if len(searches) == 1:
         return searches[0].result(wall_s)
     main = searches[1]
@@ -367,12 +371,15 @@ def threshold_result(searches: list[ThresholdSearch], wall_s: float = 0.0) -> Th
 def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float = 60.0, guess: float | None = None,
                    n_coarse: int = 8, window: float = 1.5, tol: float = 1e-3, levels: int = 1, engine: str = "scalar",
                    sensitivity: bool = False, evaluate=None, throw: bool = False, max_wall: float | None = None,
-                   progress: bool | None = None) -> Threshold:
-    """Bracket and bisect the jump/no-jump transition in Omega0 (prolate) or n0 (oblate).
+                   progress: bool | None = None, verify: bool = True) -> Threshold:
+    """Bracket and bisect the jump/no-jump transition in Omega0 (prolate) or n0 (oblate), and
+    check the answer.
 
     A coarse geometric scan (over [lo, hi], or over [guess/window, guess*window], widened until
     a transition shows) finds every transition on the grid; each is then bisected to relative
-    width ``tol``.
+    width ``tol``. Then (``verify``) the bracket's ends are run again at a ten times tighter
+    tolerance: the result carries the verdict (:class:`phasekit.thresholds.Verification`), and a
+    search whose check fails is repeated at that tolerance (:func:`phasekit.thresholds.verify.verify_thresholds`).
 
     Parameters
     ----------
@@ -410,11 +417,13 @@ def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float
         before a transition was found) with a reason naming the budget.
     progress : bool, optional
         A bar of the runs with the current bracket (None: on a terminal or in a notebook only).
+    verify : bool, optional
+        Check the answer (default); False returns the raw search (``verification`` None).
 
     Returns
     -------
     Threshold
-        The value, bracket, status and the outcomes simulated.
+        The value, bracket, status, the outcomes simulated and the verification.
 
     Raises
     ------
@@ -427,17 +436,27 @@ def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float
     --------
     >>> import phasekit as pk
     >>> th = pk.find_threshold(pk.Definition('sliding', 'sliding'), 1.5, hi=120.0, guess=9.74, tol=1e-2)
-    >>> th.status.value, round(th.value, 2), th.bracket[0] < th.value < th.bracket[1]
-    ('converged', 9.78, True)
+    >>> th.status.value, round(th.value, 2), th.bracket[0] < th.value < th.bracket[1], th.verified
+    ('converged', 9.78, True, True)
     """
     t0 = time.perf_counter()
     check_choice("engine", engine, EVALUATION)
+    check_bool("verify", verify)
     max_wall = check_max_wall(max_wall)
     searches = threshold_searches(defn, body, lo=lo, hi=hi, guess=guess, n_coarse=n_coarse, window=window, tol=tol,
                                   levels=levels, sensitivity=sensitivity)
+    main = searches[1] if sensitivity else searches[0]
     with progress_bar(desc=_bar_label(searches[0]), progress=progress) as bar, wall_deadline(max_wall):
         run_searches(searches, engine=engine, evaluate=evaluate, bar=bar)
-    th = threshold_result(searches, time.perf_counter() - t0)
+        th = threshold_result(searches)
+        if verify and not passed():
+            def research(d, b, g):
+                return threshold_result([ThresholdSearch(d, b, lo=main.lo, hi=main.hi, guess=g, n_coarse=main.n_coarse,
+                                                         window=main.window, tol=main.tol, levels=main.levels)], run=True,
+                                        engine=engine, evaluate=evaluate)
+
+            [th] = verify_thresholds([(defn, main.body, th)], engine=engine, evaluate=evaluate, research=research)
+    th = replace(th, wall_s=time.perf_counter() - t0)
     if throw and th.status is SearchStatus.FAILED:
         raise ConvergenceError(f"threshold search failed: {th.reason}", th)
     return th

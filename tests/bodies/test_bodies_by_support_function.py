@@ -75,7 +75,9 @@ def test_general_path_spheroid_equals_spheroid_and_the_previous_version(prolate,
         assert sph[key] == pytest.approx(ref, rel=0, abs=MOVED[key]), key
     for key in ("t_jump_1e-9", "t_jump_1e-12"):
         assert cus[key] == pytest.approx(sph[key], rel=1e-12, abs=0), key
-    assert cus["t_touchdown"] == pytest.approx(sph["t_touchdown"], rel=2e-12, abs=0)
+    # within one ulp's sensitivity of the start (~3e-10; measured 1.4e-10 since the integrators scale
+    # their states, core/engines/scaling.py, which changes where rounding enters)
+    assert cus["t_touchdown"] == pytest.approx(sph["t_touchdown"], rel=0, abs=3e-10)
     assert cus["gap_max"] == pytest.approx(sph["gap_max"], rel=0, abs=1e-14)
 
 

@@ -139,7 +139,9 @@ def test_human_output_is_a_short_summary_and_events_lists_every_event():
             "--t-end", 40]
     code, out, _ = run_cli(*args)
     n_events = int(re.search(r"^(\d+) events", out, re.M).group(1))
-    assert code == 0 and n_events > 30 and len(out.splitlines()) <= 12  # with a line for all flights and the wall clock
+    # with a line for all flights, one for the approximations the run used and the wall clock
+    assert code == 0 and n_events > 30 and len(out.splitlines()) <= 13
+    assert re.search(r"^approximations: minima of R$", out, re.M)  # e = 0: a touchdown without rebound is exact
     code, out_events, _ = run_cli(*args, "--events")
     assert len(out_events.splitlines()) == len(out.splitlines()) + n_events
 

@@ -165,7 +165,7 @@ def _example_cell(n: Node, all_runs: list[str]) -> str:
     run, v = n.example(all_runs)
     if isinstance(v, (dict, list)):
         return ""
-    text = f"`{json.dumps(v)[:40]}`"
+    text = f"`{json.dumps(v)[:40].rstrip()}`"  # a code span ends without a space
     return text if run == all_runs[0] else f"{text} ({run})"
 
 

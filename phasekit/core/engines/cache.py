@@ -29,7 +29,7 @@ from pathlib import Path
 from .taylor_build import _heyoka
 
 #: bump when the layout of the pickled cache entries, or how they are built, changes
-CACHE_FORMAT = 5
+CACHE_FORMAT = 6  # 6: integrators in scaled variables (engines/scaling.py)
 #: bytes of heyoka's object-code cache under the cache directory (heyoka's own default is 20 GiB)
 HEYOKA_CACHE_LIMIT = 1 << 30
 #: bytes of phasekit's compiled integrators there: past it, the least recently used are deleted

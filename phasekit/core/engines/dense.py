@@ -18,10 +18,12 @@ class _TaylorSteps:
     whatever its length (measured), which dominates runs of many short segments; this costs
     ~0.4 us per step. ``tc`` is the integrator's ``ta.tc``, read once: it is a view of heyoka's
     buffer (reading the property costs 1 us a step). Each step keeps its bytes (half the cost
-    of an array copy), joined into one array at the end. ``callback`` is what heyoka calls."""
+    of an array copy), joined into one array at the end. ``callback`` is what heyoka calls.
+    ``scale``: the integrator's scales of its states over these steps (:mod:`.scaling`)."""
 
-    def __init__(self, t0: float, tc: np.ndarray):
+    def __init__(self, t0: float, tc: np.ndarray, scale=None):
         self.t0, self.shape, self.ends, self.coefs = float(t0), tc.shape, [], []
+        self.scale = None if scale is None else np.asarray(scale, dtype=float)[:, None]
         self._arrays = None
         keep, end, raw = self.coefs.append, self.ends.append, tc.tobytes
 
@@ -46,6 +48,8 @@ class _TaylorSteps:
         if self._arrays is None:
             ends = np.array(self.ends)
             coefs = np.frombuffer(b"".join(self.coefs)).reshape(len(self.coefs), *self.shape)
+            if self.scale is not None:  # the integrator's scaled variables back to the flow's (scaling.py)
+                coefs = coefs * self.scale
             self._arrays = np.concatenate([[self.t0], ends[:-1]]), ends, coefs
         return self._arrays
 

@@ -14,7 +14,8 @@ from ..hybrid import CompiledFlow
 from .cache import _RECORDERS, compiled, prefetch
 from .dense import _TaylorSteps
 from .protocol import Budget, End, Propagation
-from .taylor_build import _build_taylor, _heyoka, taylor_end
+from .scaling import initial_scales, next_rescale, next_scales
+from .taylor_build import _build_taylor, _heyoka, scales_at, taylor_end, taylor_pars
 
 #: steps per call of heyoka's propagate: between calls the wall clock is checked
 STEP_CHUNK = 20_000
@@ -107,52 +108,83 @@ class TaylorEngine:
         """
         hy = _heyoka()
         ta, recorder, npar = self.integrator(flow, len(p))
-        n = flow.n_states
+        n, first = flow.n_states, scales_at(flow, len(p))
         if not resume:
-            ta.time = float(t0)
-            ta.state[:n] = np.asarray(x0, dtype=float)
-            ta.state[n:] = 0.0  # z, the integral of the monitor's primitive (its expansion is what counts)
-            ta.pars[:] = np.concatenate([np.asarray(p, dtype=float), np.asarray(levels, dtype=float)])[:npar]
-            ta.reset_cooldowns()
+            _start(ta, n, t0, x0, taylor_pars(p, levels, initial_scales(x0)))
+        scale = np.array(ta.pars[first:first + n])
         if recorder is not None:
             recorder.points = []
-        prop = Propagation(t=float(ta.time), x=np.array(ta.state[:n]), outcome=End.TIME)
+        prop = Propagation(t=float(ta.time), x=ta.state[:n] * scale, outcome=End.TIME)
         zeros = flow.monitor is not None and flow.monitor_primitive is not None  # the monitor's zeros from z's expansion
         tc = ta.tc if dense or zeros else None
+        t_end = float(t_end)
         while True:
-            record = _TaylorSteps(float(ta.time), tc) if tc is not None else None
+            stop = min(t_end, next_rescale(float(ta.time)))  # the scales are renewed on a grid of times
+            record = _TaylorSteps(float(ta.time), tc, np.concatenate([scale, np.ones(len(ta.state) - n)])) if tc is not None else None
             try:
-                res = ta.propagate_until(float(t_end), max_steps=int(max(1, min(budget.steps - prop.n_steps, STEP_CHUNK))),
+                res = ta.propagate_until(stop, max_steps=int(max(1, min(budget.steps - prop.n_steps, STEP_CHUNK))),
                                          write_tc=tc is not None, callback=record.callback if record else None)
             except Exception as exc:  # heyoka raises on e.g. a non-finite state in an event
                 prop.outcome, prop.reason = End.FAILED, f"taylor: {exc}"
                 break
-            steps = int(res[3])
-            prop.n_steps += steps
-            if record is not None and steps > 0:
-                record.finish(ta)
-                if zeros:
-                    prop.monitored += record.zeros(n, flow.monitor.direction)
-                if dense:
-                    prop.dense.append(record.span(n))
+            prop.n_steps += int(res[3])
+            if record is not None and int(res[3]) > 0:
+                _keep(record, ta, prop, flow, dense, zeros)
             end, event = taylor_end(hy, res[0])
-            if end is None:  # the step chunk ran out
-                if prop.n_steps >= budget.steps:
-                    prop.outcome, prop.reason = End.FAILED, f"step limit ({prop.n_steps} steps) reached at t = {ta.time:.6g}"
+            if end is End.TIME and stop < t_end:  # a grid time: renew the scales
+                scale = _rescale(ta, n, first, scale)
+                end = None
+            if end is None:  # under way: the step chunk ran out, or a grid time
+                if _out_of_budget(prop, budget, float(ta.time)):
                     break
-                if budget.wall_exceeded():
-                    prop.outcome, prop.reason = End.FAILED, f"wall-time limit reached at t = {ta.time:.6g}"
-                    break
-                if budget.tick is not None:
-                    budget.tick(float(ta.time))
                 continue
             prop.outcome, prop.event = end, event
             if end is End.FAILED:
                 prop.reason = (f"non-finite state at t = {ta.time:.6g}" if res[0] == hy.taylor_outcome.err_nf_state
                                else f"taylor integrator stopped: {res[0]}")
             break
-        prop.t, prop.x = float(ta.time), np.array(ta.state[:n], copy=True)
+        prop.t, prop.x = float(ta.time), ta.state[:n] * scale
         prop.n_rhs = prop.n_steps * (ta.order + 1)
         if recorder is not None:
             prop.monitored = list(recorder.points)
         return prop
+
+
+def _start(ta, n: int, t0: float, x0, pars) -> None:
+    """Set the integrator at (t0, x0), its parameters (the scales last) and its cooldowns."""
+    ta.time = float(t0)
+    ta.pars[:] = pars
+    ta.state[:n] = np.asarray(x0, dtype=float) / pars[len(pars) - n:]
+    ta.state[n:] = 0.0  # z, the integral of the monitor's primitive (its expansion is what counts)
+    ta.reset_cooldowns()
+
+
+def _rescale(ta, n: int, first: int, scale) -> np.ndarray:
+    """New scales at a grid time (:func:`.scaling.next_scales`), the state rescaled to them."""
+    x = ta.state[:n] * scale
+    new = next_scales(x, scale)
+    ta.pars[first:first + n] = new
+    ta.state[:n] = x / new
+    return new
+
+
+def _keep(record, ta, prop: Propagation, flow: CompiledFlow, dense: bool, zeros: bool) -> None:
+    """What a call's recorded steps give: the monitor's zeros and the dense output."""
+    record.finish(ta)
+    if zeros:
+        prop.monitored += record.zeros(flow.n_states, flow.monitor.direction)
+    if dense:
+        prop.dense.append(record.span(flow.n_states))
+
+
+def _out_of_budget(prop: Propagation, budget: Budget, t: float) -> bool:
+    """Between calls: end ``prop`` as failed when its steps or wall time ran out, else tick the bar."""
+    if prop.n_steps >= budget.steps:
+        prop.outcome, prop.reason = End.FAILED, f"step limit ({prop.n_steps} steps) reached at t = {t:.6g}"
+        return True
+    if budget.wall_exceeded():
+        prop.outcome, prop.reason = End.FAILED, f"wall-time limit reached at t = {t:.6g}"
+        return True
+    if budget.tick is not None:
+        budget.tick(t)
+    return False

@@ -38,20 +38,24 @@ PRIMITIVE_SCALE = 2.0**-40
 
 
 class _MonitorRecorder:
-    """Non-terminal event callback storing (t, x) at each crossing of the monitor.
+    """Non-terminal event callback storing (t, x) at each crossing of the monitor, x in the
+    flow's own variables (the integrator's scaled state times its scales, :mod:`.scaling`).
 
     heyoka deep-copies callbacks; returning self from __deepcopy__ keeps one shared list.
     """
 
-    def __init__(self):
+    def __init__(self, scales_at: int = 0, n: int = 0):
         self.points: list = []
+        self.scales_at, self.n = scales_at, n
 
     def __deepcopy__(self, memo):
         return self
 
     def __call__(self, ta, t, d_sgn):
         ta.update_d_output(t)
-        self.points.append((float(t), np.array(ta.d_output, copy=True)))
+        x = np.array(ta.d_output, copy=True)
+        x[:self.n] *= ta.pars[self.scales_at:self.scales_at + self.n]
+        self.points.append((float(t), x))
 
 
 def _heyoka():
@@ -62,35 +66,50 @@ def _heyoka():
     return hy
 
 
+def scales_at(flow: CompiledFlow, n_params: int) -> int:
+    """The index of the first state's scale in the parameters of ``flow``'s Taylor integrators:
+    after the model's ``n_params`` parameters and the guards' levels."""
+    return n_params + len(flow.guards)
+
+
+def taylor_pars(p, levels, scales) -> np.ndarray:
+    """The parameters of a Taylor integrator: the model's, the guards' levels, the states' scales."""
+    return np.concatenate([np.asarray(p, dtype=float), np.asarray(levels, dtype=float), np.asarray(scales, dtype=float)])
+
+
 def _build_taylor(flow: CompiledFlow, n_params: int, rtol: float, lanes: int | None):
-    """heyoka's integrator of ``flow`` (``lanes`` None: scalar; else a batch of that many lanes):
-    the field and guards translated from CasADi, every guard a terminal event with the cooldown
-    EVENT_COOLDOWN, the monitor a non-terminal one (scalar only) or, when it has a primitive P, one
-    more state z' = PRIMITIVE_SCALE P, compact mode for big flows. Returns (integrator, number of
-    parameters it reads)."""
+    """heyoka's integrator of ``flow`` (``lanes`` None: scalar; else a batch of that many lanes)
+    in the scaled variables xs = x / S of :mod:`.scaling` (S: the last ``flow.n_states``
+    parameters, see :func:`scales_at`): the field and guards translated from CasADi, every guard a
+    terminal event with the cooldown EVENT_COOLDOWN, the monitor a non-terminal one (scalar only)
+    or, when it has a primitive P, one more (unscaled) state z' = PRIMITIVE_SCALE P, compact mode
+    for big flows. Returns (integrator, number of parameters it reads)."""
     from ..._runtime.translate import to_heyoka
 
     hy = _heyoka()
     batch = lanes is not None
-    xs = hy.make_vars(*[f"x{i}" for i in range(flow.n_states)])
+    n = flow.n_states
+    xs = hy.make_vars(*[f"x{i}" for i in range(n)])
     ps = [hy.par[i] for i in range(n_params)]
-    rhs = to_heyoka(flow.field, [list(xs), ps])[0]
+    first = scales_at(flow, n_params)
+    S = [hy.par[first + i] for i in range(n)]
+    x = [s * v for s, v in zip(S, xs)]  # the flow's own variables
+    rhs = [f / s for f, s in zip(to_heyoka(flow.field, [x, ps])[0], S)]
     direction = {-1: hy.event_direction.negative, 1: hy.event_direction.positive, 0: hy.event_direction.any}
     t_event = hy.t_event_batch if batch else hy.t_event
-    t_events = [t_event(to_heyoka(g.function, [list(xs), ps, [hy.par[n_params + i]]])[0][0], direction=direction[g.direction],
+    t_events = [t_event(to_heyoka(g.function, [x, ps, [hy.par[n_params + i]]])[0][0], direction=direction[g.direction],
                         cooldown=EVENT_COOLDOWN) for i, g in enumerate(flow.guards)]
     nt_events = []
     if flow.monitor is not None and batch:
         raise ValueError("a batch integrator records no monitor: compile its flow without one")
     system = list(zip(xs, rhs))
     if flow.monitor is not None and flow.monitor_primitive is not None:  # one more state: z' = s P
-        system.append((hy.make_vars("z"), PRIMITIVE_SCALE * to_heyoka(flow.monitor_primitive, [list(xs), ps])[0][0]))
+        system.append((hy.make_vars("z"), PRIMITIVE_SCALE * to_heyoka(flow.monitor_primitive, [x, ps])[0][0]))
     elif flow.monitor is not None:
         m = flow.monitor
-        nt_events = [hy.nt_event(to_heyoka(m.function, [list(xs), ps, [hy.expression(0.0)]])[0][0],
-                                 callback=_MonitorRecorder(), direction=direction[m.direction])]
-    used = hy.get_params([r for _, r in system] + [e.expression for e in t_events] + [e.expression for e in nt_events])
-    npar = 1 + max((int(str(q)[1:]) for q in used), default=-1)
+        nt_events = [hy.nt_event(to_heyoka(m.function, [x, ps, [hy.expression(0.0)]])[0][0],
+                                 callback=_MonitorRecorder(first, n), direction=direction[m.direction])]
+    npar = first + n  # every scale is read
     size = flow.field.n_instructions() + sum(g.function.n_instructions() for g in flow.guards)
     if flow.monitor is not None:
         size += (flow.monitor.function if flow.monitor_primitive is None else flow.monitor_primitive).n_instructions()
