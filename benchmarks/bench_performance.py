@@ -218,4 +218,4 @@ def goals_met(out: dict, runs: str) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main, resume="nothing was written; run it again")
+    pk.scaffold.run_study(main, resume="nothing was written; run it again")

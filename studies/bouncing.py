@@ -54,7 +54,7 @@ def run(omega0: float, e: float):
 
 
 def main(argv=None) -> list[dict]:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="Omega0 = 11, 20 and e = 0, 0.6 only")
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="Omega0 = 11, 20 and e = 0, 0.6 only")
     args = st.parse(argv)
     es = (0.0, 0.3, 0.6, 0.9) if not args.quick else (0.0, 0.6)
     omegas = (11.0, 15.0, 20.0, 30.0) if not args.quick else (11.0, 20.0)
@@ -76,4 +76,4 @@ def main(argv=None) -> list[dict]:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

@@ -106,7 +106,7 @@ def real_egg(threshold: float | None, w: float) -> list[dict]:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, resumable=True)
+    st = pk.scaffold.Study(__file__, __doc__, resumable=True)
     args = st.parse(argv)
     cfg = QUICK if args.quick else FULL
     config = {k: list(v) if isinstance(v, tuple) else v for k, v in cfg.items()}
@@ -143,4 +143,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

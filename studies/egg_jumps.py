@@ -117,7 +117,7 @@ def movie(st) -> dict:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__)
+    st = pk.scaffold.Study(__file__, __doc__)
     args = st.parse(argv)
     cfg = QUICK if args.quick else FULL
     tasks = [(lever, v, {**BASE, key: v}) for lever, (key, vals) in cfg["levers"].items() for v in vals]
@@ -148,4 +148,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

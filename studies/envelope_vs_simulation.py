@@ -53,7 +53,7 @@ def draw(plt, runs):
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="coarser output grid; trend in Omega0 only")
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="coarser output grid; trend in Omega0 only")
     args = st.parse(argv)
     plt = pyplot()
     dt = 0.01 if args.quick else 0.003
@@ -87,4 +87,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

@@ -76,7 +76,7 @@ HEADER = ["law", "coefficient", "mu", "status", "end (face down or t_end)", "t0 
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="a larger rolling resistance and shorter runs of the laws with no end")
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="a larger rolling resistance and shorter runs of the laws with no end")
     st.parser.add_argument("--json", action="store_true", help="print the numbers as JSON on stdout (nothing else)")
     args = st.parse(argv)
     cfg = QUICK if args.quick else FULL
@@ -115,4 +115,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

@@ -22,7 +22,7 @@ A_RATIO, C_AMP, THETA0 = 1.5, -0.00054, np.pi / 2 - 0.0001
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="the same run (it is short)")
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="the same run (it is short)")
     st.parse(argv)
     plt = pyplot()
     body = pk.Spheroid(A_RATIO)
@@ -55,4 +55,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

@@ -43,7 +43,7 @@ def flights_abc(axes, model, body) -> list:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="Omega0 step 5 instead of 2.5, 5 members each instead of 10")
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="Omega0 step 5 instead of 2.5, 5 members each instead of 10")
     st.parser.add_argument("--seed", type=st.parser.integer(min=0), default=2006,
                            help="seed of the ensemble's perturbations (default 2006)")
     args = st.parse(argv)
@@ -74,4 +74,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

@@ -14,7 +14,7 @@ import numpy as np
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="the same run (it is short)")
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="the same run (it is short)")
     st.parse(argv)
     body = pk.Spheroid(1.5)
     model = pk.Model(body, pk.Coulomb(0.1))
@@ -35,4 +35,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

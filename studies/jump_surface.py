@@ -85,7 +85,7 @@ def report(infos, table, fits, starts) -> None:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="coarser surface, every other start in the error table, 11 starts in the fit")
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="coarser surface, every other start in the error table, 11 starts in the fit")
     st.parser.add_argument("--gltf", action="store_true", help="also write jump_surface.gltf (the prolate scene)")
     st.parser.add_argument("--html", action="store_true", help="also write jump_surface.html (needs the trame packages)")
     args = st.parse(argv)
@@ -113,4 +113,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

@@ -43,7 +43,7 @@ def spheroid(st) -> dict:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__)
+    st = pk.scaffold.Study(__file__, __doc__)
     st.parse(argv)
     res = {"tippe_top": tippe_top(st), "spheroid": spheroid(st)}
     for name, d in res.items():
@@ -53,4 +53,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

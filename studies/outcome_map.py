@@ -52,7 +52,7 @@ def warm_up() -> None:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, dask=True)
+    st = pk.scaffold.Study(__file__, __doc__, dask=True)
     st.parser.add_argument("--no-scene", action="store_true", help="skip the 3-D scene")
     args = st.parse(argv)
     g = QUICK if args.quick else FULL
@@ -100,4 +100,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

@@ -32,7 +32,7 @@ MAX_WALL = 300.0
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, resumable=True)
+    st = pk.scaffold.Study(__file__, __doc__, resumable=True)
     args = st.parse(argv)
     eps_list = EPS_QUICK if args.quick else EPS_FULL
     store = st.store(ps.PairRow, {"t_end": T_END, "eps": eps_list, "charts": CHARTS, "t_tolerance": T_TOLERANCE,
@@ -51,4 +51,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

@@ -17,6 +17,13 @@ committed, rerun), the differing cells per column with their largest relative di
 the rows missing or extra; the wall time of each study and in all. Exit code 0: every table
 identical; 1: anything differs, a study failed or touched figures/; 2: bad input.
 
+--audit tight reruns them as the convergence audit does (PHASEKIT_AUDIT, phasekit/core/audit.py:
+every simulation at rtol / 10) and reports, per study, how far its numbers
+moved from the committed ones: the largest relative change of a number (the columns that count the
+work, name the settings or time it excepted, :data:`AUDIT_EXCEPTED`) and the cells that changed
+text (an outcome, a status); --report FILE writes that table as JSON (its findings of 2026-12-06 are tabulated in
+docs/results/robustness.md). It does not fail on a difference: the audit measures them.
+
 --only STUDY ... runs those studies only (a committed table of another study is then not
 checked). --scratch DIR (or --out DIR) keeps the reruns in DIR (otherwise a temporary folder,
 deleted unless --keep). --update (with --only) copies the fresh tables and figures of those
@@ -67,6 +74,10 @@ def parse(st, argv) -> argparse.Namespace:
     ap.add_argument("--keep", action="store_true", help="keep the temporary scratch folder")
     ap.add_argument("--update", action="store_true",
                     help="with --only: copy the fresh tables and figures of those studies into figures/")
+    ap.add_argument("--audit", choices=("tight",),
+                    help="rerun every simulation at rtol / 10 (tight) and report how far each study's numbers move "
+                         "(PHASEKIT_AUDIT)")
+    ap.add_argument("--report", metavar="FILE", help="with --audit: write the per-study table as JSON to FILE")
     typed = {}
 
     def check(args):
@@ -95,18 +106,58 @@ def parse(st, argv) -> argparse.Namespace:
     # after the scaffold has checked a folder given (a bad --out is named first, as by every study)
     if args.quick:
         ap.error("argument --quick: not accepted: the committed tables are full runs, and so are the reruns")
-    if not (args.check or args.update):
-        ap.error("give --check (rerun the studies and compare) or --update with --only")
+    if not (args.check or args.update or args.audit):
+        ap.error("give --check (rerun the studies and compare), --audit MODE, or --update with --only")
+    if args.report and not args.audit:
+        ap.error("argument --report: needs --audit (it writes the audit's table)")
+    if args.audit and args.update:
+        ap.error("argument --update: not allowed with argument --audit (an audit's outputs are not the published ones)")
     if args.update and not args.only:
         ap.error("argument --update: needs --only STUDY ... (it copies the fresh files of the studies named)")
     args.only = list(dict.fromkeys(args.only)) if args.only else None
     return args
 
 
+#: the audit's mode (--audit), passed to the studies as PHASEKIT_AUDIT
+_AUDIT: dict = {}
+#: columns an audit does not compare: the work done (it changes with the tolerance and the chart by
+#: design), the settings that name how it was done, and timings (besides rt.excepted_lines()' own)
+AUDIT_EXCEPTED = ("n_steps", "n_rhs", "n_sims", "n_check_sims", "n_rounds", "steps", "nfev", "n_calls", "check_worst",
+                  "check_rtol", "chart", "backend", "engine", "wall_s", "task_s", "ms", "runs", "time_ms")
+
+
 def _env() -> dict:
     """The studies import the code of this checkout (not an installed copy), draw off-screen."""
     path = os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p)
-    return {**os.environ, "PYTHONPATH": path, "MPLBACKEND": os.environ.get("MPLBACKEND", "Agg")}
+    return {**os.environ, "PYTHONPATH": path, "MPLBACKEND": os.environ.get("MPLBACKEND", "Agg"), **_AUDIT}
+
+
+def audit_rows(runs: dict, scratch: Path) -> list[dict]:
+    """Per study: the committed tables against the audit's rerun, the largest relative change of a
+    number (columns of AUDIT_EXCEPTED left out) with its table and column, and the cells whose text changed."""
+    out = []
+    committed = set(rt.table_files(FIGURES))
+    for study, r in runs.items():
+        row = {"study": study, "exit": r["code"], "tables": 0, "cells": 0, "worst": None, "where": "", "text_changed": 0,
+               "text_example": "", "rows_missing": 0, "wall_s": round(r["wall"], 1)}
+        for name in (rt.table_files(scratch / study) if (scratch / study).is_dir() else []):
+            if name not in committed:
+                continue
+            diff = rt.compare_table(FIGURES / name, scratch / study / name)
+            row["tables"] += 1
+            row["cells"] += diff.n_compared
+            row["rows_missing"] += len(diff.missing) + len(diff.extra)
+            for c in diff.cells:
+                if re.sub(r"\[\d+\]", "", c.column).split(".")[-1] in AUDIT_EXCEPTED:
+                    continue
+                rel = c.relative()
+                if rel is None:
+                    row["text_changed"] += 1
+                    row["text_example"] = row["text_example"] or f"{name}: {c.column} {c.committed!r} -> {c.rerun!r}"
+                elif row["worst"] is None or rel > row["worst"]:
+                    row["worst"], row["where"] = rel, f"{name}: {c.column}"
+        out.append(row)
+    return out
 
 
 def _has_fresh(script: Path) -> bool:
@@ -185,7 +236,7 @@ def update(runs: dict, scratch: Path) -> int:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__)
+    st = pk.scaffold.Study(__file__, __doc__)
     args = parse(st, argv)
     studies = args.only or STUDIES
     temporary = args.out is None
@@ -194,6 +245,10 @@ def main(argv=None) -> dict:
     (scratch / MARK).write_text("a scratch folder of studies/reproduce.py: its study folders are cleared on reuse\n")
     print(f"Rerunning {len(studies)} {'study' if len(studies) == 1 else 'studies'} from scratch in {scratch}, one after "
           "another.", flush=True)
+    if args.audit:
+        _AUDIT["PHASEKIT_AUDIT"] = args.audit
+        print("Convergence audit: every simulation at rtol / 10 "
+              "(PHASEKIT_AUDIT); the committed tables are the reference.", flush=True)
     runs, t0 = {}, time.perf_counter()
     try:
         for i, name in enumerate(st.progress(studies, desc="studies"), 1):
@@ -203,6 +258,8 @@ def main(argv=None) -> dict:
             for line in r["tail"]:
                 print(f"    {line}")
         total = time.perf_counter() - t0
+        if args.audit:
+            return _audit_report(args, runs, scratch, total)
         lines, compared, differ, errors = compare(runs, scratch, complete=args.only is None)
         errors += [f"{s} changed figures/ while it ran: {', '.join(r['touched'])}" for s, r in runs.items() if r["touched"]]
         failed = [s for s, r in runs.items() if r["code"]]
@@ -233,5 +290,27 @@ def main(argv=None) -> dict:
     return {"runs": runs, "problems": problems}
 
 
+def _audit_report(args, runs: dict, scratch: Path, total: float) -> dict:
+    """Print (and with --report write) the audit's table: per study, how far its numbers moved."""
+    import json
+
+    rows = audit_rows(runs, scratch)
+    print(f"\nAudit ({args.audit}): the largest relative change of a number, per study (not compared: "
+          f"{', '.join(AUDIT_EXCEPTED)} and what --check excepts)")
+    for r in rows:
+        worst = "-" if r["worst"] is None else f"{r['worst']:.2g} ({r['where']})"
+        text = f"; {r['text_changed']} text cells changed, e.g. {r['text_example']}" if r["text_changed"] else ""
+        print(f"  {r['study']:<24s} exit {r['exit']}, {r['tables']} tables, {r['cells']} cells: {worst}{text}")
+    print(f"  in all {total:.1f} s")
+    if args.report:
+        report = {"audit": args.audit, "what": "every simulation at rtol / 10", "excepted": list(AUDIT_EXCEPTED), "studies": rows,
+                  "wall_s": round(total, 1)}
+        tmp = Path(f"{args.report}.{os.getpid()}.tmp")  # written whole, then renamed
+        tmp.write_text(json.dumps(report, indent=1) + "\n")
+        os.replace(tmp, args.report)
+        print(f"wrote {args.report}")
+    return {"runs": runs, "audit": rows}
+
+
 if __name__ == "__main__":
-    pk.sweep.run_study(main, resume="figures/ was not changed (the reruns are in a scratch folder); to check, run it again")
+    pk.scaffold.run_study(main, resume="figures/ was not changed (the reruns are in a scratch folder); to check, run it again")

@@ -205,7 +205,7 @@ def summary(runs, checks, st) -> dict:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, dask=True, quick_help="fewer laws and coefficients, shorter runs")
+    st = pk.scaffold.Study(__file__, __doc__, dask=True, quick_help="fewer laws and coefficients, shorter runs")
     args = st.parse(argv)
     cfg = QUICK if args.quick else FULL
     meta = {"config": json.loads(json.dumps(cfg)), "egg": EGG, "top": TOP, "rtol": RTOL, "max_wall": MAX_WALL}
@@ -237,4 +237,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

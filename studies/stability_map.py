@@ -18,7 +18,7 @@ import numpy as np
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="25x25 grids instead of 80x80")
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="25x25 grids instead of 80x80")
     st.parser.add_argument("--mu", type=st.parser.real(), default=0.1, help="viscous friction coefficient (default 0.1)")
     args = st.parse(argv, check=lambda args: pk.Viscous(args.mu))  # mu checked before any work (named --mu)
     n = 25 if args.quick else 80
@@ -43,4 +43,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

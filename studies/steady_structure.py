@@ -153,7 +153,7 @@ def egg_rise_end(png: Path) -> dict:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="coarse grids", dask=True)
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="coarse grids", dask=True)
     st.parser.add_argument("--no-scene", action="store_true", help="skip the 3-D scene and the egg")
     args = st.parse(argv)
     g = QUICK if args.quick else FULL
@@ -214,4 +214,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

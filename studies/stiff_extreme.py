@@ -77,7 +77,7 @@ def cases(quick: bool) -> list[Case]:
 
 
 def main(argv=None) -> list[dict]:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="horizons up to t = 2000, no eps = 1e-12")
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="horizons up to t = 2000, no eps = 1e-12")
     args = st.parse(argv)
     rows = [ps.stress_run(c) for c in st.progress(cases(args.quick), desc="cases")]
     st.csv("stiff_extreme.csv", ps.STRESS_COLUMNS, rows)
@@ -87,4 +87,4 @@ def main(argv=None) -> list[dict]:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

@@ -82,7 +82,7 @@ def report(rows: list, wall: float, n_new: int, mode: str) -> dict:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="3 aspect ratios per branch, reduced sensitivity", dask=True)
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="3 aspect ratios per branch, reduced sensitivity", dask=True)
     st.parser.add_argument("--no-sensitivity", action="store_true",
                            help="skip the sensitivity runs at a = 1.5 and 2/3 (other d, delta, eps, rtol)")
     st.parser.add_argument("--engine", default="scalar", choices=("batch", "scalar"),
@@ -105,4 +105,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

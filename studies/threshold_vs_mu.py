@@ -86,7 +86,7 @@ def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, dask=True)
+    st = pk.scaffold.Study(__file__, __doc__, dask=True)
     st.parser.add_argument("--engine", default="batch", choices=("batch", "scalar"), help="simulations in batch (default) or one by one")
     st.parser.add_argument("--per-task", type=st.parser.integer(min=1), default=None,
                            help="searches per Dask task, traced in lock-step (default 1)")
@@ -116,4 +116,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

@@ -106,7 +106,7 @@ def check_rtol(cfg: dict, rows: list, n: int) -> list[dict]:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, resumable=True)
+    st = pk.scaffold.Study(__file__, __doc__, resumable=True)
     args = st.parse(argv)
     cfg = QUICK if args.quick else FULL
     conv = convergence(st)
@@ -139,4 +139,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

@@ -119,7 +119,7 @@ def report(rows, refs, eps_rows, by_T, by_om, cap, repeats, png) -> None:
 
 
 def main(argv=None) -> dict:
-    st = pk.sweep.Study(__file__, __doc__, quick_help="4 tolerances, 1 repeat, 5 s cap")
+    st = pk.scaffold.Study(__file__, __doc__, quick_help="4 tolerances, 1 repeat, 5 s cap")
     args = st.parse(argv)
     plt = pyplot()
     rtols = [1e-4, 1e-6, 1e-8, 1e-10] if args.quick else [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12]
@@ -141,4 +141,4 @@ def main(argv=None) -> dict:
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)

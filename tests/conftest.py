@@ -2,6 +2,7 @@
 generated tests."""
 
 import os
+import signal
 import threading
 
 import numpy as np
@@ -14,6 +15,12 @@ os.environ["PHASEKIT_COMPILE_NOTICE"] = "off"
 # compiling a run's other contact mode ahead is for a user's first run; the suite builds hundreds of
 # models, most of which never reach that mode (tests/core/test_compile_ahead.py turns it back on)
 os.environ["PHASEKIT_COMPILE_AHEAD"] = "off"
+
+# A job runner or `nohup cmd &` starts the suite with SIGINT ignored, and an ignored signal stays
+# ignored in every process started from here: the Ctrl-C tests would then test the launcher. The
+# suite makes its own disposition, Python's default, which exec resets to SIG_DFL in a child.
+if threading.current_thread() is threading.main_thread() and signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 import phasekit as pk  # noqa: E402
 

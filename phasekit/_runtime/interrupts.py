@@ -23,8 +23,6 @@ import sys
 import threading
 import time
 
-__all__ = ["interrupt_guard", "chained_to_interrupt"]
-
 
 def chained_to_interrupt(exc) -> bool:
     """Is ``exc`` a KeyboardInterrupt, or raised while one was being handled?"""

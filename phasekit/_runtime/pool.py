@@ -33,9 +33,7 @@ import tempfile
 import time
 import uuid
 
-from .errors import WorkerError
-
-__all__ = ["run_local", "shipped", "job_of", "main_not_reimported", "IDLE_S"]
+from ..errors import WorkerError
 
 #: seconds an idle worker waits for more work before it exits (a second call within this time,
 #: e.g. the next cell of a notebook, starts nothing)

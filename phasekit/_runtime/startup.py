@@ -2,7 +2,7 @@
 
 The CLI (``phasekit``, ``python -m phasekit``) and the studies (``python studies/NAME.py``)
 spend their first second importing numpy, CasADi, heyoka and matplotlib, before their own
-handler (:func:`phasekit.cli.main`, :func:`phasekit.sweep.run_study`) is in place. This module is
+handler (:func:`phasekit.cli.main`, :func:`phasekit.scaffold.run_study`) is in place. This module is
 the first thing ``import phasekit`` runs; when the program is one of those, importing it installs a SIGINT
 handler that prints one line and exits with 130 until :func:`started` hands Ctrl-C back to
 Python's default (KeyboardInterrupt, which those handlers turn into their own one line). Any
@@ -15,8 +15,6 @@ import os
 import signal
 import sys
 import threading
-
-__all__ = ["install", "started", "EXIT_INTERRUPTED"]
 
 EXIT_INTERRUPTED = 130  # 128 + SIGINT, as shells report it
 

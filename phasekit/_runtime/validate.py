@@ -12,22 +12,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .errors import ParameterError
-
-__all__ = [
-    "check_real",
-    "check_finite",
-    "check_positive",
-    "check_nonnegative",
-    "check_range",
-    "check_int",
-    "check_choice",
-    "check_vector",
-    "check_times",
-    "check_bool",
-    "check_array",
-    "check_instance",
-]
+from ..errors import ParameterError
 
 
 def _is_real(value) -> bool:

@@ -26,8 +26,6 @@ import time
 
 from .validate import check_positive
 
-__all__ = ["show_progress", "progress_bar", "wall_deadline", "deadline", "check_max_wall", "WALL_REASON"]
-
 #: the start of the reason of a run or a search ended by the caller's wall budget
 WALL_REASON = "the call's wall budget"
 
@@ -55,16 +53,17 @@ def show_progress(progress) -> bool:
             tty = False
         return tty or in_jupyter()
     if not isinstance(progress, bool):
-        from .errors import ParameterError
+        from ..errors import ParameterError
 
         raise ParameterError("progress", "must be True, False or None (a bar on a terminal or in a notebook only)",
                              progress)
     return progress
 
 
-def progress_bar(total=None, *, desc: str = "", unit: str = "run", progress=None, delay: float = 0.0):
-    """A tqdm bar on stderr (a widget in a notebook when ipywidgets is there); disabled per
-    :func:`show_progress`; shown only after ``delay`` seconds."""
+def progress_bar(total=None, *, iterable=None, desc: str = "", unit: str = "run", progress=None, delay: float = 0.0):
+    """phasekit's one progress bar: a tqdm bar on stderr (stdout stays the caller's report; a widget
+    in a notebook when ipywidgets is there), over ``iterable`` if given, cleared when done;
+    disabled per :func:`show_progress`; shown only after ``delay`` seconds."""
     enabled = show_progress(progress)
     if enabled and in_jupyter():
         try:
@@ -74,7 +73,7 @@ def progress_bar(total=None, *, desc: str = "", unit: str = "run", progress=None
             from tqdm import tqdm
     else:
         from tqdm import tqdm
-    return tqdm(total=total, desc=desc, unit=unit, disable=not enabled, file=sys.stderr, leave=False,
+    return tqdm(iterable, total=total, desc=desc, unit=unit, disable=not enabled, file=sys.stderr, leave=False,
                 dynamic_ncols=True, delay=delay)
 
 
@@ -108,3 +107,12 @@ def passed() -> bool:
     """Has the deadline in force passed?"""
     d = _DEADLINE.get()
     return d is not None and time.perf_counter() > d[0]
+
+
+def check_deadline() -> None:
+    """Raise TimeoutError, its message naming the wall budget, once the deadline in force has
+    passed; return at once when there is none. The steady-state searches call it between their
+    Newton solves and linearisations (each a few milliseconds), so a budget holds to about that."""
+    d = _DEADLINE.get()
+    if d is not None and time.perf_counter() > d[0]:
+        raise TimeoutError(f"{WALL_REASON} (max_wall = {d[1]:g} s) ran out")

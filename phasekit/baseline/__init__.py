@@ -17,10 +17,9 @@ from typing import NamedTuple
 import numpy as np
 
 from ..bodies.spheroid import Spheroid
-from ..core.simulate import taylor_integrator
+from .bare import taylor_integrator
 
-__all__ = ["numpy_rhs", "numpy_normal_reaction", "solve_ivp_to_jump", "BaselineRun", "taylor_integrator", "JUMP_METHODS",
-           "jump_time", "work_precision"]
+__all__ = ["numpy_rhs", "solve_ivp_to_jump", "taylor_integrator", "JUMP_METHODS", "work_precision"]
 
 
 def _geometry(a, th):
@@ -323,9 +322,9 @@ def jump_time(method: str, body, y0, mu: float, rtol: float, cap: float | None =
         r = solve_ivp_to_jump(y0, t_end, a=body.a, A=body.A, C=body.C, mu=mu, method=how, rtol=rtol, rhs=options,
                               max_wall=cap)
         return r._replace(y=r.y if r.t_jump is not None else None)
-    from .._runtime.errors import Status
     from ..core.model import Model
     from ..core.simulate import simulate
+    from ..errors import Status
     from ..friction.laws import Coulomb
 
     t0 = time.perf_counter()

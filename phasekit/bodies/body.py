@@ -29,14 +29,73 @@ from typing import NamedTuple
 import casadi as ca
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_positive
+from ..errors import ParameterError
 
-__all__ = ["Body", "MassProperties", "uniform_mass_properties"]
+
+class Limit(NamedTuple):
+    """One end of a body's valid range of theta (:attr:`Body.limits`): a run stops there with the
+    event ``name``.
+
+    ``direction`` is that of the guard cos(theta_limit) - cos(theta) as
+    :class:`phasekit.core.Event` takes it: -1 as theta falls to the limit, +1 as it rises
+    to it. ``reason`` is formatted with the time ``t`` of the event.
+    """
+
+    name: str
+    theta: float
+    direction: int
+    reason: str
+
+
+class PieceTransfer(NamedTuple):
+    """Where the contact passes from one piece of a compound body to another
+    (:attr:`Body.transfers`).
+
+    ``theta`` is the switch angle, radians; ``direction`` that of the guard cos(theta) - ...
+    as :class:`phasekit.core.Event` takes a theta event: +1 as theta rises through
+    ``theta`` (from ``from_piece`` to ``to_piece``), -1 as it falls. ``name`` is the event's
+    name in a run's log.
+    """
+
+    name: str
+    theta: float
+    direction: int
+    from_piece: str
+    to_piece: str
 
 
 class Body:
-    """Base class of bodies. Subclasses provide :meth:`height` and :attr:`shape_params`.
+    """Base class of bodies: a convex body of revolution given by its support function and its
+    moments about G. Everything the rest of phasekit asks of a body is declared here, each
+    capability with a default that suits a smooth body; the library asks the body, never probes it.
+
+    A subclass
+
+    1. sets ``A`` and ``C`` by calling ``Body.__init__(self, A, C)`` (the moments about G, units
+       M b^2) once its shape is set;
+    2. gives ``shape_params``, the tuple of numbers that fix the shape (compiled models take
+       them as parameters, so bodies that differ only in them share one compiled model);
+    3. gives ``height(c, shape)``: H(c), the height of G above the table at c =
+       cos(theta), a CasADi expression in the symbol ``c`` and the symbols ``shape`` (one per
+       shape parameter), smooth on [-1, 1] (or on its range, item 4), written with the operations
+       of :mod:`phasekit.bodies.operations`;
+    4. may give :attr:`theta_range`, the open range of theta on which the support function is
+       the body's (default None: all of [0, pi], both poles states of the model), with
+       :meth:`in_range`, and :attr:`limits`, the ends of that range where a run stops
+       (:class:`Limit`; default none): a body with an edge or a tip
+       (:class:`~phasekit.bodies.edged.EdgedBody`);
+    5. may give :attr:`transfers`, where the contact passes from one piece to another
+       (:class:`PieceTransfer`; default none): a body of several convex pieces, whose
+       :meth:`height` switches between them with CasADi's ``if_else``
+       (:mod:`phasekit.bodies.compound`);
+    6. may give ``outline(n)``, the meridian as drawn (default: the one the support
+       function traces, right for a smooth body; an edged body's traces only its rim);
+    7. may give :meth:`describe` (a one-line description for reports; default the repr) and
+       :meth:`to_dict` (what a JSON result records; default the class, the shape and the moments).
+
+    Nothing else is needed: :func:`phasekit.simulate`, :func:`phasekit.steady_structure` and
+    :func:`phasekit.viz.animate` take such a body as they take the built-in ones.
 
     Parameters
     ----------
@@ -44,16 +103,11 @@ class Body:
         Transverse and axial principal moments of inertia about the centre of mass G,
         in units M b^2, with C <= 2 A (triangle inequality of principal moments).
 
-    Required of a subclass
-    ----------------------
-    ``shape_params`` -> tuple of floats
-        The numbers that fix the shape (compiled models take them as parameters, so bodies
-        that differ only in them share one compiled model).
-    ``height(c, shape)`` -> casadi.SX
-        H(c): the height of G above the table at c = cos(theta), written with the symbols
-        ``shape`` (one per shape parameter) and ``c`` only. Must be smooth on [-1, 1].
-    ``describe()`` (optional) -> str
-        A one-line description for reports.
+    Attributes
+    ----------
+    a : float
+        The aspect ratio a threshold or a table records for the body (NaN, the default, when it
+        has none; a spheroid's and an egg's own).
 
     Raises
     ------
@@ -66,7 +120,15 @@ class Body:
     >>> body = pk.Spheroid(1.5)
     >>> isinstance(body, pk.bodies.Body), round(float(body.h(0.3)[0]), 6)
     (True, 1.463159)
+    >>> body.theta_range, body.limits, body.transfers
+    (None, (), ())
     """
+
+    # the aspect ratio recorded for the body (Attributes above; NaN: none); a spheroid and an egg set their own
+    a = float("nan")
+    # caches: the structure key once computed, and whether the moments were checked
+    _key: str | None = None
+    _inertia_checked = False
 
     def __init__(self, A: float, C: float):
         self.A = check_positive("A", A)
@@ -78,7 +140,7 @@ class Body:
     # -- to be provided by subclasses ---------------------------------------------------------
     @property
     def shape_params(self) -> tuple[float, ...]:
-        raise NotImplementedError(f"{type(self).__name__} must define `shape_params` (see phasekit.bodies.body.Body)")
+        raise NotImplementedError(f"{type(self).__name__} must define `shape_params` (see phasekit.bodies.Body)")
 
     def height(self, c, shape):
         """H(c) as a CasADi expression in ``c`` and the symbols ``shape``.
@@ -100,7 +162,60 @@ class Body:
         NotImplementedError
             If a subclass does not define it.
         """
-        raise NotImplementedError(f"{type(self).__name__} must define `height(c, shape)` (see phasekit.bodies.body.Body)")
+        raise NotImplementedError(f"{type(self).__name__} must define `height(c, shape)` (see phasekit.bodies.Body)")
+
+    # -- the contract's capabilities, each with its default (items 4-6 of the class notes) --------
+    @property
+    def theta_range(self) -> tuple[float, float] | None:
+        """(lo, hi), radians: the open range of theta where the support function is the body's;
+        None (the default) for all of [0, pi], both poles states of the model."""
+        return None
+
+    @property
+    def limits(self) -> tuple[Limit, ...]:
+        """The ends of :attr:`theta_range` a run stops at, with their events' names and reasons
+        (default: none)."""
+        return ()
+
+    @property
+    def transfers(self) -> tuple[PieceTransfer, ...]:
+        """Where the contact passes from one piece of the body to another, each watched as an event
+        in every mode (default: none, a body of one piece)."""
+        return ()
+
+    def in_range(self, theta: float) -> bool:
+        """True when ``theta`` is a state of this body's model (default: always).
+
+        Parameters
+        ----------
+        theta : float
+            The inclination, radians.
+
+        Returns
+        -------
+        bool
+        """
+        return True
+
+    def outline(self, n: int = 64) -> tuple[np.ndarray, np.ndarray]:
+        """The meridian as drawn, (z, r) from the lower pole to the upper one: z along k from G,
+        r from the axis, units b. The default is the curve the contact point traces, h_theta
+        sin(theta) - h cos(theta) and h sin(theta) + h_theta cos(theta), at ``n`` angles.
+
+        Parameters
+        ----------
+        n : int, optional
+            The resolution: the angles of a smooth meridian (default 64); an outline made of
+            parts gives each about a third of them.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            (z, r).
+        """
+        th = np.linspace(0.0, np.pi, n)
+        h, ht, _ = self.h(th)
+        return ht * np.sin(th) - h * np.cos(th), np.clip(h * np.sin(th) + ht * np.cos(th), 0.0, None)
 
     # -- derived ----------------------------------------------------------------------------
     @property
@@ -116,7 +231,7 @@ class Body:
     def structure_key(self) -> str:
         """Identifies the symbolic form of H (not the numbers): bodies with equal keys share
         compiled models."""
-        if getattr(self, "_key", None) is None:
+        if self._key is None:
             c, sh = ca.SX.sym("c"), ca.SX.sym("shape", self.n_shape)
             f = ca.Function("H", [c, sh], [self.height(c, sh)])
             digest = hashlib.sha256(f.serialize().encode()).hexdigest()[:16]
@@ -134,7 +249,7 @@ class Body:
         ParameterError
             If ``A`` or ``C`` exceeds M r_max^2.
         """
-        if getattr(self, "_inertia_checked", False):
+        if self._inertia_checked:
             return
         h, h1, _ = (np.asarray(v, dtype=float).ravel() for v in self.h(np.linspace(0.0, np.pi, 181)))
         r2 = float(np.max(h * h + h1 * h1)) * (1 + 1e-9)
@@ -173,7 +288,7 @@ class Body:
         tuple of float
             (H(c), dH/dc), units b.
         """
-        H, dH = _slope_function(self)(float(c), self.shape_params)
+        H, dH = slope_function(self)(float(c), self.shape_params)
         return float(H), float(dH)
 
     def radii_of_curvature(self, theta):
@@ -265,7 +380,7 @@ _THETA_FUNCS: dict[str, object] = {}
 _SLOPE_FUNCS: dict[str, ca.Function] = {}
 
 
-def _slope_function(body: Body) -> ca.Function:
+def slope_function(body: Body) -> ca.Function:
     """(c, shape) -> (H, dH/dc), compiled once per body structure."""
     key = body.structure_key
     with _LOCK:

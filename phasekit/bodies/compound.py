@@ -9,7 +9,7 @@ functions, H(c) = max_i h_i(c), c = cos(theta) (a piece with a smaller h would b
 table). On each side of a switch angle c*, where two pieces' supports are equal, H is one
 piece's analytic function, so every equation of phasekit (the charts, the fields, the events,
 the fixed points) holds there unchanged; H is written with CasADi's ``if_else``, which the
-Taylor integrator translates (:mod:`phasekit._runtime.translate`). At c* the contact passes
+Taylor integrator translates (:mod:`phasekit.core.engines.translate`). At c* the contact passes
 from one piece to the other: the new piece hits the table while the old one touches it, an
 impact (:class:`phasekit.core.resets.Transfer`). The body lists its switches in
 :attr:`TippeTop.transfers` (:class:`PieceTransfer`); the hybrid system watches each as an event
@@ -30,18 +30,16 @@ the ball or the tip. Standing on the stem's end (theta = pi), G is l + r above t
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
 
 import casadi as ca
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_nonnegative, check_range
-from .body import Body
+from ..errors import ParameterError
+from .body import Body, PieceTransfer
 from .inertia import Solid, assemble, rod
+from .operations import STEPS
 from .spheroid import TIPPE_TOP_OFFSET_MAX
-
-__all__ = ["TippeTop", "PieceTransfer", "STEM", "STEM_MASS", "STEM_LENGTH_MAX"]
 
 #: the default stem (how far it stands out of the ball, the radius of its rounded end; units of
 #: the ball's radius): our reading of a common commercial top, Arbor Scientific's wooden
@@ -56,22 +54,6 @@ STEM = (0.375, 0.2)
 STEM_MASS = 0.04
 #: the longest stem, in ball radii
 STEM_LENGTH_MAX = 10.0
-
-
-class PieceTransfer(NamedTuple):
-    """Where the contact passes from one piece of a compound body to another.
-
-    ``theta`` is the switch angle, radians; ``direction`` that of the guard cos(theta) - ...
-    as :class:`phasekit.core.hybrid.Event` takes a theta event: +1 as theta rises through
-    ``theta`` (from ``from_piece`` to ``to_piece``), -1 as it falls. ``name`` is the event's
-    name in a run's log.
-    """
-
-    name: str
-    theta: float
-    direction: int
-    from_piece: str
-    to_piece: str
 
 
 class TippeTop(Body):
@@ -111,6 +93,11 @@ class TippeTop(Body):
         If ``offset`` is not a finite number in [0, 1) (at most sqrt(1/5) with the default
         moments), ``stem_length`` not in (0, 10], ``stem_radius`` not in (0, 1); or ``A`` or
         ``C`` is not a finite number > 0, or C > 2 A.
+
+    See Also
+    --------
+    EccentricSphere
+        the ball alone, without the stem
 
     Examples
     --------
@@ -199,7 +186,7 @@ class TippeTop(Body):
         """
         return "stem" if math.cos(theta) < math.cos(self.theta_switch) else "ball"
 
-    def outline(self, n: int = 16) -> tuple[np.ndarray, np.ndarray]:
+    def outline(self, n: int = 64) -> tuple[np.ndarray, np.ndarray]:
         """The meridian as drawn: (z, r) from the ball's lowest point to the stem's end, z along
         k from G and r from the axis (units b): the ball up to the shaft, the shaft, its
         rounded end.
@@ -207,13 +194,15 @@ class TippeTop(Body):
         Parameters
         ----------
         n : int, optional
-            Points on the ball (four times as many), the shaft and the end (default 16).
+            The resolution (default 64): k = max(2, n // 3) points on the shaft and the end, four
+            times as many on the ball.
 
         Returns
         -------
         tuple of numpy.ndarray
-            (z, r), each of 6 n points.
+            (z, r), each of 6 k points.
         """
+        n = max(2, n // 3)
         r = self.stem_radius
         phi = np.linspace(0.0, math.pi - math.asin(r), 4 * n)
         z_ball, r_ball = self.offset - np.cos(phi), np.sin(phi)
@@ -278,3 +267,83 @@ def default_moments(offset: float, stem_length: float, stem_mass: float = STEM_M
         raise ParameterError("offset", "is too large for the default moments with this stem (the ball's centre of mass "
                                        "would lie farther than sqrt(2/5) from its centre); give A and C", offset)
     return assemble(Solid(m_ball, z_ball, A_own, 0.4), rod(stem_length, z_rod, mass=stem_mass))
+
+
+# -- a piece as a body of its own ------------------------------------------------------------
+
+def frozen_support(body, theta: float) -> tuple[ca.SX, ca.SX, ca.SX]:
+    """(c, shape, H): the symbols and the support of ``body`` with every switch frozen at the
+    branch it takes at ``theta`` (:class:`PieceSupport`): the body's H, read instruction by instruction
+    and evaluated at theta alongside, a switch's symbolic result replaced by the branch its
+    value picks."""
+    c, sh = ca.SX.sym("c"), ca.SX.sym("shape", body.n_shape)
+    f = ca.Function("H", [c, sh], [body.height(c, sh)])
+    symbols = [[c], [sh[k] for k in range(body.n_shape)]]
+    numbers = [[math.cos(theta)], [float(v) for v in body.shape_params]]
+    sym, num, out = {}, {}, None
+    for k in range(f.n_instructions()):
+        op, o, i = f.instruction_id(k), f.instruction_output(k), f.instruction_input(k)
+        if op == ca.OP_CONST:
+            num[o[0]] = float(f.instruction_constant(k))
+            sym[o[0]] = ca.SX(num[o[0]])
+        elif op == ca.OP_INPUT:
+            sym[o[0]], num[o[0]] = symbols[i[0]][i[1]], numbers[i[0]][i[1]]
+        elif op == ca.OP_OUTPUT:
+            out = sym[i[0]]
+        else:
+            a, s = [num[j] for j in i], [sym[j] for j in i]
+            value = float(ca.DM.binary(op, *a) if len(i) == 2 else ca.DM.unary(op, a[0]))
+            if op in STEPS:
+                e = ca.SX(value)
+            elif op == ca.OP_IF_ELSE_ZERO:
+                e = s[1] if a[0] else ca.SX(0.0)
+            elif op in (ca.OP_FMAX, ca.OP_FMIN):
+                e = s[0] if (a[0] >= a[1]) == (op == ca.OP_FMAX) else s[1]
+            elif op == ca.OP_FABS:
+                e = s[0] if a[0] >= 0 else -s[0]
+            else:
+                e = ca.SX.binary(op, *s) if len(i) == 2 else ca.SX.unary(op, s[0])
+            sym[o[0]], num[o[0]] = e, value
+    return c, sh, out
+
+
+class PieceSupport(Body):
+    """One piece of a compound body as a body of its own: the whole body's moments and shape
+    parameters, and the piece's own support, analytic across the switches.
+
+    The piece's support is read off the body's: H written with CasADi's ``if_else`` (or fmax,
+    fmin, fabs) with every such switch frozen at the branch it takes inside the piece, an
+    expression analytic across the switch (the tippe top's ball: 1 - offset c, an eccentric
+    sphere; its stem: r - l c, the support of a sphere of radius r centred l from G), so closed
+    forms hold up to the switch itself (phasekit.steady computes a compound body's structure
+    piece by piece on these). Inside the piece's range it is the body's H, operation for
+    operation.
+
+    Parameters
+    ----------
+    whole : Body
+        The compound body.
+    piece : str
+        The piece's name ("ball", "stem").
+    theta : float
+        An angle inside the piece's range, radians (where its switches are read).
+    """
+
+    def __init__(self, whole, piece: str, theta: float):
+        super().__init__(whole.A, whole.C)
+        self.whole, self.piece = whole, piece
+        self._c, self._sh, self._H = frozen_support(whole, theta)
+        self._shape = tuple(float(v) for v in whole.shape_params)
+
+    @property
+    def shape_params(self) -> tuple[float, ...]:
+        return self._shape
+
+    def height(self, c, shape):
+        return ca.substitute([self._H], [self._c, self._sh], [ca.SX(c), ca.SX(shape)])[0]
+
+    def describe(self) -> str:
+        return f"the {self.piece} of the {self.whole.describe()}"
+
+    def __repr__(self) -> str:
+        return f"PieceSupport({self.piece!r} of {self.whole!r})"

@@ -39,12 +39,10 @@ import math
 import casadi as ca
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_choice, check_range
+from ..errors import ParameterError
 from .edged import FLAT_ANGLE, EdgedBody, Limit
 from .inertia import cone as solid_cone
-
-__all__ = ["Cone", "HEIGHT_MAX", "CONTACTS"]
 
 #: the largest height, in base radii (as a cylinder's thickness, bodies.edged.THICKNESS_MAX)
 HEIGHT_MAX = 1e3
@@ -150,20 +148,21 @@ class Cone(EdgedBody):
             return (f"({side}, pi]", f"on its tip; at {side} its side touches the table", True)
         return (f"(0, {side})", f"on its rim; at 0 it stands on its base, at {side} its side touches the table", False)
 
-    def outline(self, n: int = 16) -> tuple[np.ndarray, np.ndarray]:
+    def outline(self, n: int = 64) -> tuple[np.ndarray, np.ndarray]:
         """The meridian as drawn: (z, r) from the centre of the base to the tip, z along k from
         G and r from the axis (units b): the base and the slanted side.
 
         Parameters
         ----------
         n : int, optional
-            Points on the base and on the side (default 16).
+            The resolution (default 64): k = max(2, n // 3) points on the base and on the side.
 
         Returns
         -------
         tuple of numpy.ndarray
-            (z, r), each of 2 n points.
+            (z, r), each of 2 k points.
         """
+        n = max(2, n // 3)
         base, u = -0.25 * self.altitude, np.linspace(0.0, 1.0, n)
         return np.concatenate([np.full(n, base), base + self.altitude * u]), np.concatenate([u, 1.0 - u])
 

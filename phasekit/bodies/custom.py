@@ -9,10 +9,8 @@ import hashlib
 import casadi as ca
 import numpy as np
 
-from .._runtime.errors import ParameterError
+from ..errors import ParameterError
 from .body import Body, uniform_mass_properties
-
-__all__ = ["CustomBody"]
 
 
 class CustomBody(Body):
@@ -89,7 +87,7 @@ class CustomBody(Body):
         """A profile with a kink (fabs, fmax, if_else, ...) is not smooth, whatever its values
         say at the sample points; one the Taylor integrator cannot compile is refused here,
         not at the first simulation."""
-        from .._runtime.translate import operations
+        from .operations import operations
 
         c = ca.SX.sym("c")
         ops = operations(ca.Function("h", [c], [ca.SX(self.height(c, ca.SX.sym("shape", 0)))]))
@@ -112,7 +110,7 @@ class CustomBody(Body):
 
     @property
     def structure_key(self) -> str:
-        if getattr(self, "_key", None) is None:
+        if self._key is None:
             c = ca.SX.sym("c")
             f = ca.Function("H", [c], [self.height(c, ca.SX.sym("shape", 0))])
             self._key = "CustomBody:" + hashlib.sha256(f.serialize().encode()).hexdigest()[:16]

@@ -31,16 +31,13 @@ with the named event and the limit's reason.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
 
 import casadi as ca
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_range
-from .body import Body
-
-__all__ = ["Disk", "EdgedBody", "Limit", "FLAT_ANGLE", "THICKNESS_MAX", "EDGE_TOL"]
+from ..errors import ParameterError
+from .body import Body, Limit
 
 #: the inclination at which the flat face is taken to be down: the run stops there (the rim
 #: opposite the contact is then 2e-3 radii above the table; H is exact to ~1e-13 there in both
@@ -55,20 +52,6 @@ THICKNESS_MAX = 1e3
 #: the rounding of c = cos(theta) near a pole (a branch point of H there: sqrt(1 - c^2) resolves
 #: to eps/sin^2, h_thetatheta to eps/sin^3), is an edge, not a concave profile
 EDGE_TOL = 1e-12
-
-
-class Limit(NamedTuple):
-    """One end of a body's valid range of theta: a run stops there with the event ``name``.
-
-    ``direction`` is that of the guard cos(theta_limit) - cos(theta) as
-    :class:`phasekit.core.hybrid.Event` takes it: -1 as theta falls to the limit, +1 as it rises
-    to it. ``reason`` is formatted with the time ``t`` of the event.
-    """
-
-    name: str
-    theta: float
-    direction: int
-    reason: str
 
 
 class EdgedBody(Body):
@@ -102,9 +85,9 @@ class EdgedBody(Body):
         """The ends of :attr:`theta_range` a run stops at, with their events' names and reasons."""
         raise NotImplementedError(f"{type(self).__name__} must define `limits`")
 
-    def outline(self, n: int = 16) -> tuple[np.ndarray, np.ndarray]:
-        """The meridian as drawn, (z, r) from the lower pole to the upper one (z along k from G,
-        r from the axis, units b)."""
+    def outline(self, n: int = 64) -> tuple[np.ndarray, np.ndarray]:
+        """The meridian as drawn (:meth:`Body.outline <phasekit.bodies.Body.outline>`): the support
+        function traces only the edge, never the faces, so a subclass must give it."""
         raise NotImplementedError(f"{type(self).__name__} must define `outline`")
 
     def check_theta(self, theta: float, name: str = "theta") -> float:
@@ -289,7 +272,7 @@ class Disk(EdgedBody):
         """"disk" (thinner than its radius) or "cylinder"."""
         return "disk" if self.thickness < 1.0 else "cylinder"
 
-    def outline(self, n: int = 16) -> tuple[np.ndarray, np.ndarray]:
+    def outline(self, n: int = 64) -> tuple[np.ndarray, np.ndarray]:
         """The meridian as drawn: (z, r) from the centre of the lower face to that of the upper one,
         z along k from G and r from the axis (units b): the faces, the rims and the side. The
         support function traces only the rim (every contact point is on it), so a drawing needs
@@ -298,13 +281,14 @@ class Disk(EdgedBody):
         Parameters
         ----------
         n : int, optional
-            Points on each face and on the side (default 16).
+            The resolution (default 64): k = max(2, n // 3) points on each face and on the side.
 
         Returns
         -------
         tuple of numpy.ndarray
-            (z, r), each of 3 n points.
+            (z, r), each of 3 k points.
         """
+        n = max(2, n // 3)
         half, u = 0.5 * self.thickness, np.linspace(0.0, 1.0, n)
         z = np.concatenate([np.full(n, -half), -half + 2 * half * u, np.full(n, half)])
         r = np.concatenate([u, np.ones(n), u[::-1]])

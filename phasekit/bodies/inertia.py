@@ -21,10 +21,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_finite, check_nonnegative, check_positive
-
-__all__ = ["Solid", "ball", "cylinder", "cone", "rod", "assemble"]
+from ..errors import ParameterError
 
 
 @dataclass(frozen=True)

@@ -8,11 +8,9 @@ import math
 
 import casadi as ca
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_nonnegative, check_range
+from ..errors import ParameterError
 from .body import Body
-
-__all__ = ["Spheroid", "EccentricSphere", "TIPPE_TOP_OFFSET_MAX"]
 
 #: aspect ratios outside this range give moments of inertia that overflow or vanish
 ASPECT_RANGE = (1e-4, 1e4)
@@ -149,6 +147,11 @@ class EccentricSphere(Body):
     ParameterError
         If ``offset`` is not a finite number in [0, 1), or exceeds sqrt(1/5) when ``A`` is left
         to its default; or ``A`` or ``C`` is not a finite number > 0, or C > 2 A.
+
+    See Also
+    --------
+    TippeTop
+        the tippe top with its stem, a compound body (this class is its ball alone)
 
     Examples
     --------

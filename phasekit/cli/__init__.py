@@ -28,18 +28,18 @@ import sys
 import warnings
 
 from .commands import COMMANDS
-from .flags import FLAGS, _flag_names, _typed_value
+from .flags import FLAGS, flag_names, typed_value
 from .output import (
-    _error,
-    _finite_json,
-    _json_default,
-    _nonfinite,
-    _plain_types,
-    _print_human,
-    _show_warning,
-    _stdout_to_stderr,
+    finite_json,
+    json_default,
+    nonfinite,
+    plain_types,
+    print_error,
+    print_human,
+    show_warning,
+    stdout_to_stderr,
 )
-from .parser import _build_parser, _Exit, _refuse_repeats, _UsageError
+from .parser import EarlyExit, UsageError, build_parser, refuse_repeats
 
 __all__ = ["main", "main_entry"]
 
@@ -49,22 +49,22 @@ DEBUG_ENV = "PHASEKIT_DEBUG"
 
 def _run(argv, as_json: bool):
     """Parse and compute: (output dict, args), or raise."""
-    parser = _build_parser()
+    parser = build_parser()
     for p in (parser, *parser.commands.values()):
         p.argv = tuple(argv)
     args = parser.parse_args(argv)
     if args.command is None:
-        raise _UsageError("a command is required: " + ", ".join(COMMANDS))
-    _refuse_repeats(parser.commands[args.command], argv)
-    with _stdout_to_stderr():
-        out = _plain_types(COMMANDS[args.command](args))
-    where = _nonfinite(out)
+        raise UsageError("a command is required: " + ", ".join(COMMANDS))
+    refuse_repeats(parser.commands[args.command], argv)
+    with stdout_to_stderr():
+        out = plain_types(COMMANDS[args.command](args))
+    where = nonfinite(out)
     if where is not None and out.get("status") != "failed":
         # a non-finite number is never a result: the run failed there
         out["status"], out["reason"] = "failed", f"non-finite value in the result at {where}"
     if out.get("status") == "failed" and not out.get("reason"):
         out["reason"] = "the computation could not continue"  # every failed result says why
-    return _finite_json(out), args
+    return finite_json(out), args
 
 
 def main(argv=None) -> int:
@@ -79,16 +79,16 @@ def main(argv=None) -> int:
             return _main(argv, guard)
         except KeyboardInterrupt:  # raised again by the guard after _main's own handlers
             guard["handled"] = True
-            return _error("interrupted (a single run keeps nothing: run it again)", None, "--json" in (argv or sys.argv),
+            return print_error("interrupted (a single run keeps nothing: run it again)", None, "--json" in (argv or sys.argv),
                           code=130)
 
 
 def _main(argv, guard: dict) -> int:
-    from .._runtime.errors import ParameterError, PhasekitError
+    from ..errors import ParameterError, PhasekitError
 
     argv = list(sys.argv[1:] if argv is None else argv)
     as_json = "--json" in argv
-    names = _flag_names(argv)  # a parameter fed by several flags is named by the one typed
+    names = flag_names(argv)  # a parameter fed by several flags is named by the one typed
     held: list = []  # the warnings, printed once the inputs are accepted (never before a refusal)
     say = functools.partial(_say_held, held, names)
     try:
@@ -96,45 +96,45 @@ def _main(argv, guard: dict) -> int:
             warnings.simplefilter("default")
             warnings.showwarning = lambda message, *a, **k: held.append(message)
             out, args = _run(argv, as_json)
-    except _Exit as exc:
+    except EarlyExit as exc:
         return exc.code
-    except _UsageError as exc:
-        return _error(str(exc), exc.flag, as_json, names=names)
+    except UsageError as exc:
+        return print_error(str(exc), exc.flag, as_json, names=names)
     except ParameterError as exc:
         name = names.get(exc.param)  # None: a parameter the CLI does not set (named as in Python)
         flag = name and name.split(" (")[0]
-        message = _as_typed(exc, name, _typed_value(argv, flag))
+        message = _as_typed(exc, name, typed_value(argv, flag))
         if flag:  # "|n0| <= ..." in the range: the flag typed, not the Python name
             message = message.replace(f"|{exc.param}|", f"|{flag}|")
-        return _error(message, flag, as_json, names=names)
+        return print_error(message, flag, as_json, names=names)
     except PhasekitError as exc:
         say()
-        return _error(str(exc), None, as_json, code=1, names=names)
+        return print_error(str(exc), None, as_json, code=1, names=names)
     except KeyboardInterrupt:  # one line: the warnings of an abandoned run (a file an interrupted import left open) go
         guard["handled"] = True
-        return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
+        return print_error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
     except Exception as exc:  # a bug: one line, not a traceback (PHASEKIT_DEBUG=1 shows it)
         if guard.get("seen"):  # Ctrl-C that compiled code turned into an error of its own
-            return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
+            return print_error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
         if os.environ.get(DEBUG_ENV):
             raise
         first = (str(exc).strip().splitlines() or [""])[0][:200]
-        return _error(f"internal error: {type(exc).__name__}: {first} (please report it; set {DEBUG_ENV}=1 for the "
+        return print_error(f"internal error: {type(exc).__name__}: {first} (please report it; set {DEBUG_ENV}=1 for the "
                       "traceback)", None, as_json, code=1)
     say()
     if guard.get("seen"):  # a Ctrl-C that compiled code swallowed (the run went on): still an interrupted run
-        return _error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
+        return print_error("interrupted (a single run keeps nothing: run it again)", None, as_json, code=130)
     if as_json:
-        print(json.dumps(out, default=_json_default, allow_nan=False))
+        print(json.dumps(out, default=json_default, allow_nan=False))
     else:
-        _print_human(out, getattr(args, "events", False))
+        print_human(out, getattr(args, "events", False))
     return 1 if out.get("status") == "failed" else 0
 
 
 def _say_held(held: list, names: dict) -> None:
     """Print the warnings held while the command computed (each once, in order)."""
     for message in dict.fromkeys(str(m) for m in held):
-        _show_warning(message, UserWarning, "", 0, names=names)
+        show_warning(message, UserWarning, "", 0, names=names)
     held.clear()
 
 

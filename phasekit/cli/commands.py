@@ -8,18 +8,18 @@ from __future__ import annotations
 
 import warnings
 
-from .inputs import _apply_units, _body, _dissipation_of, _law_args, _paper_body, _pose_of, _start_of
-from .parser import _UsageError
+from .inputs import apply_units, body_of, dissipation_of, law_args, paper_body, pose_of, start_of
+from .parser import UsageError
 
 
 def _cmd_simulate(args) -> dict:
     from .params import run_start
 
-    scale = _apply_units(args)
+    scale = apply_units(args)
     traj, seed = _simulate_args(args, run_start, scale)
     out = _run_output(traj, seed)
     if args.si:
-        from .._runtime.errors import ParameterError
+        from ..errors import ParameterError
         from .params import real_units_report
 
         try:
@@ -28,7 +28,7 @@ def _cmd_simulate(args) -> dict:
         except ParameterError as exc:  # a number of the run overflows in ms, mm, ... (e.g. a huge --X0 with --size)
             if exc.param != "value":
                 raise
-            raise _UsageError(f"--si cannot report this run in real units: one of its values {exc.expected} (beyond "
+            raise UsageError(f"--si cannot report this run in real units: one of its values {exc.expected} (beyond "
                               f"double precision with --size {args.size!r}); leave out --si.", "--si") from None
     return out
 
@@ -38,13 +38,16 @@ def _cmd_animate(args) -> dict:
     from ..viz.animate import animate, check_movie_options, film_strip
     from .params import run_start
 
-    scale = _apply_units(args)
+    scale = apply_units(args)
     if args.timing == "real" and scale is None:
-        raise _UsageError("--timing real needs --size (the body's unit of length, e.g. --size '21.5 mm').", "--timing")
+        raise UsageError("--timing real needs --size (the body's unit of length, e.g. --size '21.5 mm').", "--timing")
     size = (480, 360) if args.window_size is None else tuple(args.window_size)
-    check_movie_options(args.out, frames=args.frames, fps=args.fps, timing=args.timing, gap_scale=args.gap_scale,
-                        camera=args.camera, panel=args.panel, window_size=size, scale=scale)
-    traj, seed = _simulate_args(args, run_start, scale)
+
+    def before_run():  # after the inputs' checks (a bad --A is named first), before any work
+        check_movie_options(args.out, frames=args.frames, fps=args.fps, timing=args.timing, gap_scale=args.gap_scale,
+                            camera=args.camera, panel=args.panel, window_size=size, scale=scale)
+
+    traj, seed = _simulate_args(args, run_start, scale, before_run=before_run)
     out = _run_output(traj, seed)
     if traj.status.value == "failed":
         return out
@@ -81,17 +84,18 @@ def _summary_in_real_units(summary: dict, scale) -> dict:
             float(scale.quantity(v, kinds[k]).to(DISPLAY_UNITS[kinds[k]]).magnitude) for k, v in summary.items()}
 
 
-def _simulate_args(args, runner, scale=None):
+def _simulate_args(args, runner, scale=None, before_run=None):
     """Build the body, start and options from ``args`` and call ``runner`` (run_start) with them.
-    Every value is checked before a warning about it is given (a refused flag is one line)."""
+    Every value is checked before a warning about it is given (a refused flag is one line);
+    ``before_run()`` (a command's own checks, e.g. its optional dependencies) comes after them."""
     from .._runtime.validate import check_range
     from ..core.simulate import solver_options
 
     if args.paper_start is not None:
-        _paper_body(args)
-    body = _body(args)
-    start = _start_of(args, body)
-    friction, mu, eps = _law_args(args)
+        paper_body(args)
+    body = body_of(args)
+    start = start_of(args, body)
+    friction, mu, eps = law_args(args)
     opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall,
                 creep=not args.no_creep)
     solver_options(**opts)
@@ -103,14 +107,16 @@ def _simulate_args(args, runner, scale=None):
                       "or --stop-at NAME=VALUE)")
     if args.atol is not None and args.backend == "taylor":
         warnings.warn("--atol has no effect with --backend taylor (the Taylor method has the one tolerance --rtol)")
-    dissipation = _dissipation_of(args)
+    dissipation = dissipation_of(args)
     if args.stop_at == "rest" and not any(dissipation.values()):
         warnings.warn("--stop-at rest runs as --stop-at none without a dissipation law: the body never comes to rest "
                       "(give --rolling-resistance, --spin-friction or an --air-drag option)")
     if args.no_creep and eps is None:
         warnings.warn("--no-creep has no effect without --slip-eps (only a regularised law creeps)")
+    if before_run is not None:
+        before_run()
     return runner(body=body, friction=friction, mu=mu, slip_eps=eps, start=start, t_end=args.t_end,
-                  stop_at=args.stop_at, restitution=restitution, chart=args.chart, options=opts, pose0=_pose_of(args),
+                  stop_at=args.stop_at, restitution=restitution, chart=args.chart, options=opts, pose0=pose_of(args),
                   dissipation=dissipation, verify=args.verify)
 
 
@@ -127,7 +133,7 @@ def _check_reach(args, scale) -> None:
     typed = getattr(args, "typed_units", {}).get("t_end")
     shown = f"{typed!r} ({args.t_end:.6g} in units of sqrt(b/g))" if typed else f"{args.t_end:g}"
     real = f" = {scale.quantity(reach, 'time').to('s').magnitude:.3g} s" if scale is not None else ""
-    raise _UsageError(f"--t-end {shown} cannot be reached within --max-wall {args.max_wall:g} s: no run covers more "
+    raise UsageError(f"--t-end {shown} cannot be reached within --max-wall {args.max_wall:g} s: no run covers more "
                       f"than {REACH_PER_S:g} time units per second of wall-clock time, so --t-end must lie in (0, "
                       f"{reach:g}]{real} (or give a larger --max-wall).", "--t-end")
 
@@ -136,27 +142,29 @@ def _cmd_fixed_points(args) -> dict:
     from .._runtime.validate import check_positive
     from .params import fixed_points_report
 
-    friction, mu, eps = _law_args(args)
+    apply_units(args)  # lengths and rates typed with units (--size)
+    friction, mu, eps = law_args(args)
     check_positive("max_wall", args.max_wall)  # as simulate's --max-wall
-    return fixed_points_report(body=_body(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0, n0=args.n0,
-                               max_wall=args.max_wall, dissipation=_dissipation_of(args))
+    return fixed_points_report(body=body_of(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0, n0=args.n0,
+                               max_wall=args.max_wall, dissipation=dissipation_of(args))
 
 
 def _cmd_steady_states(args) -> dict:
     from .._runtime.validate import check_positive
     from .params import steady_structure_report
 
-    friction, mu, eps = _law_args(args)
+    apply_units(args)  # lengths and rates typed with units (--size)
+    friction, mu, eps = law_args(args)
     check_positive("max_wall", args.max_wall)  # as simulate's --max-wall
-    return steady_structure_report(body=_body(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0,
-                                   n0=args.n0, max_wall=args.max_wall, dissipation=_dissipation_of(args))
+    return steady_structure_report(body=body_of(args), mu=mu, friction=friction, slip_eps=eps, omega0=args.omega0,
+                                   n0=args.n0, max_wall=args.max_wall, dissipation=dissipation_of(args))
 
 
 def _cmd_gyroscopic(args) -> dict:
     """The report at the times in the order given (the API returns them sorted)."""
     from .params import gyroscopic_report
 
-    out = gyroscopic_report(body=_body(args), mu=args.mu, theta0=args.theta0, t=args.t, omega0=args.omega0, n0=args.n0)
+    out = gyroscopic_report(body=body_of(args), mu=args.mu, theta0=args.theta0, t=args.t, omega0=args.omega0, n0=args.n0)
     order = sorted(range(len(args.t)), key=args.t.__getitem__)  # the API's order (its times are finite)
     if len(out["t"]) == len(order) and order != sorted(order):
         for key in ("t", "T", "theta", "Omega"):

@@ -21,6 +21,7 @@ FLAGS = {
     "t": "--t", "T": "--t", "label": "--paper-start", "level": "--stop-at", "max_switches": "--max-switches",
     "b": "--size", "g": "--g", "pose0.psi": "--psi0", "pose0.phi": "--phi0", "pose0.X": "--X0", "pose0.Y": "--Y0",
     "psi0": "--psi0", "phi0": "--phi0", "X0": "--X0", "Y0": "--Y0", "spin_about_vertical": "--spin-about-vertical",
+    "spinning_in_place": "--spinning-in-place",
     "frames": "--frames", "fps": "--fps", "out": "OUT", "gap_scale": "--gap-scale", "camera": "--camera",
     "panel": "--panel", "timing": "--timing", "window_size": "--window-size", "path": "OUT", "mass": "--mass",
     "rolling_resistance": "--rolling-resistance", "spin_friction": "--spin-friction", "air_drag": "--air-drag", "air_layer": "--air-layer",
@@ -40,30 +41,30 @@ SOURCES = {
 }
 
 
-def _typed(argv) -> list[str]:
+def typed_text(argv) -> list[str]:
     """The options as typed (``--name`` of ``--name=value`` too), up to a bare ``--``."""
     argv = list(argv)
     argv = argv[:argv.index("--")] if "--" in argv else argv
     return [a.split("=", 1)[0] for a in argv if isinstance(a, str) and a.startswith("--") and len(a) > 2]
 
 
-def _flag_names(argv) -> dict:
+def flag_names(argv) -> dict:
     """FLAGS for this command line: a parameter fed by several flags is named by the one typed."""
-    typed = set(_typed(argv))
+    typed = set(typed_text(argv))
     names = dict(FLAGS)
     for param, sources in SOURCES.items():
         names[param] = next((shown for flag, shown in sources if flag in typed), FLAGS.get(param, f"`{param}`"))
     return names
 
 
-def _flags_in(text: str, names: dict = FLAGS) -> str:
+def flags_in(text: str, names: dict = FLAGS) -> str:
     """Python parameter names written `name` in a library message -> the CLI's flags."""
     text = re.sub(r"`(\w+)`\s*=\s*'([^']*)'", lambda m: f"{names[m.group(1)]} {m.group(2)}" if m.group(1) in names
                   else m.group(0), text)
     return re.sub(r"`(\w+)`", lambda m: names.get(m.group(1), m.group(0)), text)
 
 
-def _typed_value(argv, flag: str | None) -> str | None:
+def typed_value(argv, flag: str | None) -> str | None:
     """The text typed after ``flag`` (``--flag VALUE`` or ``--flag=VALUE``), or None."""
     argv = list(argv)
     for i, a in enumerate(argv):

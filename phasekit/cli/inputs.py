@@ -1,7 +1,7 @@
 """A command's inputs from its parsed arguments: the body, the friction law, values typed with
 units, the start of a run and where the body stands on the table.
 
-Each check refuses with a :class:`~phasekit.cli.parser._UsageError` naming the flag typed.
+Each check refuses with a :class:`~phasekit.cli.parser.UsageError` naming the flag typed.
 """
 
 from __future__ import annotations
@@ -11,7 +11,8 @@ import re
 import warnings
 
 from .flags import FLAGS
-from .parser import DISSIPATION_FLAGS, _UsageError, _WithUnits
+from .options import DISSIPATION_FLAGS, WithUnits
+from .parser import UsageError
 
 #: the smallest --A and --C, units M b^2 (a body's own are ~0.1-0.5): rates of order 1/C follow
 #: from smaller ones, and the steady states' residuals grow as 1/C^2 (measured: 4e-8 at C = 1e-9,
@@ -24,12 +25,12 @@ RADIUS_OF = {"disk": "the disk's radius", "cone": "the cone's base radius"}
 
 
 def _make_body(args, A=None, C=None):
-    """The body of --body: the library's built-in ones (phasekit.core.model.make_body) and the
+    """The body of --body: the library's built-in ones (phasekit.bodies.by_name.make_body) and the
     cone (--height, --on), whose flags are refused on another body."""
-    from .._runtime.errors import ParameterError
     from .._runtime.validate import check_choice
+    from ..bodies.by_name import BODIES, make_body
     from ..bodies.cone import Cone
-    from ..core.model import BODIES, make_body
+    from ..errors import ParameterError
 
     check_choice("body", args.body, tuple(dict.fromkeys((*BODIES, "cone"))))
     if args.body == "cone":
@@ -52,9 +53,9 @@ def _make_body(args, A=None, C=None):
 def _stem(stem_length, stem_radius) -> dict:
     """The tippe top's stem flags as make_body takes them: the default stem when neither is
     given, none (the ball alone, EccentricSphere) with --stem-length 0."""
-    from .._runtime.errors import ParameterError
     from .._runtime.validate import check_range
     from ..bodies.compound import STEM, STEM_LENGTH_MAX
+    from ..errors import ParameterError
 
     if stem_length is not None:  # 0 is the CLI's "no stem": its range is the API's with 0
         check_range("stem_length", stem_length, 0.0, STEM_LENGTH_MAX, closed="lr",
@@ -67,17 +68,17 @@ def _stem(stem_length, stem_radius) -> dict:
     return {"stem_length": STEM[0] if stem_length is None else stem_length, "stem_radius": stem_radius}
 
 
-def _body(args):
-    from .._runtime.errors import ParameterError, plain
+def body_of(args):
+    from ..errors import ParameterError, plain
 
     try:
         body = _make_body(args, A=args.A, C=args.C)
     except ParameterError as exc:
         _moments_relation(args, exc)
         raise
-    for name in ("A", "C"):  # after the library's checks: a relation of the two is said first
-        if getattr(args, name) is not None and getattr(body, name) < MOMENT_MIN:
-            raise _UsageError(f"--{name} must be at least {MOMENT_MIN:g} (units M b^2; a smaller moment gives rates of "
+    for name, moment in (("A", body.A), ("C", body.C)):  # after the library's checks: a relation of the two is said first
+        if getattr(args, name) is not None and moment < MOMENT_MIN:
+            raise UsageError(f"--{name} must be at least {MOMENT_MIN:g} (units M b^2; a smaller moment gives rates of "
                               f"order 1/{name} that double precision cannot follow), got {plain(getattr(args, name))}.",
                               f"--{name}")
     return body
@@ -86,7 +87,7 @@ def _body(args):
 def _moments_relation(args, exc) -> None:
     """C <= 2A fails: name the moment typed (the library names C, typed or not), and say which
     value is the body's default."""
-    from .._runtime.errors import plain
+    from ..errors import plain
 
     if exc.param != "C" or "C <= 2A" not in exc.expected or (args.A is None and args.C is None):
         return
@@ -100,12 +101,12 @@ def _moments_relation(args, exc) -> None:
     flag = "--A" if args.C is None else "--C"
     first, second = (a_text, c_text) if flag == "--A" else (c_text, a_text)
     fix = f"--A >= {C / 2:.6g}" if flag == "--A" else f"--C <= {2 * A:.6g}"
-    raise _UsageError(f"{first} with {second} violates C <= 2A (triangle inequality of principal moments): give "
+    raise UsageError(f"{first} with {second} violates C <= 2A (triangle inequality of principal moments): give "
                       f"{fix}" + ("" if args.A is not None and args.C is not None else
                                   f", or give {'--C' if flag == '--A' else '--A'} too") + ".", flag)
 
 
-def _law_args(args) -> tuple[str, float, float | None]:
+def law_args(args) -> tuple[str, float, float | None]:
     """(friction, mu, slip_eps), warning (and dropping) --slip-eps where it does nothing."""
     eps = args.slip_eps
     if eps is not None and args.friction == "viscous":
@@ -117,7 +118,7 @@ def _law_args(args) -> tuple[str, float, float | None]:
     return args.friction, args.mu, eps
 
 
-def _dissipation_of(args) -> dict:
+def dissipation_of(args) -> dict:
     """The coefficients of the dissipation laws given (flag dest -> value, in phasekit's units):
     what :func:`phasekit.cli.params._law_of` builds the laws from."""
     return {dest: getattr(args, dest) for dest in DISSIPATION_FLAGS if getattr(args, dest, None) is not None}
@@ -138,22 +139,22 @@ def _scale_of(args):
     radius = getattr(args, "radius", None)
     if radius is not None:
         if args.body not in RADIUS_OF:
-            raise _UsageError(f"--radius is a disk's or a cone's radius (with --body disk or cone); the unit of length "
+            raise UsageError(f"--radius is a disk's or a cone's radius (with --body disk or cone); the unit of length "
                               f"of the {args.body} body is --size, got --radius {radius!r}.", "--radius")
         if args.size is not None:
-            raise _UsageError(f"--radius and --size both set the unit of length b ({RADIUS_OF[args.body]}): give one "
+            raise UsageError(f"--radius and --size both set the unit of length b ({RADIUS_OF[args.body]}): give one "
                               f"of them, got --radius {radius!r} and --size {args.size!r}.", "--radius")
     b = args.size if args.size is not None else radius
     if b is None:
         size = _size_flag(args)
         for flag, value in (("--g", args.g), ("--mass", getattr(args, "mass", None))):
             if value is not None:
-                raise _UsageError(f"{flag} needs {size}, got {value!r}.", flag)
+                raise UsageError(f"{flag} needs {size}, got {value!r}.", flag)
         return None
     return Scale(b, g=STANDARD_GRAVITY if args.g is None else args.g, mass=getattr(args, "mass", None))
 
 
-def _apply_units(args):
+def apply_units(args):
     """Replace every value typed with units by its number in phasekit's units; returns the Scale."""
     from ..core.units import as_quantity
 
@@ -161,25 +162,25 @@ def _apply_units(args):
     args.typed_units = {}  # the values as typed, for messages (the args then hold numbers)
     for dest, kind in UNIT_OPTIONS.items():
         value = getattr(args, dest, None)
-        if not isinstance(value, _WithUnits):
+        if not isinstance(value, WithUnits):
             continue
         args.typed_units[dest] = str(value)
         flag = FLAGS[dest]
         if kind == "angle":
             q = as_quantity(str(value), dest)
             if not q.dimensionless:
-                raise _UsageError(f"{flag} must be an angle in radians or with units such as '89.4 deg', got "
+                raise UsageError(f"{flag} must be an angle in radians or with units such as '89.4 deg', got "
                                   f"{str(value)!r}.", flag)
             setattr(args, dest, float(q.to("rad").magnitude))
         elif scale is None:
             size = f"{RADIUS_OF[args.body]} with --radius (e.g. --radius '3.7 cm')" if args.body in RADIUS_OF else \
                 "the body's size with --size (e.g. --size '21.5 mm')"
-            raise _UsageError(f"{flag} {str(value)!r} has units: give {size} to express it in units of b and sqrt(b/g), "
+            raise UsageError(f"{flag} {str(value)!r} has units: give {size} to express it in units of b and sqrt(b/g), "
                               f"or type a plain number.", flag)
         else:
             setattr(args, dest, _in_phasekit_units(scale, str(value), kind, dest))
     if getattr(args, "si", False) and scale is None:
-        raise _UsageError(f"--si needs {_size_flag(args)}.", "--si")
+        raise UsageError(f"--si needs {_size_flag(args)}.", "--si")
     return scale
 
 
@@ -193,7 +194,7 @@ def _size_flag(args) -> str:
 def _in_phasekit_units(scale, value: str, kind: str, dest: str) -> float:
     """``value`` in phasekit's units by ``scale``; an air-drag coefficient typed with units without
     --mass is refused naming its flag (its unit holds the body's mass M)."""
-    from .._runtime.errors import ParameterError
+    from ..errors import ParameterError
 
     try:
         return scale._dimensionless(value, kind, dest)
@@ -201,42 +202,42 @@ def _in_phasekit_units(scale, value: str, kind: str, dest: str) -> float:
         if exc.param != "mass":
             raise
         unit = DISSIPATION_FLAGS[dest][2]
-        raise _UsageError(f"{FLAGS[dest]} {value!r} needs the body's mass to be expressed in phasekit's {unit}: give "
+        raise UsageError(f"{FLAGS[dest]} {value!r} needs the body's mass to be expressed in phasekit's {unit}: give "
                           f"--mass (e.g. --mass '57 g'), or type a plain number.", FLAGS[dest]) from None
 
 
-def _pose_of(args) -> dict:
+def pose_of(args) -> dict:
     return {k: v for k, v in (("psi", args.psi0), ("phi", args.phi0), ("X", args.X0), ("Y", args.Y0)) if v is not None}
 
 
 def _refuse(args, names, why):
     for name in names:
         if getattr(args, name) is not None:
-            raise _UsageError(f"{FLAGS[name]} {why}", FLAGS[name])
+            raise UsageError(f"{FLAGS[name]} {why}", FLAGS[name])
 
 
-def _paper_body(args) -> None:
+def paper_body(args) -> None:
     """The printed start fixes its body (a uniform spheroid of one aspect ratio): refuse, naming
     it, a flag that says otherwise; --a defaults to the start's."""
-    from .._runtime.errors import plain
+    from ..errors import plain
     from ..theory.paper import PAPER_CASES
 
     label = args.paper_start[1:-1] if re.fullmatch(r"\(.*\)", args.paper_start) else args.paper_start
     if label not in PAPER_CASES:
-        raise _UsageError(f"--paper-start must be one of {', '.join(PAPER_CASES)} (the paper's printed starts), "
+        raise UsageError(f"--paper-start must be one of {', '.join(PAPER_CASES)} (the paper's printed starts), "
                           f"got {plain(args.paper_start)}.", "--paper-start")
     case = PAPER_CASES[label]
     args.paper_start = label
     which = f"with --paper-start {label} (its body is the uniform spheroid a = {case.a:.6g})"
     if args.body != "spheroid":
-        raise _UsageError(f"--body must be spheroid {which}, got {plain(args.body)}.", "--body")
+        raise UsageError(f"--body must be spheroid {which}, got {plain(args.body)}.", "--body")
     for name in ("A", "C", "offset", "w", "thickness", "flat_angle", "height", "on", "stem_length", "stem_radius"):
         if getattr(args, name, None) is not None:
-            raise _UsageError(f"{FLAGS[name]} must be left out {which}, got {plain(getattr(args, name))}.", FLAGS[name])
+            raise UsageError(f"{FLAGS[name]} must be left out {which}, got {plain(getattr(args, name))}.", FLAGS[name])
     if args.a is None:
         args.a = case.a
     elif not abs(args.a - case.a) <= 1e-4 * case.a:  # the API's tolerance; also refuses nan
-        raise _UsageError(f"--a must be {case.a:.6g} {which}, got {plain(args.a)}.", "--a")
+        raise UsageError(f"--a must be {case.a:.6g} {which}, got {plain(args.a)}.", "--a")
 
 
 def _manifold_states(body) -> tuple[str, ...]:
@@ -251,7 +252,7 @@ def _manifold_states(body) -> tuple[str, ...]:
 
 
 def _manifold_start(args, body) -> dict:
-    from .._runtime.errors import plain
+    from ..errors import plain
 
     _refuse(args, ["theta0"], "does not go with --unstable-manifold (the fixed point fixes theta)")
     states = ("vertical", "inverted") if args.unstable_manifold in ("vertical", "inverted") else _manifold_states(body)
@@ -261,14 +262,14 @@ def _manifold_start(args, body) -> dict:
                                                 if "horizontal-like" in states else ")"),
                "horizontal-like": " (horizontal-like is for a body without flip symmetry that can lie on its side)"
                }.get(args.unstable_manifold, "")
-        raise _UsageError(f"--unstable-manifold must be one of {', '.join(states)} for the {args.body} body{why}, "
+        raise UsageError(f"--unstable-manifold must be one of {', '.join(states)} for the {args.body} body{why}, "
                           f"got {plain(args.unstable_manifold)}.", "--unstable-manifold")
     rate, wrong = ("--n0", "--omega0") if args.unstable_manifold in ("vertical", "inverted") else ("--omega0", "--n0")
     if getattr(args, wrong[2:]) is not None:
-        raise _UsageError(f"{wrong} does not go with --unstable-manifold {args.unstable_manifold}: its steady state is "
+        raise UsageError(f"{wrong} does not go with --unstable-manifold {args.unstable_manifold}: its steady state is "
                           f"given by {rate}", wrong)
     if getattr(args, rate[2:]) is None:
-        raise _UsageError(f"--unstable-manifold {args.unstable_manifold} needs {rate} (the "
+        raise UsageError(f"--unstable-manifold {args.unstable_manifold} needs {rate} (the "
                           f"{'spin n0' if rate == '--n0' else 'precession rate Omega0'} of its steady state)",
                           "--unstable-manifold")
     return dict(kind="unstable-manifold", state=args.unstable_manifold,
@@ -277,25 +278,30 @@ def _manifold_start(args, body) -> dict:
                 seed_law="viscous" if args.seed_law is None else args.seed_law)
 
 
-def _start_of(args, body) -> dict:
+def start_of(args, body) -> dict:
     if args.unstable_manifold is not None:
         return _manifold_start(args, body)
     _refuse(args, ["delta", "branch", "seed_law"], "goes with --unstable-manifold only")
     if args.gyroscopic:
         if args.theta0 is None:
-            raise _UsageError("--gyroscopic needs --theta0 (a number in (0, pi))", "--gyroscopic")
+            raise UsageError("--gyroscopic needs --theta0 (a number in (0, pi))", "--gyroscopic")
         if (args.omega0 is None) == (args.n0 is None):  # named: one typed (both), or --gyroscopic (neither)
-            raise _UsageError("--gyroscopic needs exactly one of --omega0 (prolate) or --n0 (oblate)",
+            raise UsageError("--gyroscopic needs exactly one of --omega0 (prolate) or --n0 (oblate)",
                               "--gyroscopic" if args.omega0 is None else "--n0")
         return dict(kind="gyroscopic", theta0=args.theta0, omega0=args.omega0, n0=args.n0)
     if args.spin_about_vertical is not None:
         if args.theta0 is None:
-            raise _UsageError("--spin-about-vertical needs --theta0 (a number in [0, pi])", "--spin-about-vertical")
+            raise UsageError("--spin-about-vertical needs --theta0 (a number in [0, pi])", "--spin-about-vertical")
         _refuse(args, ["omega0", "n0"], "does not go with --spin-about-vertical (it sets the spin)")
         return dict(kind="spin-about-vertical", theta0=args.theta0, n0=args.spin_about_vertical)
+    if args.spinning_in_place:
+        if args.theta0 is None:
+            raise UsageError("--spinning-in-place needs --theta0 (the tilt it spins at)", "--spinning-in-place")
+        _refuse(args, ["omega0", "n0"], "does not go with --spinning-in-place (the steady branch sets the rates)")
+        return dict(kind="spinning-in-place", theta0=args.theta0)
     if args.paper_start is not None:
         _refuse(args, ["theta0"], "does not go with --paper-start (the printed start fixes theta)")
         return dict(kind="paper", label=args.paper_start, n0=args.n0, omega0=args.omega0)
-    _refuse(args, ["theta0", "omega0", "n0"], "goes with --gyroscopic, --spin-about-vertical or --unstable-manifold, "
-                                              "not with --state")
+    _refuse(args, ["theta0", "omega0", "n0"], "goes with --gyroscopic, --spin-about-vertical, --spinning-in-place or "
+                                              "--unstable-manifold, not with --state")
     return dict(kind="state", state=args.state)

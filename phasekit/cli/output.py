@@ -13,7 +13,7 @@ import math
 import os
 import sys
 
-from .flags import FLAGS, _flags_in
+from .flags import FLAGS, flags_in
 
 
 def _fmt(v, spec: str = ".10g") -> str:
@@ -81,16 +81,23 @@ def _print_cache(out: dict) -> None:
 
 
 def _print_contact(out: dict) -> None:
-    """The tilt's change and the time rolling without slip, in words ("stuck" alone reads as
-    "did not rise"), and what a run that ends rolling rests on."""
+    """The tilt's change and the time without slip, in words that hold for every body (theta is
+    the axis's angle from the upward vertical: "rose" and "sank" mean opposite things for an egg
+    and a disk), the passage over the horizontal, the contact's passages between pieces, and
+    what a run that ends rolling rests on."""
     if out.get("theta_start") is None:
         return
-    change = out["theta_change"]
-    verb = "rose (theta fell)" if change < 0 else "sank (theta grew)" if change > 0 else "kept its tilt"
+    change, start, end = out["theta_change"], out["theta_start"], out["theta_end"]
+    # a change at rounding level (a steady state held) is no change
+    turned = "did not change" if abs(change) <= 1e-9 else "grew" if change > 0 else "fell"
+    over = " (the axis passed the horizontal)" if (start - math.pi / 2) * (end - math.pi / 2) < 0 else ""
     stick = out.get("t_first_stick")
-    print(f"the axis {verb} by {abs(change):.4g} rad, theta {out['theta_start']:.6g} -> {out['theta_end']:.6g}; rolling "
-          f"without slip {100 * (out['rolling_fraction'] or 0.0):.1f}% of the run"
+    by = "" if turned == "did not change" else f" by {abs(change):.4g} rad"
+    print(f"theta {turned}{by}, {start:.6g} -> {end:.6g}{over}; "
+          f"{out.get('holding', 'rolling without slip')} {100 * (out['rolling_fraction'] or 0.0):.1f}% of the run"
           + (f", first from t = {_fmt(stick, '.6g')}" if stick is not None else " (it never stuck)"))
+    for passage in out.get("passages") or ():
+        print(f"the contact passed {passage}")
     if out.get("rests_on"):
         print(out["rests_on"])
 
@@ -111,7 +118,7 @@ def _print_energy(out: dict) -> None:
         print(f"at rest at t = {_fmt(si['t_rest'] / 1e3, '.6g')} s")
 
 
-def _print_human(out: dict, events: bool) -> None:
+def print_human(out: dict, events: bool) -> None:
     if "cleared" in out:
         _print_cache(out)
         return
@@ -121,15 +128,7 @@ def _print_human(out: dict, events: bool) -> None:
         _print_structure(out)
         return
     if "fixed_points" in out:
-        print(f"linearisation: {out['linearised_law']} ({out['stability']})")
-        for fp in out["fixed_points"]:
-            st = ", ".join(f"{k}={_fmt(v, '.8g')}" for k, v in fp["state"].items())
-            line = f"{fp['kind']:<15s} {fp['classification']}; residual {_fmt(fp['residual'], '.1e')}  [{st}]"
-            crit = (fp.get("parameter") or {}).get("stable_under_sliding_friction")
-            if crit is not None:
-                line += f"; closed-form criterion under sliding friction: {'stable' if crit else 'unstable'}"
-            print(line)
-        print(f"({out['note']})")
+        _print_fixed_points(out)
         return
     if "J" in out:
         print(f"J = {_fmt(out['J'])} ({out['J_definition']}), {out['method']}")
@@ -153,24 +152,8 @@ def _print_human(out: dict, events: bool) -> None:
         print(_flights_line(out["flight_summary"], out["t_end"] - out.get("t0", 0.0), "", "b"))
     if out.get("pose_end"):
         print("pose at the end: " + ", ".join(f"{k}={_fmt(v, '.8g')}" for k, v in out["pose_end"].items()))
-    si = out.get("si")
-    if si:
-        u = si["units"]
-        print(f"in real units (b = {si['b']}, g = {si['g']}, time unit {si['time_unit']}):")
-        for key in ("t_jump", "t_stop", "t_end"):
-            if si.get(key) is not None:
-                print(f"  {key}: {_fmt(si[key], '.6g')} {u['time']}")
-        fl = si.get("flight")
-        if fl:
-            print(f"  first flight: from {_fmt(fl['t_liftoff'], '.6g')} {u['time']}, lasting "
-                  f"{_fmt(fl.get('duration'), '.4g')} {u['time']}, largest gap "
-                  f"{_fmt(fl['gap_max'], '.4g')} {u['length']}")
-        if (si.get("flight_summary") or {}).get("n_flights"):
-            span = si["t_end"] - (si.get("t0") or 0.0)
-            print("  " + _flights_line(si["flight_summary"], span, f" {u['time']}", u["length"]))
-        if si.get("state_end"):
-            st = si["state_end"]
-            print(f"  at the end: Omega={_fmt(st['Omega'], '.5g')} {u['rate']}, n={_fmt(st['n'], '.5g')} {u['rate']}")
+    if out.get("si"):
+        _print_real_units(out["si"])
     if out.get("approximations"):
         print("approximations: " + "; ".join(a["name"] + ("" if a["bound"] is None else f" ({_fmt(a['bound'], '.2g')})")
                                             for a in out["approximations"]))
@@ -183,6 +166,39 @@ def _print_human(out: dict, events: bool) -> None:
         for e in out["events"]:
             print(f"  {e['kind']:<12s} t = {_fmt(e['t'])}  {e['mode_before']} -> {e['mode_after']}"
                   + (f"  ({e['detail']})" if e.get("detail") else ""))
+
+
+def _print_fixed_points(out: dict) -> None:
+    """The fixed-points command's result: each state, its classification and residual."""
+    print(f"linearisation: {out['linearised_law']} ({out['stability']})")
+    for fp in out["fixed_points"]:
+        st = ", ".join(f"{k}={_fmt(v, '.8g')}" for k, v in fp["state"].items())
+        line = f"{fp['kind']:<15s} {fp['classification']}; residual {_fmt(fp['residual'], '.1e')}  [{st}]"
+        crit = (fp.get("parameter") or {}).get("stable_under_sliding_friction")
+        if crit is not None:
+            line += f"; closed-form criterion under sliding friction: {'stable' if crit else 'unstable'}"
+        print(line)
+    print(f"({out['note']})")
+
+
+def _print_real_units(si: dict) -> None:
+    """A run's times, first flight and end state in real units (--si)."""
+    u = si["units"]
+    print(f"in real units (b = {si['b']}, g = {si['g']}, time unit {si['time_unit']}):")
+    for key in ("t_jump", "t_stop", "t_end"):
+        if si.get(key) is not None:
+            print(f"  {key}: {_fmt(si[key], '.6g')} {u['time']}")
+    fl = si.get("flight")
+    if fl:
+        print(f"  first flight: from {_fmt(fl['t_liftoff'], '.6g')} {u['time']}, lasting "
+              f"{_fmt(fl.get('duration'), '.4g')} {u['time']}, largest gap "
+              f"{_fmt(fl['gap_max'], '.4g')} {u['length']}")
+    if (si.get("flight_summary") or {}).get("n_flights"):
+        span = si["t_end"] - (si.get("t0") or 0.0)
+        print("  " + _flights_line(si["flight_summary"], span, f" {u['time']}", u["length"]))
+    if si.get("state_end"):
+        st = si["state_end"]
+        print(f"  at the end: Omega={_fmt(st['Omega'], '.5g')} {u['rate']}, n={_fmt(st['n'], '.5g')} {u['rate']}")
 
 
 def _flights_line(fs: dict, span: float, time_unit: str, length_unit: str) -> str:
@@ -213,7 +229,7 @@ def _wall_clock(seconds: float) -> str:
     return f"{seconds:.0f} s ({seconds / 60:.1f} min)"
 
 
-def _nonfinite(obj, path: str = "") -> str | None:
+def nonfinite(obj, path: str = "") -> str | None:
     """The path of the first non-finite float in a JSON-ready object, or None."""
     if isinstance(obj, float):
         return None if math.isfinite(obj) else path or "(top)"
@@ -224,33 +240,33 @@ def _nonfinite(obj, path: str = "") -> str | None:
     else:
         return None
     for k, v in items:
-        found = _nonfinite(v, f"{path}.{k}" if isinstance(obj, dict) and path else f"{path}{k}")
+        found = nonfinite(v, f"{path}.{k}" if isinstance(obj, dict) and path else f"{path}{k}")
         if found:
             return found
     return None
 
 
-def _finite_json(obj):
+def finite_json(obj):
     """Replace non-finite floats by None: JSON has no NaN, and we never pass one off as a number."""
     if isinstance(obj, float) and not math.isfinite(obj):
         return None
     if isinstance(obj, dict):
-        return {k: _finite_json(v) for k, v in obj.items()}
+        return {k: finite_json(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
-        return [_finite_json(v) for v in obj]
+        return [finite_json(v) for v in obj]
     return obj
 
 
-def _plain_types(obj):
+def plain_types(obj):
     """numpy scalars and arrays -> Python floats, ints, lists (so that every check sees them)."""
     import numpy as np
 
     if isinstance(obj, dict):
-        return {k: _plain_types(v) for k, v in obj.items()}
+        return {k: plain_types(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
-        return [_plain_types(v) for v in obj]
+        return [plain_types(v) for v in obj]
     if isinstance(obj, np.ndarray):
-        return _plain_types(obj.tolist())
+        return plain_types(obj.tolist())
     if isinstance(obj, (bool, np.bool_)):
         return bool(obj)
     if isinstance(obj, np.integer):
@@ -260,12 +276,12 @@ def _plain_types(obj):
     return obj
 
 
-def _json_default(obj):
+def json_default(obj):
     return str(obj)
 
 
 @contextlib.contextmanager
-def _stdout_to_stderr():
+def stdout_to_stderr():
     """While computing, send everything written to stdout (Python or C++ libraries) to stderr,
     so that stdout holds only the result."""
     sys.stdout.flush()
@@ -286,10 +302,10 @@ def _stdout_to_stderr():
         os.close(saved)
 
 
-def _error(message: str, flag: str | None, as_json: bool, code: int = 2, names: dict = FLAGS) -> int:
+def print_error(message: str, flag: str | None, as_json: bool, code: int = 2, names: dict = FLAGS) -> int:
     """One line on stderr; with --json one object on stdout: status "error" (bad input) with the
     flag, or "failed" / "interrupted" with its reason."""
-    message = " ".join(_flags_in(str(message), names).split())
+    message = " ".join(flags_in(str(message), names).split())
     print(f"phasekit: error: {message}", file=sys.stderr)
     if as_json:
         status = "error" if code == 2 else "interrupted" if code == 130 else "failed"
@@ -298,5 +314,5 @@ def _error(message: str, flag: str | None, as_json: bool, code: int = 2, names: 
     return code
 
 
-def _show_warning(message, category, filename, lineno, file=None, line=None, names: dict = FLAGS):
-    print(f"phasekit: warning: {' '.join(_flags_in(str(message), names).split())}", file=sys.stderr)
+def show_warning(message, category, filename, lineno, file=None, line=None, names: dict = FLAGS):
+    print(f"phasekit: warning: {' '.join(flags_in(str(message), names).split())}", file=sys.stderr)

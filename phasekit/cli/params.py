@@ -7,9 +7,10 @@ run, and return dicts in the paper's variables.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_choice, check_finite, check_range
 from .._runtime.watch import check_max_wall, wall_deadline
 from ..bodies.body import Body
@@ -22,11 +23,10 @@ from ..core.observables import OBSERVABLES
 from ..core.simulate import simulate
 from ..core.starts import RATE_MAX, gyroscopic_start, raw_start, to_chart, vertical_spin_start
 from ..core.system import STOP_AT
+from ..errors import ParameterError
 from ..friction.dissipation import COEFF_MAX, AirDrag, AirLayer, RollingResistance, SpinFriction
 from ..friction.laws import friction_law
 
-__all__ = ["parse_stop", "run_start", "simulate_start", "real_units_report", "fixed_points_report", "gyroscopic_report",
-           "steady_structure_report"]
 
 def parse_stop(stop: str) -> tuple[str, list[Event]]:
     """``jump``, ``touchdown``, ``none`` or ``rest`` (:data:`phasekit.core.system.STOP_AT`), or
@@ -71,15 +71,24 @@ def _start(body, law, start: dict, chart: str):
         y0 = gyroscopic_start(body, start["theta0"], omega0=start.get("omega0"), n0=start.get("n0"))
     elif kind == "spin-about-vertical":
         y0 = vertical_spin_start(start["theta0"], start["n0"])
+    elif kind == "spinning-in-place":
+        from ..steady.precessions import intermediate_state
+
+        _check_range_of(body, float(start["theta0"]), "theta0")
+        y0 = intermediate_state(body, float(start["theta0"]))
+        if y0 is None:
+            raise ParameterError("theta0", "has no steady motion spinning in place for this body (the torque balance "
+                                           "asks Omega^2 <= 0 there; see phasekit steady-states)", start["theta0"])
     elif kind == "paper":
-        from ..theory.paper import PAPER_CASES, paper_start
+        from ..core.starts import paper_start
+        from ..theory.paper import PAPER_CASES
 
         model, x0 = paper_start(start["label"], n0=start.get("n0"), omega0=start.get("omega0"), friction=law)
         case = PAPER_CASES[start["label"]]
         # the printed start belongs to one body: refuse another rather than ignore it
         if not (isinstance(body, Spheroid) and body.uniform and abs(body.a - case.a) <= 1e-4 * case.a):
             raise ParameterError("a", f"must be {case.a:.6g} for the paper's start ({case.label}), a uniform spheroid "
-                                      "(no `A`, `C`)", getattr(body, "a", None))
+                                      "(no `A`, `C`)", None if math.isnan(body.a) else body.a)
         if chart not in ("auto", model.chart.name):
             raise ParameterError("chart", f"must be auto or {model.chart.name} for the paper's start "
                                           f"({start['label']})", chart)
@@ -198,7 +207,7 @@ def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, om
     """All steady states at the given Omega0 or n0 with their linear stability (JSON dict), with
     status "completed", or "failed" and the reason when the wall budget ``max_wall`` (seconds)
     runs out; ``dissipation`` as for :func:`run_start`."""
-    from ..steady.branches import _degeneracy
+    from ..steady.branches import degeneracy
     from ..steady.fixedpoints import FAMILY_MAX, fixed_points
 
     if (omega0 is None) == (n0 is None):
@@ -215,7 +224,7 @@ def fixed_points_report(*, body: Body, mu, friction="coulomb", slip_eps=None, om
             pts, status, reason = [], "failed", f"not finished: {exc}"
     note = ("the inverted vertical (theta = pi) is the vertical with k reversed: the same state for a flip-symmetric body"
             if body.flip_symmetric else "theta = 0 and theta = pi are different states of this body")
-    degenerate = _degeneracy(body)
+    degenerate = degeneracy(body)
     if degenerate:
         note += "; " + degenerate
     linearised = "coulomb-rolling" if law.has_rolling_mode else law.name

@@ -12,10 +12,11 @@ Examples
 'jumped'
 """
 
+from .approximations import Approximation
 from .batch import simulate_batch
 from .charts import PAPER_NAMES, choose_chart
 from .hybrid import Event, Mode
-from .impact import ImpactResult, impact
+from .impact import impact
 from .model import Model
 from .observables import OBSERVABLES
 from .options import SolverOptions
@@ -24,13 +25,15 @@ from .records import EventRecord, Flight, Segment
 from .sections import poincare
 from .settle import Settle
 from .simulate import simulate
-from .starts import gyroscopic_start, to_chart, to_paper, vertical_spin_start
+from .sizes import egg_of_size
+from .starts import gyroscopic_start, paper_start, to_chart, to_paper, vertical_spin_start
 from .trajectory import Trajectory
-from .units import Scale, egg_of_size, tippe_top_of_size
+from .units import Scale
+from .verify import RunCheck
 
 __all__ = [
     "Model", "OBSERVABLES", "Mode", "Event", "SolverOptions", "Settle",
     "simulate", "simulate_batch", "Trajectory", "Segment", "EventRecord", "Flight", "poincare",
-    "gyroscopic_start", "vertical_spin_start", "to_chart", "to_paper", "choose_chart", "PAPER_NAMES",
-    "impact", "ImpactResult", "Pose", "Scale", "egg_of_size", "tippe_top_of_size",
+    "gyroscopic_start", "vertical_spin_start", "paper_start", "to_chart", "to_paper", "choose_chart", "PAPER_NAMES",
+    "impact", "Pose", "Scale", "egg_of_size", "RunCheck", "Approximation",
 ]

@@ -12,12 +12,10 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass
 
-from .._runtime.errors import Status
+from ..errors import Status
 from .fields import CREEP_RATIO, HOLD_RATE, REST_SPEED, STICK_SLIP
 from .hybrid import Mode
 from .zero_slip import SLIP_ONSET
-
-__all__ = ["Approximation", "approximations_of"]
 
 
 @dataclass(frozen=True)
@@ -32,6 +30,14 @@ class Approximation:
         What it replaces and where it is documented.
     bound : float or None
         Its size where one number says it (a relative error, a speed, a width), else None.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> body = pk.Spheroid(1.5)
+    >>> traj = pk.simulate(pk.Model(body, pk.RegularisedCoulomb(0.1, 1e-4)), pk.gyroscopic_start(body, 1.5, omega0=3.0), 5.0)
+    >>> all(isinstance(a, pk.core.Approximation) for a in traj.approximations)
+    True
     """
 
     name: str

@@ -11,7 +11,7 @@ The loop
 --------
 :func:`simulate_batch` is the hybrid loop of :func:`phasekit.simulate` run for many starts
 at once (``stop_at="jump"``, no dense output): one batch integrator
-(:class:`phasekit.core.engines.TaylorBatchEngine`: the scalar Taylor engine's build, compact mode and
+(:class:`phasekit.core.engines.batch.TaylorBatchEngine`: the scalar Taylor engine's build, compact mode and
 event cooldown) per contact flow of the declared system (:mod:`phasekit.core.system`; a new contact
 mode is one more Flow there); a lane propagates its start to the mode's first event, and the
 end of the segment is handled by the scalar loop's own routine
@@ -43,12 +43,13 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_int
 from .._runtime.watch import deadline as watch_deadline
-from .audit import audited_options, audited_start
+from ..errors import ParameterError
+from .audit import audited_options
 from .charts import POLE_GUARD
-from .engines import End, TaylorBatchEngine
+from .engines import End
+from .engines.batch import TaylorBatchEngine
 from .engines.scaling import initial_scales, next_rescale, next_scales
 from .engines.taylor_build import scales_at, taylor_pars
 from .model import Model
@@ -56,8 +57,6 @@ from .options import SolverOptions
 from .simulate import RunState, simulate, solver_options
 from .system import declare, watched
 from .trajectory import Trajectory
-
-__all__ = ["LANES", "simulate_batch", "compile_batch", "BatchStats"]
 
 #: lanes per batch: the SIMD width for doubles on the reference machine (AVX-512)
 LANES = 8
@@ -124,7 +123,6 @@ def _prepare(i, model, x0, t_end, events, opts) -> "_Job | str":
         raise ParameterError("models", "must be phasekit Models", model)
     if not opts.creep and model.friction.creeps:  # the law's own field at zero slip, as simulate does
         model = Model(model.body, model.friction.without_creep(), model.chart)
-    model, x0 = audited_start(model, x0)  # PHASEKIT_AUDIT, as simulate (core/audit.py)
     if x0.size != model.n_states:
         raise ParameterError("starts", f"must have {model.n_states} columns in the {model.chart.name} chart", x0.size)
     if opts.track_minima or opts.dense:
@@ -268,6 +266,11 @@ def simulate_batch(models, starts, t_end, *, events=(), lanes: int = LANES, opti
         If ``lanes`` is not an integer in [1, 64], ``models`` is neither one Model nor one
         per start, a start does not have the model's number of states, or an option is
         invalid; a start run by :func:`simulate` raises as it does.
+
+    See Also
+    --------
+    phasekit.simulate
+        one start, with every option
 
     Examples
     --------

@@ -26,13 +26,10 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from .._runtime.errors import ParameterError
+from ..errors import ParameterError
 
 #: theta within this of 0 or pi cannot be integrated in the Euler chart (2.7c divides by sin)
 POLE_GUARD = 1e-12
-
-__all__ = ["Chart", "EULER", "VECTOR", "FLIGHT", "CHARTS", "PAPER_NAMES", "get_chart", "euler_to_vector", "vector_to_euler",
-           "choose_chart", "POLE_MARGIN"]
 
 #: within this angle of theta = 0 or pi the vector chart is the default. Measured (oblate
 #: a = 0.6, n0 = 12, viscous mu = 0.1, rtol 1e-9, to t = 40): away from the pole the Euler

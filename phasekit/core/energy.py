@@ -17,11 +17,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
+from ..errors import ParameterError
 from .hybrid import Mode
 from .observables import evaluate_function
-
-__all__ = ["EnergyBudget", "energy_budget", "GAUSS_NODES"]
 
 #: Gauss-Legendre nodes per Taylor step
 GAUSS_NODES = 12
@@ -79,10 +77,13 @@ def energy_budget(traj) -> EnergyBudget:
         If the run kept no dense output (simulate with dense=True, the default).
     """
     model = traj.model
+    names = ("sliding friction", *(d.name for d in model.friction.dissipation))
+    if not traj.segments and traj.mode_stop is not None:  # it ended at its start (e.g. R <= 0 there): nothing lost
+        e = float(model.function("energy", traj.mode_stop)(traj.x_stop, model.p))
+        return EnergyBudget(e, e, names, tuple(0.0 for _ in names), 0.0, 0.0)
     if not traj.segments or not all(s.dense for s in traj.segments):
         raise ParameterError("traj", "has no energy budget: the run kept no dense output (simulate with dense=True)",
                              show_value=False)
-    names = ("sliding friction", *(d.name for d in model.friction.dissipation))
     work, jumps, e_prev = np.zeros(len(names)), 0.0, None
     first = traj.segments[0]
     e_start = float(model.function("energy", first.mode)(first.x0, model.p))

@@ -33,8 +33,6 @@ from ..friction.laws import FrictionLaw
 from .charts import FLIGHT, PAPER_NAMES, Chart
 from .hybrid import Mode
 
-__all__ = ["CompiledModel", "compiled_model", "STICK_SLIP", "STICK_SLIP_POINTWISE", "REST_SPEED", "HOLD_RATE", "HELD", "snapshot", "install"]
-
 #: slip speed (units sqrt(g b)) at which exact Coulomb sliding is taken to have stuck;
 #: the stick time is then extrapolated to the exact zero of the slip
 STICK_SLIP = 1e-10

@@ -18,10 +18,8 @@ from typing import Protocol
 
 import numpy as np
 
-from .._runtime.errors import ParameterError, Status
 from .._runtime.validate import check_bool, check_finite, check_nonnegative
-
-__all__ = ["Mode", "Flow", "Event", "Reset", "Record", "Transition", "HybridSystem", "CompiledGuard", "CompiledFlow"]
+from ..errors import ParameterError, Status
 
 
 class Mode(str, enum.Enum):

@@ -23,11 +23,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_instance, check_nonnegative, check_vector, finite_result
 from ..bodies.body import Body
-
-__all__ = ["ImpactResult", "impact", "contact_point", "collision_matrix"]
+from ..errors import ParameterError
 
 #: how far from 1 the length of the axis ``k`` may be: the drift of the integrated flight state
 #: (7e-6 at rtol = 1e-3) with a wide margin; ``k`` is normalised before use
@@ -55,10 +53,10 @@ def _skew(r):
 def contact_point(body, k) -> np.ndarray:
     """r_P = -H'(c)(k - c e_Z) - H(c) e_Z for the lowest point, c = k_Z (vector form); ``k``
     is the unit symmetry axis."""
-    return _contact_point(_body(body), _axis(k))
+    return contact_point_of(_body(body), _axis(k))
 
 
-def _contact_point(body, k) -> np.ndarray:
+def contact_point_of(body, k) -> np.ndarray:
     k = np.asarray(k, dtype=float) / np.linalg.norm(k)
     c = k[2]
     H, dH = body.height_slope(c)
@@ -79,7 +77,7 @@ def collision_matrix(body, k) -> np.ndarray:
 
 
 def _collision_matrix(body, k) -> np.ndarray:
-    r = _contact_point(body, k)
+    r = contact_point_of(body, k)
     S = _skew(r)
     return np.eye(3) + S.T @ _inverse_inertia(body, k) @ S
 
@@ -111,7 +109,8 @@ class ImpactResult:
     --------
     >>> import numpy as np, phasekit as pk
     >>> res = pk.core.impact(pk.Spheroid(1.5), np.array([np.sin(1.0), 0.0, np.cos(1.0)]), np.array([0.0, 0.0, 5.0]), np.array([0.0, 0.0, -0.01]), e=0.0, mu=0.1)
-    >>> isinstance(res, pk.core.ImpactResult), res.energy_after <= res.energy_before
+    >>> from phasekit.core.impact import ImpactResult
+    >>> isinstance(res, ImpactResult), res.energy_after <= res.energy_before
     (True, np.True_)
     """
 
@@ -126,7 +125,7 @@ class ImpactResult:
     energy_limited: bool  # the friction impulse was reduced to avoid an energy gain
 
 
-def _kinetic(body, k, w, v) -> float:
+def kinetic_energy_of(body, k, w, v) -> float:
     kh = k / np.linalg.norm(k)
     n = w @ kh
     L = body.A * (w - n * kh) + body.C * n * kh
@@ -180,13 +179,13 @@ def impact(body, k, w, v, *, e: float, mu: float) -> ImpactResult:
     w, v = check_vector("w", w, 3), check_vector("v", v, 3)
     e = check_nonnegative("e", e, upper=1.0)
     mu = check_nonnegative("mu", mu)
-    return _impact(body, k, w, v, e, mu)
+    return apply_impact(body, k, w, v, e, mu)
 
 
-def _impact(body, k, w, v, e: float, mu: float) -> ImpactResult:
+def apply_impact(body, k, w, v, e: float, mu: float) -> ImpactResult:
     """:func:`impact` without the checks (for states the integrator made)."""
     k, w, v = (np.asarray(a, dtype=float) for a in (k, w, v))
-    r = _contact_point(body, k)
+    r = contact_point_of(body, k)
     Iinv = _inverse_inertia(body, k)
     K = _collision_matrix(body, k)
     vP = v + np.cross(w, r)
@@ -196,7 +195,7 @@ def _impact(body, k, w, v, e: float, mu: float) -> ImpactResult:
     def apply(P):
         return w + Iinv @ np.cross(r, P), v + P
 
-    E0 = _kinetic(body, k, w, v)
+    E0 = kinetic_energy_of(body, k, w, v)
     if vn >= 0.0:  # not approaching: nothing to do
         return ImpactResult(w.copy(), v.copy(), np.zeros(3), vn, vn, E0, E0, False, False)
     P_stick = np.linalg.solve(K, target - vP)  # tangential slip stopped, normal restitution
@@ -208,7 +207,7 @@ def _impact(body, k, w, v, e: float, mu: float) -> ImpactResult:
         Pn = (target[2] - vn) / (K @ d)[2]
         P, sticking = Pn * d, False
     limited = False
-    if _kinetic(body, k, *apply(P)) > E0 * (1 + 1e-14):
+    if kinetic_energy_of(body, k, *apply(P)) > E0 * (1 + 1e-14):
         # scale the tangential part back (keeping normal restitution) until no energy gain
         limited = True
         lo, hi = 0.0, 1.0
@@ -221,11 +220,11 @@ def _impact(body, k, w, v, e: float, mu: float) -> ImpactResult:
 
         for _ in range(60):
             s = 0.5 * (lo + hi)
-            if _kinetic(body, k, *apply(with_scale(s))) > E0 * (1 + 1e-14):
+            if kinetic_energy_of(body, k, *apply(with_scale(s))) > E0 * (1 + 1e-14):
                 hi = s
             else:
                 lo = s
         P = with_scale(lo)
     w_new, v_new = apply(P)
     vn_after = (v_new + np.cross(w_new, r))[2]
-    return ImpactResult(w_new, v_new, P, vn, float(vn_after), E0, _kinetic(body, k, w_new, v_new), sticking, limited)
+    return ImpactResult(w_new, v_new, P, vn, float(vn_after), E0, kinetic_energy_of(body, k, w_new, v_new), sticking, limited)

@@ -1,33 +1,29 @@
 """The :class:`Model`: a body, a friction law and a chart with numeric parameters bound, over
 the fields compiled once per body structure, law class and chart (:mod:`phasekit.core.fields`);
 it evaluates the observables (:mod:`phasekit.core.observables`), gives the integrators their
-guards and flows, and is rebuilt from its description (:func:`make_body`: the built-in bodies
+guards and flows, and is rebuilt from its description (:func:`phasekit.bodies.by_name.make_body`: the built-in bodies
 by name).
 """
 
 from __future__ import annotations
 
 import hashlib
+import warnings
 
 import casadi as ca
 import numpy as np
 
-from .._runtime.errors import ParameterError
-from .._runtime.validate import check_array, check_choice
+from .._runtime.validate import check_array
 from ..bodies.body import Body
-from ..bodies.compound import TippeTop
-from ..bodies.cone import Cone
+from ..bodies.by_name import BODIES, make_body
 from ..bodies.edged import Disk
-from ..bodies.egg import Egg
-from ..bodies.spheroid import EccentricSphere, Spheroid
-from ..friction.dissipation import dissipation_from_dict
+from ..errors import ParameterError
+from ..friction.dissipation import AirLayer, dissipation_from_dict
 from ..friction.laws import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous
 from .charts import FLIGHT, POLE_GUARD, get_chart
 from .fields import compiled_model
 from .hybrid import CompiledFlow, CompiledGuard, Mode
 from .observables import OBSERVABLES, evaluate_function
-
-__all__ = ["Model", "make_body", "BODIES"]
 
 
 class Model:
@@ -65,6 +61,7 @@ class Model:
         if not isinstance(friction, FrictionLaw):
             raise ParameterError("friction", "must be a phasekit FrictionLaw such as Coulomb(mu)", friction)
         body.check_inertia()
+        _warn_misapplied(body, friction)
         self.body = body
         self.friction = friction
         self.chart = get_chart(chart)
@@ -476,47 +473,6 @@ class Model:
 _PRIMITIVES = {"Rdot": "R"}
 
 
-#: the built-in bodies, by the name the CLI's --body and a model's description use
-BODIES = ("spheroid", "tippe-top", "egg", "disk", "cone")
-
-
-def make_body(kind: str = "spheroid", *, a=None, offset=None, w=None, thickness=None, height=None, on=None,
-              stem_length=None, stem_radius=None, flat_angle=None, A=None, C=None) -> Body:
-    """A built-in body by name: ``spheroid`` (a, offset), ``tippe-top`` (offset; with ``stem_length``
-    or ``stem_radius``, over the ball's radius, the top with its stem,
-    :class:`~phasekit.bodies.compound.TippeTop`, the other one at its default; without them the
-    ball alone), ``egg`` (a, w), ``disk`` (thickness, over the radius; default 0, a thin disk;
-    ``flat_angle``, default :data:`~phasekit.bodies.edged.FLAT_ANGLE`),
-    ``cone`` (height over the base's radius, default 1; on "rim" or "tip", default "rim") (the
-    CLI's ``--body``, and :meth:`Model.from_dict`)."""
-    check_choice("body", kind, BODIES)
-    given = {"a": a, "offset": offset, "w": w, "thickness": thickness, "height": height, "on": on,
-             "stem_length": stem_length, "stem_radius": stem_radius, "flat_angle": flat_angle}
-    allowed = {"spheroid": ("a", "offset"), "tippe-top": ("offset", "stem_length", "stem_radius"), "egg": ("a", "w"),
-               "disk": ("thickness", "flat_angle"), "cone": ("height", "on")}[kind]
-    for name, value in given.items():
-        if value is not None and name not in allowed:
-            raise ParameterError(name, f"does not apply to the {kind} body (its parameters: {', '.join(allowed)})", value)
-    if kind == "spheroid":
-        if a is None:
-            raise ParameterError("a", "is required for the spheroid body (aspect ratio, > 0)", show_value=False)
-        return Spheroid(a, A=A, C=C, offset=0.0 if offset is None else offset)
-    if kind == "tippe-top":
-        if offset is None:
-            raise ParameterError("offset", "is required for the tippe-top body (centre of mass below the centre, in [0, 1))",
-                                 show_value=False)
-        if stem_length is not None or stem_radius is not None:
-            stem = {k: v for k, v in (("stem_length", stem_length), ("stem_radius", stem_radius)) if v is not None}
-            return TippeTop(offset, A=A, C=C, **stem)
-        return EccentricSphere(offset, A=A, C=C)
-    if kind == "disk":
-        flat = {} if flat_angle is None else {"flat_angle": flat_angle}
-        return Disk(0.0 if thickness is None else thickness, A=A, C=C, **flat)
-    if kind == "cone":
-        return Cone(1.0 if height is None else height, "rim" if on is None else on, A=A, C=C)
-    return Egg(1.3 if a is None else a, 0.0 if w is None else w, A=A, C=C)
-
-
 def _mode_arg(mode) -> Mode:
     try:
         return Mode(mode)
@@ -526,3 +482,11 @@ def _mode_arg(mode) -> Mode:
 
 def _digest(f: ca.Function) -> str:
     return hashlib.sha256(f.serialize().encode()).hexdigest()[:20]
+
+
+def _warn_misapplied(body: Body, friction: FrictionLaw) -> None:
+    """A dissipation law derived for one kind of body, given another, is said once: the air layer
+    is Moffatt's film under a disk on its rim (phasekit/friction/dissipation.py)."""
+    if any(isinstance(d, AirLayer) for d in friction.dissipation) and not isinstance(body, Disk):
+        warnings.warn(f"the air layer is Moffatt's law for a disk on its rim; a {type(body).__name__} has no such film, "
+                      "and its couple grows without bound as theta -> 0 (runs near the vertical crawl)", stacklevel=3)

@@ -9,8 +9,6 @@ import numpy as np
 
 from .charts import PAPER_NAMES
 
-__all__ = ["OBSERVABLES", "evaluate_function"]
-
 #: observables every mode provides, for :meth:`Model.evaluate`, events and trajectory samples
 OBSERVABLES = {
     **{name: f"the paper's state variable {name}" for name in PAPER_NAMES},

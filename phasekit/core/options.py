@@ -9,11 +9,10 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 
 from .._runtime.validate import check_bool, check_choice, check_int, check_positive, check_range
-from .engines import engine_names
+from .engines.registry import engine_names
 from .resets import BOUNCE_STOP, BOUNCE_TAIL
 from .settle import Settle, check_settle
 
-__all__ = ["SolverOptions", "RTOL_RANGE", "SWITCHES_PER_TIME", "MIN_SWITCHES"]
 #: tolerances a double-precision integrator can honour: below 1e-16 the Taylor order grows
 #: without bound (heyoka picks it from the tolerance) and CVODES cannot meet the error test.
 RTOL_RANGE = (1e-16, 0.1)

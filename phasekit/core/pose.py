@@ -34,11 +34,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_finite
+from ..errors import ParameterError
 from .charts import EULER
-
-__all__ = ["POSE_COLUMNS", "Pose", "PoseTrack", "rotation_matrix"]
 
 #: the columns :meth:`Trajectory.sample` gains
 POSE_COLUMNS = ("psi", "phi", "X", "Y", "X_P", "Y_P")

@@ -8,11 +8,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._runtime.errors import Status
+from ..errors import Status
 from .hybrid import Mode
 from .trajectory_io import event_dict, flight_dict
-
-__all__ = ["EventRecord", "Segment", "Flight"]
 
 
 @dataclass(frozen=True)

@@ -27,36 +27,12 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .._runtime.errors import Status
+from ..errors import Status
 from .charts import FLIGHT, VECTOR, euler_to_vector
 from .fields import HOLD_RATE, REST_SPEED, STICK_SLIP
 from .hybrid import Mode, Record, Transition
-from .impact import _contact_point, _impact, _kinetic
+from .impact import apply_impact, contact_point_of, kinetic_energy_of
 from .zero_slip import SLIP_ONSET, creep_entry, project_no_slip, set_slip, zero_slip_start
-
-__all__ = [
-    "BOUNCE_STOP",
-    "BOUNCE_TAIL",
-    "bounce_tail",
-    "contact_start",
-    "flight_state",
-    "contact_state",
-    "rigid_velocities",
-    "from_rigid",
-    "Stick",
-    "SlipOnset",
-    "SwitchMode",
-    "Rest",
-    "BodyLimit",
-    "Hold",
-    "Release",
-    "Held",
-    "hold",
-    "HOLD_ONSET",
-    "LiftOff",
-    "Touchdown",
-    "Transfer",
-]
 
 #: after an impact, a normal rebound velocity below this (units sqrt(g b)) ends the bounce
 #: train and contact resumes: e < 1 would otherwise give infinitely many bounces in finite
@@ -398,7 +374,7 @@ class Touchdown:
 
     def __call__(self, model, event, mode, t, x, log=()) -> Transition:
         k, w, v = rigid_velocities(model, x)
-        imp = _impact(model.body, k, w, v, e=self.restitution, mu=model.friction.mu)
+        imp = apply_impact(model.body, k, w, v, e=self.restitution, mu=model.friction.mu)
         x_post = from_rigid(model, k, imp.w, imp.v)
         bounce = imp.v_normal_after > self.bounce_stop
         detail = (f"e={self.restitution:g}, dE={imp.energy_after - imp.energy_before:.3e}"
@@ -482,16 +458,16 @@ class Transfer:
             gap = old[8] + body.height_slope(k[2])[0] - body.height_slope(k_new[2])[0]  # G's height kept
             xf = from_rigid(model, k_new, w, v, gap=gap)
             return Transition(Mode.FLIGHT, t, xf, (Record(f"{tr.to_piece} lowest (in flight)", "flight", "flight", xf),))
-        E0, impacts, quiet = _kinetic(body, k_new, w, v), 0, 0
+        E0, impacts, quiet = kinetic_energy_of(body, k_new, w, v), 0, 0
         for i in range(TRANSFER_IMPACTS):
-            imp = _impact(body, (k_new, k)[i % 2], w, v, e=self.restitution, mu=model.friction.mu)
+            imp = apply_impact(body, (k_new, k)[i % 2], w, v, e=self.restitution, mu=model.friction.mu)
             if imp.v_normal_before < -TWO_PIECE_TOL:
                 w, v, impacts, quiet = imp.w, imp.v, impacts + 1, 0
             elif (quiet := quiet + 1) == 2:  # neither piece approaches the table
                 break
         x_post = from_rigid(model, k_new, w, v)
-        vn_new, vn_old = ((v + np.cross(w, _contact_point(body, kk)))[2] for kk in (k_new, k))
-        detail = (f"{impacts} impact(s), e={self.restitution:g}, dE={_kinetic(body, k_new, w, v) - E0:.3e}, "
+        vn_new, vn_old = ((v + np.cross(w, contact_point_of(body, kk)))[2] for kk in (k_new, k))
+        detail = (f"{impacts} impact(s), e={self.restitution:g}, dE={kinetic_energy_of(body, k_new, w, v) - E0:.3e}, "
                   f"{tr.from_piece} leaves at {vn_old:.3g}")
         recs = [Record(tr.name, mode.value, "impact", contact_state(model, old), f"{tr.from_piece} -> {tr.to_piece}"),
                 Record("impact", mode.value, "flight" if vn_new > self.bounce_stop else "contact",

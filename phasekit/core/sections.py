@@ -8,12 +8,10 @@ dense output, so the table has the columns of :meth:`phasekit.core.Trajectory.sa
 
 from __future__ import annotations
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_finite
+from ..errors import ParameterError
 from .hybrid import Event
 from .simulate import simulate
-
-__all__ = ["poincare", "SECTION_EVENT"]
 
 #: the name under which the crossings of :func:`poincare` are recorded in ``traj.events``
 SECTION_EVENT = "section"

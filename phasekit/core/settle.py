@@ -42,8 +42,6 @@ from .._runtime.validate import check_range
 from .hybrid import Mode, Record, Transition
 from .observables import evaluate_function
 
-__all__ = ["Settle", "check_settle", "settled"]
-
 CONTACT_MODES = ("sliding", "rolling")
 #: the name of the turn of theta while rolling (a maximum: Lambda falls through 0)
 TURN = "turn"
@@ -95,7 +93,7 @@ class Settle:
 
 def check_settle(value) -> Settle | None:
     """None, False (no rule), True (the default :class:`Settle`), a Settle, or its dict."""
-    from .._runtime.errors import ParameterError
+    from ..errors import ParameterError
 
     if value is None or value is False:
         return None
@@ -181,7 +179,7 @@ def rolls_periodically_here(model) -> bool:
     """Whether ``model``'s rolling is periodic in the reduced state (module notes): an exact rolling
     mode, no dissipation laws, one smooth piece of contact."""
     law = model.friction
-    return law.has_rolling_mode and not law.dissipation and not getattr(model.body, "transfers", ())
+    return law.has_rolling_mode and not law.dissipation and not model.body.transfers
 
 
 def rolls_periodically(records, rtol: float) -> str | None:

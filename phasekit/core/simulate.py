@@ -14,15 +14,13 @@ from dataclasses import replace
 
 import numpy as np
 
-from .._runtime.errors import ConvergenceError, ParameterError, Status
 from .._runtime.validate import check_bool, check_finite, check_range, check_times, check_vector
 from .._runtime.watch import WALL_REASON, deadline, progress_bar, show_progress
-from .audit import audited
+from ..errors import ConvergenceError, ParameterError, Status
+from .audit import audited_options
 from .charts import FLIGHT, POLE_GUARD
-from .engines import Budget, End, Propagation, TaylorEngine, engine_for
+from .engines import Budget, End, Propagation, engine_for
 from .engines.dense import linear_span
-from .engines.scaling import initial_scales
-from .engines.taylor_build import taylor_pars
 from .hybrid import Event, Mode, Transition
 from .model import Model
 from .options import SolverOptions
@@ -33,8 +31,6 @@ from .settle import settled
 from .starts import RATE_MAX
 from .system import declare, watched
 from .trajectory import Trajectory
-
-__all__ = ["simulate", "solver_options", "taylor_integrator", "RunState"]
 
 #: the largest |t0| a run may start at (see simulate)
 T_MAX = 1e6
@@ -133,6 +129,13 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     UserWarning
         If ``t_end`` cannot be reached within ``max_wall`` seconds.
 
+    See Also
+    --------
+    phasekit.core.simulate_batch
+        many starts at once on heyoka's SIMD batch integrator (the same statuses and events)
+    phasekit.ensemble
+        many starts on many cores, one table
+
     Examples
     --------
     >>> import numpy as np, phasekit as pk
@@ -148,7 +151,7 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     x0, t0, t_end, start_mode, te = _checked_arguments(model, x0, t0, t_end, mode, throw, events, t_eval, opts.max_wall)
     if not opts.creep and model.friction.creeps:  # the law's own field at zero slip (SolverOptions.creep)
         model = Model(model.body, model.friction.without_creep(), model.chart)
-    model, x0, opts = audited(model, x0, opts, flight=start_mode is Mode.FLIGHT)  # PHASEKIT_AUDIT (core/audit.py)
+    opts = audited_options(opts)  # PHASEKIT_AUDIT (core/audit.py)
     system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail), opts.settle is not None)
     run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
     run.loop(system.initial(model, t0, x0, start_mode), progress)
@@ -225,7 +228,7 @@ def _declare_cached(model, stop_at, restitution, events, bounce, periodic, _rese
 
 
 @functools.lru_cache(maxsize=64)
-def _tracked(flow, track_minima: bool):
+def tracked(flow, track_minima: bool):
     """``flow``, without its monitor of the minima of R when they are not wanted: the
     integrator then carries no non-terminal event (fewer steps; the flight's gap maximum stays)."""
     return flow if track_minima or flow.mode is Mode.FLIGHT else replace(flow, monitor=None)
@@ -368,7 +371,7 @@ class _Run(RunState):
         for mode in (Mode.SLIDING, Mode.ROLLING):
             if mode is self.mode or mode not in self.model.modes:
                 continue
-            flow = _tracked(self.system.flow(mode), self.opts.track_minima)
+            flow = tracked(self.system.flow(mode), self.opts.track_minima)
             engine = self.engine(flow)
             events = watched(self.system, mode, engine)
             if getattr(engine, "prefetch", None) is not None and not any(e.arm_after > 0 for e in events):
@@ -384,7 +387,7 @@ class _Run(RunState):
 
     def step(self) -> None:
         """Propagate the current mode to its first event and handle that event."""
-        flow = _tracked(self.system.flow(self.mode), self.opts.track_minima)
+        flow = tracked(self.system.flow(self.mode), self.opts.track_minima)
         engine = self.engine(flow)
         events = watched(self.system, self.mode, engine)
         extend = self.resume  # a non-terminal event or a graze: the same segment goes on
@@ -441,62 +444,3 @@ class _Run(RunState):
         if not self.opts.dense and self.dense:  # dense output was kept only to answer t_eval
             self.segments = [replace(s, dense=()) for s in self.segments]
         return self.trajectory(x0, wall, **kw)
-
-
-def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump", rtol: float = 1e-9, events=(),
-                      track_minima: bool = True, x0=None):
-    """The compiled heyoka integrator phasekit uses for one mode, for users (and benchmarks)
-    who want to drive heyoka directly: returns (integrator, parameters). Its terminal events
-    are the mode's guards (lift-off first, ...) with the levels of ``events`` appended, and its
-    last parameters are the scales of the states: the integrator's state is the model's divided by
-    them, which makes heyoka's one tolerance an error test per component
-    (:mod:`phasekit.core.engines.scaling`). With ``x0`` they are the scales simulate starts a
-    segment at ``x0`` with, and the state is set to ``x0`` scaled; without it they are 1 (the state is
-    the model's, the error test heyoka's own). Set ``integrator.pars[:] = parameters`` (done here)
-    and ``integrator.state``/``.time``; read the model's state as ``state * parameters[-n:]``.
-
-    Parameters
-    ----------
-    model : Model
-        The model whose flow is compiled.
-    mode : Mode or str
-        The mode ("sliding", "rolling" or "flight") whose flow the integrator follows.
-    stop_at : str
-        The stop rule, as for :func:`phasekit.simulate` ("jump", "touchdown", "none", ...).
-    rtol : float
-        Relative tolerance of the Taylor method, in (0, 1).
-    events : sequence of Event
-        User events whose levels are appended to the mode's guards.
-    track_minima : bool
-        True gives the integrator of simulate's default, with one more state, last: z' = 2^-40 R,
-        from whose expansion the minima of R are found (:mod:`phasekit.core.engines.roots`);
-        False the integrator simulate uses with ``track_minima=False``.
-    x0 : array_like, optional
-        A start state in the model's chart: sets the scales and the (scaled) state.
-
-    Returns
-    -------
-    tuple
-        (heyoka.taylor_adaptive, numpy.ndarray): the integrator with its parameters set, and those
-        parameters (the model's, the event levels, the states' scales).
-
-    Examples
-    --------
-    >>> import phasekit as pk
-    >>> ta, pars = pk.baseline.taylor_integrator(pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)))
-    >>> type(ta).__name__, len(pars)
-    ('taylor_adaptive_dbl', 13)
-    """
-    mode = Mode(mode)
-    system = declare(model, stop_at=stop_at, events=events)
-    evs = watched(system, mode, TaylorEngine)
-    cflow = model.compile_flow(_tracked(system.flow(mode), track_minima), evs)
-    ta, _, npar = TaylorEngine(solver_options(rtol=rtol).rtol).integrator(cflow, len(model.p))
-    scale = np.ones(cflow.n_states) if x0 is None else initial_scales(check_vector("x0", x0, cflow.n_states))
-    pars = taylor_pars(model.p, [e.level for e in evs], scale)
-    ta.pars[:] = pars
-    if x0 is not None:
-        ta.time = 0.0
-        ta.state[:] = 0.0
-        ta.state[:cflow.n_states] = np.asarray(x0, dtype=float) / scale
-    return ta, pars

@@ -13,35 +13,17 @@ is regular at theta = 0, so the oblate start works down to the vertical.
 
 from __future__ import annotations
 
-import warnings
-
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_finite, check_range, check_vector
 from ..bodies.body import Body
+from ..bodies.spheroid import Spheroid
+from ..errors import ParameterError
+from ..friction.laws import Coulomb, FrictionLaw
+from ..theory.gyroscopic import RATE_MAX, balanced_state, checked_rate
+from ..theory.paper import PAPER_CASES
 from .charts import get_chart
-
-__all__ = ["gyroscopic_start", "vertical_spin_start", "raw_start", "to_chart", "to_paper"]
-
-#: the largest rate (units sqrt(g/b)) a start may have: beyond it the dynamics are beyond
-#: double precision (Omega^2 terms against 1) and the Taylor steps vanish
-RATE_MAX = 1e5
-#: the largest rate the gyroscopic (mean) solution takes: it is closed-form (or a slow-time
-#: quadrature) and does not integrate the fast motion, so only overflow of A Omega^2 limits it
-GYRO_RATE_MAX = 1e12
-
-
-def _q(body: Body, theta: float) -> float:
-    """h_theta / sin(theta) = -H'(cos theta), evaluated without dividing by sin(theta)."""
-    return -body.height_slope(np.cos(theta))[1]
-
-
-def _rate(name: str, value, limit: float = RATE_MAX) -> float:
-    v = check_finite(name, value, nonzero=True)
-    if abs(v) > limit:
-        raise ParameterError(name, f"must be nonzero with |{name}| <= {limit:g}", value)
-    return v
+from .model import Model
 
 
 def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, n0: float | None = None) -> np.ndarray:
@@ -92,42 +74,6 @@ def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, 
     return balanced_state(body, theta0, omega0=omega0, n0=n0)
 
 
-def balanced_state(body: Body, theta0: float, *, omega0=None, n0=None, limit: float = RATE_MAX) -> np.ndarray:
-    """:func:`gyroscopic_start` with rates up to ``limit`` (the gyroscopic solution's is
-    GYRO_RATE_MAX)."""
-    if not isinstance(body, Body):
-        raise ParameterError("body", "must be a phasekit Body such as Spheroid(a)", body)
-    theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
-    if (omega0 is None) == (n0 is None):
-        raise ParameterError("omega0", "or `n0` must be given, not both (prolate: omega0; oblate: n0)", show_value=False)
-    A, C = body.A, body.C
-    c = np.cos(theta0)
-    q = _q(body, theta0)
-    if omega0 is not None:
-        omega0 = _rate("omega0", omega0, limit)
-        n = (A * omega0 * c - q / omega0) / C
-        if not abs(n) <= limit:
-            raise ParameterError("omega0", f"is too small for a gyroscopic balance at theta0 = {theta0:g} (it needs a "
-                                           f"spin |n| = {abs(n):.3g} > {limit:g})", omega0)
-        return np.array([0.0, 0.0, omega0, 0.0, theta0, n])
-    n0 = _rate("n0", n0, limit)
-    if body.is_prolate:
-        warnings.warn("`n0` given for a prolate body: its gyroscopic start is normally given `omega0` (the precession "
-                      "rate; n then follows from the balance); with `n0`, Omega is put on the fast branch, "
-                      "|Omega| ~ C n0 / (A cos theta0)", stacklevel=2)
-    if c <= 0.0:
-        raise ParameterError("theta0", "must lie in (0, pi/2) for a start given n0 (the fast branch)", theta0)
-    disc = (C * n0) ** 2 + 4.0 * A * c * q
-    if disc < 0.0:
-        need = np.sqrt(max(-4.0 * A * c * q, 0.0)) / C
-        raise ParameterError("n0", f"must satisfy |n0| > {need:.6g} for a gyroscopic balance at theta0 = {theta0:g}", n0)
-    omega = (C * n0 + np.sign(n0) * np.sqrt(disc)) / (2.0 * A * c)
-    if not abs(omega) <= limit:
-        raise ParameterError("n0", f"gives a precession rate |Omega| = {abs(omega):.3g} > {limit:g} on the fast branch at "
-                                   f"theta0 = {theta0:g}", n0)
-    return np.array([0.0, 0.0, omega, 0.0, theta0, n0])
-
-
 def vertical_spin_start(theta0: float, n0: float) -> np.ndarray:
     """Spun about the vertical with the centre of mass at rest: angular velocity n0 e_Z at
     inclination theta0, i.e. Omega = n0, Lambda = 0, n = n0 cos(theta0), U = V = 0 (the
@@ -159,7 +105,7 @@ def vertical_spin_start(theta0: float, n0: float) -> np.ndarray:
            14.92506248])
     """
     theta0 = check_range("theta0", theta0, 0.0, np.pi, closed="lr", label="[0, pi]")
-    n0 = _rate("n0", n0)
+    n0 = checked_rate("n0", n0)
     return np.array([0.0, 0.0, n0, 0.0, theta0, n0 * np.cos(theta0)])
 
 
@@ -200,6 +146,13 @@ def to_chart(chart, y) -> np.ndarray:
         If ``chart`` is not "euler", "vector" or a contact chart (the flight chart, by name
         or object, is refused), or ``y`` is not 6 finite numbers.
 
+    See Also
+    --------
+    to_paper
+        its inverse
+    phasekit.Model
+        its ``chart`` (``from_paper``, ``to_paper``) is what these call
+
     Examples
     --------
     >>> import numpy as np, phasekit as pk
@@ -239,3 +192,83 @@ def to_paper(chart, x) -> np.ndarray:
     array([ 0.      ,  0.      ,  2.      ,  0.      ,  1.570796, 10.      ])
     """
     return get_chart(chart).to_paper(np.asarray(x, dtype=float))
+
+
+#: the keywords of :func:`paper_start`
+KEYWORDS = ("n0", "omega0", "friction")
+
+
+def paper_start(label: str, *, n0: float | None = None, omega0: float | None = None,
+                friction: FrictionLaw | None = None, **unknown) -> tuple[Model, np.ndarray]:
+    """The printed start (5.1) or (5.2) with its model, digit for digit.
+
+    Parameters
+    ----------
+    label : {"5.1", "5.2"}
+        The equation number (``"(5.2)"`` is accepted too).
+    n0 : float, optional
+        (5.1) only: the spin (default 10.5, printed as jumping); Omega = C n0 / A.
+    omega0 : float, optional
+        (5.2) only: the precession rate (default 10.5, printed as jumping).
+    friction : FrictionLaw, optional
+        Default: exact Coulomb friction with mu = 0.1 (the paper's law).
+    **unknown
+        None: any other keyword raises :class:`ParameterError` naming it.
+
+    Returns
+    -------
+    (Model, ndarray)
+        The model (uniform spheroid a = 2/3 in the vector chart for (5.1), which starts 4e-6
+        from the vertical; a = 3/2 in the Euler chart for (5.2)) and the start in its chart.
+
+    Notes
+    -----
+    Which start each number of the README uses:
+
+    * "(5.2) sticks at t = 0.011 and never rises" (exact Coulomb) and "jumps at 42.25 / 52.34 /
+      156.59 for eps = 1e-2 / 1e-3 / 1e-4" (``RegularisedCoulomb(0.1, eps)``): this start,
+      ``paper_start("5.2", friction=...)``.
+    * "(5.1) sticks at t = 1.1e-4": ``paper_start("5.1")``.
+    * The *literal* threshold definition (10.22 at a = 1.5 with eps = 1e-3) and
+      "64.16 (sticking at 0.022)": the unrounded eigenvector start
+      ``unstable_manifold_start(..., delta=0.01 or 0.02)``, not this one.
+
+    The eigenvector start at delta = 0.02 rounds to (5.2) component by component, but its
+    theta offset is 1.15e-3 (printed 1e-3), and rounding that component alone moves the jump
+    (eps = 1e-3) from t = 64.16 to 52.34; rounding U, V or Lambda moves it by < 0.02, n by
+    0.9. What sets t_jump is the transverse slip of the contact point at the start, u_Y: the
+    residue of terms of size 0.01-0.02 that nearly cancel, -0.0072 for the eigenvector and
+    -0.0036 for (5.2) (both below 10 eps: the regularised law starts them stuck; exact
+    Coulomb sticks at t = 0.022 and 0.011). t_jump is close to one curve of u_Y, peaked at
+    u_Y ~ -0.007, so inside the rounding box t_jump spans 46.8-61.7 across theta's interval,
+    46.8-67.2 across n's, and 44.9-67.8 over a 15 x 15 grid of (theta, n) (one of 225 runs
+    does not jump by t = 300); the eigenvector start sits on the peak, (5.2) on its flank.
+    The printed digits fix t_jump only to about +-10 (``examples/paper_start_rounding.py``).
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> model, x0 = pk.paper_start("5.2")
+    >>> model
+    Model(Spheroid(a=1.5), coulomb(mu=0.1), chart='euler')
+    """
+    if unknown:
+        name = sorted(unknown)[0]
+        raise ParameterError(name, f"is not a keyword of paper_start (valid keywords: {', '.join(KEYWORDS)})",
+                             unknown[name])
+    given = label
+    if isinstance(label, str) and label.startswith("(") and label.endswith(")"):
+        label = label[1:-1]
+    if not isinstance(label, str) or label not in PAPER_CASES:
+        raise ParameterError("label", f"must be one of {', '.join(PAPER_CASES)} (or in parentheses, \"(5.2)\")", given)
+    case = PAPER_CASES[label]
+    other = "omega0" if case.parameter == "n0" else "n0"
+    if (omega0 if other == "omega0" else n0) is not None:
+        raise ParameterError(other, f"does not apply to ({label}), which takes {case.parameter}", show_value=False)
+    value = n0 if case.parameter == "n0" else omega0
+    value = case.jump if value is None else check_finite(case.parameter, value, nonzero=True)
+    if friction is not None and not isinstance(friction, FrictionLaw):
+        raise ParameterError("friction", "must be a phasekit FrictionLaw such as Coulomb(0.1)", friction)
+    law = Coulomb(0.1) if friction is None else friction
+    chart = "vector" if label == "5.1" else "euler"
+    return Model(Spheroid(case.a), law, chart), to_chart(chart, case.state(value))

@@ -12,10 +12,12 @@ A new event is one more :class:`phasekit.core.hybrid.Event` passed to :func:`pha
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
-from .._runtime.errors import ParameterError, Status
 from .._runtime.validate import check_choice, check_range
+from ..errors import ParameterError, Status
 from .fields import STICK_SLIP
 from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
 from .resets import (
@@ -39,8 +41,6 @@ from .resets import (
     hold,
 )
 from .settle import TURN, Turn, rolls_periodically_here
-
-__all__ = ["declare", "STOP_AT", "STIFF_RATE", "GUARD_DELAY"]
 
 #: how far a run goes: the first lift-off, the first touchdown, or the end time; "rest" goes
 #: through flights as "none" does (with dissipation laws every run ends when the body rests)
@@ -112,20 +112,28 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     evs.append(Event("gap", name="touchdown", direction=-1, modes={Mode.FLIGHT}, arm_after=GUARD_DELAY,
                      stop=Status.TOUCHDOWN,
                      reset=None if stop_at == "touchdown" else hold(Touchdown(restitution, *bounce))))
-    for lim in getattr(model.body, "limits", ()):  # a body with an edge: its model ends there (bodies.edged)
-        evs.append(Event("theta", lim.theta, direction=lim.direction, name=lim.name, reset=BodyLimit(lim.reason)))
-    for tr in getattr(model.body, "transfers", ()):  # a compound body: the contact passes between its pieces
-        # watched in every mode, so that no step crosses the switch (bodies.compound)
-        level = tr.theta - tr.direction * SWITCH_EARLY
-        evs += [Event("theta", level, direction=tr.direction, name=tr.name, modes=contact,
-                      reset=hold(Transfer(tr, restitution, bounce[0]))),
-                Event("theta", level, direction=tr.direction, name=f"{tr.to_piece} lowest (in flight)",
-                      modes={Mode.FLIGHT}, reset=Transfer(tr))]
+    evs += _body_events(model.body, contact, hold, restitution, bounce[0])
     for ev in events:
         if not isinstance(ev, Event):
             raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
         evs.append(ev)
     return HybridSystem(flows, tuple(evs), _initial(stop_at, creep, bool(held)))
+
+
+def _body_events(body, contact, hold, restitution: float, bounce_stop: float) -> list[Event]:
+    """The events the body declares (its contract, phasekit.bodies.Body): a run stops at each of
+    its ``limits`` (an edged body's model ends there), and the contact passes between its pieces at
+    each of its ``transfers`` (a compound body), watched in every mode so that no step crosses the
+    switch."""
+    evs = [Event("theta", lim.theta, direction=lim.direction, name=lim.name, reset=BodyLimit(lim.reason))
+           for lim in body.limits]
+    for tr in body.transfers:
+        level = tr.theta - tr.direction * SWITCH_EARLY
+        evs += [Event("theta", level, direction=tr.direction, name=tr.name, modes=contact,
+                      reset=hold(Transfer(tr, restitution, bounce_stop))),
+                Event("theta", level, direction=tr.direction, name=f"{tr.to_piece} lowest (in flight)",
+                      modes={Mode.FLIGHT}, reset=Transfer(tr))]
+    return evs
 
 
 def _same(reset):
@@ -147,6 +155,9 @@ def _initial(stop_at: str, creep: bool, held: bool = False):
             start = hold(model, start)
         if start.stop is not None or float(model._evaluate("R", start.x, start.mode)) > 0.0:
             return start
+        warnings.warn("the start leaves the table at once: its normal reaction R <= 0 there, so it cannot stay in "
+                      "contact (a body released so lifts off at t0; a state on a steady branch, e.g. the CLI's "
+                      "--spinning-in-place, stays)", stacklevel=2)
         rec = start.records + (Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 at start"),)
         if stop_at == "jump":
             return Transition(start.mode, t, start.x, rec, stop=Status.JUMPED,

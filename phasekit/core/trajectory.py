@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._runtime.errors import ParameterError, Status
 from .._runtime.validate import check_times
+from ..errors import ParameterError, Status
 from .approximations import Approximation, approximations_of
 from .charts import FLIGHT
 from .energy import EnergyBudget, energy_budget
@@ -25,6 +25,7 @@ from .model import Model
 from .observables import evaluate_function
 from .pose import POSE_COLUMNS, Pose
 from .records import EventRecord, Flight, Segment
+from .trajectory_files import write_netcdf, write_parquet, write_run_table
 from .trajectory_io import (
     STATE_COLUMNS,
     events_table,
@@ -32,13 +33,8 @@ from .trajectory_io import (
     sample_table,
     trajectory_dict,
     trajectory_xarray,
-    write_netcdf,
-    write_parquet,
-    write_run_table,
 )
 from .verify import RunCheck, check_run
-
-__all__ = ["Trajectory", "SAMPLE_COLUMNS"]
 
 #: columns of :meth:`Trajectory.sample` after t and mode: the state's observables, then where
 #: the body is and how it is turned (:mod:`phasekit.core.pose`)

@@ -14,16 +14,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._runtime.errors import Status
 from .._runtime.validate import check_int
+from ..errors import Status
 from .charts import FLIGHT, PAPER_NAMES
 from .observables import evaluate_function
 from .pose import POSE_COLUMNS
 from .units import COLUMN_KINDS
-
-__all__ = ["STATE_COLUMNS", "UNITS", "LONG_NAMES", "observable_table", "sample_table", "pose_table", "event_dict",
-           "flight_dict", "trajectory_dict", "event_poses", "events_table", "run_table", "trajectory_xarray",
-           "write_run_table", "write_netcdf", "write_parquet", "contact_summary", "PURE_ROLLING"]
 
 #: the observables of a state (columns of :func:`observable_table`)
 STATE_COLUMNS = (*PAPER_NAMES, "R", "energy", "jellett", "slip", "L_Z", "h", "gap")
@@ -50,38 +46,49 @@ LONG_NAMES = {
     "Y_P": "contact point on the table (in flight: below the lowest point), Y",
 }
 #: what a run that ends rolling without slip rests on (exact Coulomb friction's rolling mode does
-#: no work: with no dissipation law nothing dissipates, so the energy and, with it, the tilt stay)
-PURE_ROLLING = ("pure rolling: energy is conserved and theta cannot change while the body rolls without slipping; "
-                "a regularised or viscous friction law, spin friction or rolling resistance (CLI: --slip-eps EPS, "
-                "--friction viscous, --spin-friction MU_S, --rolling-resistance DELTA) changes this")
+#: no work: with no dissipation law nothing dissipates, so the energy stays and the body cannot settle;
+#: its tilt may still oscillate as it rolls)
+PURE_ROLLING = ("pure rolling: energy is conserved while the body rolls without slipping (no force does work), so "
+                "it cannot rise or settle; a regularised or viscous friction law, spin friction or rolling "
+                "resistance (CLI: --slip-eps EPS, --friction viscous, --spin-friction MU_S, --rolling-resistance "
+                "DELTA) changes this")
+#: what the "rolling" modes are, by law: zero slip held exactly (exact Coulomb), or a regularised law's
+#: slip below 10 eps, followed on its slow manifold (it creeps) or by its own field
+HOLDING = {"exact": "rolling without slip", "creep": "creeping (slip of order eps on the regularised law's slow manifold)",
+           "slow": "slipping slowly (slip below 10 eps, the regularised law's own field)"}
 
 
 def contact_summary(traj) -> dict:
-    """How a run held the table: the time of its first stick, the fraction of the run spent
-    rolling without slip (every no-slip mode: "rolling", "rolling_no_pivot"), theta at the start
-    and its change (negative: the axis rose towards the vertical), and ``rests_on``
-    (:data:`PURE_ROLLING`) when it ends rolling under exact Coulomb friction with no dissipation
-    law (then no energy is lost while it rolls), else None."""
+    """How a run held the table: the time of its first stick, the fraction of the run spent in a
+    no-slip mode ("rolling", "rolling_no_pivot"; for a regularised law that creeps, the creep) and
+    what that is called (``holding``), theta at the start and its change (negative: the axis
+    turned towards the upward vertical), the contact's passages between a compound body's pieces
+    (``passages``: "ball -> stem at t = ..."), and ``rests_on`` (:data:`PURE_ROLLING`) when the
+    run reached its end time rolling under exact Coulomb friction with no dissipation law (then no
+    energy is lost while it rolls), else None."""
     span = traj.t - traj.t0
     rolling = sum(s.t1 - s.t0 for s in traj.segments if s.mode.value.startswith("rolling"))
     sticks = [e.t for e in traj.events if e.name == "stick"]
     theta0 = float(traj.model.chart.to_paper(traj.x0)[4])
     law = traj.model.friction
-    pure = str(traj.mode).startswith("rolling") and law.has_rolling_mode and not law.dissipation
+    pure = str(traj.mode).startswith("rolling") and law.has_rolling_mode and not law.dissipation \
+        and str(traj.status) == "completed"
+    moves = {p.name for p in traj.model.body.transfers}
+    passages = [f"{e.detail} at t = {e.t:.6g}" for e in traj.events if e.name in moves and e.detail]
     return {"t_first_stick": float(sticks[0]) if sticks else None,
-            "rolling_fraction": float(rolling / span) if span > 0 else None, "theta_start": theta0,
-            "theta_change": float(traj.model.chart.to_paper(traj.x)[4]) - theta0,
-            "rests_on": PURE_ROLLING if pure else None}
+            "rolling_fraction": float(rolling / span) if span > 0 else None, "holding": HOLDING["exact" if law.has_rolling_mode else "creep" if law.creeps else "slow"],
+            "theta_start": theta0, "theta_change": float(traj.model.chart.to_paper(traj.x)[4]) - theta0,
+            "passages": passages, "rests_on": PURE_ROLLING if pure else None}
 
 
 def _dissipation_summary(traj) -> dict:
     """With dissipation laws, where the energy went and when the body came to rest:
     ``energy_budget`` (:meth:`~phasekit.core.trajectory.Trajectory.energy_budget`, units M g b;
-    None without dense output) and ``t_rest`` (the "rest" event's time, or None); an empty dict
+    None only for a run made with dense=False; a run that ended at its start has one, with nothing lost) and ``t_rest`` (the "rest" event's time, or None); an empty dict
     for a model without them (its JSON is as before)."""
     if not traj.model.friction.dissipation:
         return {}
-    dense = bool(traj.segments) and all(s.dense for s in traj.segments)
+    dense = all(s.dense for s in traj.segments) and (bool(traj.segments) or traj.mode_stop is not None)
     rest = [e.t for e in traj.events if e.name == "rest"]
     return {"t_rest": float(rest[-1]) if rest else None,
             "energy_budget": traj.energy_budget().to_dict() if dense else None}
@@ -421,91 +428,3 @@ def trajectory_xarray(traj, times=None, *, n: int = 2001):
     from ..io.tables import table_dataset
 
     return table_dataset(run_table(traj, times, n=n))
-
-
-def write_run_table(traj, path, times=None, *, n: int = 2001, suffixes=(".csv", ".parquet", ".nc")):
-    """Write :func:`run_table` to ``path`` (:func:`phasekit.write_table`).
-
-    Parameters
-    ----------
-    traj : Trajectory
-        The run, with its dense output.
-    path : str or os.PathLike
-        The file, ending in one of ``suffixes`` (written atomically).
-    times, n
-        As for :func:`run_table`.
-    suffixes : tuple of str, optional
-        The file types allowed.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-
-    Raises
-    ------
-    ParameterError
-        For a path not ending in one of ``suffixes``, an invalid ``n`` or a time outside the run.
-    PhasekitError
-        If the packages of the file type (``phasekit[data]``) are missing.
-    """
-    from ..io.tables import _check_path, write_table
-
-    path = _check_path(path, suffixes)
-    return write_table(run_table(traj, times, n=n), path)
-
-
-def write_netcdf(traj, path, times=None, *, n: int = 2001):
-    """Write :func:`run_table` to a NetCDF file (``phasekit[data]``): the Dataset of
-    :func:`trajectory_xarray`.
-
-    Parameters
-    ----------
-    traj : Trajectory
-        The run, with its dense output.
-    path : str or os.PathLike
-        The file, ending in .nc (written atomically).
-    times, n
-        As for :func:`trajectory_xarray`.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-
-    Raises
-    ------
-    ParameterError
-        For a path not ending in .nc, an invalid ``n`` or a time outside the run.
-    PhasekitError
-        If the packages of ``phasekit[data]`` are missing.
-    """
-    return write_run_table(traj, path, times, n=n, suffixes=(".nc",))
-
-
-def write_parquet(traj, path, times=None, *, n: int = 2001):
-    """Write :func:`run_table` to a Parquet file, units and inputs in its metadata
-    (``phasekit[data]``).
-
-    Parameters
-    ----------
-    traj : Trajectory
-        The run, with its dense output.
-    path : str or os.PathLike
-        The file, ending in .parquet (written atomically).
-    times, n
-        As for :func:`trajectory_xarray`.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-
-    Raises
-    ------
-    ParameterError
-        For a path not ending in .parquet, an invalid ``n`` or a time outside the run.
-    PhasekitError
-        If pyarrow (``phasekit[data]``) is missing.
-    """
-    return write_run_table(traj, path, times, n=n, suffixes=(".parquet",))

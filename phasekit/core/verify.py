@@ -17,11 +17,9 @@ from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
-from .._runtime.errors import Status
+from ..errors import Status
 from .charts import POLE_MARGIN
 from .pose import rotation_matrix
-
-__all__ = ["RunCheck", "check_run", "CHECK_TIGHTER"]
 
 #: the repeat runs at the run's tolerance divided by this
 CHECK_TIGHTER = 10

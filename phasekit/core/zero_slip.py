@@ -9,8 +9,6 @@ import numpy as np
 
 from .hybrid import Mode
 
-__all__ = ["SLIP_ONSET", "project_no_slip", "set_slip", "creep_entry", "sliding_direction", "zero_slip_start"]
-
 #: slip speed given to a body that starts sliding from zero slip. The true slip grows from 0
 #: like t^2 (the friction is continuous at the onset), and while it is tiny the field is stiff
 #: (the slip direction locks at ~mu R/|u|): measured, starting at 4e-10 cost the Taylor method

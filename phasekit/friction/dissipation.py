@@ -42,10 +42,8 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_nonnegative
-
-__all__ = ["Dissipation", "RollingResistance", "SpinFriction", "AirDrag", "AirLayer", "SIGN_EPS"]
+from ..errors import ParameterError
 
 #: the regularisation of the sign laws at zero rate (units sqrt(g/b)); see the module notes
 SIGN_EPS = 1e-9

@@ -32,11 +32,9 @@ import warnings
 import casadi as ca
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_nonnegative, check_positive
+from ..errors import ParameterError
 from .dissipation import Dissipation, check_dissipation
-
-__all__ = ["FrictionLaw", "Coulomb", "RegularisedCoulomb", "Viscous", "friction_law", "MU_MAX"]
 
 #: friction coefficients above this are not friction but numerical trouble (and overflow R mu)
 MU_MAX = 1e3

@@ -14,6 +14,7 @@ Examples
 ([0.0, 1.0], {'t': 'ms'})
 """
 
-from .tables import atomic_path, read_table, write_table
+from .atomic import atomic_path
+from .tables import read_table, write_table
 
 __all__ = ["read_table", "write_table", "atomic_path"]

@@ -7,8 +7,6 @@ import contextlib
 import os
 from pathlib import Path
 
-__all__ = ["atomic_path"]
-
 
 @contextlib.contextmanager
 def atomic_path(path):

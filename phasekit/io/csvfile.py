@@ -21,11 +21,9 @@ import json
 import warnings
 from pathlib import Path
 
-from .._runtime.errors import PhasekitError
+from ..errors import PhasekitError
 from .atomic import atomic_path
 from .schema import MARK, Schema, check_text, dumps, infer_dtypes, restore, schema_from_json
-
-__all__ = ["sidecar", "write_csv", "read_csv"]
 
 
 def sidecar(path) -> Path:

@@ -24,11 +24,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
+from ..errors import ParameterError
 from .atomic import atomic_path
 from .schema import MARK, NULLABLE_INTS, TEXT_DTYPES, Schema, check_text, dumps, infer_dtypes, python_scalar, restore
-
-__all__ = ["JSON_ATTR", "engine", "dimension", "dataset", "write_netcdf", "read_netcdf"]
 
 #: the global attribute with the layout and the attributes NetCDF cannot hold as they are
 JSON_ATTR = "phasekit_json"

@@ -14,8 +14,6 @@ from pathlib import Path
 from .atomic import atomic_path
 from .schema import MARK, Schema, dumps, infer_dtypes, python_scalar, restore, schema_from_json
 
-__all__ = ["KEY", "write_parquet", "read_parquet"]
-
 #: the key of the table's metadata in the Parquet schema
 KEY = b"phasekit"
 FIELD_KEYS = {"units": b"units", "long_names": b"long_name"}

@@ -19,10 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
-
-__all__ = ["MARK", "Schema", "describe", "restore", "check_text", "dumps", "python_scalar", "infer_dtypes",
-           "schema_from_json", "TEXT_DTYPES", "NULLABLE_INTS"]
+from ..errors import ParameterError
 
 #: the key that marks metadata phasekit wrote (its value is the version of this layout)
 MARK = "phasekit_table"

@@ -23,14 +23,11 @@ import importlib.util
 import os
 from pathlib import Path
 
-from .._runtime.errors import ParameterError, PhasekitError
-from .atomic import atomic_path
+from ..errors import ParameterError, PhasekitError
 from .csvfile import read_csv, write_csv
 from .netcdf import dataset, read_netcdf, write_netcdf
 from .parquet import read_parquet, write_parquet
 from .schema import describe
-
-__all__ = ["write_table", "read_table", "table_dataset", "atomic_path", "DATA_EXTRA", "TABLE_SUFFIXES"]
 
 #: the optional packages of each file type
 DATA_EXTRA = {".parquet": ("pyarrow",), ".nc": ("xarray", "h5netcdf", "h5py")}
@@ -46,7 +43,7 @@ def _need(suffix: str) -> None:
                             "\"phasekit[data]\")")
 
 
-def _check_path(path, suffixes) -> Path:
+def check_path(path, suffixes) -> Path:
     if not isinstance(path, (str, os.PathLike)) or Path(path).suffix.lower() not in suffixes:
         raise ParameterError("path", f"must be a file path ending in {', '.join(suffixes)}",
                              str(path) if isinstance(path, os.PathLike) else path)
@@ -103,6 +100,11 @@ def write_table(df, path) -> Path:
         If the optional packages of the file type are missing (.parquet: pyarrow; .nc: xarray,
         h5netcdf, h5py): ``pip install "phasekit[data]"``.
 
+    See Also
+    --------
+    phasekit.scaffold.Study.csv
+        a study's tables, written whole in its output folder
+
     Examples
     --------
     >>> import phasekit as pk
@@ -114,7 +116,7 @@ def write_table(df, path) -> Path:
     {'status': 'jumped', 'units': {'t': 'ms'}}
     """
     schema = describe(df)
-    path = _check_path(path, TABLE_SUFFIXES)
+    path = check_path(path, TABLE_SUFFIXES)
     suffix = path.suffix.lower()
     _need(suffix)
     WRITERS[suffix](df, schema, path)
@@ -154,7 +156,7 @@ def read_table(path):
     >>> pk.read_table(path).dtypes.astype(str).tolist()
     ['float64', 'bool']
     """
-    path = _check_path(path, TABLE_SUFFIXES)
+    path = check_path(path, TABLE_SUFFIXES)
     if not path.exists():
         raise ParameterError("path", "must be an existing file", str(path))
     suffix = path.suffix.lower()

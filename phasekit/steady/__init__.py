@@ -11,22 +11,20 @@ Examples
 
 from .fixedpoints import find_fixed_point, fixed_points
 from .linearisation import FixedPoint, linearise
-from .manifolds import unstable_manifold_start, unstable_seeds
+from .manifolds import unstable_manifold_start
 from .precessions import (
-    horizontal_like_angle,
     horizontal_state,
     inverted_state,
     precession_angles,
     side_equilibrium,
     vertical_state,
 )
-from .rolling import RollingMotion, rolling_motion
-from .structure import SteadyStructure, bifurcation_between, steady_structure
+from .rolling import rolling_motion
+from .structure import SteadyStructure, steady_structure
 
 __all__ = [
     "fixed_points", "find_fixed_point", "FixedPoint", "linearise",
     "horizontal_state", "vertical_state", "inverted_state", "precession_angles",
-    "side_equilibrium", "horizontal_like_angle",
-    "unstable_manifold_start", "unstable_seeds",
-    "steady_structure", "SteadyStructure", "bifurcation_between", "rolling_motion", "RollingMotion",
+    "side_equilibrium", "unstable_manifold_start",
+    "steady_structure", "SteadyStructure", "rolling_motion",
 ]

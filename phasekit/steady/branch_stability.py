@@ -15,14 +15,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._runtime.errors import SearchStatus
+from .._runtime.watch import check_deadline
 from ..core.charts import EULER, VECTOR, euler_to_vector
 from ..core.model import Model
-from .branches import _curve, _off_crossings
-from .budget import spend_wall
-from .linearisation import FixedPoint, _eigen_with_bounds, _jacobian_error, _law_jacobian, _mode_for, linearise
-
-__all__ = ["StabilityChange", "linearise_precession"]
+from ..errors import SearchStatus
+from .branches import branch_curve, off_crossings
+from .linearisation import FixedPoint, eigen_with_bounds, jacobian_error, law_jacobian, linearise, mode_for
 
 #: within this of a pole, stability is computed in the vector chart turning with the precession
 POLE_ZONE = 0.05
@@ -67,8 +65,8 @@ def linearise_precession(model: Model, theta: float, Omega: float, n: float, *, 
     vector chart (k, w, v) in axes turning at Omega about the vertical, J - Omega G, regular at
     the poles (two more zero eigenvalues; tilt modes' imaginary parts shifted by Omega, real
     parts the same). ``"auto"``: rotating within POLE_ZONE of a pole, Euler elsewhere. Raises
-    TimeoutError once a wall budget in force has run out (phasekit.steady.budget)."""
-    spend_wall()
+    TimeoutError once a wall budget in force has run out (phasekit._runtime.watch.check_deadline)."""
+    check_deadline()
     if chart == "auto":
         chart = "rotating" if min(theta, np.pi - theta) < POLE_ZONE else "euler"
     y = np.array([0.0, 0.0, Omega, 0.0, theta, n])
@@ -76,8 +74,8 @@ def linearise_precession(model: Model, theta: float, Omega: float, n: float, *, 
         return linearise(model if model.chart is EULER else model.with_chart("euler"), y, kind="intermediate")
     mv = model if model.chart is VECTOR else model.with_chart("vector")
     x = euler_to_vector(y)
-    mode = _mode_for(mv)
-    jac = _law_jacobian(mv, mode)
+    mode = mode_for(mv)
+    jac = law_jacobian(mv, mode)
     keep = np.arange(8) if mode.value != "rolling" else np.array([0, 1, 2, 3, 4, 5])
     G = _G[np.ix_(keep, keep)]
 
@@ -87,7 +85,7 @@ def linearise_precession(model: Model, theta: float, Omega: float, n: float, *, 
 
     f = mv._rhs(x, mode) - Omega * (_G @ x)  # zero at a steady precession
     J, L = rotating(x)
-    lam, V, bounds = _eigen_with_bounds(J, _jacobian_error(mv, mode, rotating, x, f, J))
+    lam, V, bounds = eigen_with_bounds(J, jacobian_error(mv, mode, rotating, x, f, J))
     if L is not None:
         V = L @ V
     law = "coulomb-rolling" if mode.value == "rolling" else mv.friction.name
@@ -174,17 +172,17 @@ def _hidden(theta: np.ndarray, points: list[FixedPoint]) -> list[float]:
     return new
 
 
-def _stability(model, body, theta, om, n, crossings):
+def stability_along(model, body, theta, om, n, crossings):
     """The law's linearisation at every sample (more samples where an eigenvalue may cross the
     axis and come back between two of them), and every change of stability located."""
     def at(t):
-        o, m = _curve(body, np.array([t]), crossings)
+        o, m = branch_curve(body, np.array([t]), crossings)
         return linearise_precession(model, t, float(o[0]), float(m[0]))
 
-    at.curve = lambda t: tuple(float(v[0]) for v in _curve(body, np.array([t]), crossings))
+    at.curve = lambda t: tuple(float(v[0]) for v in branch_curve(body, np.array([t]), crossings))
     points = [linearise_precession(model, float(t), float(o), float(m)) for t, o, m in zip(theta, om, n)]
     for _ in range(4):
-        extra = np.setdiff1d(_off_crossings(np.array(_hidden(theta, points)), crossings), theta)
+        extra = np.setdiff1d(off_crossings(np.array(_hidden(theta, points)), crossings), theta)
         if not extra.size:
             break
         merged = np.concatenate([theta, extra])
@@ -192,7 +190,7 @@ def _stability(model, body, theta, om, n, crossings):
         pool = points + [at(float(t)) for t in extra]
         points = [pool[i] for i in order]
         theta = merged[order]
-    om, n = _curve(body, theta, crossings)
+    om, n = branch_curve(body, theta, crossings)
     changes = []
     for k in range(len(points) - 1):
         lo, f_lo = float(theta[k]), points[k]

@@ -48,20 +48,18 @@ from __future__ import annotations
 import functools
 import math
 import threading
-from dataclasses import dataclass
+from dataclasses import replace
 
 import casadi as ca
 import numpy as np
 
-__all__ = ["BranchEnd", "END_KINDS", "precession_on_branch"]
+from .records import POLE_EDGES, BranchEnd, Edge, Interval
 
 #: how a branch ends (see the module notes)
 END_KINDS = ("pole", "static", "infinite-spin", "switch", "limit")
 #: grid on which the roots of q and D are bracketed before Brent's method refines them (two
 #: roots closer than its spacing show as a dip of |q| or |D| toward zero and are found too)
 ROOT_GRID = 2049
-#: a limit's name (bodies.edged.Limit) in a branch end's words
-LIMIT_WORDS = {"face down": "the face comes down onto the table", "side down": "the side touches the table"}
 #: roots of q and D closer than this (in theta) are one point where both vanish (a family)
 COINCIDENT = 1e-10
 #: the samples of a branch stop this far (in theta) from a static or infinite-spin end: the
@@ -77,81 +75,6 @@ CROSSING_GAP = 1e-4
 MAX_CHORD, MAX_TURN = 0.02, 0.15
 #: most samples on one branch
 MAX_SAMPLES = 1200
-
-
-# -- the ends of a branch -------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class BranchEnd:
-    """One end of a branch (module notes).
-
-    Attributes
-    ----------
-    kind : str
-        One of END_KINDS: "pole", "static", "infinite-spin", "switch" (a compound body's
-        switch angle, where the contact passes to another piece) or "limit" (an end of an
-        edged body's range of theta).
-    theta : float
-        Where the branch ends: located to ~1e-15 by Brent's method on q or D; exactly 0 or pi
-        at a pole; the body's switch angle at a switch; the end of the body's range at a limit.
-    pole : str or None
-        "0" or "pi" at a pole, else None.
-    n, Omega : float or None
-        At a pole, the signed spin with which the branch (Omega > 0) meets the spin about the
-        vertical, and the pole's rate limit; at a switch, the limits of the branch's spin and
-        rate there on its own piece (the next piece's branch, if any, starts elsewhere in
-        (Omega, n): H' jumps); at a limit, their limits there (``inf`` where Omega diverges,
-        at a face coming down); else None.
-    to_piece : str or None
-        At a switch, the piece the contact passes to ("stem" at the tippe top's switch from the
-        ball); else None.
-    limit : str or None
-        At a limit, its name as a run's event names it ("face down", "side down"); else None.
-    """
-
-    kind: str
-    theta: float
-    pole: str | None = None  # "0" or "pi"
-    n: float | None = None
-    Omega: float | None = None
-    to_piece: str | None = None
-    limit: str | None = None
-
-    @property
-    def label(self) -> str:
-        if self.kind == "pole":
-            return "pole0" if self.pole == "0" else "polePi"
-        return "inf" if self.kind == "infinite-spin" else self.kind
-
-    def describe(self) -> str:
-        """The end in words, e.g. "the contact passes to the stem at theta = 2.31972".
-
-        Returns
-        -------
-        str
-        """
-        if self.kind == "switch":
-            return f"the contact passes to the {self.to_piece} at theta = {self.theta:.6g}"
-        if self.kind == "limit":
-            what = LIMIT_WORDS.get(self.limit, f"the body's range ends ({self.limit})")
-            return f"{what} at theta = {self.theta:.6g}"
-        if self.kind == "pole":
-            return f"the spin about the vertical at theta = {'0' if self.pole == '0' else 'pi'}"
-        return f"{'a static equilibrium' if self.kind == 'static' else 'an infinite-spin asymptote'} at theta = {self.theta:.6g}"
-
-    def to_dict(self) -> dict:
-        d = {"kind": self.kind, "theta": self.theta}
-        if self.kind == "pole":
-            d.update(pole=self.pole, n=self.n, spin=abs(self.n), Omega=self.Omega)
-        elif self.kind == "switch":
-            d.update(to_piece=self.to_piece, n=self.n, spin=abs(self.n), Omega=self.Omega, description=self.describe())
-        elif self.kind == "limit":  # a value that diverges there (Omega as a face comes down): null, named in "diverges"
-            fin = lambda v: v if math.isfinite(v) else None  # noqa: E731
-            d.update(limit=self.limit, n=fin(self.n), spin=fin(abs(self.n)), Omega=fin(self.Omega),
-                     diverges=[k for k, v in (("Omega", self.Omega), ("n", self.n)) if not math.isfinite(v)],
-                     description=self.describe())
-        return d
 
 
 # -- the geometry of the steady precessions -----------------------------------------------------
@@ -185,7 +108,7 @@ def _geometry_function(body) -> ca.Function:
         return _GEOMETRY[key]
 
 
-def _geometry(body, theta) -> tuple[np.ndarray, ...]:
+def precession_geometry(body, theta) -> tuple[np.ndarray, ...]:
     """(q, rho_2, z, D, h, h_tt, dq, dD) at an array of theta."""
     th = np.atleast_1d(np.asarray(theta, dtype=float)).ravel()
     f = _geometry_function(body)
@@ -206,7 +129,7 @@ def precession_on_branch(body, theta) -> tuple[np.ndarray, np.ndarray]:
     """(Omega, n) of the steady precession at ``theta`` (array), Omega >= 0; NaN where there is
     none (q rho_2 / D < 0 or D = 0). Exactly at a point where q = D = 0 the ratio is 0/0: the
     family crossing is given by :func:`phasekit.steady_structure`, not here."""
-    q, rho2, z, D = _geometry(body, theta)[:4]
+    q, rho2, z, D = precession_geometry(body, theta)[:4]
     with np.errstate(divide="ignore", invalid="ignore"):
         om2 = q * rho2 / D
         om = np.where(np.isfinite(om2) & (om2 >= 0), np.sqrt(np.abs(om2)), np.nan)
@@ -214,12 +137,10 @@ def precession_on_branch(body, theta) -> tuple[np.ndarray, np.ndarray]:
     return om, n
 
 
-def _holds(body, theta: float) -> bool:
+def holds_state(body, theta: float) -> bool:
     """Whether a steady state at ``theta`` is one of ``body``'s model that a run can hold: always,
     but for an edged body (phasekit.bodies.edged) only inside its range and short of its
     ``limits``, where a run stops at once (the face is down: theta below the disk's flat_angle)."""
-    if not hasattr(body, "theta_range"):
-        return True
     return body.in_range(theta) and all(theta > lim.theta if lim.direction < 0 else theta < lim.theta
                                         for lim in body.limits)
 
@@ -230,12 +151,12 @@ def _holds(body, theta: float) -> bool:
 DEGENERATE_RTOL = 1e-12
 
 
-def _degeneracy(body) -> str | None:
+def degeneracy(body) -> str | None:
     """Why the steady states of ``body`` are a continuum rather than branches, or None: q = 0 at
     every theta (h_theta = 0: a sphere with G at its centre, every orientation a static
     equilibrium), and then, with A = C, D = 0 too (every orientation precesses at any rate)."""
     grid = np.linspace(0.0, np.pi, 257)
-    q, rho2 = _geometry(body, grid)[:2]
+    q, rho2 = precession_geometry(body, grid)[:2]
     if not np.all(np.abs(q) <= DEGENERATE_RTOL * np.abs(rho2)):
         return None
     what = ("degenerate body: h_theta = 0 at every theta (a sphere with G at its centre), so every orientation is a "
@@ -274,7 +195,7 @@ def _roots(fun, grid: np.ndarray, values: np.ndarray) -> list[float]:
     return sorted(r for r in roots if grid[0] < r < grid[-1] and 0.0 < r < np.pi)
 
 
-def _special_points(body, lo: float = 0.0, hi: float = np.pi) -> list[dict]:
+def special_points(body, lo: float = 0.0, hi: float = np.pi) -> list[Edge]:
     """The interior points of (lo, hi) where q, D or both vanish, in theta order (a compound
     body's piece: its own range)."""
     grid = np.linspace(lo, hi, ROOT_GRID)
@@ -282,77 +203,71 @@ def _special_points(body, lo: float = 0.0, hi: float = np.pi) -> list[dict]:
     f = _mapped(_GEOMETRY[body.structure_key + ":qD"], ROOT_GRID)
     shape = np.tile(np.asarray(body.shape_params, dtype=float)[:, None], (1, ROOT_GRID))
     q, D = (np.asarray(v).ravel() for v in f(grid[None, :], shape, body.A, body.C))
-    fq = lambda t: float(_geometry(body, t)[0][0])  # noqa: E731
-    fD = lambda t: float(_geometry(body, t)[3][0])  # noqa: E731
-    pts = [{"theta": t, "q": True, "D": False} for t in _roots(fq, grid, q)]
+    fq = lambda t: float(precession_geometry(body, t)[0][0])  # noqa: E731
+    fD = lambda t: float(precession_geometry(body, t)[3][0])  # noqa: E731
+    pts = [Edge(t, q=True) for t in _roots(fq, grid, q)]
     for t in _roots(fD, grid, D):
-        near = [p for p in pts if p["q"] and abs(p["theta"] - t) <= COINCIDENT]
+        near = [k for k, p in enumerate(pts) if p.q and abs(p.theta - t) <= COINCIDENT]
         if near:
-            near[0]["D"] = True
+            pts[near[0]] = replace(pts[near[0]], D=True)
         else:
-            pts.append({"theta": t, "q": False, "D": True})
+            pts.append(Edge(t, D=True))
     if body.flip_symmetric:  # both vanish exactly at pi/2 by symmetry: say so exactly
-        for p in pts:
-            if p["q"] and p["D"] and abs(p["theta"] - np.pi / 2) <= COINCIDENT:
-                p["theta"] = np.pi / 2
-    return sorted(pts, key=lambda p: p["theta"])
+        pts = [replace(p, theta=np.pi / 2) if p.q and p.D and abs(p.theta - np.pi / 2) <= COINCIDENT else p
+               for p in pts]
+    return sorted(pts, key=lambda p: p.theta)
 
 
 def _omega2(body, theta: float) -> float:
-    q, rho2, _, D = _geometry(body, theta)[:4]
+    q, rho2, _, D = precession_geometry(body, theta)[:4]
     return float(q[0] * rho2[0] / D[0])
 
 
-def _family_rate2(body, theta: float) -> float:
+def family_rate2(body, theta: float) -> float:
     """Omega^2 of a branch through a point where q = D = 0: the limit (dq/dtheta) rho_2 / (dD/dtheta)."""
-    g = _geometry(body, theta)
+    g = precession_geometry(body, theta)
     return float(g[6][0] * g[1][0] / g[7][0])
 
 
 # -- branches -----------------------------------------------------------------------------------
 
 
-#: the ends of the range of a one-piece body (a compound body's pieces end at switches too:
-#: ``{"theta": t, "switch": the piece beyond}``)
-POLE_EDGES = ({"theta": 0.0, "pole": "0"}, {"theta": np.pi, "pole": "pi"})
-
-
-def _pieces(body, pts: list[dict], edges: tuple[dict, dict] = POLE_EDGES) -> list[dict]:
+def branch_intervals(body, pts: list[Edge], edges: tuple[Edge, Edge] = POLE_EDGES) -> list[Interval]:
     """The maximal intervals with Omega^2 > 0 between the two ``edges``, joined across family
-    points."""
-    edges = [dict(edges[0])] + pts + [dict(edges[1])]
-    pieces = []
-    for lo, hi in zip(edges[:-1], edges[1:]):
-        mid = 0.5 * (lo["theta"] + hi["theta"])
-        if _omega2(body, mid) > 0:
-            if pieces and pieces[-1]["hi"] is lo and lo.get("q") and lo.get("D"):
-                pieces[-1]["hi"] = hi  # the branch crosses a family here
-                pieces[-1]["crossings"].append(lo["theta"])
+    points (where q and D vanish together)."""
+    seq = [edges[0], *pts, edges[1]]
+    found = []  # [lo edge, index of the hi edge, crossings]
+    for k in range(len(seq) - 1):
+        lo, hi = seq[k], seq[k + 1]
+        if _omega2(body, 0.5 * (lo.theta + hi.theta)) > 0:
+            if found and found[-1][1] == k and lo.q and lo.D:
+                found[-1][1] = k + 1  # the branch crosses a family here
+                found[-1][2].append(lo.theta)
             else:
-                pieces.append({"lo": lo, "hi": hi, "crossings": []})
-    return pieces
+                found.append([lo, k + 1, []])
+    return [Interval(lo, seq[h], tuple(crossings)) for lo, h, crossings in found]
 
 
-def _end(body, edge: dict, side: int) -> BranchEnd:
-    """Classify a piece's end at ``edge`` (side -1: the piece lies above it in theta)."""
-    t = float(edge["theta"])
-    if "switch" in edge:  # the piece's own closed forms, analytic up to the switch
-        q, rho2, z, D = (float(v[0]) for v in _geometry(body, t)[:4])
+def classify_end(body, edge: Edge, side: int) -> BranchEnd:
+    """Classify an interval's end at ``edge`` (side -1: the interval lies above it in theta)."""
+    t = float(edge.theta)
+    if edge.switch is not None:  # the piece's own closed forms, analytic up to the switch
+        q, rho2, z, D = (float(v[0]) for v in precession_geometry(body, t)[:4])
         om = float(np.sqrt(q * rho2 / D)) if q * rho2 / D > 0 else 0.0
-        return BranchEnd("switch", t, n=om * z / rho2, Omega=om, to_piece=edge["switch"])
-    if "limit" in edge:
-        return _limit_end(body, t, side, edge["limit"])
-    if "pole" in edge:
-        q, rho2, z, D = (float(v[0]) for v in _geometry(body, t)[:4])
+        return BranchEnd("switch", t, n=om * z / rho2, Omega=om, to_piece=edge.switch)
+    if edge.limit is not None:
+        return _limit_end(body, t, side, edge.limit)
+    if edge.pole is not None:
+        q, rho2, z, D = (float(v[0]) for v in precession_geometry(body, t)[:4])
         if D == 0.0:
             return BranchEnd("infinite-spin", t)
         if q == 0.0:
             return BranchEnd("static", t)
         om = float(np.sqrt(q * rho2 / D))
-        return BranchEnd("pole", t, pole=edge["pole"], n=om * z / rho2, Omega=om)
-    if edge["q"] and not edge["D"]:
+        return BranchEnd("pole", t, pole=edge.pole, n=om * z / rho2, Omega=om)
+    if edge.q and not edge.D:
         return BranchEnd("static", t)
-    if edge["D"] and not edge["q"]:
+    if edge.D and not edge.q:
         return BranchEnd("infinite-spin", t)
     # a family point that ends the branch (degenerate): by the limit from the branch's side
     near = _omega2(body, t - side * 1e-4)
@@ -375,7 +290,7 @@ def _limit_end(body, t: float, side: int, name: str) -> BranchEnd:
     closed forms there where H is analytic (a side touching), else their limits, read off their
     trend as theta -> t (a face coming down, H' -> infinity: q and rho_2 grow as 1 / |theta - t|,
     z stays finite, so Omega -> infinity and n = Omega z / rho_2 -> 0)."""
-    q, rho2, z, D = (float(v[0]) for v in _geometry(body, t)[:4])
+    q, rho2, z, D = (float(v[0]) for v in precession_geometry(body, t)[:4])
     with np.errstate(all="ignore"):
         om2 = q * rho2 / D
         if np.isfinite(om2) and np.isfinite(z) and rho2 > 0:
@@ -404,18 +319,18 @@ def _compact(theta, om, n) -> np.ndarray:
     return np.column_stack([theta / np.pi, 2 / np.pi * np.arctan(om), 2 / np.pi * np.arctan(n)])
 
 
-def _curve(body, theta, crossings) -> tuple[np.ndarray, np.ndarray]:
+def branch_curve(body, theta, crossings) -> tuple[np.ndarray, np.ndarray]:
     om, n = precession_on_branch(body, theta)
     for t in crossings:  # the 0/0 limit at a family point (samples keep CROSSING_GAP away otherwise)
         sel = np.abs(theta - t) < 1e-12
         if np.any(sel):
-            _, rho2, z = _geometry(body, t)[:3]
-            om[sel] = np.sqrt(_family_rate2(body, t))
+            _, rho2, z = precession_geometry(body, t)[:3]
+            om[sel] = np.sqrt(family_rate2(body, t))
             n[sel] = om[sel] * z[0] / rho2[0]
     return om, n
 
 
-def _off_crossings(theta: np.ndarray, crossings) -> np.ndarray:
+def off_crossings(theta: np.ndarray, crossings) -> np.ndarray:
     """Drop points within CROSSING_GAP of a family crossing (but not the crossing itself): there
     q / D is 0/0 and the closed form loses digits (~1e-16 / distance)."""
     for t in crossings:
@@ -424,7 +339,7 @@ def _off_crossings(theta: np.ndarray, crossings) -> np.ndarray:
     return theta
 
 
-def _sample(body, lo: BranchEnd, hi: BranchEnd, crossings) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def sample_branch(body, lo: BranchEnd, hi: BranchEnd, crossings) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """theta, Omega, n adaptive in arc length of the compact coordinates, with geometric
     approaches to the ends."""
     gap = lambda e: POLE_GAP if e.kind == "pole" else END_GAP  # noqa: E731
@@ -435,10 +350,10 @@ def _sample(body, lo: BranchEnd, hi: BranchEnd, crossings) -> tuple[np.ndarray, 
     theta = a + (b - a) * 0.5 * (1 - np.cos(np.pi * k / 32))
     for j in range(2, 7):  # geometric approach to each end
         theta = np.append(theta, [lo.theta + 10.0 ** -j, hi.theta - 10.0 ** -j])
-    theta = _off_crossings(np.append(theta, crossings), crossings)
+    theta = off_crossings(np.append(theta, crossings), crossings)
     theta = np.unique(theta[(theta >= a) & (theta <= b)])
     for _ in range(12):
-        om, n = _curve(body, theta, crossings)
+        om, n = branch_curve(body, theta, crossings)
         P = _compact(theta, om, n)
         d = np.diff(P, axis=0)
         L = np.linalg.norm(d, axis=1)
@@ -450,7 +365,7 @@ def _sample(body, lo: BranchEnd, hi: BranchEnd, crossings) -> tuple[np.ndarray, 
         split &= np.diff(theta) > 1e-9
         if not split.any() or theta.size >= MAX_SAMPLES:
             break
-        theta = np.unique(_off_crossings(np.concatenate([theta, 0.5 * (theta[:-1] + theta[1:])[split]]), crossings))
-    om, n = _curve(body, theta, crossings)
+        theta = np.unique(off_crossings(np.concatenate([theta, 0.5 * (theta[:-1] + theta[1:])[split]]), crossings))
+    om, n = branch_curve(body, theta, crossings)
     ok = np.isfinite(om) & np.isfinite(n)
     return theta[ok], om[ok], n[ok]

@@ -22,8 +22,6 @@ import numpy as np
 
 from ..core.hybrid import Mode
 
-__all__ = ["acting_laws", "dissipation_note", "POWER_RTOL"]
-
 #: a law acts at a state when the power it takes out exceeds this times the kinetic energy
 #: (per unit time): rounding of a rate that is zero in exact arithmetic (cos(pi/2) ~ 6e-17 in
 #: w_h) leaves ~1e-24 of it, the weakest law of interest (coefficient 1e-9) ~1e-9

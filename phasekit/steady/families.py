@@ -11,15 +11,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._runtime.watch import check_deadline
 from ..core.charts import EULER
 from ..theory.criteria import PoleCriterion, pole_stability_threshold
 from .branch_stability import linearise_precession
-from .branches import _family_rate2, _geometry, _holds
-from .budget import spend_wall
+from .branches import family_rate2, holds_state, precession_geometry
 from .linearisation import linearise
 from .rolling import rolling_state
-
-__all__ = ["StaticEquilibrium", "SpinFamily"]
 
 
 @dataclass(frozen=True)
@@ -84,35 +82,39 @@ class SpinFamily:
 # -- statics and families -----------------------------------------------------------------------
 
 
-def _statics(body, pts) -> tuple[StaticEquilibrium, ...]:
-    thetas = [0.0] + [p["theta"] for p in pts if p["q"]] + [np.pi]
-    h, htt = _geometry(body, thetas)[4:6]
+def statics_of(body, pts) -> tuple[StaticEquilibrium, ...]:
+    thetas = [0.0] + [p.theta for p in pts if p.q] + [np.pi]
+    h, htt = precession_geometry(body, thetas)[4:6]
     return tuple(StaticEquilibrium(float(t), float(h[i]), float(htt[i]), "pole" if t in (0.0, np.pi) else "tilted")
                  for i, t in enumerate(thetas))
 
 
-def _families(model, body, pts, pieces, stability: bool) -> tuple[SpinFamily, ...]:
-    ends = {e.pole for p in pieces for e in (p["lo_end"], p["hi_end"]) if e.kind == "pole"}
-    static_ends = {e.theta for p in pieces for e in (p["lo_end"], p["hi_end"]) if e.kind == "static"}
+def families_of(model, body, pts, intervals, stability: bool) -> tuple[SpinFamily, ...]:
+    """The families of ``body``: the spins about the vertical at its poles, and at its special
+    points ``pts`` (Edge records) the precession and rolling families, said to meet a branch
+    where one of the branches' ``intervals`` (Interval records, ends classified) ends or crosses
+    there."""
+    ends = {e.pole for p in intervals for e in p.ends if e.kind == "pole"}
+    static_ends = {e.theta for p in intervals for e in p.ends if e.kind == "static"}
     out = []
     for pole, t in (("upright", 0.0), ("inverted", np.pi)):
-        if not _holds(body, t):  # an edged body's pole off its range (a disk lying flat)
+        if not holds_state(body, t):  # an edged body's pole off its range (a disk lying flat)
             continue
         crit = pole_stability_threshold(body, pole)
         side = (not crit.stable_above, crit.stable_above) if crit.threshold else (crit.stable(1.0),)
         out.append(SpinFamily("pole", t, "n", (crit.threshold,) if crit.threshold else (), side,
                               ("0" if t == 0.0 else "pi") in ends, crit))
-    crossed = {c for p in pieces for c in p["crossings"]}
+    crossed = {c for p in intervals for c in p.crossings}
     for p in pts:
-        if p["q"] and p["D"]:
-            om2 = _family_rate2(body, p["theta"])
+        if p.q and p.D:
+            om2 = family_rate2(body, p.theta)
             crit = float(np.sqrt(om2)) if om2 > 0 else None
-            side = _precession_family_side(model, p["theta"], crit) if stability else None
-            out.append(SpinFamily("precession", p["theta"], "Omega", (crit,) if crit else (),
-                                  (None if side is None else not side, side) if crit else (None,), p["theta"] in crossed))
-        if p["q"]:
-            crits, side = _rolling_family(model, p["theta"]) if stability else ((), (None,))
-            out.append(SpinFamily("rolling", p["theta"], "n", crits, side, p["theta"] in static_ends or p["theta"] in crossed))
+            side = _precession_family_side(model, p.theta, crit) if stability else None
+            out.append(SpinFamily("precession", p.theta, "Omega", (crit,) if crit else (),
+                                  (None if side is None else not side, side) if crit else (None,), p.theta in crossed))
+        if p.q:
+            crits, side = _rolling_family(model, p.theta) if stability else ((), (None,))
+            out.append(SpinFamily("rolling", p.theta, "n", crits, side, p.theta in static_ends or p.theta in crossed))
     return tuple(out)
 
 
@@ -138,7 +140,7 @@ def _rolling_family(model, theta: float) -> tuple[tuple[float, ...], tuple[bool,
     me = model if model.chart is EULER else model.with_chart("euler")
 
     def count(n):
-        spend_wall()
+        check_deadline()
         return linearise(me, rolling_state(model.body, theta, n), kind="rolling").n_unstable
 
     counts = [count(n) for n in ROLLING_SCAN]

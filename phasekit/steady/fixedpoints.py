@@ -13,33 +13,31 @@ from dataclasses import dataclass, replace
 import casadi as ca
 import numpy as np
 
-from .._runtime.errors import ConvergenceError, ParameterError
 from .._runtime.validate import check_array, check_choice, check_finite, check_range, check_vector
+from .._runtime.watch import check_deadline
 from ..core.charts import EULER
 from ..core.fields import CompiledModel, compiled_model
 from ..core.hybrid import Mode
 from ..core.model import Model
+from ..errors import ConvergenceError, ParameterError
 from ..friction.laws import Viscous
 from ..theory.criteria import pole_stability_threshold
-from .branches import _degeneracy, _holds
-from .budget import spend_wall
+from .branches import degeneracy, holds_state
 from .dissipative import acting_laws
-from .linearisation import FixedPoint, _check_model, _mode_for, linearise
+from .linearisation import FixedPoint, check_model, linearise, mode_for
 from .precessions import (
-    _root_float,
     horizontal_like_angle,
     horizontal_state,
     inverted_state,
     precession_angles,
     precession_state,
+    root_float,
     vertical_state,
 )
 
 #: the law whose smooth field Newton solves for the steady states of every law: they have zero
 #: slip, and Viscous(1) keeps Newton well conditioned where a law's own field is stiff
 NEWTON_LAW = Viscous(1.0)
-
-__all__ = ["Branch", "find_fixed_point", "fixed_points", "continue_family"]
 
 #: the classes of steady state (:class:`FixedPoint` ``kind``; "inverted" and "horizontal-like"
 #: are those of bodies without flip symmetry)
@@ -125,7 +123,7 @@ def _newton_system(field: CompiledModel, n_params: int, chart, kind: str, fixed:
 
 def _backward_error(model: Model, x: np.ndarray) -> float:
     """max_i |f_i(x)| / sum_j |J_ij| max(|x_j|, 1) for the law's own field (see NEWTON_RTOL)."""
-    mode = _mode_for(model)
+    mode = mode_for(model)
     f, J = model._rhs(x, mode), model._jacobian(x, mode)
     if not (np.all(np.isfinite(f)) and np.all(np.isfinite(J))):
         return float("inf")
@@ -173,7 +171,7 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
     >>> fp.kind, fp.n_unstable, fp.residual < 1e-10
     ('horizontal', 1, True)
     """
-    model = _check_model(model)
+    model = check_model(model)
     check_choice("kind", kind, KINDS)
     if kind == "inverted":
         raise ParameterError("kind", "'inverted' needs no Newton solve: the state is exact (linearise it)", kind)
@@ -204,7 +202,7 @@ def find_fixed_point(model: Model, guess, *, kind: str, value: float, fixed: str
     if not err <= NEWTON_RTOL and acting_laws(model, x):  # a steady state of the law without its dissipation
         raise _dissipated(model, x, f"{kind} fixed point with {fixed} = {value:g}")
     if not err <= NEWTON_RTOL:
-        residual = float(np.max(np.abs(model._rhs(x, _mode_for(model)))))
+        residual = float(np.max(np.abs(model._rhs(x, mode_for(model)))))
         try:
             last = linearise(model, x, kind=kind)
         except (ParameterError, ConvergenceError):
@@ -260,6 +258,15 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
     TimeoutError
         If a wall budget in force (a caller's ``max_wall``, phasekit._runtime.watch) runs out.
 
+    See Also
+    --------
+    SteadyStructure.at
+        the same states of one family read off a whole steady-state structure (found along its branches, independently)
+    find_fixed_point
+        one state by Newton's method from a guess
+    steady_structure
+        every branch, static equilibrium and family of a body
+
     Examples
     --------
     >>> import phasekit as pk
@@ -275,20 +282,20 @@ def fixed_points(model: Model, model_vector: Model | None = None, *, omega0: flo
         raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
     model_euler = model if model.chart is EULER else model.with_chart("euler")
     model_vector = model_vector or model.with_chart("vector")
-    omega0, n0 = _family_value("omega0", omega0), _family_value("n0", n0)
+    omega0, n0 = family_value("omega0", omega0), family_value("n0", n0)
     body = model_euler.body
-    thetas = [] if _degeneracy(body) else precession_angles(body, omega0=omega0, n0=n0)
-    return _on_range(body, _isolated_states(model_euler, model_vector, omega0, n0)
-                     + _precessions(model_euler, thetas, omega0, n0))
+    thetas = [] if degeneracy(body) else precession_angles(body, omega0=omega0, n0=n0)
+    return on_range(body, isolated_states(model_euler, model_vector, omega0, n0)
+                     + precessions_at(model_euler, thetas, omega0, n0))
 
 
-def _on_range(body, found: list[FixedPoint]) -> list[FixedPoint]:
+def on_range(body, found: list[FixedPoint]) -> list[FixedPoint]:
     """The states of ``found`` that ``body``'s model holds: a body with an edge, those inside its
-    range and short of its limits (phasekit.steady.branches._holds)."""
-    return [fp for fp in found if _holds(body, float(fp.y[4]))]
+    range and short of its limits (phasekit.steady.branches.holds_state)."""
+    return [fp for fp in found if holds_state(body, float(fp.y[4]))]
 
 
-def _family_value(name: str, value) -> float | None:
+def family_value(name: str, value) -> float | None:
     """None, or a finite Omega0 or n0 within FAMILY_MAX (ParameterError naming it)."""
     if value is None:
         return None
@@ -306,7 +313,7 @@ def _has_horizontal_state(body) -> bool:
 HORIZONTAL_GAP = 1e-9
 
 
-def _isolated_states(model_euler: Model, model_vector: Model, omega0, n0) -> list[FixedPoint]:
+def isolated_states(model_euler: Model, model_vector: Model, omega0, n0) -> list[FixedPoint]:
     """The horizontal state (given omega0, where it exists) or the spins about the vertical (given
     n0; the inverted one for a body without flip symmetry), as :func:`fixed_points` lists them first."""
     body = model_euler.body
@@ -316,8 +323,8 @@ def _isolated_states(model_euler: Model, model_vector: Model, omega0, n0) -> lis
         return _kept(lambda: [find_fixed_point(model_euler, horizontal_state(omega0), kind="horizontal", value=omega0)],
                      model_euler)
     # an edged body's pole off its range (a disk lying flat) is not a state of its model
-    out = _kept(lambda: [_pole(model_vector, n0, "upright")], model_vector) if _holds(body, 0.0) else []
-    if not body.flip_symmetric and _holds(body, np.pi):
+    out = _kept(lambda: [_pole(model_vector, n0, "upright")], model_vector) if holds_state(body, 0.0) else []
+    if not body.flip_symmetric and holds_state(body, np.pi):
         out += _kept(lambda: [_pole(model_vector, n0, "inverted")], model_vector)
     return out
 
@@ -339,7 +346,7 @@ def _kept(find, model) -> list[FixedPoint]:
         return []
 
 
-def _precessions(model_euler: Model, thetas, omega0, n0) -> list[FixedPoint]:
+def precessions_at(model_euler: Model, thetas, omega0, n0) -> list[FixedPoint]:
     """The precessions with rate omega0 (or spin n0) at the angles ``thetas`` (increasing), by Newton
     from the closed form: the last step of both :func:`fixed_points` (angles from a scan of the
     residual) and SteadyStructure.at (angles from the branches), so the two list the same states
@@ -353,8 +360,8 @@ def _precessions(model_euler: Model, thetas, omega0, n0) -> list[FixedPoint]:
     like = horizontal_like_angle(body, thetas) if omega0 is not None else None
     out: list[FixedPoint] = []
     for theta in thetas:
-        spend_wall()
-        guess = precession_state(body, _root_float(body, theta, omega0=omega0, n0=n0), omega0=omega0, n0=n0)
+        check_deadline()
+        guess = precession_state(body, root_float(body, theta, omega0=omega0, n0=n0), omega0=omega0, n0=n0)
         kind = "horizontal-like" if theta == like else "intermediate"
         try:
             fp = find_fixed_point(model_euler, guess, kind=kind, value=value, fixed=fixed)
@@ -386,7 +393,7 @@ def continue_family(model: Model, kind: str, values, *, start=None) -> Branch:
     ``kind``: "horizontal" (values of Omega0), "vertical" (values of n0; vector chart) or
     "intermediate" (values of Omega0; ``start`` is a state on the family near values[0]).
     """
-    model = _check_model(model)
+    model = check_model(model)
     check_choice("kind", kind, tuple(k for k in KINDS if k != "inverted"))
     values = check_array("values", values, ndim=1)
     chart = "vector" if kind == "vertical" else "euler"

@@ -29,13 +29,11 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
-from .._runtime.errors import ConvergenceError, ParameterError
 from .._runtime.validate import check_vector
 from ..core.charts import PAPER_NAMES, VECTOR
 from ..core.hybrid import Mode
 from ..core.model import Model
-
-__all__ = ["FixedPoint", "linearise"]
+from ..errors import ConvergenceError, ParameterError
 
 #: the rounding of one evaluation of a compiled Jacobian, in units of eps * ||J||_F: CasADi's
 #: entries are sums of many products (measured below 10 on the spheroid, egg and tippe top;
@@ -199,11 +197,11 @@ class FixedPoint:
         return f"FixedPoint({self.kind}, {self.classification}, residual={self.residual:.1e})"
 
 
-def _mode_for(model: Model) -> Mode:
+def mode_for(model: Model) -> Mode:
     return Mode.ROLLING if model.friction.has_rolling_mode else Mode.SLIDING
 
 
-def _check_model(model) -> Model:
+def check_model(model) -> Model:
     if not isinstance(model, Model):
         raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
     return model
@@ -275,21 +273,21 @@ def linearise(model: Model, x, *, kind: str = "state") -> FixedPoint:
     >>> fp.n_unstable, round(float(fp.eigenvalues[0].real), 6)
     (1, 0.089489)
     """
-    model = _check_model(model)
+    model = check_model(model)
     if not isinstance(kind, str) or not kind:
         raise ParameterError("kind", "must be a label such as 'horizontal' or 'state'", kind)
     x = check_vector("x", x, model.n_states)
-    mode = _mode_for(model)
+    mode = mode_for(model)
     f = model._rhs(x, mode)
     residual = float(np.max(np.abs(f)))
-    jac = _law_jacobian(model, mode)
+    jac = law_jacobian(model, mode)
     Jr, L = jac(x)
     law = "coulomb-rolling" if mode is Mode.ROLLING else model.friction.name
     if not (np.all(np.isfinite(Jr)) and np.isfinite(residual)):
         raise ParameterError("x", "gives a non-finite field or Jacobian (a state beyond double precision, or where "
                                   "the contact equations are singular)", x)
     try:
-        lam, V, bounds = _eigen_with_bounds(Jr, _jacobian_error(model, mode, jac, x, f, Jr))
+        lam, V, bounds = eigen_with_bounds(Jr, jacobian_error(model, mode, jac, x, f, Jr))
     except (np.linalg.LinAlgError, ValueError) as exc:
         raise ConvergenceError(f"the eigenvalues of the Jacobian at the {kind} state did not converge ({exc})") from None
     if L is not None:
@@ -300,7 +298,7 @@ def linearise(model: Model, x, *, kind: str = "state") -> FixedPoint:
     return FixedPoint(kind, model.chart.name, x, y, lam, V, residual, law, error_bounds=bounds)
 
 
-def _law_jacobian(model: Model, mode: Mode):
+def law_jacobian(model: Model, mode: Mode):
     """x -> (J, L): the Jacobian the law is linearised with, and for the rolling field the
     map lifting its reduced coordinates to the chart state (None otherwise)."""
     if mode is Mode.ROLLING:
@@ -308,7 +306,7 @@ def _law_jacobian(model: Model, mode: Mode):
     return lambda x: (model._jacobian(x, mode), None)
 
 
-def _jacobian_error(model: Model, mode: Mode, jac, x: np.ndarray, f: np.ndarray, J: np.ndarray) -> float:
+def jacobian_error(model: Model, mode: Mode, jac, x: np.ndarray, f: np.ndarray, J: np.ndarray) -> float:
     """A size (Frobenius norm) for the error of the computed Jacobian J at the computed state x:
     rounding (JACOBIAN_ROUNDING eps ||J||) plus the change of J across the state's own error
     dx, the least-squares Newton correction -J_full^+ f(x) of the residual f."""
@@ -323,7 +321,7 @@ def _jacobian_error(model: Model, mode: Mode, jac, x: np.ndarray, f: np.ndarray,
     return rounding + float(np.linalg.norm(J2 - J)) if np.all(np.isfinite(J2)) else float("inf")
 
 
-def _eigen_with_bounds(J: np.ndarray, error: float):
+def eigen_with_bounds(J: np.ndarray, error: float):
     """Eigenvalues (sorted by descending real part, then imaginary part), right eigenvectors
     and first-order error bounds kappa_i * error, kappa_i = 1/|y_i^H x_i| (unit vectors)."""
     import scipy.linalg

@@ -16,10 +16,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_choice, check_finite, check_positive
 from ..bodies.spheroid import Spheroid
 from ..core.model import Model
+from ..errors import ParameterError
 from ..friction.laws import Viscous
 from ..theory.criteria import horizontal_stability_threshold, vertical_stability_threshold
 from .fixedpoints import find_fixed_point
@@ -32,8 +32,6 @@ from .precessions import (
     precession_state,
     vertical_state,
 )
-
-__all__ = ["unstable_seeds", "unstable_manifold_start"]
 
 
 def unstable_seeds(fp: FixedPoint, delta: float) -> list[tuple[str, np.ndarray]]:
@@ -60,7 +58,7 @@ def unstable_seeds(fp: FixedPoint, delta: float) -> list[tuple[str, np.ndarray]]
     --------
     >>> import phasekit as pk
     >>> fp = pk.steady.linearise(pk.Model(pk.Spheroid(1.5), pk.Viscous(0.1)), pk.steady.horizontal_state(10.0), kind='horizontal')
-    >>> [name for name, x in pk.steady.unstable_seeds(fp, 0.01)]
+    >>> [name for name, x in pk.steady.manifolds.unstable_seeds(fp, 0.01)]
     ['+0', '-0']
     """
     delta = check_positive("delta", delta)

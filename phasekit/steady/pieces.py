@@ -42,119 +42,23 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
-from typing import NamedTuple
+from dataclasses import dataclass, replace
 
-import casadi as ca
 import numpy as np
 
-from ..bodies.body import Body
-from .branches import POLE_EDGES, _geometry, _holds
-from .families import SpinFamily, StaticEquilibrium, _families, _statics
-
-__all__: list[str] = []
-
-#: operations whose value is constant inside a piece (comparisons, their logic, steps): frozen
-#: at that constant
-_STEPS = {getattr(ca, f"OP_{n}") for n in ("LT", "LE", "EQ", "NE", "NOT", "AND", "OR", "SIGN", "FLOOR", "CEIL")}
-
-
-def _frozen(body, theta: float) -> tuple[ca.SX, ca.SX, ca.SX]:
-    """(c, shape, H): the symbols and the support of ``body`` with every switch frozen at the
-    branch it takes at ``theta`` (module notes): the body's H, read instruction by instruction
-    and evaluated at theta alongside, a switch's symbolic result replaced by the branch its
-    value picks."""
-    c, sh = ca.SX.sym("c"), ca.SX.sym("shape", body.n_shape)
-    f = ca.Function("H", [c, sh], [body.height(c, sh)])
-    symbols = [[c], [sh[k] for k in range(body.n_shape)]]
-    numbers = [[math.cos(theta)], [float(v) for v in body.shape_params]]
-    sym, num, out = {}, {}, None
-    for k in range(f.n_instructions()):
-        op, o, i = f.instruction_id(k), f.instruction_output(k), f.instruction_input(k)
-        if op == ca.OP_CONST:
-            num[o[0]] = float(f.instruction_constant(k))
-            sym[o[0]] = ca.SX(num[o[0]])
-        elif op == ca.OP_INPUT:
-            sym[o[0]], num[o[0]] = symbols[i[0]][i[1]], numbers[i[0]][i[1]]
-        elif op == ca.OP_OUTPUT:
-            out = sym[i[0]]
-        else:
-            a, s = [num[j] for j in i], [sym[j] for j in i]
-            value = float(ca.DM.binary(op, *a) if len(i) == 2 else ca.DM.unary(op, a[0]))
-            if op in _STEPS:
-                e = ca.SX(value)
-            elif op == ca.OP_IF_ELSE_ZERO:
-                e = s[1] if a[0] else ca.SX(0.0)
-            elif op in (ca.OP_FMAX, ca.OP_FMIN):
-                e = s[0] if (a[0] >= a[1]) == (op == ca.OP_FMAX) else s[1]
-            elif op == ca.OP_FABS:
-                e = s[0] if a[0] >= 0 else -s[0]
-            else:
-                e = ca.SX.binary(op, *s) if len(i) == 2 else ca.SX.unary(op, s[0])
-            sym[o[0]], num[o[0]] = e, value
-    return c, sh, out
-
-
-class PieceSupport(Body):
-    """One piece of a compound body as a body of its own: the whole body's moments and shape
-    parameters, and the piece's own support (module notes), analytic across the switches.
-
-    Parameters
-    ----------
-    whole : Body
-        The compound body.
-    piece : str
-        The piece's name ("ball", "stem").
-    theta : float
-        An angle inside the piece's range, radians (where its switches are read).
-    """
-
-    def __init__(self, whole, piece: str, theta: float):
-        super().__init__(whole.A, whole.C)
-        self.whole, self.piece = whole, piece
-        self._c, self._sh, self._H = _frozen(whole, theta)
-        self._shape = tuple(float(v) for v in whole.shape_params)
-
-    @property
-    def shape_params(self) -> tuple[float, ...]:
-        return self._shape
-
-    def height(self, c, shape):
-        return ca.substitute([self._H], [self._c, self._sh], [ca.SX(c), ca.SX(shape)])[0]
-
-    def describe(self) -> str:
-        return f"the {self.piece} of the {self.whole.describe()}"
-
-    def __repr__(self) -> str:
-        return f"PieceSupport({self.piece!r} of {self.whole!r})"
-
-
-class Part(NamedTuple):
-    """A range of theta the structure is computed on: a compound body's piece (``name``, its
-    ``support`` a :class:`PieceSupport`) between its two ``edges`` (a pole, or a switch
-    ``{"theta": t, "switch": the piece beyond}``), or a one-piece body's whole range (``name``
-    None, ``support`` the body)."""
-
-    name: str | None
-    support: Body
-    edges: tuple[dict, dict]
-
-    @property
-    def lo(self) -> float:
-        return float(self.edges[0]["theta"])
-
-    @property
-    def hi(self) -> float:
-        return float(self.edges[1]["theta"])
+from ..bodies.compound import PieceSupport
+from .branches import holds_state, precession_geometry
+from .families import SpinFamily, StaticEquilibrium, families_of, statics_of
+from .records import POLE_EDGES, Edge, Interval, Part
 
 
 def parts(body) -> list[Part]:
     """The ranges of ``body`` in theta order: one per piece between its switches (read from
-    ``body.transfers``, duck-typed as phasekit.core.system does), an edged body's own range
-    (:func:`range_edges`), or the whole of [0, pi]."""
-    if hasattr(body, "theta_range"):
+    ``body.transfers``), an edged body's own range (:func:`range_edges`: ``body.theta_range``), or
+    the whole of [0, pi]."""
+    if body.theta_range is not None:
         return [Part(None, body, range_edges(body))]
-    transfers = getattr(body, "transfers", ())
+    transfers = body.transfers
     if not transfers:
         return [Part(None, body, POLE_EDGES)]
     sides = {}  # switch angle -> (the piece below it, the piece above it)
@@ -162,29 +66,29 @@ def parts(body) -> list[Part]:
         sides[float(t.theta)] = (t.from_piece, t.to_piece) if t.direction > 0 else (t.to_piece, t.from_piece)
     cuts = sorted(sides)
     names = [sides[cuts[0]][0]] + [sides[t][1] for t in cuts]
-    edges = [POLE_EDGES[0]] + [{"theta": t} for t in cuts] + [POLE_EDGES[1]]
+    edges = [POLE_EDGES[0]] + [Edge(t) for t in cuts] + [POLE_EDGES[1]]
     out = []
     for k, name in enumerate(names):
-        lo, hi = dict(edges[k]), dict(edges[k + 1])
+        lo, hi = edges[k], edges[k + 1]
         if k > 0:
-            lo["switch"] = names[k - 1]
+            lo = replace(lo, switch=names[k - 1])
         if k < len(names) - 1:
-            hi["switch"] = names[k + 1]
-        out.append(Part(name, PieceSupport(body, name, 0.5 * (lo["theta"] + hi["theta"])), (lo, hi)))
+            hi = replace(hi, switch=names[k + 1])
+        out.append(Part(name, PieceSupport(body, name, 0.5 * (lo.theta + hi.theta)), (lo, hi)))
     return out
 
 
-def range_edges(body) -> tuple[dict, dict]:
+def range_edges(body) -> tuple[Edge, Edge]:
     """The two ends of an edged body's range of theta as edges of the structure: a pole where the
-    range holds it (the cone's tip at pi), else ``{"theta": t, "limit": name}``, the name of the
-    body's limit on that side (``limits``: direction -1 below, +1 above)."""
+    range holds it (the cone's tip at pi), else an Edge with the name of the body's limit on that
+    side (``limits``: direction -1 below, +1 above)."""
     names = {lim.direction: lim.name for lim in body.limits}
     out = []
-    for side, (t, pole) in enumerate(zip(body.theta_range, ("0", "pi"))):
-        if t == POLE_EDGES[side]["theta"] and body.in_range(t):
-            out.append(dict(POLE_EDGES[side]))
+    for side, t in enumerate(body.theta_range):
+        if t == POLE_EDGES[side].theta and body.in_range(t):
+            out.append(POLE_EDGES[side])
         else:
-            out.append({"theta": float(t), "limit": names.get(2 * side - 1, "the end of its range")})
+            out.append(Edge(float(t), limit=names.get(2 * side - 1, "the end of its range")))
     return out[0], out[1]
 
 
@@ -199,7 +103,7 @@ def tip_degeneracy(body) -> str | None:
     None: rho_2 = 0 over its range (a tip: module notes)."""
     lo, hi = body.theta_range
     grid = np.linspace(lo, hi, 259)[1:-1]
-    q, rho2 = _geometry(body, grid)[:2]
+    q, rho2 = precession_geometry(body, grid)[:2]
     if not np.all(np.abs(rho2) <= TIP_RTOL * np.abs(q)):
         return None
     d = float(np.median(q))
@@ -235,7 +139,7 @@ def tip_precession(body, theta: float, omega: float) -> np.ndarray:
     numpy.ndarray
         The state (U, V, Omega, Lambda, theta, n).
     """
-    d = float(_geometry(body, theta)[0][0])  # q = -H' = d on a tip
+    d = float(precession_geometry(body, theta)[0][0])  # q = -H' = d on a tip
     c, s = math.cos(theta), math.sin(theta)
     n = ((body.A + d * d) * omega * omega * c - d) / (body.C * omega)
     return np.array([0.0, -d * omega * s, float(omega), 0.0, float(theta), n])
@@ -266,16 +170,16 @@ class FamilyOnPiece(SpinFamily):
         return {**super().to_dict(), "piece": self.piece}
 
 
-def statics_and_families(model, part: Part, pts: list[dict], pieces: list[dict], stability: bool):
+def statics_and_families(model, part: Part, pts: list[Edge], intervals: list[Interval], stability: bool):
     """The static equilibria and families of ``part``: a one-piece body's, or those of a
     compound body's piece inside its range (a pole only if the range reaches it), naming the
-    piece. ``pts`` are the part's special points, ``pieces`` its branches' intervals with their
+    piece. ``pts`` are the part's special points, ``intervals`` its branches' intervals with their
     ends (phasekit.steady.branches)."""
-    statics = _statics(part.support, pts)
-    families = _families(model, part.support, pts, pieces, stability)
-    if hasattr(part.support, "theta_range"):  # an edged body: the poles only where its range holds them
-        return (tuple(s for s in statics if _holds(part.support, s.theta)),
-                tuple(f for f in families if _holds(part.support, f.theta)))
+    statics = statics_of(part.support, pts)
+    families = families_of(model, part.support, pts, intervals, stability)
+    if part.support.theta_range is not None:  # an edged body: the poles only where its range holds them
+        return (tuple(s for s in statics if holds_state(part.support, s.theta)),
+                tuple(f for f in families if holds_state(part.support, f.theta)))
     if part.name is None:
         return statics, families
     inside = lambda t: part.lo <= t <= part.hi  # noqa: E731

@@ -50,19 +50,6 @@ import numpy as np
 
 from .._runtime.validate import check_finite
 
-__all__ = [
-    "horizontal_state",
-    "vertical_state",
-    "inverted_state",
-    "intermediate_state",
-    "intermediate_omega",
-    "precession_state",
-    "precession_angles",
-    "precession_residual",
-    "side_equilibrium",
-    "horizontal_like_angle",
-]
-
 
 def horizontal_state(omega0: float) -> np.ndarray:
     """(U, V, Omega, Lambda, theta, n) = (0, 0, Omega0, 0, pi/2, 0).
@@ -146,7 +133,7 @@ def inverted_state(n0: float) -> np.ndarray:
     return np.array([0.0, 0.0, -1.0, 0.0, 0.0, -check_finite("n0", n0), 0.0, 0.0])
 
 
-def _geometry(body, theta):
+def precession_geometry(body, theta):
     h, ht, _ = body.h(theta)
     s, c = np.sin(theta), np.cos(theta)
     return h, ht, s, c, h * s + ht * c
@@ -169,11 +156,11 @@ def _regular(body, theta):
 
 def _height_slope_many(body, c):
     """(H, dH/dc) at an array of c, by the body's compiled slope function mapped over c."""
-    from ..bodies.body import _slope_function
+    from ..bodies.body import slope_function
 
     c = np.atleast_1d(np.asarray(c, dtype=float))
     shape = np.asarray(body.shape_params, dtype=float)
-    H, dH = _slope_function(body).map(c.size)(c[None, :], np.tile(shape[:, None], (1, c.size)))
+    H, dH = slope_function(body).map(c.size)(c[None, :], np.tile(shape[:, None], (1, c.size)))
     return np.asarray(H).ravel(), np.asarray(dH).ravel()
 
 
@@ -243,7 +230,7 @@ def precession_angles(body, *, omega0: float | None = None, n0: float | None = N
     if theta_range is None:
         theta_range = (0.0, np.pi / 2) if flip else (0.0, np.pi)
     grid = np.linspace(theta_range[0], theta_range[1], n_grid)
-    if hasattr(body, "theta_range"):  # a body with an edge: H' may diverge at an end (a face), where the states crowd
+    if body.theta_range is not None:  # a body with an edge: H' may diverge at an end (a face), where the states crowd
         grid = np.union1d(grid, np.concatenate([theta_range[0] + EDGE_PROBES, theta_range[1] - EDGE_PROBES]))
     if n0 is not None and abs(n0) < SPIN_FLOOR:
         statics = _angles(lambda t: _reduced(_regular(body, t)[0], t, flip), grid)
@@ -273,7 +260,7 @@ def _spinless(body, grid) -> bool:
         return bool(ok.any() and np.all(np.abs(z[ok]) <= SPINLESS_RTOL * np.abs(rho2[ok])))
 
 
-def _root_float(body, theta: float, *, omega0: float | None = None, n0: float | None = None) -> float:
+def root_float(body, theta: float, *, omega0: float | None = None, n0: float | None = None) -> float:
     """The float within 16 floats of ``theta`` (a root of :func:`precession_residual` found by
     any route) at which the residual (as :func:`precession_angles` scans it) is smallest: the
     same float from any estimate a few floats off, so that every route that finds a state
@@ -427,7 +414,7 @@ def horizontal_like_angle(body, thetas) -> float | None:
     --------
     >>> import phasekit as pk
     >>> egg = pk.Egg(1.3, 0.05)
-    >>> round(pk.steady.horizontal_like_angle(egg, pk.steady.precession_angles(egg, omega0=6.0)), 6)
+    >>> round(pk.steady.precessions.horizontal_like_angle(egg, pk.steady.precession_angles(egg, omega0=6.0)), 6)
     1.756111
     """
     if body.flip_symmetric or not len(thetas):
@@ -461,7 +448,7 @@ def intermediate_omega(body, theta: float) -> float | None:
     >>> round(precessions.intermediate_omega(pk.Spheroid(1.5), 1.0), 6)
     2.068755
     """
-    h, ht, s, c, xP = _geometry(body, theta)
+    h, ht, s, c, xP = precession_geometry(body, theta)
     denom = s * ((body.A - body.C) * c + body.C * ht / xP)
     if denom == 0.0 or ht / denom <= 0.0:
         return None
@@ -493,5 +480,5 @@ def intermediate_state(body, theta: float) -> np.ndarray | None:
     om = intermediate_omega(body, theta)
     if om is None:
         return None
-    h, ht, s, c, xP = _geometry(body, theta)
+    h, ht, s, c, xP = precession_geometry(body, theta)
     return np.array([0.0, 0.0, om, 0.0, theta, om * (c - ht / xP)])

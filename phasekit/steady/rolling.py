@@ -10,11 +10,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_finite
 from ..bodies.body import Body
-
-__all__ = ["RollingMotion", "rolling_motion", "rolling_state"]
+from ..errors import ParameterError
 
 
 @dataclass(frozen=True)
@@ -46,7 +44,7 @@ class RollingMotion:
     --------
     >>> import phasekit as pk
     >>> r = pk.steady.rolling_motion(pk.Spheroid(1.5), 1.0, 5.0)
-    >>> isinstance(r, pk.steady.RollingMotion), round(r.needs_mu, 6)
+    >>> isinstance(r, pk.steady.rolling.RollingMotion), round(r.needs_mu, 6)
     (True, 1.439896)
     """
 

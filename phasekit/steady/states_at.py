@@ -19,15 +19,13 @@ import math
 
 import numpy as np
 
-from .._runtime.errors import ConvergenceError, ParameterError, Status
+from .._runtime.watch import check_deadline
 from ..core.charts import EULER
-from .branches import _curve, _geometry, _sample
-from .budget import spend_wall
-from .fixedpoints import HORIZONTAL_GAP, _family_value, _isolated_states, _on_range, _precessions
+from ..errors import ConvergenceError, ParameterError, Status
+from .branches import branch_curve, precession_geometry, sample_branch
+from .fixedpoints import HORIZONTAL_GAP, family_value, isolated_states, on_range, precessions_at
 from .linearisation import FixedPoint
 from .precessions import SPIN_FLOOR, SPINLESS_RTOL
-
-__all__ = ["states_at"]
 
 
 def states_at(structure, omega0, n0) -> list[FixedPoint]:
@@ -36,7 +34,7 @@ def states_at(structure, omega0, n0) -> list[FixedPoint]:
     (for a flip-symmetric body those below pi/2: the others are their mirror images)."""
     if (omega0 is None) == (n0 is None):
         raise ParameterError("omega0", "or `n0` must be given, not both", show_value=False)
-    omega0, n0 = _family_value("omega0", omega0), _family_value("n0", n0)
+    omega0, n0 = family_value("omega0", omega0), family_value("n0", n0)
     if structure.status is Status.FAILED:
         raise ConvergenceError(f"the structure did not complete ({structure.reason}): its states are not known",
                                structure)
@@ -45,11 +43,11 @@ def states_at(structure, omega0, n0) -> list[FixedPoint]:
     thetas = []
     if structure.degenerate is None:
         for b in structure.branches:
-            spend_wall()
+            check_deadline()
             thetas += _branch_angles(body, b, omega0, n0)
         thetas += [f.theta for f in structure.families if f.kind == "precession" and _member(body, f.theta, n0)]
     thetas = _distinct(sorted(t for t in thetas if 0.0 < t < (np.pi / 2 if body.flip_symmetric else np.pi)))
-    return _on_range(body, _isolated_states(me, model.with_chart("vector"), omega0, n0) + _precessions(me, thetas, omega0, n0))
+    return on_range(body, isolated_states(me, model.with_chart("vector"), omega0, n0) + precessions_at(me, thetas, omega0, n0))
 
 
 def _member(body, theta: float, n0) -> bool:
@@ -60,7 +58,7 @@ def _member(body, theta: float, n0) -> bool:
         return False
     if n0 is None or abs(n0) < SPIN_FLOOR:
         return True
-    return float(_geometry(body, theta)[2][0]) != 0.0
+    return float(precession_geometry(body, theta)[2][0]) != 0.0
 
 
 def _distinct(thetas: list[float]) -> list[float]:
@@ -105,7 +103,7 @@ def _points(body, branch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     if branch.theta.size:
         theta, om, n = branch.theta, branch.Omega, branch.n
     else:
-        theta, om, n = _sample(body, lo, hi, branch.crossings)
+        theta, om, n = sample_branch(body, lo, hi, branch.crossings)
     ends = [_limit(body, lo, n[0] if n.size else None), _limit(body, hi, n[-1] if n.size else None)]
     return (np.concatenate([[lo.theta], theta, [hi.theta]]), np.concatenate([[ends[0][0]], om, [ends[1][0]]]),
             np.concatenate([[ends[0][1]], n, [ends[1][1]]]))
@@ -119,13 +117,13 @@ def _limit(body, end, n_near) -> tuple[float, float]:
         return end.Omega, end.n
     if end.kind == "static":
         return 0.0, 0.0
-    z = float(_geometry(body, end.theta)[2][0])
+    z = float(precession_geometry(body, end.theta)[2][0])
     sign = np.sign(n_near) if n_near is not None and n_near != 0 else np.sign(z)
     return math.inf, float(sign) * math.inf
 
 
 def _value(body, branch, which: int, t: float) -> float:
-    return float(_curve(body, np.array([t]), branch.crossings)[which][0])
+    return float(branch_curve(body, np.array([t]), branch.crossings)[which][0])
 
 
 def _with_extrema(body, branch, theta, values, which: int):

@@ -27,26 +27,25 @@ static equilibria and the families) and phasekit.steady.pieces (a compound body'
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .._runtime.errors import ConvergenceError, ParameterError, Status
 from .._runtime.validate import check_bool
 from .._runtime.watch import check_max_wall, wall_deadline
 from ..bodies.body import Body
 from ..core.model import Model
+from ..errors import ConvergenceError, ParameterError, Status
 from ..friction.laws import FrictionLaw, Viscous
-from .branch_stability import StabilityChange, _stability, linearise_precession
-from .branches import BranchEnd, _degeneracy, _end, _pieces, _sample, _special_points, precession_on_branch
+from .branch_stability import StabilityChange, linearise_precession, stability_along
+from .branches import branch_intervals, classify_end, degeneracy, precession_on_branch, sample_branch, special_points
 from .dissipative import acting_laws, dissipation_note
 from .families import SpinFamily, StaticEquilibrium
 from .linearisation import FixedPoint
-from .pieces import Part, in_theta_order, parts, statics_and_families, tip_degeneracy
+from .pieces import in_theta_order, parts, statics_and_families, tip_degeneracy
 from .precessions import inverted_state, precession_state, vertical_state
+from .records import BranchEnd, Interval, Part
 from .rolling import rolling_state
-
-__all__ = ["SteadyBranch", "SteadyStructure", "steady_structure", "bifurcation_between"]
 
 
 @dataclass(frozen=True)
@@ -225,6 +224,11 @@ class SteadyStructure:
         TimeoutError
             If a wall budget in force (a caller's ``max_wall``) runs out.
 
+        See Also
+        --------
+        phasekit.fixed_points
+            the same states found directly, by Newton's method, without the structure
+
         Examples
         --------
         >>> import phasekit as pk
@@ -301,6 +305,13 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, sam
         whose precessions are the Lagrange top's, held by friction); with
         :attr:`SteadyStructure.note` set under dissipation laws.
 
+    See Also
+    --------
+    phasekit.fixed_points
+        the steady states of one family (one Omega0 or n0), with their linear stability
+    SteadyStructure.at
+        those states read off the structure
+
     Examples
     --------
     >>> import phasekit as pk
@@ -332,26 +343,25 @@ def steady_structure(body, friction: FrictionLaw, *, stability: bool = True, sam
 
 def _structure(model: Model, stability: bool, samples: bool) -> SteadyStructure:
     body, friction = model.body, model.friction
-    why = _degeneracy(body)
+    why = degeneracy(body)
     if why is not None:  # a continuum of statics (and precessions): nothing to sample
         return SteadyStructure(model, (), (), (), degenerate=why)
     ranges = parts(body)
-    if hasattr(body, "theta_range") and (why := tip_degeneracy(body)) is not None:  # no branches: the statics, the pole
-        pts = _special_points(body, ranges[0].lo, ranges[0].hi)
+    if body.theta_range is not None and (why := tip_degeneracy(body)) is not None:  # no branches: the statics, the pole
+        pts = special_points(body, ranges[0].lo, ranges[0].hi)
         statics, families = statics_and_families(model, ranges[0], pts, [], stability)
         return SteadyStructure(model, (), statics, families, degenerate=why)
     sliding = Model(body, Viscous(friction.mu)) if stability and friction.has_rolling_mode else None
     branches, statics, families, notes = [], [], [], []
     for part in ranges:  # the whole range of a one-piece body; a compound body's pieces
-        if part.name is not None and (why := _degeneracy(part.support)) is not None:
+        if part.name is not None and (why := degeneracy(part.support)) is not None:
             notes.append(f"on the {part.name} ({part.lo:.6g} <= theta <= {part.hi:.6g}): {why}")
             continue
-        pts = _special_points(part.support, part.lo, part.hi)
-        pieces = _pieces(part.support, pts, part.edges)
-        for p in pieces:
-            p["lo_end"], p["hi_end"] = _end(part.support, p["lo"], -1), _end(part.support, p["hi"], +1)
-        branches += _branches(model, part, pieces, stability, samples, sliding)
-        on_part = statics_and_families(model, part, pts, pieces, stability)
+        pts = special_points(part.support, part.lo, part.hi)
+        intervals = [replace(iv, ends=(classify_end(part.support, iv.lo, -1), classify_end(part.support, iv.hi, +1)))
+                     for iv in branch_intervals(part.support, pts, part.edges)]
+        branches += _branches(model, part, intervals, stability, samples, sliding)
+        on_part = statics_and_families(model, part, pts, intervals, stability)
         statics += on_part[0]
         families += on_part[1]
     if len(ranges) > 1:
@@ -359,20 +369,20 @@ def _structure(model: Model, stability: bool, samples: bool) -> SteadyStructure:
     return SteadyStructure(model, tuple(branches), tuple(statics), tuple(families), note="; ".join(notes) or None)
 
 
-def _branches(model: Model, part: Part, pieces: list[dict], stability: bool, samples: bool,
+def _branches(model: Model, part: Part, intervals: list[Interval], stability: bool, samples: bool,
               sliding: Model | None) -> list[SteadyBranch]:
-    """The branches on ``part`` (its intervals ``pieces`` with their ends): samples by the part's
-    own support, the linearisation by the whole body's model."""
+    """The branches on ``part`` (its ``intervals`` with their ends): samples by the part's own
+    support, the linearisation by the whole body's model."""
     body, empty, out = part.support, np.array([]), []
-    for p in pieces:
-        theta, om, n = _sample(body, p["lo_end"], p["hi_end"], p["crossings"]) if samples else (empty, empty, empty)
+    for p in intervals:
+        theta, om, n = sample_branch(body, *p.ends, p.crossings) if samples else (empty, empty, empty)
         points, changes, slide = (), (), None
         if stability and theta.size:
-            theta, om, n, points, changes = _stability(model, body, theta, om, n, p["crossings"])
+            theta, om, n, points, changes = stability_along(model, body, theta, om, n, p.crossings)
             if sliding is not None:
                 slide = np.array([linearise_precession(sliding, float(t), float(o), float(m)).stable
                                   for t, o, m in zip(theta, om, n)])
-        out.append(SteadyBranch((p["lo_end"], p["hi_end"]), theta, om, n, points, changes, tuple(p["crossings"]), slide,
+        out.append(SteadyBranch(p.ends, theta, om, n, points, changes, p.crossings, slide,
                                 part.name))
     return out
 
@@ -383,7 +393,7 @@ def _surviving(model: Model, bare: SteadyStructure) -> SteadyStructure:
     body, vector = model.body, model.with_chart("vector")
     branches, removed = [], []
     for b in bare.branches:
-        theta, om, n = (b.theta, b.Omega, b.n) if b.theta.size else _sample(body, *b.ends, b.crossings)
+        theta, om, n = (b.theta, b.Omega, b.n) if b.theta.size else sample_branch(body, *b.ends, b.crossings)
         picks = sorted({theta.size // 4, theta.size // 2, (3 * theta.size) // 4}) if theta.size else []
         if picks and not any(acting_laws(model, [0.0, 0.0, om[k], 0.0, theta[k], n[k]]) for k in picks):
             branches.append(b)
@@ -436,7 +446,7 @@ def bifurcation_between(lo: SteadyStructure, hi: SteadyStructure) -> str:
     >>> import phasekit as pk
     >>> lo = pk.steady_structure(pk.EccentricSphere(0.3, A=0.3, C=0.4), pk.Viscous(0.1), samples=False)
     >>> hi = pk.steady_structure(pk.EccentricSphere(0.3, A=0.45, C=0.4), pk.Viscous(0.1), samples=False)
-    >>> lo.signature != hi.signature, isinstance(pk.steady.bifurcation_between(lo, hi), str)
+    >>> lo.signature != hi.signature, isinstance(pk.steady.structure.bifurcation_between(lo, hi), str)
     (False, True)
     """
     a, b = _tokens(lo), _tokens(hi)

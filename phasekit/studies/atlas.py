@@ -22,9 +22,6 @@ import numpy as np
 
 from ..steady.structure import bifurcation_between
 
-__all__ = ["AtlasPanel", "AtlasRow", "BoundaryRow", "axis_values", "atlas_edges", "trace_boundary", "is_class",
-           "atlas_representatives", "atlas_grid", "atlas_point_key", "atlas_edge_key", "bifurcation_pairs"]
-
 
 class AtlasPanel(NamedTuple):
     """One plane of an atlas: its title, axis labels, ranges and whether each axis is logarithmic.
@@ -71,7 +68,7 @@ class AtlasRow:
 class BoundaryRow:
     """A traced boundary point between two classes of an atlas panel: where (``x``, ``y``),
     the width of its final bracket, the signatures on either side and the bifurcation there
-    (:func:`phasekit.steady.bifurcation_between`).
+    (:func:`phasekit.steady.structure.bifurcation_between`).
 
     Examples
     --------

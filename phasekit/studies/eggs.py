@@ -17,18 +17,15 @@ import math
 import time
 from dataclasses import dataclass
 
-from .._runtime.errors import Status
 from ..bodies.egg import Egg
 from ..core.hybrid import Event
 from ..core.model import Model
 from ..core.simulate import simulate
 from ..core.starts import gyroscopic_start
+from ..errors import Status
 from ..friction.laws import Coulomb
 from ..steady.precessions import horizontal_like_angle, precession_angles, side_equilibrium
 from ..thresholds.definition import Definition
-
-__all__ = ["EndRow", "which_end", "which_end_key", "egg_separatrix", "which_end_starts", "which_end_summary",
-           "EggDefinition"]
 
 
 def egg_separatrix(egg, omega0: float) -> float | None:

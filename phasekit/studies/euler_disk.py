@@ -36,9 +36,6 @@ from ..friction.laws import Coulomb
 from ..steady.precessions import intermediate_omega, precession_state
 from ..viz.output import pyplot
 
-__all__ = ["THIN", "spin_in_place", "quasi_static", "EXPONENTS", "run_disk", "fit_power_law", "end_fit", "disk_report",
-           "end_curves", "plot_exponents"]
-
 THIN = Disk(0.0)
 #: the closed-form exponents of theta and of Omega against t0 - t (None: no finite-time end)
 EXPONENTS = {"air-layer": (1 / 3, -1 / 6), "rolling-resistance": (2.0, -1.0), "spin-friction": None, "sliding": None}

@@ -12,8 +12,6 @@ import numpy as np
 
 from ..viz.output import pyplot
 
-__all__ = ["signature_colours", "plot_atlas", "plot_classes"]
-
 BIFURCATION_MARKERS = ("o", "s", "^", "D", "v", "P", "X")
 CHANGE = "#fdae61"
 

@@ -3,7 +3,7 @@
 (:func:`plot_threshold_against`), and flights in real units against experiment
 (:func:`plot_flights`).
 
-Each returns a matplotlib figure for :meth:`phasekit.sweep.Study.save`; matplotlib is imported
+Each returns a matplotlib figure for :meth:`phasekit.scaffold.Study.save`; matplotlib is imported
 by the functions that draw.
 """
 
@@ -15,8 +15,6 @@ import numpy as np
 
 from ..viz.mpl import plain_log_ticks
 from ..viz.output import pyplot
-
-__all__ = ["plot_which_end", "plot_threshold_against", "plot_flights"]
 
 
 def plot_which_end(rows, omegas, *, risen, theta_2, title: str):

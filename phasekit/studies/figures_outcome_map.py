@@ -4,7 +4,7 @@ and its traced boundaries (:func:`plot_outcome_map`), and the jump region in 3-D
 
 Each takes the stored rows of :mod:`phasekit.studies.outcome_maps` (:class:`phasekit.studies.OutcomeRow`)
 and :mod:`phasekit.studies.threshold_rows` (:class:`phasekit.studies.SearchRow`) and returns a
-matplotlib figure for :meth:`phasekit.sweep.Study.save` (the 3-D scene writes its PNG itself).
+matplotlib figure for :meth:`phasekit.scaffold.Study.save` (the 3-D scene writes its PNG itself).
 matplotlib and pyvista are imported by the functions that draw.
 """
 
@@ -16,8 +16,6 @@ import numpy as np
 
 from ..viz.mpl import plain_log_ticks
 from ..viz.output import pyplot
-
-__all__ = ["OUTCOME_COLOURS", "plot_outcome_map", "render_jump_region"]
 
 #: the colour of each outcome class of an :class:`phasekit.studies.OutcomeRow`
 OUTCOME_COLOURS = {"stuck": "0.6", "rise": "#4c72b0", "jump": "#dd8452", "slow": "#8172b3", "failed": "k"}

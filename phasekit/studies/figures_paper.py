@@ -17,9 +17,6 @@ import numpy as np
 
 from ..viz.output import pyplot
 
-__all__ = ["plot_reaction_to_jump", "plot_envelope", "plot_mean_state", "plot_minima_envelope", "plot_gap_flight",
-           "plot_gap_maxima", "plot_effective_friction", "render_jump_surface"]
-
 TIME = r"time $t$ (units $\sqrt{b/g}$)"
 OMEGA0 = r"initial precession rate $\Omega_0$ (units $\sqrt{g/b}$)"
 
@@ -57,7 +54,7 @@ def plot_reaction_to_jump(traj, *, dt: float = 0.005, title: str = ""):
 
 
 def plot_envelope(ax, theta, sigma, *, label=None, **style) -> list:
-    """The envelope Sigma of the minima of R (:func:`phasekit.theory.Sigma`) against the mean
+    """The envelope Sigma of the minima of R (:func:`phasekit.theory.reaction_envelope`) against the mean
     inclination ``theta`` (in the order of the rise): solid up to its first zero (the jump,
     :func:`phasekit.studies.sigma_zero`), dashed beyond, where it no longer applies. ``style``
     goes to both lines, ``label`` to the solid one.
@@ -249,7 +246,7 @@ def render_jump_surface(data, path, *, gltf: bool = False, html: bool = False) -
     crossings) rendered off-screen by :func:`phasekit.viz.render_scene` with its caption, to the
     PNG ``path`` and, if asked, the glTF and HTML exports beside it (same stem), each written
     under a temporary name and renamed when whole. Returns the
-    :class:`phasekit.viz.RenderInfo` and the exports asked for that could not be written
+    :class:`phasekit.viz.pv.RenderInfo` and the exports asked for that could not be written
     (``"html"`` needs the trame packages).
 
     Examples
@@ -261,7 +258,7 @@ def render_jump_surface(data, path, *, gltf: bool = False, html: bool = False) -
     >>> info.n_points["surface"] > 0, missing
     (True, [])
     """
-    from ..io.tables import atomic_path
+    from ..io import atomic_path
     from ..viz.pv import render_scene
 
     path = Path(path)

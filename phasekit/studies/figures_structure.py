@@ -15,10 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
-from ..viz.pv import ASPECT, RenderInfo, _box, _check_file, _check_window_size, _headless, _inside_runs, _quiet_vtk
-
-__all__ = ["render_structure", "plot_branch_planes"]
+from ..errors import ParameterError
+from ..viz.pv import ASPECT, RenderInfo, bounding_box, check_file, check_window_size, headless, inside_runs, quiet_vtk
 
 #: none of them blue: blue is the colour of neutral states (phasekit.viz.stability)
 TRAJECTORY_COLORS = ("#7b3294", "#8c510a", "#01665e", "#e08214")
@@ -91,30 +89,30 @@ def render_structure(structure, path, *, trajectories=(), surface: bool = False,
         raise ParameterError("structure", "must be what phasekit.steady_structure returned", structure)
     if any(b.theta.size and not b.points for b in structure.branches):
         raise ParameterError("structure", "must carry stability (steady_structure(..., stability=True))", show_value=False)
-    path = _check_file("path", path, create=True)
-    window_size = _check_window_size(window_size)
+    path = check_file("path", path, create=True)
+    window_size = check_window_size(window_size)
     trs = [np.asarray(t, dtype=float).reshape(-1, 3) for t in trajectories]
     bounds = _box_bounds(structure, trs, omega_max)
-    _headless()
+    headless()
     import pyvista as pv
 
-    f = _box(bounds)
+    f = bounding_box(bounds)
     counts = {"branches": 0, "trajectories": 0, "surface": 0, "points": 0}
     words = set()
-    with _quiet_vtk():
+    with quiet_vtk():
         pl = pv.Plotter(off_screen=True, window_size=list(window_size))
         pl.set_background("white")
         for b in structure.branches:
             P = np.column_stack([b.Omega, b.theta, b.n])
             for run, word in _segments_by_stability(P, [state_word(p) for p in b.points]):
-                for piece in _inside_runs(run, bounds):
+                for piece in inside_runs(run, bounds):
                     line = pv.lines_from_points(f(piece))
                     counts["branches"] += line.n_points
                     words.add(word)
                     pl.add_mesh(line, color=COLOURS[word], line_width=5)
         counts["points"], family_words = _add_special_points(pl, pv, f, structure, bounds)
         for k, tr in enumerate(trs):
-            for piece in _inside_runs(tr, bounds):
+            for piece in inside_runs(tr, bounds):
                 line = pv.lines_from_points(f(piece))
                 counts["trajectories"] += line.n_points
                 pl.add_mesh(line, color=TRAJECTORY_COLORS[k % len(TRAJECTORY_COLORS)], line_width=1.5, opacity=0.85)

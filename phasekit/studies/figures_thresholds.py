@@ -6,7 +6,7 @@ regularisation of Coulomb friction (:func:`plot_pair_scan`).
 
 Each takes the stored rows of its study (:class:`phasekit.studies.ThresholdRow`,
 :class:`phasekit.studies.SearchRow`, :func:`phasekit.studies.stability_grid`'s grids) and returns a
-matplotlib figure for :meth:`phasekit.sweep.Study.save`. matplotlib is imported by the functions
+matplotlib figure for :meth:`phasekit.scaffold.Study.save`. matplotlib is imported by the functions
 that draw.
 """
 
@@ -16,8 +16,6 @@ import numpy as np
 
 from ..viz.mpl import plain_log_ticks
 from ..viz.output import pyplot
-
-__all__ = ["DEFINITION_STYLES", "plot_threshold_curves", "plot_threshold_map", "plot_stability_map", "plot_pair_scan"]
 
 #: the line style of each threshold definition of :data:`phasekit.thresholds.DEFAULT_DEFINITIONS` (the
 #: default, "sliding", bold black), for :func:`phasekit.studies.plot_threshold_curves`
@@ -232,7 +230,7 @@ def plot_stability_map(a_values, omegas, spins, horizontal, vertical, *, mu: flo
 
 
 def plot_pair_scan(rows, table, cases: dict, *, charts, t_end: float, t_tolerance: float, title: str):
-    """The paper's single-trajectory pairs (``cases``: label -> :class:`phasekit.theory.PaperCase`,
+    """The paper's single-trajectory pairs (``cases``: label -> :class:`phasekit.theory.paper.PaperCase`,
     one panel each) against the regularisation eps of Coulomb friction: the jump time t* of each
     start that jumps (per chart in ``charts``: solid, dashed), markers above the axis for a start
     whose rise completes or that sticks by ``t_end``, the printed t* band (+- ``t_tolerance``),

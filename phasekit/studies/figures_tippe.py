@@ -14,8 +14,6 @@ import numpy as np
 
 from ..viz.output import pyplot
 
-__all__ = ["OUTCOME_STYLE", "plot_inversion_map", "plot_hopping", "render_inversion"]
-
 #: colour and marker of each measured outcome of an inversion
 OUTCOME_STYLE = {"full": ("#1a9850", "o"), "partial": ("#fdae61", "s"), "never": ("#d73027", "x"), "failed": ("k", "?")}
 #: background colours of the predicted outcomes never, partial, full

@@ -8,8 +8,6 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["plot_work_precision", "plot_regularisation", "plot_cost_growth"]
-
 #: the runs drawn at the bottom of a work-precision panel when they hit the wall-time cap
 CAPPED_ERROR = 1e-1
 

@@ -9,8 +9,6 @@ import numpy as np
 
 from .._runtime.validate import check_finite, check_positive
 
-__all__ = ["stability_grid", "vertical_is_stable", "horizontal_is_unstable"]
-
 
 def _moments(A, C, a) -> tuple[float, float, float]:
     return check_positive("A", A), check_positive("C", C), check_positive("a", a)

@@ -17,13 +17,10 @@ from functools import partial
 
 import numpy as np
 
-from .._runtime.errors import Status
+from ..errors import Status
 from ..sweep.tasks import TaskSpec, chunked
 from ..thresholds.definition import Definition, evaluate_outcomes
 from .threshold_rows import group_search_tasks, search_job
-
-__all__ = ["OutcomeRow", "outcome_task", "outcome_key", "OUTCOME_KINDS", "outcome_class", "outcome_map_summary",
-           "OutcomeMapPlan", "outcome_map_report"]
 
 #: the classes of an :class:`OutcomeRow`, in the order the studies count and draw them
 OUTCOME_KINDS = ("stuck", "rise", "jump", "slow", "failed")

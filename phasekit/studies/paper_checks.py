@@ -19,20 +19,16 @@ import numpy as np
 
 from ..bodies.body import Body
 from ..core.hybrid import Event
-from ..theory.flight import flight_constants, fly, gap_exact, gap_max_series, gap_series
+from ..core.simulate import simulate
+from ..theory.flight import flight_constants, gap_exact, gap_max_series, gap_series
 from ..theory.gyroscopic import gyroscopic_closed, jellett_constant
 from ..theory.multiscale import (
     amplitude_growth_closed,
     gyroscopic_nutation_frequency,
-    mean_over_periods,
-    nutation_perturbation,
     reaction_envelope,
     slow_rates,
 )
-
-__all__ = ["rise_complete", "add_nutation", "sigma_zero", "EnvelopeCheck", "envelope_check", "NutationCase", "envelope_report",
-           "fit_gyroscopic_mu", "first_flight", "gap_ensemble", "gap_ensemble_report",
-           "FlightCheck", "flight_check", "surface_crossings", "loglog_fit", "crossing_trend"]
+from ..theory.nutation import mean_over_periods, nutation_perturbation
 
 #: the share of the minima of R on which the effective amplitude c_eff is fitted (the rest tests it)
 FIT_SHARE = 0.3
@@ -233,7 +229,6 @@ class NutationCase:
         and, sampled every ``dt``, its :func:`envelope_check`: (Trajectory, EnvelopeCheck)."""
         from ..bodies.spheroid import Spheroid
         from ..core.model import Model
-        from ..core.simulate import simulate
         from ..core.starts import gyroscopic_start
         from ..friction.laws import Coulomb
 
@@ -328,7 +323,7 @@ class FlightCheck:
 def flight_check(traj, *, n: int = 400, rtol: float = 1e-13) -> FlightCheck:
     """Set the first flight of ``traj`` (a run to its first touchdown) beside the theory of the
     flight, at ``n`` times over the flight; the numerical gap comes from the flight integrated
-    again from the jump at ``rtol`` (:func:`fly`, its dense output). See :class:`FlightCheck`.
+    again from the jump at ``rtol`` (:func:`phasekit.simulate` from the lift-off in the flight mode, its dense output). See :class:`FlightCheck`.
 
     Examples
     --------
@@ -343,7 +338,8 @@ def flight_check(traj, *, n: int = 400, rtol: float = 1e-13) -> FlightCheck:
     T = fl.t_touchdown - fl.t_liftoff
     te = fl.t_liftoff + np.linspace(0, T, n)
     # the flight again at rtol, its states (with the gap, index 8) from the dense output
-    gaps = fly(model, traj.x_jump, traj.t_jump, traj.t_jump + 2 * T, rtol=rtol).segments[0].states(te)[:, 8]
+    flight = simulate(model, traj.x_jump, traj.t_jump + 2 * T, t0=traj.t_jump, mode="flight", stop_at="touchdown", rtol=rtol)
+    gaps = flight.segments[0].states(te)[:, 8]
     tt = te - fl.t_liftoff
     exact = gap_exact(model.body, flight_constants(model.body, traj.x_jump, fl.W_star), tt)
     series = gap_series(fl.Omega_star, fl.W_star, tt)
@@ -352,7 +348,7 @@ def flight_check(traj, *, n: int = 400, rtol: float = 1e-13) -> FlightCheck:
 
 
 def surface_crossings(branch: str, a: float, values, d: float = 0.01, *, bar=None) -> list:
-    """The R = 0 crossing (a :class:`phasekit.theory.surface.Crossing`, with the error in n of the jump
+    """The R = 0 crossing (a :class:`phasekit.scenes.scene.Crossing`, with the error in n of the jump
     surface (6.3) there) of the trajectory from each family value in ``values`` (Omega0 prolate,
     n0 oblate), started on the sliding branch at distance ``d`` of a uniform spheroid of aspect
     ratio ``a`` under Coulomb friction mu = 0.1; a start that does not jump has none. One
@@ -365,7 +361,7 @@ def surface_crossings(branch: str, a: float, values, d: float = 0.01, *, bar=Non
     >>> [c.value for c in ps.surface_crossings("prolate", 1.5, [12.0])]
     [12.0]
     """
-    from ..theory.surface import Scene, compute_scene
+    from ..scenes.scene import Scene, compute_scene
 
     out = []
     for v in values:
@@ -423,7 +419,6 @@ def first_flight(model, x0, t_max: float = 400.0):
     >>> traj.status.value, len(traj.flights)
     ('touchdown', 1)
     """
-    from ..core.simulate import simulate
 
     return simulate(model, x0, t_max, stop_at="touchdown", events=[rise_complete(model.body)], track_minima=False, dense=False)
 
@@ -443,7 +438,7 @@ def gap_ensemble(model, omegas, n_each: int, seed: int, *, amplitude: float = 0.
     >>> [(r[0], r[1], r[2]) for r in recs]
     [(20.0, 0, 'touchdown'), (20.0, 1, 'touchdown')]
     """
-    from .._runtime.errors import Status
+    from ..errors import Status
     from ..steady.precessions import horizontal_state
 
     rng = np.random.default_rng(seed)

@@ -17,16 +17,14 @@ import time
 from dataclasses import dataclass
 from functools import partial
 
-from .._runtime.errors import PhasekitError, Status
 from ..core.hybrid import Event
 from ..core.simulate import simulate
-from ..core.starts import to_chart
+from ..core.starts import paper_start, to_chart
+from ..errors import PhasekitError, Status
 from ..friction.laws import Coulomb, RegularisedCoulomb
 from ..sweep.tasks import each
-from ..theory.paper import PAPER_CASES, paper_start
+from ..theory.paper import PAPER_CASES
 from .outcome_maps import outcome_class
-
-__all__ = ["PairRow", "pair_key", "pair_run", "pair_runs", "as_printed", "pair_table", "pair_report"]
 
 
 @dataclass(frozen=True)

@@ -9,8 +9,6 @@ from dataclasses import replace
 
 from ..thresholds.definition import DEFAULT_DEFINITIONS, Definition
 
-__all__ = ["sensitivity_definitions", "sensitivity_parent", "prepare_definitions"]
-
 
 def sensitivity_definitions(quick: bool = False) -> list[Definition]:
     """The variants of the default definition ("sliding", d = 0.01) and of the literal one with

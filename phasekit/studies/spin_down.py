@@ -31,9 +31,6 @@ from ..friction.dissipation import AirDrag, RollingResistance, SpinFriction
 from ..friction.laws import Coulomb, RegularisedCoulomb
 from ..viz.output import pyplot
 
-__all__ = ["SpinDownRun", "SpinCurvePoint", "spin_down_law", "spin_down_run", "sphere_checks", "plot_spin_down",
-           "plot_rest_times", "LAW_NAMES"]
-
 #: the energy budget's law names -> the row's column
 LAW_NAMES = {"sliding friction": "diss_sliding", "spin-friction": "diss_spin", "rolling-resistance": "diss_rolling",
              "air-drag": "diss_air"}

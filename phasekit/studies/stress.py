@@ -21,8 +21,6 @@ from ..core.simulate import simulate
 from ..core.starts import gyroscopic_start, to_chart
 from .paper_checks import rise_complete
 
-__all__ = ["StressCase", "stress_run", "invariant_drift", "STRESS_COLUMNS", "stress_report"]
-
 #: the columns of a :func:`stress_run` row, in the order of a table
 STRESS_COLUMNS = ("case", "a", "law", "t_end", "rtol", "status", "reason", "t_jump", "t_reached", "theta_end", "stuck",
                   "n_events", "invariant_drift", "steps", "backend", "chart", "finite", "wall_s")

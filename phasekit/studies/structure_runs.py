@@ -12,15 +12,13 @@ from ..core.model import Model
 from ..steady.rolling import rolling_motion
 from ..steady.structure import SteadyStructure
 
-__all__ = ["manifold_runs", "settled_motion"]
-
 
 def manifold_runs(structure: SteadyStructure, *, omega_range, seed_delta: float, t_end: float, pole_margin: float = 0.02,
                   n: int = 4000) -> dict:
     """Trajectories leaving the most unstable branch state of a structure along its unstable
     manifold: among the branch samples with Omega inside ``omega_range`` that have unstable
     directions, the one with the largest real part of an eigenvalue; from each of its seeds at
-    distance ``seed_delta`` (:func:`phasekit.steady.unstable_seeds`), a run of the body under the
+    distance ``seed_delta`` (:func:`phasekit.steady.manifolds.unstable_seeds`), a run of the body under the
     structure's friction law (default model, until a jump or ``t_end``), sampled at ``n``
     instants and cut where theta first comes within ``pole_margin`` of a pole (Omega is
     undefined there). Returns ``state`` (that branch state: theta, Omega, n, classification)

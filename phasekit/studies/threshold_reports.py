@@ -15,9 +15,6 @@ import math
 
 import numpy as np
 
-__all__ = ["threshold_collapse", "threshold_against_d", "threshold_table", "definition_sensitivity_table",
-           "threshold_grid_table", "seed_sensitivity_table", "threshold_map_report"]
-
 
 def threshold_collapse(rows, mus, ref_mu: float) -> dict:
     """The collapse test of thresholds over (a, mu) (``rows``: :class:`SearchRow` at one seed

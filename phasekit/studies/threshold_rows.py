@@ -17,17 +17,13 @@ import time
 from dataclasses import asdict, dataclass, replace
 from functools import partial
 
-from .._runtime.errors import Status
+from ..errors import Status
 from ..sweep.tasks import TaskSpec
 from ..thresholds.definition import Definition
 from ..thresholds.result import Threshold
 from ..thresholds.search import ThresholdSearch, find_threshold, run_searches, threshold_result, threshold_searches
 from ..thresholds.stick import stick_search
 from ..thresholds.verify import verify_thresholds
-
-__all__ = ["ThresholdRow", "threshold_task", "threshold_key", "threshold_chain", "SearchRow",
-           "search_job", "search_group_task", "group_search_tasks"]
-
 
 # -- threshold rows --------------------------------------------------------------------------
 
@@ -232,7 +228,7 @@ def search_job(defn_fields: dict, a: float, search: dict, *, kind: str = "thresh
 
 def search_group_task(prev, jobs: list[dict], *, study: str = "", engine: str = "batch") -> list[SearchRow]:
     """Several boundary points (:func:`search_job`) traced in lock-step: each round
-    simulates what every unfinished search asks for in one batch (so the batch integrator's
+    simulates what every unfinished search asks for in one call (so the batch integrator's
     lanes fill across searches); each search keeps its own rounds, bracket and result.
     Failures become rows with status "failed" and the reason."""
     t0 = time.perf_counter()

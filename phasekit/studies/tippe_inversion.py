@@ -18,13 +18,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._runtime.errors import Status
 from .._runtime.validate import check_choice
 from ..bodies.spheroid import EccentricSphere
 from ..core.hybrid import Event
 from ..core.model import Model
 from ..core.simulate import simulate
 from ..core.starts import to_chart, vertical_spin_start
+from ..errors import Status
 from ..friction.laws import Coulomb, Viscous
 from ..theory.tippetop import (
     classical_inversion,
@@ -34,8 +34,6 @@ from ..theory.tippetop import (
     ueda_group,
     ueda_group_limit,
 )
-
-__all__ = ["simulate_inversion", "InversionRun", "inversion_run", "inversion_summary"]
 
 #: theta at which a top counts as fully inverted (the run stops there)
 THETA_FULL = math.pi - 0.05

@@ -9,8 +9,6 @@ import numpy as np
 
 from ..baseline import JUMP_METHODS
 
-__all__ = ["work_precision_summary"]
-
 
 def work_precision_summary(rows, refs: dict, targets=(1e-6, 1e-9)) -> str:
     """What a work-precision comparison (:func:`phasekit.baseline.work_precision`) found, as text: each

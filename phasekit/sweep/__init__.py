@@ -2,9 +2,8 @@
 their dependencies (:class:`TaskSpec`, :func:`run_tasks`), kill-safe result stores
 (:class:`ResultStore`: typed rows appended and fsynced, a torn row dropped on resume), Dask
 clients and the model shipped once per worker (:func:`make_client`, :class:`ModelPack`),
-ensembles of starts (:func:`ensemble`, :func:`rerun`) and the scaffold of a study script
-(:class:`Study`, :func:`run_study`). What single studies share beyond this lives in
-``phasekit.studies``, which is not API.
+ensembles of starts (:func:`ensemble`, :func:`rerun`). The scaffold of a study script
+that runs them is :mod:`phasekit.scaffold`.
 
 Examples
 --------
@@ -15,11 +14,10 @@ Examples
 
 from .cluster import ModelPack, make_client
 from .ensemble import ensemble, rerun
-from .stores import ResultStore, provenance, stored_rows
-from .study import Study, run_study, write_csv, write_json
+from .stores import ResultStore, provenance
 from .tasks import TaskSpec, chunked, each, run_pending, run_tasks
 
 __all__ = [
-    "TaskSpec", "run_tasks", "run_pending", "ResultStore", "stored_rows", "each", "chunked", "ModelPack",
-    "make_client", "provenance", "ensemble", "rerun", "Study", "run_study", "write_csv", "write_json",
+    "TaskSpec", "run_tasks", "run_pending", "ResultStore", "each", "chunked", "ModelPack",
+    "make_client", "provenance", "ensemble", "rerun",
 ]

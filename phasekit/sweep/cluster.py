@@ -4,8 +4,8 @@ compiled models shipped to each worker once, and task functions shipped so that 
 * :class:`ModelPack` snapshots this process's compiled CasADi models and integrators (after a
   warm-up) as one pickle. It is scattered to every worker once and installed into the worker's
   caches before its first task: no worker compiles anything.
-* A task runs on a worker as ``_call(func, pack, prev, *args)``; a function from a module in
-  cloudpickle's by-value registry travels pickled by value (``_shipped``), since the worker
+* A task runs on a worker as ``call_task(func, pack, prev, *args)``; a function from a module in
+  cloudpickle's by-value registry travels pickled by value (``shipped_pack``), since the worker
   could not import it by name.
 * :func:`client_evaluator` runs the simulations of threshold searches on a client.
 """
@@ -16,13 +16,11 @@ import os
 import pickle
 from collections.abc import Callable
 
-from .._runtime.errors import ParameterError
 from .._runtime.pool import main_not_reimported
 from ..core import fields
 from ..core.engines import cache as integrator_cache
+from ..errors import ParameterError
 from ..thresholds.definition import evaluate_outcomes
-
-__all__ = ["ModelPack", "make_client", "client_evaluator"]
 
 _INSTALLED: set[int] = set()
 
@@ -98,14 +96,14 @@ class _ByValue:
         return pickle.loads(self.blob)
 
 
-def _shipped(func):
+def shipped_pack(func):
     import cloudpickle
 
     by_value = getattr(func, "__module__", None) in cloudpickle.list_registry_pickle_by_value()
     return _ByValue(func) if by_value else func
 
 
-def _call(func, pack, prev, *args):
+def call_task(func, pack, prev, *args):
     if isinstance(func, _ByValue):
         func = func.load()
     if pack is not None:
@@ -132,7 +130,7 @@ def make_client(scheduler: str | None = None, workers: int | None = None, *, tim
     >>> pk.sweep.make_client('tcp://127.0.0.1:1', timeout=0.5)  # doctest: +IGNORE_EXCEPTION_DETAIL
     Traceback (most recent call last):
         ...
-    phasekit._runtime.errors.ParameterError: `scheduler` must be the address of a running Dask scheduler, like tcp://127.0.0.1:8786, but no scheduler answered there within 0.5 s, got 'tcp://127.0.0.1:1'.
+    phasekit.errors.ParameterError: `scheduler` must be the address of a running Dask scheduler, like tcp://127.0.0.1:8786, but no scheduler answered there within 0.5 s, got 'tcp://127.0.0.1:1'.
     """
     import asyncio
     import concurrent.futures

@@ -24,24 +24,24 @@ A tqdm progress bar is written to stderr where a person watches (a terminal or a
 
 from __future__ import annotations
 
+import inspect
 import os
 import time
 import warnings
-from dataclasses import replace
+from dataclasses import fields, replace
 
 import numpy as np
 
-from .._runtime.errors import ParameterError, Status, WorkerError
 from .._runtime.pool import job_of, run_local, shipped
 from .._runtime.validate import check_finite, check_int, check_vector
 from .._runtime.watch import WALL_REASON, check_max_wall, progress_bar, wall_deadline
 from ..core.charts import FLIGHT, PAPER_NAMES
 from ..core.hybrid import Event
 from ..core.model import Model
+from ..core.options import SolverOptions
 from ..core.simulate import simulate, solver_options
+from ..errors import ParameterError, Status, WorkerError
 from .cluster import make_client
-
-__all__ = ["ensemble", "rerun", "summary_row", "ROW_COLUMNS"]
 
 #: columns of an ensemble row after the start (i, U, V, Omega, Lambda, theta, n)
 ROW_COLUMNS = ("status", "reason", "t_jump", "R_min", "t_end", "theta_end", "mode_end", "n_events", "stuck", "n_steps",
@@ -335,7 +335,9 @@ def rerun(source, index: int | None = None, *, model: Model | None = None, **ove
         Needed for a user-defined body or friction law, which cannot be rebuilt from their
         description; built-in ones are rebuilt from ``source["model"]``.
     **overrides
-        Keywords of :func:`phasekit.simulate` to change (e.g. ``dense=True`` for sampling).
+        Keywords of :func:`phasekit.simulate` to change (e.g. ``dense=True`` for sampling,
+        ``t_end=10.0`` for a shorter run); one it does not take raises :class:`ParameterError`
+        naming it.
 
     Returns
     -------
@@ -351,11 +353,18 @@ def rerun(source, index: int | None = None, *, model: Model | None = None, **ove
     >>> pk.rerun(traj.to_dict()).t_jump == traj.t_jump
     True
     """
+    accepted = (set(inspect.signature(simulate).parameters) - {"model", "x0", "option_fields"}) \
+        | {f.name for f in fields(SolverOptions)}
+    for key in overrides:  # a wrong keyword is named, not a TypeError from deep inside
+        if key not in accepted:
+            raise ParameterError(key, f"is not a keyword of phasekit.simulate (one of: {', '.join(sorted(accepted))})",
+                                 show_value=False)
+    given = {k: overrides.pop(k) for k in ("t_end", "events") if k in overrides}
     try:
         m, x0, t_end, events, kw = _rerun_inputs(source, index, model, overrides)
     except (KeyError, TypeError, AttributeError, IndexError) as exc:  # a dict or table that is not a whole result
         raise ParameterError("source", f"is not a complete result: {type(exc).__name__} {exc}", show_value=False) from None
-    return simulate(m, x0, t_end, events=events, **kw)
+    return simulate(m, x0, given.get("t_end", t_end), events=given.get("events", events), **kw)
 
 
 def _rerun_inputs(source, index, model, overrides):

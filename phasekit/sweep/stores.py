@@ -24,9 +24,6 @@ import sys
 import typing
 from pathlib import Path
 
-__all__ = ["ResultStore", "stored_rows", "provenance"]
-
-
 CODE_PATHS = ("phasekit", "studies", "benchmarks", "pyproject.toml")
 
 
@@ -329,7 +326,7 @@ def stored_rows(stores, members: dict | None = None):
     >>> Row = dataclasses.make_dataclass('Row', [('key', str), ('value', float)], frozen=True)
     >>> d = pathlib.Path(tempfile.mkdtemp())
     >>> store = pk.sweep.ResultStore(d / 'rows.csv', d / 'rows.json', Row, {})
-    >>> get, on_result = pk.sweep.stored_rows([store], {'task': ['x', 'y']})
+    >>> get, on_result = pk.sweep.stores.stored_rows([store], {'task': ['x', 'y']})
     >>> on_result(None, [Row('x', 1.0), Row('y', 2.0)]); [r.value for r in get('task')]
     [1.0, 2.0]
     """

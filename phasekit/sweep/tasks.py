@@ -7,7 +7,7 @@ Every finished result goes to ``on_result`` at once, so that a killed sweep resu
 stopped: the stores are in :mod:`phasekit.sweep.stores`, the Dask client and the compiled models
 shipped once to each worker in :mod:`phasekit.sweep.cluster`. The rows of the threshold and map
 studies are in :mod:`phasekit.studies.threshold_rows` and :mod:`phasekit.studies.outcome_maps`; the
-scaffold of a study script in :mod:`phasekit.sweep.study`; all of it is public as :mod:`phasekit.sweep`.
+scaffold of a study script in :mod:`phasekit.scaffold`; all of it is public as :mod:`phasekit.sweep`.
 """
 
 from __future__ import annotations
@@ -18,9 +18,7 @@ from dataclasses import dataclass, field
 from functools import partial
 
 from .._runtime.watch import check_max_wall, progress_bar, wall_deadline
-from .cluster import ModelPack, _call, _shipped, make_client
-
-__all__ = ["TaskSpec", "run_tasks", "run_pending", "PendingRun", "each", "chunked"]
+from .cluster import ModelPack, call_task, make_client, shipped_pack
 
 
 @dataclass
@@ -131,7 +129,7 @@ def _run_here(todo, results, on_result, pack, bar, end) -> None:
         if time.perf_counter() > end:
             return
         prev = results.get(s.after) if s.after else None
-        r = _call(s.func, pack, prev, *s.args)
+        r = call_task(s.func, pack, prev, *s.args)
         results[s.key] = r
         on_result(s, r)
         bar.update()
@@ -147,7 +145,7 @@ def _run_on(client, todo, results, on_result, pack, bar, end) -> None:
     futures, by_future = {}, {}
     for s in todo:
         prev = futures.get(s.after, results.get(s.after)) if s.after else None
-        f = client.submit(_call, _shipped(s.func), pack_f, prev, *s.args, key=f"task-{abs(hash(s.key))}", pure=False,
+        f = client.submit(call_task, shipped_pack(s.func), pack_f, prev, *s.args, key=f"task-{abs(hash(s.key))}", pure=False,
                           priority=int(round(1000 * s.cost)))
         futures[s.key] = f
         by_future[f] = s
@@ -326,7 +324,7 @@ def chunked(items, key: Callable, fn: Callable, *, size: int, args: tuple = (), 
     -------
     tuple of (list of TaskSpec, dict)
         The tasks, and their row keys: task key -> list of row keys (``members`` of :func:`stored_rows`
-        and :meth:`phasekit.sweep.Study.run`).
+        and :meth:`phasekit.scaffold.Study.run`).
 
     Examples
     --------

@@ -1,7 +1,8 @@
 """The paper's closed forms, criteria and printed cases (``phasekit.theory``).
 
 What the analysis of Shimomura, Branicki & Moffatt (and parts I, III, IV of the series) gives in
-closed form, against which the simulations are checked: the stability criteria of the steady
+closed form, needing no simulator (this layer sits below :mod:`phasekit.core`, which uses the
+gyroscopic balance and the printed cases for its starts); the simulations are checked against it: the stability criteria of the steady
 states, the gyroscopic (mean) solution of the rise (3.18), the
 multiscale envelope Sigma (3.64) of the minima of R, the free flight and its gap (section 4),
 the jump surface (6.3), the paper's printed starts, and the tippe top's
@@ -21,35 +22,23 @@ from .criteria import (
     pole_stability_threshold,
     vertical_stability_threshold,
 )
-from .flight import FlightConstants, flight_constants, fly, gap_exact, gap_max_series, gap_series
+from .flight import flight_constants, gap_exact, gap_max_series, gap_series
 from .gyroscopic import gyroscopic_closed, gyroscopic_solution, jellett_constant
-from .jump_surface import exact_boundary, surface_n
-from .multiscale import (  # noqa: F401  (the paper's symbols, aliases of the descriptive names)
-    Gamma_closed,
-    I_quadrature,
-    Sigma,
+from .jump_surface import surface_n
+from .multiscale import (
     amplitude_growth_closed,
-    c_xi,
-    growth_integral,
     gyroscopic_nutation_frequency,
-    mean_over_periods,
-    nutation_amplitude_phase,
-    nutation_frequency_squared,
-    nutation_perturbation,
-    omega2,
-    omega_gyro,
-    perturbation_from_c_xi,
     reaction_envelope,
     slow_rates,
 )
-from .paper import PAPER_CASES, PaperCase
+from .nutation import mean_over_periods, nutation_perturbation
+from .paper import PAPER_CASES
 
 __all__ = [
     "vertical_stability_threshold", "horizontal_stability_threshold",
     "pole_stability_threshold", "PoleCriterion",
     "jellett_constant", "gyroscopic_solution", "gyroscopic_closed",
-    "nutation_frequency_squared", "gyroscopic_nutation_frequency", "slow_rates", "growth_integral",
-    "amplitude_growth_closed", "reaction_envelope", "nutation_amplitude_phase", "nutation_perturbation", "mean_over_periods",
-    "flight_constants", "FlightConstants", "gap_exact", "gap_series", "gap_max_series", "fly",
-    "surface_n", "exact_boundary", "PAPER_CASES", "PaperCase",
+    "gyroscopic_nutation_frequency", "slow_rates", "amplitude_growth_closed", "reaction_envelope",
+    "nutation_perturbation", "mean_over_periods", "flight_constants", "gap_exact", "gap_series", "gap_max_series",
+    "surface_n", "PAPER_CASES",
 ]

@@ -12,14 +12,6 @@ import numpy as np
 
 from .._runtime.validate import check_choice, check_finite, check_positive
 
-__all__ = [
-    "vertical_stability_threshold",
-    "horizontal_stability_threshold",
-    "PoleCriterion",
-    "pole_stability_threshold",
-    "equator_stability_threshold",
-]
-
 
 def _moments(A, C, a) -> tuple[float, float, float]:
     return check_positive("A", A), check_positive("C", C), check_positive("a", a)

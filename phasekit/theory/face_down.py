@@ -64,12 +64,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_choice, check_positive, check_range
+from ..errors import ParameterError
 from ..friction.patch import patch_resultant
-
-__all__ = ["MASS_DISTRIBUTIONS", "inertia_factor", "annulus_resultant", "ratio_rate", "TerminalRatio",
-           "terminal_ratio", "stop_time", "FaceDownRun", "slide_to_rest"]
 
 #: how the annulus' mass is spread: "washer" (over the annulus) or "disk" (a full disk on an annular rim)
 MASS_DISTRIBUTIONS = ("washer", "disk")

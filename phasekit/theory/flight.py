@@ -17,20 +17,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_finite, check_vector, finite_result
 from ..bodies.body import Body
-
-__all__ = [
-    "FlightConstants",
-    "flight_constants",
-    "cos_theta_exact",
-    "gap_exact",
-    "gap_series",
-    "gap_max_series",
-    "flight_invariants",
-    "fly",
-]
+from ..errors import ParameterError
 
 
 @dataclass(frozen=True)
@@ -69,7 +58,7 @@ class FlightConstants:
     >>> import numpy as np, phasekit as pk
     >>> body = pk.Spheroid(1.5)
     >>> k = pk.theory.flight_constants(body, pk.gyroscopic_start(body, 1.0, omega0=10.0), 0.01)
-    >>> isinstance(k, pk.theory.FlightConstants), round(k.h, 6)
+    >>> isinstance(k, pk.theory.flight.FlightConstants), round(k.h, 6)
     (True, 1.168293)
     """
 
@@ -121,7 +110,7 @@ def flight_constants(body: Body, euler_state, W: float) -> FlightConstants:
     ...                    stop_at='touchdown', rtol=1e-12)
     >>> fl = traj.flights[0]
     >>> k = pk.theory.flight_constants(body, traj.x_jump, fl.W_star)
-    >>> isinstance(k, pk.theory.FlightConstants), round(k.W, 6)
+    >>> isinstance(k, pk.theory.flight.FlightConstants), round(k.W, 6)
     (True, 0.006382)
     """
     _, _, Om, Lam, th, n = (float(v) for v in check_vector("euler_state", euler_state, 6))
@@ -258,48 +247,3 @@ def flight_invariants(body: Body, euler_states) -> np.ndarray:
     s, c = np.sin(th), np.cos(th)
     Psi = (body.A * Om * c - body.C * n) * s / body.A
     return np.column_stack([Om - Psi * c / s, Psi**2 + Lam**2, Om * c - Psi / s])
-
-
-def fly(model, x, t0: float, t_end: float, **options):
-    """The free flight from ``x`` until touchdown or ``t_end``: :func:`phasekit.simulate`
-    started in the FLIGHT mode with ``stop_at="touchdown"``.
-
-    Parameters
-    ----------
-    model : Model
-        The body, friction law and chart of the run.
-    x : array_like
-        A contact state at lift-off (in ``model.chart``, lifted off with zero gap), or a
-        flight state (10 numbers).
-    t0 : float
-        Time of ``x``, the start of the flight, in [-1e6, 1e6].
-    t_end : float
-        End time (> t0) if the body has not touched down before.
-    **options
-        Further keywords of :func:`phasekit.simulate` (``rtol=...``, ``events=...``, ...).
-
-    Returns
-    -------
-    Trajectory
-        The flight; ``traj.flights[0]`` is the summary, and ``traj.segments[0].states(ts)``
-        the flight states (with the gap) at times ts.
-
-    Raises
-    ------
-    ParameterError
-        A bad argument, as :func:`phasekit.simulate` names it (e.g. ``model`` not a Model,
-        ``x`` not a finite state, ``t_end`` not > ``t0``).
-
-    Examples
-    --------
-    >>> import numpy as np, phasekit as pk
-    >>> body = pk.Spheroid(1.5)
-    >>> m = pk.Model(body, pk.Coulomb(0.1))
-    >>> traj = pk.simulate(m, pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=11.0), 200.0)
-    >>> fl = pk.theory.fly(m, traj.x_jump, traj.t_jump, traj.t_jump + 0.05)
-    >>> fl.status.value, [e.name for e in fl.events]
-    ('touchdown', ['touchdown'])
-    """
-    from ..core.simulate import simulate
-
-    return simulate(model, x, t_end, t0=t0, mode="flight", stop_at="touchdown", **options)

@@ -21,19 +21,73 @@ see docs/physics.md (Jellett constant). The prolate values of Fig. 4 (6.63, 6.83
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
-from .._runtime.errors import ConvergenceError, ParameterError
 from .._runtime.validate import check_array, check_finite, check_instance, check_positive, check_range, finite_result
 from ..bodies.body import Body
 from ..bodies.spheroid import Spheroid
-from ..core.starts import GYRO_RATE_MAX, balanced_state
-
-__all__ = ["mean_slip", "jellett_constant", "gyroscopic_numeric", "gyroscopic_closed", "gyroscopic_solution", "rise_time"]
-
+from ..errors import ConvergenceError, ParameterError
 
 #: tolerances scipy's DOP853 accepts (it raises tighter ones to 100 x machine epsilon)
 RTOL_RANGE = (1e-14, 1e-3)
+
+
+#: the largest rate (units sqrt(g/b)) a start may have: beyond it the dynamics are beyond
+#: double precision (Omega^2 terms against 1) and the Taylor steps vanish
+RATE_MAX = 1e5
+#: the largest rate the gyroscopic (mean) solution takes: it is closed-form (or a slow-time
+#: quadrature) and does not integrate the fast motion, so only overflow of A Omega^2 limits it
+GYRO_RATE_MAX = 1e12
+
+
+def slope_q(body: Body, theta: float) -> float:
+    """h_theta / sin(theta) = -H'(cos theta), evaluated without dividing by sin(theta)."""
+    return -body.height_slope(np.cos(theta))[1]
+
+
+def checked_rate(name: str, value, limit: float = RATE_MAX) -> float:
+    v = check_finite(name, value, nonzero=True)
+    if abs(v) > limit:
+        raise ParameterError(name, f"must be nonzero with |{name}| <= {limit:g}", value)
+    return v
+
+
+def balanced_state(body: Body, theta0: float, *, omega0=None, n0=None, limit: float = RATE_MAX) -> np.ndarray:
+    """The gyroscopic balance at ``theta0`` (:func:`phasekit.gyroscopic_start`) with rates up to
+    ``limit`` (the gyroscopic solution's is GYRO_RATE_MAX): (0, 0, Omega, 0, theta0, n)."""
+    if not isinstance(body, Body):
+        raise ParameterError("body", "must be a phasekit Body such as Spheroid(a)", body)
+    theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
+    if (omega0 is None) == (n0 is None):
+        raise ParameterError("omega0", "or `n0` must be given, not both (prolate: omega0; oblate: n0)", show_value=False)
+    A, C = body.A, body.C
+    c = np.cos(theta0)
+    q = slope_q(body, theta0)
+    if omega0 is not None:
+        omega0 = checked_rate("omega0", omega0, limit)
+        n = (A * omega0 * c - q / omega0) / C
+        if not abs(n) <= limit:
+            raise ParameterError("omega0", f"is too small for a gyroscopic balance at theta0 = {theta0:g} (it needs a "
+                                           f"spin |n| = {abs(n):.3g} > {limit:g})", omega0)
+        return np.array([0.0, 0.0, omega0, 0.0, theta0, n])
+    n0 = checked_rate("n0", n0, limit)
+    if body.is_prolate:
+        warnings.warn("`n0` given for a prolate body: its gyroscopic start is normally given `omega0` (the precession "
+                      "rate; n then follows from the balance); with `n0`, Omega is put on the fast branch, "
+                      "|Omega| ~ C n0 / (A cos theta0)", stacklevel=2)
+    if c <= 0.0:
+        raise ParameterError("theta0", "must lie in (0, pi/2) for a start given n0 (the fast branch)", theta0)
+    disc = (C * n0) ** 2 + 4.0 * A * c * q
+    if disc < 0.0:
+        need = np.sqrt(max(-4.0 * A * c * q, 0.0)) / C
+        raise ParameterError("n0", f"must satisfy |n0| > {need:.6g} for a gyroscopic balance at theta0 = {theta0:g}", n0)
+    omega = (C * n0 + np.sign(n0) * np.sqrt(disc)) / (2.0 * A * c)
+    if not abs(omega) <= limit:
+        raise ParameterError("n0", f"gives a precession rate |Omega| = {abs(omega):.3g} > {limit:g} on the fast branch at "
+                                   f"theta0 = {theta0:g}", n0)
+    return np.array([0.0, 0.0, omega, 0.0, theta0, n0])
 
 
 def _body(body) -> Body:

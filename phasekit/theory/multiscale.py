@@ -1,5 +1,5 @@
 """Multiple-scale quantities of section 3c-d: the fast oscillation and the envelope of R.
-The paper's symbols (omega2, Sigma, ...) are kept as aliases of the descriptive names.
+Each function's docstring names the paper's symbol and equation (omega^2 (3.30), Sigma (3.64), ...).
 
 All functions take the mean state (theta-bar, Omega-bar) of the gyroscopic solution
 (:mod:`phasekit.theory.gyroscopic`) and a uniform spheroid or any Body. Time derivatives of the mean
@@ -25,38 +25,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_array, finite_result
 from ..bodies.body import Body
+from ..errors import ParameterError
 from .gyroscopic import mean_slip
 
-__all__ = [
-    "nutation_frequency_squared",
-    "gyroscopic_nutation_frequency",
-    "slow_rates",
-    "lam",
-    "zeta",
-    "zeta_gyro",
-    "growth_integral",
-    "I1_closed",
-    "I2_dominant",
-    "I3_closed",
-    "alpha_beta",
-    "Gamma",
-    "amplitude_growth_closed",
-    "reaction_envelope",
-    "nutation_amplitude_phase",
-    "nutation_perturbation",
-    "mean_over_periods",
-]
 
-
-def _geom(body, theta):
+def support_geometry(body, theta):
     h, ht, htt = body.h(theta)
     return h, ht, htt, np.sin(theta), np.cos(theta)
 
 
-def _angle(name: str, theta):
+def checked_angle(name: str, theta):
     """Finite inclinations off the poles (where the theory's cot and 1/sin diverge)."""
     th = check_array(name, theta)
     if np.any(np.abs(np.sin(th)) < 1e-12):
@@ -64,7 +44,7 @@ def _angle(name: str, theta):
     return th
 
 
-def _rate(name: str, value):
+def checked_spin(name: str, value):
     """A finite, non-zero spin rate (the theory divides by it)."""
     v = check_array(name, value)
     if np.any(v == 0):
@@ -101,11 +81,11 @@ def nutation_frequency_squared(body: Body, theta, Omega):
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(float(pk.theory.nutation_frequency_squared(pk.Spheroid(1.5), 1.0, 10.0)), 6)
+    >>> round(float(pk.theory.multiscale.nutation_frequency_squared(pk.Spheroid(1.5), 1.0, 10.0)), 6)
     73.238621
     """
-    theta, Omega = _angle("theta", theta), _rate("Omega", Omega)
-    h, ht, htt, s, c = _geom(body, theta)
+    theta, Omega = checked_angle("theta", theta), checked_spin("Omega", Omega)
+    h, ht, htt, s, c = support_geometry(body, theta)
     A = body.A
     return A / (A + ht**2) * (Omega**2 + (htt + ht * c / s) / A + (ht / (A * Omega * s)) ** 2)
 
@@ -141,7 +121,7 @@ def gyroscopic_nutation_frequency(body: Body, theta, Omega):
     >>> round(float(pk.theory.gyroscopic_nutation_frequency(pk.Spheroid(1.5), 1.0, 10.0)), 6)
     8.562205
     """
-    _, ht, _, _, _ = _geom(body, theta)
+    _, ht, _, _, _ = support_geometry(body, theta)
     return np.abs(Omega) * np.sqrt(body.A / (body.A + ht**2))
 
 
@@ -180,7 +160,7 @@ def slow_rates(body: Body, theta, Omega):
     >>> [round(float(v), 6) for v in pk.theory.slow_rates(pk.Spheroid(1.5), 1.0, 10.0)]
     [-0.748378, -0.179737, -1.0, -2.432228]
     """
-    h, ht, _, _, _ = _geom(body, theta)
+    h, ht, _, _, _ = support_geometry(body, theta)
     VP = mean_slip(body, theta, Omega)
     v = np.sign(VP)
     return -ht * v / body.A, h * v / (body.A * Omega), v, VP
@@ -189,7 +169,7 @@ def slow_rates(body: Body, theta, Omega):
 @finite_result
 def lam(body: Body, theta, Omega):
     """(3.35)."""
-    h, ht, _, s, c = _geom(body, theta)
+    h, ht, _, s, c = support_geometry(body, theta)
     A = body.A
     dOm, dth, v, _ = slow_rates(body, theta, Omega)
     w2 = nutation_frequency_squared(body, theta, Omega)
@@ -199,7 +179,7 @@ def lam(body: Body, theta, Omega):
 @finite_result
 def zeta(body: Body, theta, Omega):
     """(3.38), with h^2/|Vbar_P| as the last term (see the module notes)."""
-    h, ht, htt, s, c = _geom(body, theta)
+    h, ht, htt, s, c = support_geometry(body, theta)
     A = body.A
     dOm, dth, v, VP = slow_rates(body, theta, Omega)
     w2 = nutation_frequency_squared(body, theta, Omega)
@@ -209,7 +189,7 @@ def zeta(body: Body, theta, Omega):
 
 def _zeta_gyro_terms(body: Body, theta, Omega):
     """The three terms of (3.48) before the factor dtheta/dT (the integrands of I1, I2, I3)."""
-    h, ht, _, s, c = _geom(body, theta)
+    h, ht, _, s, c = support_geometry(body, theta)
     A, C, a = body.A, body.C, body.shape_params[0]
     return (-A * ht / (A + ht**2) * Omega**2, -(a * a - 1) / (A - a * a * C) * A * C / (A + ht**2) * h / ht, c / s)
 
@@ -266,14 +246,14 @@ def growth_integral(body: Body, J: float, theta0: float, theta, *, form: str = "
     Examples
     --------
     >>> import phasekit as pk
-    >>> pk.theory.growth_integral(pk.Spheroid(1.5), 6.83, 1.5607963, [1.2, 1.0]).round(6)
+    >>> pk.theory.multiscale.growth_integral(pk.Spheroid(1.5), 6.83, 1.5607963, [1.2, 1.0]).round(6)
     array([0.747044, 3.404539])
     """
     from scipy.integrate import quad
 
-    J = float(_rate("J", J))
-    theta0 = float(_angle("theta0", theta0))
-    theta = np.atleast_1d(_angle("theta", theta))
+    J = float(checked_spin("J", J))
+    theta0 = float(checked_angle("theta0", theta0))
+    theta = np.atleast_1d(checked_angle("theta", theta))
 
     def integrands(th):
         # -1/2 zeta / (dtheta/dT): the dtheta/dT factor of (3.48) cancels
@@ -430,7 +410,7 @@ def reaction_envelope(body: Body, J: float, theta0: float, theta, c: float, *, f
     """
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     om = _along_rise(body, J, theta0, theta)
-    _, ht, _, _, _ = _geom(body, theta)
+    _, ht, _, _, _ = support_geometry(body, theta)
     if form == "closed":
         w2 = gyroscopic_nutation_frequency(body, theta, om) ** 2
         G = amplitude_growth_closed(body, J, theta0, theta)
@@ -438,156 +418,3 @@ def reaction_envelope(body: Body, J: float, theta0: float, theta, c: float, *, f
         w2 = gyroscopic_nutation_frequency(body, theta, om) ** 2 if form == "gyro" else nutation_frequency_squared(body, theta, om)
         G = Gamma(body, J, theta0, theta, form=form)
     return 1 - np.abs(ht * w2 * c * G)
-
-
-@finite_result
-def nutation_amplitude_phase(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, dtheta0: float, dthetadot0: float):
-    """(3.46) inverted: amplitude c and phase xi of the initial nutation (theta', d theta'/dt).
-
-    Parameters
-    ----------
-    body : Body
-        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
-    theta_bar0 : float
-        Initial mean inclination theta-bar, radians: finite, off the poles (abs(sin) >= 1e-12).
-    Omega_bar0 : float
-        Initial mean precession rate Omega-bar, units sqrt(g/b): finite and nonzero.
-    mu : float
-        Friction coefficient (the slow time is T = mu t): finite.
-    dtheta0 : float
-        Initial fluctuation theta' of the inclination about its mean, radians: finite.
-    dthetadot0 : float
-        Its initial rate d theta'/dt, units sqrt(g/b): finite.
-
-    Returns
-    -------
-    tuple of float
-        (c, xi): the amplitude c, of the sign of ``dtheta0``, and the phase xi in
-        [-pi/2, pi/2], radians.
-
-    Raises
-    ------
-    ParameterError
-        If ``theta_bar0`` is not finite or is at a pole, ``Omega_bar0`` is not finite or is 0,
-        ``mu``, ``dtheta0`` or ``dthetadot0`` is not finite, or the result is not finite (an
-        overflow of double precision or a singular configuration), naming the argument of largest
-        magnitude.
-
-    Examples
-    --------
-    >>> import phasekit as pk
-    >>> [round(float(v), 6) for v in pk.theory.nutation_amplitude_phase(pk.Spheroid(1.5), 1.5607963, 10.5, 0.1, 1e-3, 0.0)]
-    [0.003456, -0.343063]
-    """
-    theta_bar0, Omega_bar0 = float(_angle("theta_bar0", theta_bar0)), float(_rate("Omega_bar0", Omega_bar0))
-    mu, dtheta0, dthetadot0 = (float(check_array(n, v)) for n, v in (("mu", mu), ("dtheta0", dtheta0), ("dthetadot0", dthetadot0)))
-    w = np.sqrt(nutation_frequency_squared(body, theta_bar0, Omega_bar0))
-    Idot = -0.5 * mu * zeta(body, theta_bar0, Omega_bar0)  # dI/dt = -mu zeta / 2
-    # theta' = c cos(xi) w^-1/2;  theta'dot = c (-w^1/2 sin xi + Idot cos xi)
-    cc = dtheta0 * np.sqrt(w)  # c cos xi
-    cs = -(dthetadot0 - Idot * cc) / np.sqrt(w)  # c sin xi
-    return float(np.hypot(cc, cs)) * (1 if cc >= 0 else -1), float(np.arctan2(cs, cc) if cc >= 0 else np.arctan2(-cs, -cc))
-
-
-@finite_result
-def nutation_perturbation(body: Body, theta_bar0: float, Omega_bar0: float, mu: float, c: float, xi: float):
-    """Initial fluctuation (theta', Lambda', Omega') for amplitude c and phase xi: (3.46) for
-    theta' and its rate, (3.27) for Omega' (with Psi' = -Omega theta' (3.28), n' = 0 (3.31)).
-
-    Parameters
-    ----------
-    body : Body
-        The body (a support function h(theta) and moments A, C), e.g. ``Spheroid(1.5)``.
-    theta_bar0 : float
-        Initial mean inclination theta-bar, radians: finite, off the poles (abs(sin) >= 1e-12).
-    Omega_bar0 : float
-        Initial mean precession rate Omega-bar, units sqrt(g/b): finite and nonzero.
-    mu : float
-        Friction coefficient (the slow time is T = mu t).
-    c : float
-        Amplitude of the nutation (3.46).
-    xi : float
-        Phase of the nutation (3.46), radians.
-
-    Returns
-    -------
-    tuple of float
-        (theta', Lambda', Omega'): the fluctuations of the inclination (radians), of its rate
-        Lambda and of the precession rate Omega (units sqrt(g/b)), to add to the mean state.
-
-    Raises
-    ------
-    ParameterError
-        If ``theta_bar0`` is at a pole or not finite (the error names ``theta``), ``Omega_bar0`` is
-        0 or not finite (named ``Omega``), or the result is not finite (an overflow of double
-        precision or a singular configuration), naming the argument of largest magnitude.
-
-    Examples
-    --------
-    >>> import phasekit as pk
-    >>> [round(float(v), 8) for v in pk.theory.nutation_perturbation(pk.Spheroid(1.5), 1.5607963, 10.5, 0.1, -0.00054, 0.0)]
-    [-0.00016594, 0.00062767, 1.773e-05]
-    """
-    w = np.sqrt(nutation_frequency_squared(body, theta_bar0, Omega_bar0))
-    Idot = -0.5 * mu * zeta(body, theta_bar0, Omega_bar0)
-    th_p = c * np.cos(xi) / np.sqrt(w)
-    lam_p = c * (-np.sqrt(w) * np.sin(xi) + Idot * np.cos(xi))
-    _, ht, _, s, c_ = _geom(body, theta_bar0)
-    om_p = (-Omega_bar0 * c_ / s + ht / (body.A * Omega_bar0 * s * s)) * th_p
-    return float(th_p), float(lam_p), float(om_p)
-
-
-def mean_over_periods(ts, values, marks):
-    """(3.6) with the averaging window set to the fast period itself: the mean of ``values``
-    over each interval [marks[k], marks[k+1]] (e.g. between successive located minima of R),
-    returned at the interval midpoints as (t_mid, mean).
-
-    Parameters
-    ----------
-    ts : array_like
-        Times of the samples, increasing: a 1-d array of two or more.
-    values : array_like
-        The signal at those times, one value per time (trapezoidal rule between them).
-    marks : array_like
-        Boundaries of the intervals, increasing; those outside [ts[0], ts[-1]] are dropped.
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        (t_mid, mean): the midpoint and the mean of ``values`` of each interval between
-        successive marks; both empty when fewer than two marks lie inside the sampled span.
-
-    Raises
-    ------
-    ParameterError
-        If there are fewer than two times or ``values`` is not one value per time.
-
-    Examples
-    --------
-    >>> import numpy as np, phasekit as pk
-    >>> ts = np.linspace(0.0, 4 * np.pi, 401)
-    >>> t_mid, means = pk.theory.mean_over_periods(ts, 1.0 + np.sin(ts), [0.0, 2 * np.pi, 4 * np.pi])
-    >>> t_mid.round(4), means.round(4)
-    (array([3.1416, 9.4248]), array([1., 1.]))
-    """
-    ts = np.asarray(ts, dtype=float)
-    v = np.asarray(values, dtype=float)
-    marks = np.asarray(marks, dtype=float)
-    if ts.size < 2 or v.shape != ts.shape:
-        raise ParameterError("values", "must be one value per time, at two or more times", show_value=False)
-    marks = marks[(marks >= ts[0]) & (marks <= ts[-1])]
-    if marks.size < 2:
-        return np.empty(0), np.empty(0)
-    cum = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(ts))])
-    area = np.diff(np.interp(marks, ts, cum))
-    return 0.5 * (marks[1:] + marks[:-1]), area / np.diff(marks)
-
-
-# The paper's symbols, kept as aliases of the descriptive names (equation numbers of the paper)
-omega2 = nutation_frequency_squared  # (3.30)
-omega_gyro = gyroscopic_nutation_frequency  # (3.47)
-I_quadrature = growth_integral  # (3.45)
-Gamma_closed = amplitude_growth_closed  # (3.58-3.60)
-Sigma = reaction_envelope  # (3.64)
-c_xi = nutation_amplitude_phase  # (3.46)
-perturbation_from_c_xi = nutation_perturbation  # (3.46, 3.27)

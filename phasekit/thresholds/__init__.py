@@ -11,7 +11,8 @@ Examples
 """
 
 from .continuation import continue_threshold
-from .definition import DEFAULT_DEFINITIONS, Definition, Outcome, evaluate_outcomes
+from .definition import DEFAULT_DEFINITIONS, Definition, evaluate_outcomes
+from .outcome import Outcome
 from .result import Threshold
 from .search import ThresholdSearch, find_threshold, run_searches
 from .stick import find_stick_boundary

@@ -3,13 +3,11 @@ previous result."""
 
 from __future__ import annotations
 
-from .._runtime.errors import SearchStatus
 from .._runtime.watch import WALL_REASON, check_max_wall, passed, progress_bar, wall_deadline
+from ..errors import SearchStatus
 from .definition import Definition, as_body
 from .result import Threshold
 from .search import find_threshold
-
-__all__ = ["continue_threshold"]
 
 
 def continue_threshold(defn: Definition, bodies, *, max_wall: float | None = None, progress: bool | None = None,
@@ -58,7 +56,7 @@ def continue_threshold(defn: Definition, bodies, *, max_wall: float | None = Non
         for b in bodies:
             if passed():
                 why = f"not searched: {WALL_REASON} (max_wall = {max_wall:g} s) ran out"
-                out.append(Threshold(getattr(as_body(b), "a", float("nan")), None, (None, None), SearchStatus.FAILED, 0,
+                out.append(Threshold(as_body(b).a, None, (None, None), SearchStatus.FAILED, 0,
                                      reason=why))
                 continue
             th = find_threshold(defn, b, guess=guess, progress=False, **kw)

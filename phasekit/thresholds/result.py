@@ -6,10 +6,8 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, field
 
-from .._runtime.errors import SearchStatus
-from .definition import Outcome
-
-__all__ = ["Threshold", "Sensitivity"]
+from ..errors import SearchStatus
+from .outcome import Outcome
 
 
 @dataclass(frozen=True)

@@ -14,15 +14,14 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .._runtime.errors import ConvergenceError, ParameterError, SearchStatus
 from .._runtime.validate import check_bool, check_choice, check_int, check_positive, check_range
 from .._runtime.watch import WALL_REASON, check_max_wall, deadline, passed, progress_bar, wall_deadline
 from ..bodies.spheroid import Spheroid
-from .definition import EVALUATION, Definition, Outcome, as_body, evaluate_outcomes
+from ..errors import ConvergenceError, ParameterError, SearchStatus
+from .definition import EVALUATION, Definition, as_body, evaluate_outcomes
+from .outcome import Outcome
 from .result import Sensitivity, Threshold
 from .verify import verify_thresholds
-
-__all__ = ["ThresholdSearch", "run_searches", "threshold_searches", "threshold_result", "find_threshold"]
 
 
 def _tree(lo: float, hi: float, tol: float, depth: int) -> list[float]:
@@ -239,7 +238,7 @@ class ThresholdSearch:
         Threshold
             The value, bracket, status and outcomes.
         """
-        a = getattr(self.body, "a", float("nan"))
+        a = self.body.a
         outs, n = tuple(self.outcomes), len(self.outcomes)
         if self.stopped is not None and not self.trans:
             return Threshold(a, None, (None, None), SearchStatus.FAILED, n, (), outs, wall_s,
@@ -463,5 +462,5 @@ def find_threshold(defn: Definition, body, *, lo: float | None = None, hi: float
 
 
 def _bar_label(search: ThresholdSearch) -> str:
-    a = getattr(search.body, "a", None)
-    return "threshold" + (f" a={a:g}" if a is not None else "")
+    a = search.body.a
+    return "threshold" + (f" a={a:g}" if not math.isnan(a) else "")

@@ -6,14 +6,12 @@ from __future__ import annotations
 import time
 from dataclasses import replace
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_choice, check_int, check_positive, check_range
 from .._runtime.watch import check_max_wall, progress_bar, wall_deadline
+from ..errors import ParameterError
 from .definition import EVALUATION, Definition, as_body
 from .result import Threshold
 from .search import ThresholdSearch, run_searches
-
-__all__ = ["stick_search", "find_stick_boundary"]
 
 
 def stick_search(defn: Definition, body, value: float, *, lo: float = 1e-4, hi: float = 0.2, n_coarse: int = 8,

@@ -20,11 +20,10 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass, replace
 
-from .._runtime.errors import SearchStatus
-from .definition import Definition, Outcome, evaluate_outcomes
+from ..errors import SearchStatus
+from .definition import Definition, evaluate_outcomes
+from .outcome import Outcome
 from .result import Threshold
-
-__all__ = ["Verification", "CheckRun", "verify_thresholds", "TIGHTER"]
 
 #: the check runs at the search's tolerance divided by this
 TIGHTER = 10

@@ -1,6 +1,6 @@
 """Drawing (``phasekit.viz``). Nothing here imports a plotting library at import time:
 matplotlib is imported by the functions that draw, pyvista only when a 3-D scene is drawn.
-A study's own output (flags, folders, tables, Ctrl-C) is :mod:`phasekit.sweep`'s.
+A study's own output (flags, folders, tables, Ctrl-C) is :mod:`phasekit.scaffold`'s.
 
 Examples
 --------
@@ -9,14 +9,14 @@ Examples
 'theta [rad]'
 """
 
-from .animate import AnimationInfo, animate, film_strip, render_body
+from .animate import animate, film_strip, render_body
 from .mesh import body_mesh
 from .mpl import label, plain_log_ticks, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
 from .output import pyplot, save_figure
-from .pv import RenderInfo, render_scene
+from .pv import render_scene
 
 __all__ = [
-    "animate", "film_strip", "render_body", "body_mesh", "AnimationInfo", "render_scene", "RenderInfo",
+    "animate", "film_strip", "render_body", "body_mesh", "render_scene",
     "plot_timeseries", "plot_events", "plot_section", "plot_phase", "plot_minima", "plain_log_ticks", "label",
     "pyplot", "save_figure",
 ]

@@ -13,11 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .._runtime.errors import ParameterError, PhasekitError
 from .._runtime.validate import check_array, check_finite, check_int, check_positive
-from .frames import _check_choice, _frames, _Style
-
-__all__ = ["AnimationInfo", "animate", "film_strip", "render_body", "MOVIE_EXTRA"]
+from ..errors import ParameterError, PhasekitError
+from .frames import Style, check_choice, render_frames
 
 #: what MP4 output needs: ``pip install "phasekit[movie]"``
 MOVIE_EXTRA = ("imageio_ffmpeg",)
@@ -54,7 +52,8 @@ class AnimationInfo:
     >>> import tempfile, pathlib
     >>> traj = pk.simulate(pk.Model(body, pk.Coulomb(0.1)), pk.gyroscopic_start(body, np.pi / 2 - 0.01, omega0=10.5), 200.0)
     >>> info = pk.viz.render_body(traj, 40.0, pathlib.Path(tempfile.mkdtemp()) / 'body.png', window_size=(160, 120))
-    >>> isinstance(info, pk.viz.AnimationInfo), info.times
+    >>> from phasekit.viz.animate import AnimationInfo
+    >>> isinstance(info, AnimationInfo), info.times
     (True, array([40.]))
     """
 
@@ -118,7 +117,7 @@ def _even(img: np.ndarray, block: int = 16) -> np.ndarray:
 
 
 def _write(frames, path: Path, fps: float) -> None:
-    from ..sweep.study import atomic_path
+    from ..io import atomic_path
 
     suffix = path.suffix.lower()
     with atomic_path(path) as tmp:
@@ -152,16 +151,19 @@ def check_movie_options(path, *, frames=96, fps=24.0, timing="body", gap_scale=1
     path = _check_path(path)
     check_int("frames", frames, minimum=1, maximum=10_000)
     check_positive("fps", fps, upper=240.0)
-    if _check_choice("timing", timing, TIMINGS) == "real" and scale is None:
+    if check_choice("timing", timing, TIMINGS) == "real" and scale is None:
         raise ParameterError("timing", "real needs `scale` (a pk.Scale giving the body's size)", timing)
-    _Style.make(gap_scale=gap_scale, camera=camera, panel=panel, window_size=window_size, scale=scale, title=None)
+    Style.make(gap_scale=gap_scale, camera=camera, panel=panel, window_size=window_size, scale=scale, title=None)
     _check_movie_extra(path)
 
 
 def _check_movie_extra(path: Path) -> None:
-    if path.suffix.lower() == ".mp4":
-        import importlib.util
+    """Every optional dependency of the output, checked before anything is simulated."""
+    import importlib.util
 
+    if importlib.util.find_spec("pyvista") is None:
+        raise PhasekitError(f'cannot draw {path}: 3-D drawing needs pyvista (pip install "phasekit[viz]")')
+    if path.suffix.lower() == ".mp4":
         missing = [m for m in MOVIE_EXTRA if importlib.util.find_spec(m) is None]
         if missing:
             raise PhasekitError(f"cannot write the MP4 {path}: it needs {', '.join(missing)} (pip install "
@@ -238,18 +240,18 @@ def animate(traj, path, frames: int = 96, *, fps: float = 24.0, t_span=None, tim
     frames = check_int("frames", frames, minimum=1, maximum=10_000)
     fps = check_positive("fps", fps, upper=240.0)
     span = _check_span(traj, t_span)
-    timing = _check_choice("timing", timing, TIMINGS)
-    style = _Style.make(gap_scale=gap_scale, camera=camera, panel=panel, window_size=window_size, scale=scale,
+    timing = check_choice("timing", timing, TIMINGS)
+    style = Style.make(gap_scale=gap_scale, camera=camera, panel=panel, window_size=window_size, scale=scale,
                         title=title)
     _check_movie_extra(path)
     times = _times(traj, frames, span, timing, scale)
     style, speed = _playback(style, scale, span, frames, fps, timing)
-    imgs = _frames(traj, times, style, span, progress)
+    imgs = render_frames(traj, times, style, span, progress)
     _write(imgs, path, fps)
     return AnimationInfo(str(path), len(imgs), times, tuple(imgs[0].shape[:2][::-1]), fps, speed, path.stat().st_size)
 
 
-def _playback(style: _Style, scale, span, frames: int, fps: float, timing: str) -> tuple[_Style, float | None]:
+def _playback(style: Style, scale, span, frames: int, fps: float, timing: str) -> tuple[Style, float | None]:
     """The playback speed of :func:`animate`'s movie relative to real time (None without a
     scale), and the style with it added to the title when ``timing`` is "real"."""
     speed = None
@@ -257,7 +259,7 @@ def _playback(style: _Style, scale, span, frames: int, fps: float, timing: str) 
         real_s = float(scale.to_real(span[1] - span[0], "time").to("s").magnitude)
         speed = real_s / (frames / fps)
     if timing == "real" and speed is not None:
-        style = _Style(style.gap_scale, style.camera, style.panel, style.window_size, style.scale,
+        style = Style(style.gap_scale, style.camera, style.panel, style.window_size, style.scale,
                        ((style.title + "\n") if style.title else "") + f"playback {speed:.3g}x real time")
     return style, speed
 
@@ -328,9 +330,9 @@ def film_strip(traj, path, frames: int = 6, *, t_span=None, times=None, columns:
         if times.size > 100 or times[0] < traj.t0 or times[-1] > traj.t:
             raise ParameterError("times", f"must be 1 to 100 times inside the run [{traj.t0:.10g}, {traj.t:.10g}]",
                                  times.tolist())
-    style = _Style.make(gap_scale=gap_scale, camera=camera, panel=None, window_size=window_size, scale=scale,
+    style = Style.make(gap_scale=gap_scale, camera=camera, panel=None, window_size=window_size, scale=scale,
                         title=None)
-    imgs = _frames(traj, times, style, (span[0], max(span[1], float(times[-1]))), progress=False)
+    imgs = render_frames(traj, times, style, (span[0], max(span[1], float(times[-1]))), progress=False)
     cols = len(imgs) if columns is None else check_int("columns", columns, minimum=1, maximum=100)
     rows = [np.hstack(imgs[i:i + cols] + [np.full_like(imgs[0], 255)] * (cols - len(imgs[i:i + cols])))
             for i in range(0, len(imgs), cols)]
@@ -404,8 +406,8 @@ def render_body(traj, t: float, path, *, scale=None, gap_scale: float = 1.0, win
     if not traj.t0 <= t <= traj.t:
         raise ParameterError("t", f"must lie in the run [{traj.t0:.10g}, {traj.t:.10g}]", t)
     path = _check_path(path, (".png",))
-    style = _Style.make(gap_scale=gap_scale, camera="follow", panel=None, window_size=window_size, scale=scale,
+    style = Style.make(gap_scale=gap_scale, camera="follow", panel=None, window_size=window_size, scale=scale,
                         title=title)
-    imgs = _frames(traj, np.array([t]), style, (traj.t0, traj.t), progress=False)
+    imgs = render_frames(traj, np.array([t]), style, (traj.t0, traj.t), progress=False)
     _write(imgs, path, 1.0)
     return AnimationInfo(str(path), 1, np.array([t]), tuple(imgs[0].shape[:2][::-1]), 0.0, None, path.stat().st_size)

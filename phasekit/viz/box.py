@@ -7,13 +7,11 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["ASPECT"]
-
 #: drawn box in VTK coordinates: Omega, theta, n spans
 ASPECT = (1.4, 1.0, 1.0)
 
 
-def _box(bounds, aspect=ASPECT):
+def bounding_box(bounds, aspect=ASPECT):
     lo = np.array(bounds[0::2], dtype=float)
     hi = np.array(bounds[1::2], dtype=float)
     span = np.where(hi > lo, hi - lo, 1.0)
@@ -25,7 +23,7 @@ def _box(bounds, aspect=ASPECT):
     return f
 
 
-def _inside_runs(P: np.ndarray, bounds) -> list[np.ndarray]:
+def inside_runs(P: np.ndarray, bounds) -> list[np.ndarray]:
     """The pieces of the polyline P (N, 3) inside the box, each cut exactly at the faces."""
     lo, hi = np.array(bounds[0::2]), np.array(bounds[1::2])
     tol = 1e-12 * (hi - lo)

@@ -16,10 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .._runtime.errors import PhasekitError
-from .box import ASPECT, _box
-
-__all__ = ["axes_caption", "tick_values"]
+from ..errors import PhasekitError
+from .box import ASPECT, bounding_box
 
 #: heights of the 3-D text, box units: tick values, axis titles, the glTF's title
 TEXT_SIZES = {"tick": 0.042, "title": 0.048, "scene_title": 0.05}
@@ -51,7 +49,7 @@ def tick_values(lo: float, hi: float, n: int = 5, gap: float = CORNER_GAP) -> np
     return v[(v >= lo + gap * (hi - lo) - tol) & (v <= hi + tol)]
 
 
-def _export(pl, data, html, gltf, title=None) -> list[str]:
+def export_scene(pl, data, html, gltf, title=None) -> list[str]:
     """Write the glTF and HTML exports: the cube axes replaced by 3-D text axes, the title as
     3-D text in the glTF only (the HTML page shows it as its header)."""
     out = []
@@ -125,7 +123,7 @@ def axes_caption(data, title=None) -> list[str]:
     >>> axes_caption(data, "demo")[0], axes_caption(data)[0].split(":")[0]
     ('demo', 'Omega [sqrt(g/b)]')
     """
-    from ..theory.surface import AXES
+    from ..scenes.scene import AXES
 
     lines = [title] if title else []
     for j, (name, unit) in enumerate(AXES):
@@ -185,9 +183,9 @@ def _add_axes_geometry(pl, bounds, yaw: float, side) -> None:
     lines, tick marks at round values with their values, and the titles with units."""
     import pyvista as pv
 
-    from ..theory.surface import AXES
+    from ..scenes.scene import AXES
 
-    f = _box(bounds)
+    f = bounding_box(bounds)
     lo = np.array(bounds[0::2], dtype=float)
     hi = np.array(bounds[1::2], dtype=float)
     for j, (name, unit) in enumerate(AXES):
@@ -210,7 +208,7 @@ def _add_axes_geometry(pl, bounds, yaw: float, side) -> None:
 def _annotate_gltf(path: Path, bounds, title=None) -> None:
     """Record the axes (name, unit, range, drawn span), the title and what glTF cannot hold in
     the file's ``asset.extras``."""
-    from ..theory.surface import AXES
+    from ..scenes.scene import AXES
 
     doc = json.loads(Path(path).read_text())
     extras = doc.setdefault("asset", {}).setdefault("extras", {})

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_positive
+from ..errors import ParameterError
 from .mesh import BODY_COLORS, body_mesh, decorations
 
 PATH_COLOR, G_PATH_COLOR, TABLE_COLOR = "#08519c", "#969696", "#f0f0f0"
@@ -28,7 +28,7 @@ CAMERAS = ("follow", "fixed")
 PANELS = ("none", "phase", "R")
 
 
-def _check_choice(name, value, choices):
+def check_choice(name, value, choices):
     if not isinstance(value, str) or value not in choices:
         raise ParameterError(name, f"must be one of {', '.join(choices)}", value)
     return value
@@ -48,7 +48,7 @@ def _check_window(value) -> tuple[int, int]:
 
 
 @dataclass(frozen=True)
-class _Style:
+class Style:
     """The drawing options shared by animate, film_strip and render_body (validated)."""
 
     gap_scale: float = 1.0
@@ -59,7 +59,7 @@ class _Style:
     title: str | None = None
 
     @classmethod
-    def make(cls, *, gap_scale, camera, panel, window_size, scale, title) -> "_Style":
+    def make(cls, *, gap_scale, camera, panel, window_size, scale, title) -> "Style":
         from ..core.units import Scale
 
         gap_scale = check_positive("gap_scale", gap_scale)
@@ -69,8 +69,8 @@ class _Style:
             raise ParameterError("scale", "must be a phasekit Scale such as pk.Scale('21.5 mm'), or None", scale)
         if title is not None and not isinstance(title, str):
             raise ParameterError("title", "must be a string or None", title)
-        return cls(gap_scale, _check_choice("camera", camera, CAMERAS),
-                   _check_choice("panel", "none" if panel is None else panel, PANELS), _check_window(window_size),
+        return cls(gap_scale, check_choice("camera", camera, CAMERAS),
+                   check_choice("panel", "none" if panel is None else panel, PANELS), _check_window(window_size),
                    scale, title)
 
 
@@ -109,10 +109,10 @@ class _Stage:
     """One off-screen plotter with the table, the body, the traced paths and the captions;
     :meth:`frame` moves them to a time and returns the image."""
 
-    def __init__(self, traj, style: _Style, span):
-        from .pv import _headless
+    def __init__(self, traj, style: Style, span):
+        from .pv import headless
 
-        _headless()
+        headless()
         import pyvista as pv
 
         self.pv, self.traj, self.style, self.units = pv, traj, style, _Units(style.scale, span)
@@ -255,16 +255,16 @@ class _Panel:
         return np.asarray(self.canvas.buffer_rgba())[..., :3].copy()
 
 
-def _frames(traj, times, style: _Style, span, progress: bool):
+def render_frames(traj, times, style: Style, span, progress: bool):
     """Render one image per time (the 3-D view, with the side panel to its right)."""
-    from ..sweep.study import progress as bar
+    from .._runtime.watch import progress_bar
 
     rows = traj.sample(times)
     stage = _Stage(traj, style, span)
     panel = None if style.panel == "none" else _Panel(traj, style.panel, span, style.window_size[1], style.scale)
     out = []
     try:
-        for i in bar(range(len(rows)), desc="frames", enabled=progress and len(rows) > 10):
+        for i in progress_bar(iterable=range(len(rows)), desc="frames", unit="it", progress=progress and len(rows) > 10):
             row = rows.iloc[i]
             img = stage.frame(row)
             if panel is not None:

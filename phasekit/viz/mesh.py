@@ -9,8 +9,6 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["BODY_COLORS", "body_mesh", "decorations"]
-
 #: alternate azimuthal sectors: the spin about the axis shows
 BODY_COLORS = ("#e6550d", "#fdd0a2")
 
@@ -42,13 +40,7 @@ def body_mesh(body, *, n_theta: int = 64, n_azimuth: int = 48):
     """
     import pyvista as pv
 
-    if hasattr(body, "outline"):  # an edged body's support traces only the rim; a compound's misses the joins
-        z, r = body.outline(max(2, n_theta // 3))
-    else:
-        th = np.linspace(0.0, np.pi, n_theta)
-        h, ht, _ = body.h(th)
-        z = ht * np.sin(th) - h * np.cos(th)
-        r = np.clip(h * np.sin(th) + ht * np.cos(th), 0.0, None)
+    z, r = body.outline(n_theta)  # an edged body's support traces only the rim, a compound's misses the joins
     az = np.linspace(0.0, 2 * np.pi, n_azimuth + 1)
     R, AZ = np.meshgrid(r, az, indexing="ij")
     pts = np.column_stack([(R * np.cos(AZ)).ravel(), (R * np.sin(AZ)).ravel(), np.repeat(z, az.size)])

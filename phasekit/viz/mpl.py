@@ -19,10 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import check_bool, check_choice, check_int
-
-__all__ = ["LABELS", "label", "plot_timeseries", "plot_events", "plot_section", "plot_phase", "plot_minima", "plain_log_ticks"]
+from ..errors import ParameterError
 
 #: axis labels: symbol and unit of every column of a sample or section table
 LABELS = {

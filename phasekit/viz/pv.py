@@ -17,11 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .._runtime.errors import ParameterError, PhasekitError
-from .box import ASPECT, _box, _inside_runs  # noqa: F401 (the studies' scenes draw in the same box)
-from .export import _export, axes_caption  # noqa: F401 (axes_caption: what an exported scene's caption says)
-
-__all__ = ["render_scene", "RenderInfo", "HTML_EXTRA", "axes_caption"]
+from ..errors import ParameterError, PhasekitError
+from .box import ASPECT, bounding_box, inside_runs  # noqa: F401 (the studies' scenes draw in the same box)
+from .export import axes_caption, export_scene  # noqa: F401 (axes_caption: what an exported scene's caption says)
 
 #: the optional packages the HTML export needs: ``pip install "phasekit[html]"`` (pyvista's
 #: export starts trame's server in-process, which needs nest_asyncio2 outside Jupyter)
@@ -56,7 +54,7 @@ class RenderInfo:
     >>> import tempfile, pathlib
     >>> data = pk.compute_scene(pk.Scene('prolate', 1.5, values=(12.0,), resolution=20))
     >>> info = pk.viz.render_scene(data, pathlib.Path(tempfile.mkdtemp()) / 'scene.png', window_size=(200, 150))
-    >>> isinstance(info, pk.viz.RenderInfo), pathlib.Path(info.path).name
+    >>> isinstance(info, pk.viz.pv.RenderInfo), pathlib.Path(info.path).name
     (True, 'scene.png')
     """
 
@@ -69,7 +67,7 @@ class RenderInfo:
 
 
 @contextlib.contextmanager
-def _quiet_vtk():
+def quiet_vtk():
     """VTK warnings off while drawing (they would go to stderr); errors still show."""
     from vtkmodules.vtkCommonCore import vtkLogger as logger
 
@@ -81,7 +79,7 @@ def _quiet_vtk():
         logger.SetStderrVerbosity(old)
 
 
-def _headless() -> None:
+def headless() -> None:
     """Before the first 3-D drawing: pyvista must be installed (it is the optional extra [viz]:
     VTK is ~580 MB), and without a display VTK's EGL window is picked before the first one is
     made (VTK otherwise tries X first and prints 'bad X server connection')."""
@@ -108,7 +106,7 @@ def _what(name: str) -> str:
     return "the PNG" if name == "path" else f"the {name} export"
 
 
-def _check_file(name: str, target, *, create: bool = False) -> Path:
+def check_file(name: str, target, *, create: bool = False) -> Path:
     """A file path of the argument's type (suffix) whose directory exists (``create``: or can
     be created) and is writable; nothing is written yet."""
     kinds = " or ".join(SUFFIXES[name])
@@ -151,7 +149,7 @@ def _probe(name: str, target: Path) -> None:
                                      f"{exc.strerror or exc})", str(target)) from None
 
 
-def _check_window_size(value) -> tuple[int, int]:
+def check_window_size(value) -> tuple[int, int]:
     lo, hi = WINDOW_RANGE
     what = f"must be two integers (width, height) in [{lo}, {hi}] pixels"
     if isinstance(value, (str, bytes, dict, set)) or not np.iterable(value):
@@ -254,25 +252,25 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
     >>> info.image_shape
     (150, 200, 3)
     """
-    from ..theory.surface import Scene, compute_scene
+    from ..scenes.scene import Scene, compute_scene
 
     path, window_size, camera = _checked_render(data, path, window_size, html, gltf, title, camera, off_screen)
     if isinstance(data, Scene):
         data = compute_scene(data)
     if data.bounds is None:
         raise ParameterError("data", "must be a Scene or what compute_scene returned", data)
-    _headless()
+    headless()
     import pyvista as pv
 
     off = (path is not None) if off_screen is None else bool(off_screen)
-    with _quiet_vtk():
+    with quiet_vtk():
         pl = pv.Plotter(off_screen=off, window_size=list(window_size))
         counts = _draw(pl, data, title, window_size)
         pl.camera_position = camera or CAMERAS[data.scene.branch]
         if path is None:
             return pl
         img = pl.screenshot(str(path), return_img=True)
-        exported = _export(pl, data, html, gltf, title)
+        exported = export_scene(pl, data, html, gltf, title)
         pl.close()
     return RenderInfo(str(path), counts, tuple(float(b) for b in data.bounds), tuple(img.shape), float(img.std()),
                       tuple(exported))
@@ -280,18 +278,18 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
 
 def _checked_render(data, path, window_size, html, gltf, title, camera, off_screen):
     """render_scene's arguments checked before anything is computed or drawn: (path, window_size, camera)."""
-    from ..theory.surface import Scene, SceneData
+    from ..scenes.scene import Scene, SceneData
 
     if not isinstance(data, (Scene, SceneData)):
         raise ParameterError("data", "must be a Scene or what compute_scene returned", data)
     if path is not None:
-        path = _check_file("path", path, create=True)
-    window_size = _check_window_size(window_size)
+        path = check_file("path", path, create=True)
+    window_size = check_window_size(window_size)
     for name, target in (("html", html), ("gltf", gltf)):
         if target is not None:
             if path is None:
                 raise ParameterError(name, "needs `path`: the exports are written with the PNG", str(target))
-            _check_file(name, target)
+            check_file(name, target)
     if title is not None and not isinstance(title, str):
         raise ParameterError("title", "must be a string or None", title)
     camera = _check_camera(camera)
@@ -325,7 +323,7 @@ def _draw(pl, data, title, window_size) -> dict:
     import pyvista as pv
 
     show = data.scene.show
-    f = _box(data.bounds)
+    f = bounding_box(data.bounds)
     n_lo, n_hi = data.bounds[4], data.bounds[5]
     pl.set_background("white")
     counts = {}
@@ -345,7 +343,7 @@ def _draw(pl, data, title, window_size) -> dict:
     if "trajectories" in show:
         counts["trajectories"] = 0
         for k, tr in enumerate(data.trajectories):
-            for run in _inside_runs(tr, data.bounds):
+            for run in inside_runs(tr, data.bounds):
                 line = pv.lines_from_points(f(run))
                 counts["trajectories"] += line.n_points
                 pl.add_mesh(line, color=COLORS[k % len(COLORS)], line_width=2.5)
@@ -361,7 +359,7 @@ def _draw(pl, data, title, window_size) -> dict:
             if len(P):
                 pl.add_points(f(P), color=color, point_size=size, render_points_as_spheres=True)
     if "axes" in show:
-        from ..theory.surface import AXES
+        from ..scenes.scene import AXES
 
         titles = [f"{name} [{unit}]" for name, unit in AXES]
         pl.show_bounds(bounds=[0, ASPECT[0], 0, ASPECT[1], 0, ASPECT[2]], axes_ranges=list(data.bounds),

@@ -13,8 +13,6 @@ neutral, never as stable. A family's stability (:class:`phasekit.steady.families
 
 from __future__ import annotations
 
-__all__ = ["WORDS", "COLOURS", "state_word", "family_word", "law_text", "legend_label"]
-
 #: the words, in the order of a legend
 WORDS = ("stable", "neutral", "undecided", "unstable")
 #: one colour per word (unknown: a family whose stability was not computed)
@@ -24,7 +22,7 @@ COLOURS = {"stable": "#1a9850", "neutral": "#2c7bb6", "undecided": "#de77ae", "u
 
 def _rolling(law) -> bool:
     """Whether stability under ``law`` (a FrictionLaw) is that of the rolling field."""
-    return bool(getattr(law, "has_rolling_mode", False))
+    return law is not None and bool(law.has_rolling_mode)
 
 
 def state_word(fp) -> str:

@@ -6,11 +6,10 @@ and scenes."""
 import math
 
 import phasekit as pk
+from phasekit.bodies import Egg
 from phasekit.bodies.body import uniform_mass_properties
-from phasekit.bodies.egg import Egg
 from phasekit.bodies.spheroid import TIPPE_TOP_OFFSET_MAX
-from phasekit.steady.fixedpoints import fixed_points
-from phasekit.steady.precessions import horizontal_state, vertical_state
+from phasekit.steady import fixed_points, horizontal_state, vertical_state
 from phasekit.thresholds import Definition, find_threshold
 
 import casadi as ca

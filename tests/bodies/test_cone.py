@@ -7,7 +7,7 @@ Euler and vector charts agree on it."""
 import math
 
 import phasekit as pk
-from phasekit.bodies.body import Body
+from phasekit.bodies import Body
 from phasekit.bodies.edged import FLAT_ANGLE
 
 import numpy as np
@@ -111,7 +111,7 @@ def test_cones_share_a_compiled_structure_per_contact_and_describe_themselves():
 
 
 def test_the_outline_drawn_is_the_base_and_the_side():
-    z, r = Cone(2.0).outline(5)
+    z, r = Cone(2.0).outline(15)
     assert (z[0], r[0], z[-1], r[-1]) == (-0.5, 0.0, 1.5, 0.0)  # the base's centre, the tip
     assert np.all(np.abs((z + 0.5) / 2.0 + r - 1.0)[5:] < 1e-15) and np.all(z[:5] == -0.5)
 

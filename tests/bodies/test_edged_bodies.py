@@ -6,9 +6,9 @@ a concave profile, and the ends of its valid range are stated."""
 import math
 
 import phasekit as pk
-from phasekit.bodies.body import Body
+from phasekit.bodies import Body
+from phasekit.bodies.by_name import make_body
 from phasekit.bodies.edged import FLAT_ANGLE, EdgedBody, Limit
-from phasekit.core.model import make_body
 
 import casadi as ca
 import numpy as np
@@ -147,6 +147,6 @@ def test_disks_share_one_compiled_structure_and_round_trip_through_their_descrip
 
 
 def test_the_outline_drawn_is_the_faces_the_rims_and_the_side():
-    z, r = pk.Disk(0.4).outline(5)
+    z, r = pk.Disk(0.4).outline(15)
     assert (z[0], r[0], z[-1], r[-1]) == (-0.2, 0.0, 0.2, 0.0)  # the centres of the faces, on the axis
     assert np.all((np.abs(np.abs(z) - 0.2) < 1e-15) | (r == 1.0)) and {(-0.2, 1.0), (0.2, 1.0)} <= set(zip(z, r))

@@ -4,9 +4,10 @@ y(x) = (B/2) sqrt((L^2 - 4x^2) / (L^2 + 8wx + 4w^2)) directly, not from phasekit
 parametrisation, so that the two can disagree."""
 
 
-from phasekit._runtime.errors import ParameterError
-from phasekit.bodies.egg import W_GUARANTEED, Egg, clenshaw, mass_properties
-from phasekit.bodies.spheroid import Spheroid
+from phasekit import ParameterError
+from phasekit.bodies import Egg, Spheroid
+from phasekit.bodies.egg import mass_properties
+from phasekit.bodies.egg_shape import W_GUARANTEED, clenshaw
 
 import casadi as ca
 import numpy as np
@@ -90,7 +91,7 @@ def test_symbolic_clenshaw_equals_numpy_chebval():
 
 def test_height_translates_to_heyoka():
     hy = pytest.importorskip("heyoka")
-    from phasekit._runtime.translate import to_heyoka
+    from phasekit.core.engines.translate import to_heyoka
 
     egg = Egg(1.3, 0.02)
     c, sh = ca.SX.sym("c"), ca.SX.sym("shape", egg.n_shape)
@@ -256,13 +257,13 @@ def test_to_dict_repr_describe():
 def test_construction_builds_no_compiled_function_of_its_own():
     """What keeps making an egg fast (~0.1 s): a new egg of a degree already seen computes its own
     fit, quadrature and convexity check, and builds no CasADi function and hashes no structure."""
-    from phasekit.bodies import body, egg
+    from phasekit.bodies import body, egg, egg_shape
 
     first = Egg(1.2, 0.07)  # builds the degree's CasADi functions once
     compiled = (dict(body._THETA_FUNCS), dict(body._SLOPE_FUNCS), dict(egg._STRUCTURE_KEYS))
-    fits = egg._fit.cache_info().misses
+    fits = egg_shape.fit_support.cache_info().misses
     for k in range(3):  # new (a, w) each time: fit, quadrature and convexity check
         new = Egg(1.2345 + 0.001 * k, 0.0678)
         assert new.degree == first.degree and new.structure_key == first.structure_key
-    assert egg._fit.cache_info().misses == fits + 3  # each egg fitted its own support function
+    assert egg_shape.fit_support.cache_info().misses == fits + 3  # each egg fitted its own support function
     assert (body._THETA_FUNCS, body._SLOPE_FUNCS, egg._STRUCTURE_KEYS) == compiled

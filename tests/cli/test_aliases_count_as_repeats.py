@@ -5,7 +5,7 @@ names of every command (argparse would keep the last silently)."""
 import itertools
 
 from phasekit import cli
-from phasekit.cli.parser import _build_parser, _refuse_repeats
+from phasekit.cli.parser import build_parser, refuse_repeats
 
 import pytest
 
@@ -24,7 +24,7 @@ VALUES = {"chart": ("euler", "vector")}
 
 def alias_pairs():
     """(command, first name, second name, values) for every option with several long names."""
-    parser = _build_parser()
+    parser = build_parser()
     for command, p in parser.commands.items():
         for action in p._actions:
             names = [s for s in action.option_strings if s.startswith("--")]
@@ -59,11 +59,11 @@ def test_both_names_of_one_option_are_a_repeat(command, first, second, values):
 @pytest.mark.parametrize("command, first, second, values", PAIRS)
 def test_each_name_alone_is_taken(command, first, second, values):
     """Parsed (no movie is drawn), and a simulate run uses the chart given under either name."""
-    parser = _build_parser()
+    parser = build_parser()
     for flag in (first, second):
         argv = [*BASE[command], flag, values[1]]
         args = parser.parse_args(argv)
-        _refuse_repeats(parser.commands[command], argv)
+        refuse_repeats(parser.commands[command], argv)
         assert args.chart == values[1]
     if command == "simulate":
         code, out, err = run_cli(*BASE[command], second, values[1], "--json")

@@ -113,3 +113,32 @@ def test_the_face_comes_down_at_the_flat_angle_typed():
     assert code == 0 and d["status"] == "stopped" and d["events"][-1]["kind"] == "face down"
     assert d["state_end"]["theta"] == pytest.approx(math.radians(1.0), rel=1e-9)
     assert d["model"]["flat_angle"] == pytest.approx(math.radians(1.0), rel=1e-15)
+
+
+TOY = ["simulate", "--body", "disk", "--radius", "37.5 mm", "--thickness", "12 mm", "--mu", "0.3", "--theta0", "30 deg",
+       "--mass", "416 g"]
+
+
+def test_eulers_disk_toy_spins_in_place_from_the_cli():
+    """The toy (75 mm across, 12 mm thick, 416 g) started spinning in place at 30 deg: on its steady
+    branch G stays at rest and the tilt holds (exact Coulomb friction, no loss). A thin disk so
+    started precesses at the classical rate of a uniform disk rolling with its centre at rest,
+    Omega^2 = 4 g / (a sin(alpha)), alpha the angle between disk and table (Moffatt, Nature 2000)."""
+    code, out, err = run_cli(*TOY, "--spinning-in-place", "--t-end", "2 s", "--json")
+    d = strict_json(out)
+    assert code == 0 and d["status"] == "completed" and "leaves the table" not in err
+    assert abs(d["theta_change"]) < 1e-9 and abs(d["pose_end"]["X"]) < 1e-9 and abs(d["pose_end"]["Y"]) < 1e-9
+    code, out, err = run_cli("simulate", "--body", "disk", "--thickness", "0", "--mu", "0.3", "--theta0", "30 deg",
+                             "--spinning-in-place", "--t-end", "5", "--json")
+    d = strict_json(out)
+    assert code == 0 and d["state_end"]["Omega"] == pytest.approx(math.sqrt(4 / math.sin(math.radians(30))), rel=1e-12)
+
+
+def test_a_start_that_leaves_the_table_at_once_warns():
+    """Spun about the vertical at 30 deg with G at rest, the toy's reaction is negative at t = 0: the
+    run says so on stderr, in one line, and still gives its result."""
+    code, out, err = run_cli(*TOY, "--spin-about-vertical", "5 rev/s", "--t-end", "0.2 s", "--json")
+    d = strict_json(out)
+    warned = [ln for ln in err.splitlines() if "leaves the table at once" in ln]
+    assert code == 0 and d["events"][0]["t"] == 0.0 and d["events"][0]["kind"] == "lift-off" and len(warned) == 1
+    assert warned[0].startswith("phasekit: warning: ")

@@ -5,11 +5,14 @@ the flag as typed, its range and the value typed."""
 
 import math
 
+import phasekit as pk
 from phasekit import cli
+from phasekit.cli.options import DISSIPATION_FLAGS
 from phasekit.cli.params import _law_of
-from phasekit.cli.parser import DISSIPATION_FLAGS, _build_parser
-from phasekit.friction.dissipation import AirDrag, RollingResistance, SpinFriction
+from phasekit.cli.parser import build_parser
+from phasekit.friction import AirDrag, RollingResistance, SpinFriction
 
+import numpy as np
 import pytest
 
 from ..helpers import run_cli, strict_json, usage_error
@@ -134,10 +137,10 @@ def test_each_flag_builds_its_law_and_zero_leaves_it_out():
 
 def _parsed(*args):
     """The simulate arguments after the CLI's conversion of values with units."""
-    from phasekit.cli.inputs import _apply_units
+    from phasekit.cli.inputs import apply_units
 
-    args = _build_parser().parse_args(["simulate", "--a", "1.5", "--mu", "0.1", "--state", *"000010", *args])
-    _apply_units(args)
+    args = build_parser().parse_args(["simulate", "--a", "1.5", "--mu", "0.1", "--state", *"000010", *args])
+    apply_units(args)
     return args
 
 
@@ -208,3 +211,24 @@ def test_the_steady_state_commands_take_the_laws_into_their_model():
               "--max-wall", "300")
     assert d["model"]["dissipation"] == [rolling, {"law": "air-drag", "rotation": 0.001, "rotation_quadratic": 0.0,
                                                    "translation": 0.0, "translation_quadratic": 0.0}]
+
+
+def test_a_dissipative_run_that_ends_at_its_start_has_an_energy_budget():
+    """A flat disk spun about the vertical at a tilt lifts off at t = 0 (R < 0 there): the JSON
+    still carries the budget, nothing lost, its energy that of the start (1/2 I w^2 + M g z_G),
+    and the text output its energy line."""
+    args = ["simulate", "--body", "disk", "--thickness", "0", "--mu", "0.5", "--rolling-resistance", "0.02",
+            "--theta0", "0.5", "--spin-about-vertical", "4", "--t-end", "40"]
+    code, out, err = run_cli(*args, "--json")
+    d = strict_json(out)
+    assert code == 0 and d["events"][0]["t"] == 0.0 and d["events"][0]["kind"] == "lift-off"
+    b = d["energy_budget"]
+    assert b["lost"] == 0.0 and b["energy_start"] == b["energy_end"]
+    body = pk.Disk(0.0)
+    # uniform thin disk of unit radius: A = 1/4, C = 1/2 (units M b^2); spin about the vertical at tilt theta
+    theta, w = 0.5, 4.0
+    A, C = body.A, body.C
+    kinetic = 0.5 * (A * np.sin(theta) ** 2 + C * np.cos(theta) ** 2) * w ** 2
+    assert b["energy_start"] == pytest.approx(kinetic + body.h(theta)[0], rel=1e-12)
+    code, text, _ = run_cli(*args)
+    assert code == 0 and "energy:" in text

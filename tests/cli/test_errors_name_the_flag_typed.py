@@ -74,7 +74,7 @@ def test_unknown_paper_start_is_named():
 
 
 def _foreign_flags():
-    [sub] = [a for a in cli._build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
+    [sub] = [a for a in cli.build_parser()._actions if isinstance(a, argparse._SubParsersAction)]
     flags = {name: {f for f in p._option_string_actions if f.startswith("--")} for name, p in sub.choices.items()}
     return [(name, flag) for name in flags for flag in sorted(set().union(*flags.values()) - flags[name])]
 
@@ -297,3 +297,11 @@ def test_extreme_values_give_one_json_error_on_stdout_and_one_line_on_stderr(fla
     d = strict_json(out)
     assert code == 2 and d["status"] == "error" and d["parameter"] == flag
     assert err.strip() == f"phasekit: error: {d['message']}" and f"got {float(value)!r}" in d["message"]
+
+
+@pytest.mark.parametrize("value", ["41 rev/s", "11", "0.5 x"])
+def test_a_repeated_value_names_its_flag_even_with_a_space(value):
+    """argparse reports the stray value in one string of all the extras; the flag is found from
+    the value as typed, so a value with a space is found too."""
+    msg = usage_error(["simulate", "--a", "1.5", "--mu", "0.1", "--gyroscopic", "--omega0", "41 rev/s", value], "--omega0")
+    assert f"unrecognized arguments: {value} (a value too many after --omega0, which takes one value)" in msg

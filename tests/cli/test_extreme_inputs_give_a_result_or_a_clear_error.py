@@ -41,7 +41,7 @@ def test_a_result_or_one_clear_line(args):
     d = strict_json(out)
     if code == 2:
         assert err.count("\n") == 1 and d["parameter"] in args
-        assert all(f in args or f in cli._build_parser().known_flags
+        assert all(f in args or f in cli.build_parser().known_flags
                    for f in re.findall(r"--[A-Za-z][\w-]*", d["message"]))
     else:
         assert code in (0, 1) and (code == 0) == (d.get("status") != "failed")  # (gyroscopic has no status)

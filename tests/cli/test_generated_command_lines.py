@@ -158,7 +158,7 @@ def run_main(argv):
 
 
 def flags_of(command: str) -> set[str]:
-    parser = cli._build_parser()
+    parser = cli.build_parser()
     return set(parser.known_flags)
 
 

@@ -64,7 +64,7 @@ def test_a_step_budget_on_cvodes_and_idas_holds(backend, budget):
 
 
 def test_what_a_step_is_is_stated_and_taylor_stops_at_the_budget_exactly():
-    help_text = " ".join(cli._build_parser().commands["simulate"].format_help().split())
+    help_text = " ".join(cli.build_parser().commands["simulate"].format_help().split())
     assert "CVODES/IDAS internal steps" in help_text and "a chunk that would pass the budget is not taken" in help_text
     code, out, _ = run_cli(*SIM, "--backend", "taylor", "--max-steps", "20", "--json")
     assert strict_json(out)["n_steps"] == 20  # the Taylor method stops at the budget exactly

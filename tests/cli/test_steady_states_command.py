@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from ..generated_inputs import generated, st
-from ..helpers import run_cli, strict_json
+from ..helpers import run_cli, strict_json, usage_error
 
 
 def test_cli_steady_states_json_and_bad_input():
@@ -59,19 +59,21 @@ def _draw_structure_argv(draw):
 @generated(_structure_argv, max_examples=40, deadline=None, derandomize=True, suppress_health_check="all")
 def test_generated_steady_states_command_lines_end_in_a_result_or_one_line(argv):
     """Every generated command line gives strict JSON: a structure (ends ordered and of the three
-    kinds, finite samples) with exit 0, or an error naming one of the flags typed with exit 2."""
+    kinds, and switches on the tippe top with its stem, finite samples) with exit 0, or an error
+    naming one of the flags typed with exit 2."""
     code, out, err = run_cli(*argv)
     d = json.loads(out, parse_constant=lambda name: (_ for _ in ()).throw(ValueError(name)))
     if code == 0:
         for b in d["branches"]:
             assert b["ends"][0]["theta"] < b["ends"][1]["theta"]
-            assert {e["kind"] for e in b["ends"]} <= {"pole", "static", "infinite-spin"}
+            kinds = {"pole", "static", "infinite-spin"} | ({"switch"} if argv[2] == "tippe-top" else set())
+            assert {e["kind"] for e in b["ends"]} <= kinds
             assert all(np.isfinite([s["theta"], s["Omega"], s["n"]]).all() for s in b["samples"])
         assert d["signature"] == " | ".join(b["label"] for b in d["branches"]) or d["signature"] == "none"
     else:
         from phasekit import cli
 
-        flags = cli._build_parser().commands["steady-states"]._option_string_actions
+        flags = cli.build_parser().commands["steady-states"]._option_string_actions
         # the flag typed, or a required one left out (e.g. --a for a spheroid)
         assert code == 2 and d["status"] == "error" and d["parameter"] in flags, (argv, d)
         required = {"spheroid": "--a", "tippe-top": "--offset"}.get(argv[argv.index("--body") + 1])
@@ -125,3 +127,21 @@ def test_the_report_keeps_its_wall_budget():
     assert d["status"] == "failed" and "max_wall = 1e-06 s" in d["reason"] and "states" not in d
     with pytest.raises(pk.ParameterError, match="`max_wall`"):
         steady_structure_report(body=pk.Spheroid(1.5), mu=0.1, max_wall=0.0)
+
+
+def test_steady_states_and_fixed_points_take_lengths_and_rates_with_units():
+    """--stem-length "10 mm" with --size "12.5 mm" is the stem of 0.8 ball radii; --omega0 in rev/s
+    with --size is 2 pi f sqrt(b/g) (the horizontal fixed point's Omega); without --size a value with units is refused naming its flag."""
+    import math
+
+    top = ["--body", "tippe-top", "--offset", "0.3", "--A", "0.38", "--C", "0.4", "--mu", "0.3", "--json"]
+    code, out, _ = run_cli("steady-states", *top, "--stem-length", "10 mm", "--size", "12.5 mm")
+    code_plain, plain, _ = run_cli("steady-states", *top, "--stem-length", "0.8")
+    assert code == 0 and code_plain == 0
+    a, b = strict_json(out), strict_json(plain)
+    assert a["signature"] == b["signature"] and a["branches"] == b["branches"]
+    usage_error(["steady-states", *top[:-1], "--stem-length", "10 mm"], "--stem-length")
+    code, out, _ = run_cli("fixed-points", "--a", "1.5", "--mu", "0.1", "--omega0", "41 rev/s", "--size", "21.5 mm", "--json")
+    omega = 2 * math.pi * 41 * math.sqrt(0.0215 / 9.81)  # g as the help says: 9.81 m/s^2 by default
+    [horizontal] = [f for f in strict_json(out)["fixed_points"] if f["kind"] == "horizontal"]
+    assert code == 0 and horizontal["state"]["Omega"] == pytest.approx(omega, rel=1e-12)

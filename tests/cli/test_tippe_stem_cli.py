@@ -28,6 +28,14 @@ def test_the_issues_command_ends_on_the_stem():
     assert (d["model"]["stem_length"], d["model"]["stem_radius"]) == (0.375, 0.2)
     kinds = [e["kind"] for e in d["events"]]
     assert "stem touches" in kinds and "ball touches" not in kinds[kinds.index("stem touches"):]
+    # the summary says where the contact went and that the axis turned over, in words true for a top
+    [touch] = [e for e in d["events"] if e["kind"] == "stem touches"]
+    assert d["passages"][-1] == f"ball -> stem at t = {touch['t']:.6g}" and d["theta_change"] > 2.7
+    code, text, _ = run_cli(*TOP, "--stop-at", "none", "--t-end", "70")
+    lines = text.splitlines()
+    assert code == 0 and f"the contact passed ball -> stem at t = {touch['t']:.6g}" in lines
+    assert any(ln.startswith("theta grew by ") and "(the axis passed the horizontal)" in ln for ln in lines)
+    assert not any("sank" in ln or "rose" in ln for ln in lines)
 
 
 def test_the_stem_flags_take_units_with_size_and_default_to_the_commercial_top():

@@ -46,7 +46,7 @@ def test_version_flag():
 
 
 def test_version_flag_help_says_json():
-    assert "JSON" in json.dumps(cli._build_parser().format_help())
+    assert "JSON" in json.dumps(cli.build_parser().format_help())
 
 
 @pytest.mark.parametrize("body, rate", [(["--a", "1.5"], ["--omega0", "1e6"]), (["--a", "0.6"], ["--n0", "1e8"]),
@@ -59,7 +59,31 @@ def test_the_gyroscopic_solution_takes_the_rates_its_help_states(body, rate):
     assert all(np.isfinite(d["theta"])) and all(np.isfinite(d["Omega"]))
     assert d["theta"][0] == float(theta0[1]) and d["theta"][-1] != d["theta"][0]  # it rises, slowly
     # beyond the range --help states: refused, naming it
-    help_text = cli._build_parser().commands["gyroscopic"].format_help()
+    help_text = cli.build_parser().commands["gyroscopic"].format_help()
     assert "1e12" in help_text
     err = _refused([*GYRO, *body, rate[0], "1e13", *theta0, "--json"], rate[0])
     assert "1e+12" in err
+
+
+def _help_examples(text: str) -> list[str]:
+    """The command lines of a help text's examples, continuation lines joined."""
+    body = text.split("examples:", 1)[1]
+    joined = body.replace("\\\n", " ")
+    return [ln.strip() for ln in joined.splitlines() if ln.strip().startswith("phasekit ")]
+
+
+def test_every_help_example_is_one_command_that_parses():
+    """Each example of `phasekit --help` and of its commands' help is one command line (none runs
+    into the next) that the parser accepts as written."""
+    import shlex
+
+    parser = cli.build_parser()
+    examples = _help_examples(parser.format_help()) + _help_examples(parser.commands["animate"].format_help())
+    assert len(examples) >= 10
+    for text in (parser.format_help(), parser.commands["animate"].format_help()):
+        for raw in text.split("examples:", 1)[1].splitlines():  # a lost line break leaves a gap
+            assert "   " not in raw.strip() and len(raw) <= 110, raw
+    for line in examples:
+        words = shlex.split(line)
+        assert words.count("phasekit") == 1, line
+        parser.parse_args(words[1:])  # raises (a UsageError) on a line that does not parse

@@ -51,7 +51,9 @@ def text(site: Path, page: str) -> str:
 
 
 def plain(html: str) -> str:
-    """What a reader sees: the page without its tags."""
+    """What a reader sees: the page without its tags, block elements (a term and its description,
+    paragraphs, cells) apart as on the screen."""
+    html = re.sub(r"</?(?:p|dt|dd|li|div|td|th|tr|h\d)\b[^>]*>", "\n", html)
     return unescape(re.sub(r"<[^>]+>", "", html))
 
 
@@ -396,7 +398,7 @@ def test_guide_python_blocks_run(code):
 
 
 @pytest.mark.parametrize("module", ["phasekit.core.sections", "phasekit.sweep.ensemble", "phasekit.viz.mpl", "phasekit.theory.paper",
-                                    "phasekit.theory.surface", "phasekit.core.units"])
+                                    "phasekit.scenes.scene", "phasekit.core.units"])
 def test_docstring_examples_run(module):
     mod = importlib.import_module(module)
     res = doctest.testmod(mod, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)

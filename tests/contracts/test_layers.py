@@ -1,6 +1,8 @@
 """The architecture as it is checked: subpackages in one layer order (an import-linter contract in
-pyproject.toml that names every subpackage), a top level of a few modules, modules of one idea
-(at most 600 lines), short functions, and no import cycle among the modules."""
+pyproject.toml that names every subpackage and the public errors module), a top level of a few
+modules, modules of one idea (at most 500 lines), short functions (at most 60 lines of code), the
+docs extension under the same gates, no import cycle among the modules, no private name imported
+across a package boundary (and a handful within one), and no probe of a body's capabilities."""
 
 from __future__ import annotations
 
@@ -35,8 +37,9 @@ def _lint_imports(cwd: Path) -> subprocess.CompletedProcess:
                           timeout=300)
 
 
-def test_the_layers_contract_names_every_subpackage_once():
-    subpackages = sorted(f"phasekit.{p.name}" for p in PACKAGE.iterdir() if (p / "__init__.py").is_file())
+def test_the_layers_contract_names_every_subpackage_and_the_errors_once():
+    subpackages = sorted([f"phasekit.{p.name}" for p in PACKAGE.iterdir() if (p / "__init__.py").is_file()]
+                         + ["phasekit.errors"])
     listed = _layer_packages()
     assert sorted(listed) == subpackages and len(set(listed)) == len(listed)
     assert _contract()["type"] == "layers"
@@ -63,13 +66,18 @@ def _modules() -> list[Path]:
     return sorted(PACKAGE.rglob("*.py"))
 
 
+def _gated() -> list[Path]:
+    """The package and the docs extension: both under the size gates."""
+    return _modules() + sorted((ROOT / "docs" / "_ext").rglob("*.py"))
+
+
 def test_the_top_level_holds_at_most_eight_modules():
     top = [p.name for p in PACKAGE.glob("*.py") if p.name not in ("__init__.py", "__main__.py")]
     assert len(top) <= 8, top
 
 
-def test_no_module_over_600_lines():
-    long = {str(p.relative_to(ROOT)): n for p in _modules() if (n := len(p.read_text().splitlines())) > 600}
+def test_no_module_over_500_lines():
+    long = {str(p.relative_to(ROOT)): n for p in _gated() if (n := len(p.read_text().splitlines())) > 500}
     assert long == {}
 
 
@@ -84,13 +92,71 @@ def code_lines(lines: list[str], fn) -> int:
                if ln not in doc and (t := lines[ln - 1].strip()) and not t.startswith("#"))
 
 
-def test_no_function_over_80_lines_of_code():
+def test_no_function_over_60_lines_of_code():
     long = []
-    for f in _modules():
+    for f in _gated():
         lines = f.read_text().splitlines()
         long += [f"{f.relative_to(ROOT)}:{n.name} ({code_lines(lines, n)})" for n in ast.walk(ast.parse("\n".join(lines)))
-                 if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef)) and code_lines(lines, n) > 80]
+                 if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef)) and code_lines(lines, n) > 60]
     assert long == []
+
+
+def _module_name(f: Path) -> str:
+    rel = f.relative_to(ROOT).with_suffix("")
+    return ".".join(rel.parts[:-1] if f.name == "__init__.py" else rel.parts)
+
+
+def _is_private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
+
+
+def private_imports() -> tuple[list[str], list[str]]:
+    """Every name starting with one underscore that a module of phasekit imports from another
+    module (imports inside functions included): (across a package boundary, within a package).
+    A module's package is the folder it is in; the package of an ``__init__.py`` is its own."""
+    across, within = [], []
+    for f in _modules():
+        m = _module_name(f)
+        pkg = m if f.name == "__init__.py" else m.rsplit(".", 1)[0]
+        for n in ast.walk(ast.parse(f.read_text())):
+            if not isinstance(n, ast.ImportFrom) or not (n.level or (n.module or "").startswith("phasekit")):
+                continue
+            parts = pkg.split(".")
+            base = ".".join(parts[: len(parts) - n.level + 1] + ([n.module] if n.module else [])) if n.level else n.module
+            home = base if (ROOT / Path(*base.split(".")) / "__init__.py").is_file() else base.rsplit(".", 1)[0]
+            for a in n.names:
+                if _is_private(a.name):
+                    (within if home == pkg else across).append(f"{m}: from {base} import {a.name}")
+    return across, within
+
+
+def test_no_private_name_is_imported_across_packages_and_few_within_one():
+    across, within = private_imports()
+    assert across == []
+    assert len(within) <= 10, within
+
+
+#: what a body is asked for: a probe of an attribute of one of these is a capability probe
+_BODY_WORDS = re.compile(r"\b(body|bodies|support|whole|part)\b")
+
+
+def body_probes(text: str) -> list[str]:
+    """The ``hasattr``/``getattr`` calls of a module's source whose object names a body."""
+    return [f"{n.lineno}: {ast.get_source_segment(text, n)}" for n in ast.walk(ast.parse(text))
+            if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id in ("hasattr", "getattr")
+            and n.args and _BODY_WORDS.search(ast.get_source_segment(text, n.args[0]) or "")]
+
+
+def test_no_module_probes_a_body_for_a_capability():
+    """The body contract (phasekit.bodies.Body) declares every capability with a default: the
+    library asks a body, never ``hasattr``/``getattr`` it."""
+    probes = [f"{f.relative_to(ROOT)}:{p}" for f in _modules() for p in body_probes(f.read_text())]
+    assert probes == []
+
+
+def test_a_capability_probe_is_seen():
+    text = "def f(model, part):\n    return getattr(model.body, 'limits', ()), hasattr(part.support, 'theta_range')\n"
+    assert len(body_probes(text)) == 2 and body_probes("def f(args):\n    return getattr(args, 'out', None)\n") == []
 
 
 def _import_graph() -> dict[str, set[str]]:

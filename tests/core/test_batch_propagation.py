@@ -8,8 +8,8 @@ import dataclasses
 from dataclasses import replace
 
 import phasekit as pk
-from phasekit.core import engines
-from phasekit.core.batch import BatchStats, simulate_batch
+from phasekit.core import engines, simulate_batch
+from phasekit.core.batch import BatchStats
 from phasekit.core.system import declare, watched
 from phasekit.thresholds import (
     Definition,
@@ -28,9 +28,9 @@ def test_an_egg_runs_on_the_batch_engine_compiled_as_the_scalar_one_with_the_sam
     rise = pk.Event("theta", 0.1, direction=-1, name="rise-complete")
     system = declare(model, stop_at="jump", events=[rise])
     flow = dataclasses.replace(system.flow(pk.core.Mode.SLIDING), monitor=None)
-    cflow = model.compile_flow(flow, watched(system, pk.core.Mode.SLIDING, engines.TaylorEngine))
-    scalar, _, _ = engines.TaylorEngine(1e-9).integrator(cflow, len(model.p))
-    batch, _ = engines.TaylorBatchEngine(1e-9, 8).integrator(cflow, len(model.p))  # simulate_batch's lanes
+    cflow = model.compile_flow(flow, watched(system, pk.core.Mode.SLIDING, engines.taylor.TaylorEngine))
+    scalar, _, _ = engines.taylor.TaylorEngine(1e-9).integrator(cflow, len(model.p))
+    batch, _ = engines.batch.TaylorBatchEngine(1e-9, 8).integrator(cflow, len(model.p))  # simulate_batch's lanes
     assert scalar.compact_mode and batch.compact_mode
     starts = [pk.gyroscopic_start(egg, np.pi / 2 - 0.01, omega0=w) for w in (6.0, 12.0, 20.0)]
     kw = dict(events=[rise], track_minima=False, dense=False)

@@ -4,7 +4,7 @@ and is held by spin friction; a tippe top spun at 30 rev/s inverts and then come
 """
 
 import phasekit as pk
-from phasekit.core.starts import to_chart, vertical_spin_start
+from phasekit.core import to_chart, vertical_spin_start
 
 import numpy as np
 import pytest

@@ -55,3 +55,28 @@ def test_a_program_hears_of_a_compilation_through_the_logger(tmp_path, monkeypat
     said = [r.getMessage() for r in caplog.records if r.name.startswith("phasekit")]
     assert said and said[0].startswith("compiling the Taylor integrator") and said[-1].startswith("compiled in ")
     assert np.isfinite(float(said[-1].split()[2]))
+
+
+def test_notices_of_compilations_in_two_threads_keep_a_line_each(monkeypatch, capsys):
+    """Two compilations at once (the background one of a run's other mode beside the first) write
+    whole lines: none shares a line with the other's."""
+    import threading
+    import time
+
+    monkeypatch.setenv("PHASEKIT_COMPILE_NOTICE", "0")
+    go = threading.Barrier(8)
+
+    def build():
+        go.wait()
+        time.sleep(0.05)
+        return object()
+
+    threads = [threading.Thread(target=cache._announced, args=(build, None, f"part {k}")) for k in range(8)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines) == 16
+    assert all(ln.count("phasekit:") == 1 and (ln.startswith("phasekit: compiling part ")
+                                               or ln.startswith("phasekit: compiled in ")) for ln in lines), lines

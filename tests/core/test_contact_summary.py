@@ -1,6 +1,6 @@
-"""A run says how it held the table: when it first stuck, how much of it rolled without slip,
-how far its axis rose, and, when it ends rolling, that the answer rests on pure rolling (which
-conserves energy, so the tilt cannot change)."""
+"""A run says how it held the table: when it first stuck, how much of it rolled without slip (or,
+under a regularised law, crept), how far theta changed, and, when it reaches its end rolling, that
+the answer rests on pure rolling (which conserves energy, so the body cannot settle)."""
 
 import phasekit as pk
 from phasekit.core.trajectory_io import PURE_ROLLING
@@ -49,7 +49,8 @@ def test_the_text_summary_says_it_in_words():
     assert code == 0, err
     lines = out.splitlines()
     assert PURE_ROLLING in lines and not any(ln.startswith("stuck:") for ln in lines)
-    assert any(ln.startswith("the axis rose (theta fell) by ") and "first from t = " in ln for ln in lines)
+    assert any(ln.startswith("theta fell by ") and "; rolling without slip " in ln and "first from t = " in ln
+               for ln in lines)
 
 
 EGG = ["simulate", "--body", "egg", "--a", "1.33333", "--mu", "0.2", "--gyroscopic", "--theta0", "89.4 deg", "--omega0",
@@ -77,7 +78,7 @@ def test_the_pure_rolling_note_is_absent_when_spin_friction_takes_energy():
     assert energy.endswith("(give --mass for mJ)") and " M g b, lost " in energy and "spin-friction" in energy
 
 
-def _fake_run(law, modes, end_mode):
+def _fake_run(law, modes, end_mode, status="completed"):
     """A run's record as contact_summary reads it: segments of the given modes, one time unit each."""
     from types import SimpleNamespace
 
@@ -88,7 +89,7 @@ def _fake_run(law, modes, end_mode):
     x = to_chart("euler", np.array([0.0, 0.0, 1.0, 0.0, 1.0, 0.5]))
     segments = [SimpleNamespace(mode=Mode(m), t0=float(i), t1=float(i + 1)) for i, m in enumerate(modes)]
     return SimpleNamespace(model=model, segments=segments, events=[], t0=0.0, t=float(len(modes)), x0=x, x=x,
-                           mode=end_mode)
+                           mode=end_mode, status=status)
 
 
 def test_every_no_slip_mode_counts_as_rolling_and_only_exact_coulomb_alone_rests_on_pure_rolling():
@@ -105,3 +106,20 @@ def test_every_no_slip_mode_counts_as_rolling_and_only_exact_coulomb_alone_rests
                 pk.Coulomb(0.2).with_dissipation(pk.SpinFriction(0.01))):
         assert contact_summary(_fake_run(law, modes, "rolling"))["rests_on"] is None, law
     assert "--spin-friction" in PURE_ROLLING and "--rolling-resistance" in PURE_ROLLING and "--slip-eps" in PURE_ROLLING
+    # a run stopped before its end (a disk that came down flat, a top that reached a limit) rests on nothing
+    assert contact_summary(_fake_run(pk.Coulomb(0.2), modes, "rolling", status="stopped"))["rests_on"] is None
+
+
+def test_a_regularised_law_says_it_slips_slowly_or_creeps_not_that_it_rolls_without_slip():
+    """With --slip-eps the "rolling" mode is a slip below 10 eps: the law's own field where mu/eps
+    <= 500 (eps = 1e-3, mu = 0.2), the creep on its slow manifold above (eps = 1e-4); the summary
+    names which (the JSON's ``holding``), never "rolling without slip"."""
+    for eps, says in (("1e-3", "slipping slowly"), ("1e-4", "creeping")):
+        code, out, err = run_cli(*EGG, "--slip-eps", eps, "--json")
+        d = strict_json(out)
+        assert code == 0 and d["holding"].startswith(says) and d["rolling_fraction"] > 0.5 and d["rests_on"] is None
+        code, text, _ = run_cli(*EGG, "--slip-eps", eps)
+        assert any(f"; {says} (slip" in ln for ln in text.splitlines()), text
+        assert not any("rolling without slip" in ln for ln in text.splitlines())
+    code, out, _ = run_cli(*EGG, "--json")
+    assert strict_json(out)["holding"] == "rolling without slip"

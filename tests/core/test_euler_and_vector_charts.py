@@ -2,8 +2,7 @@
 the pole), the same trajectories and jumps, runs through the vertical, and the automatic choice."""
 
 import phasekit as pk
-from phasekit.core import charts
-from phasekit.core.charts import choose_chart
+from phasekit.core import charts, choose_chart
 
 import numpy as np
 import pytest

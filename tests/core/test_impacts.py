@@ -2,7 +2,8 @@
 naming the argument, and the upright drop gives its closed form."""
 
 import phasekit as pk
-from phasekit.core.impact import collision_matrix, contact_point, impact
+from phasekit.core import impact
+from phasekit.core.impact import collision_matrix, contact_point
 
 import numpy as np
 import pytest

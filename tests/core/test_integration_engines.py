@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import phasekit as pk
 from phasekit.core import engines
-from phasekit.core.engines import Budget, TaylorEngine, cache
+from phasekit.core.engines import Budget, cache
+from phasekit.core.engines.taylor import TaylorEngine
 from phasekit.core.system import declare, watched
 
 import numpy as np
@@ -20,7 +21,7 @@ def test_an_unknown_engine_is_an_error_and_a_registered_one_needs_nothing_else()
         pk.SolverOptions(backend="rk4")
     calls = []
 
-    class Counting(engines.CvodesEngine):
+    class Counting(engines.cvodes.CvodesEngine):
         """CVODES, counting its calls: a new engine is one registration."""
 
         def propagate(self, *args, **kwargs):
@@ -37,7 +38,7 @@ def test_an_unknown_engine_is_an_error_and_a_registered_one_needs_nothing_else()
     finally:
         del engines.registry.ENGINES["cvodes-counting"]
     with pytest.raises(pk.ParameterError):
-        engines.register_engine("taylor", engines.TaylorEngine)
+        engines.register_engine("taylor", engines.taylor.TaylorEngine)
 
 
 def test_taylor_cache_reload_keeps_the_monitor(tmp_path, monkeypatch, prolate, standard_start):

@@ -9,8 +9,8 @@ import math
 from types import SimpleNamespace
 
 import phasekit as pk
-from phasekit._runtime.errors import Status
-from phasekit.core.hybrid import Event, Mode
+from phasekit import Status
+from phasekit.core import Event, Mode
 from phasekit.core.resets import SWITCH_EARLY, Transfer, flight_state, rigid_velocities
 
 import numpy as np
@@ -77,11 +77,11 @@ def test_the_euler_and_vector_charts_agree(runs):
 def _closed_form_stick(body, k, w, v, k_new):
     """The post-impact w when the impact at the new contact point P stops P (e = 0, friction enough):
     L_P = I_G w + r_GP... conserved, with v = -w x r_P, so w = I_P^-1 L_P (I_P the inertia about P)."""
-    from phasekit.core.impact import _contact_point
+    from phasekit.core.impact import contact_point_of
 
     kk = k_new / np.linalg.norm(k_new)
     IG = body.A * np.eye(3) + (body.C - body.A) * np.outer(kk, kk)
-    r = _contact_point(body, k_new)
+    r = contact_point_of(body, k_new)
     L = IG @ w - np.cross(r, v)  # about P: the momentum's moment r_PG x v = -r x v
     IP = IG + (r @ r) * np.eye(3) - np.outer(r, r)
     return np.linalg.solve(IP, L), L, IG, r
@@ -91,14 +91,14 @@ def _closed_form_stick(body, k, w, v, k_new):
 def test_the_transfer_impact_conserves_angular_momentum_about_the_new_contact_point(runs):
     traj = runs["vector"]
     seg = next(s for s in traj.segments if s.end == "stem touches")
-    from phasekit.core.impact import _contact_point
+    from phasekit.core.impact import contact_point_of
 
     stem_side = seg.x1[0:3] / np.linalg.norm(seg.x1[0:3])
     s = math.hypot(*stem_side[:2])
     stem_side = np.array([stem_side[0] / s * math.sin(TOP.theta_switch), stem_side[1] / s * math.sin(TOP.theta_switch),
                           math.cos(TOP.theta_switch)])
     rolling_in = seg.x1.copy()  # the same state with the stem's end not slipping as it comes down
-    rolling_in[6:8] = -np.cross(seg.x1[3:6], _contact_point(TOP, stem_side))[:2]
+    rolling_in[6:8] = -np.cross(seg.x1[3:6], contact_point_of(TOP, stem_side))[:2]
     for mu, x in ((0.3, seg.x1), (1e3, rolling_in)):  # the run's impact (sliding), and one friction stops
         model = pk.Model(TOP, pk.Coulomb(mu), "vector")
         tr = TOP.transfers[0]

@@ -2,7 +2,7 @@
 and in either direction."""
 
 import phasekit as pk
-from phasekit._runtime.errors import ParameterError
+from phasekit import ParameterError
 from phasekit.core import trajectory
 
 import numpy as np

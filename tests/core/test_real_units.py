@@ -66,9 +66,9 @@ def test_bodies_of_a_given_size():
     egg, sc = pk.core.egg_of_size("57 mm", "4.3 cm", w=0.05, mass="57 g")
     assert egg.a == pytest.approx(57 / 43, rel=1e-14) and egg.w == 0.05
     assert sc.b.to("mm").magnitude == pytest.approx(21.5, rel=1e-14)
-    top, sc = pk.core.tippe_top_of_size("15 mm", "4.5 mm", A=0.38, C=0.4)
+    top, sc = pk.core.sizes.eccentric_sphere_of_size("15 mm", "4.5 mm", A=0.38, C=0.4)
     assert top.offset == pytest.approx(0.3, rel=1e-14) and (top.A, top.C) == (0.38, 0.4)
-    top, sc = pk.core.tippe_top_of_size("15 mm", "4.5 mm", A="0.38 * 20 g * (15 mm)**2", C=0.4, mass="20 g")
+    top, sc = pk.core.sizes.eccentric_sphere_of_size("15 mm", "4.5 mm", A="0.38 * 20 g * (15 mm)**2", C=0.4, mass="20 g")
     assert top.A == pytest.approx(0.38, rel=1e-14)
 
 
@@ -97,12 +97,12 @@ def test_scale_rejects_bad_quantities_by_name(call, param):
     ("mass", lambda: pk.core.egg_of_size("57 mm", "43 mm", mass="57 mm")),
     ("g", lambda: pk.core.egg_of_size("57 mm", "43 mm", g="9.81 m/s")),
     ("w", lambda: pk.core.egg_of_size("57 mm", "43 mm", w=NAN)),
-    ("radius", lambda: pk.core.tippe_top_of_size("15 s", "3 mm")),
-    ("offset", lambda: pk.core.tippe_top_of_size("15 mm", "3 s")),
-    ("offset", lambda: pk.core.tippe_top_of_size("15 mm", "30 mm")),
-    ("A", lambda: pk.core.tippe_top_of_size("15 mm", "3 mm", A="2 g")),
-    ("A", lambda: pk.core.tippe_top_of_size("15 mm", "3 mm", A=True)),
-    ("C", lambda: pk.core.tippe_top_of_size("15 mm", "3 mm", C=NAN)),
+    ("radius", lambda: pk.core.sizes.eccentric_sphere_of_size("15 s", "3 mm")),
+    ("offset", lambda: pk.core.sizes.eccentric_sphere_of_size("15 mm", "3 s")),
+    ("offset", lambda: pk.core.sizes.eccentric_sphere_of_size("15 mm", "30 mm")),
+    ("A", lambda: pk.core.sizes.eccentric_sphere_of_size("15 mm", "3 mm", A="2 g")),
+    ("A", lambda: pk.core.sizes.eccentric_sphere_of_size("15 mm", "3 mm", A=True)),
+    ("C", lambda: pk.core.sizes.eccentric_sphere_of_size("15 mm", "3 mm", C=NAN)),
     ("b", lambda: pk.Scale("21.5 s")),
     ("b", lambda: pk.Scale(21.5)),
     ("b", lambda: pk.Scale("0 mm")),
@@ -132,7 +132,7 @@ def test_units_valid_by_hand():
     assert sc.quantity(1.0, "time").to("s").magnitude == pytest.approx(math.sqrt(0.0215 / 9.81), rel=1e-12)
     egg, sc2 = pk.core.egg_of_size("57 mm", "43 mm", w=0.05, mass="57 g")
     assert egg.a == pytest.approx(57 / 43, rel=1e-14) and sc2.b.to("mm").magnitude == pytest.approx(21.5, rel=1e-14)
-    top, sc3 = pk.core.tippe_top_of_size("15 mm", "3 mm")
+    top, sc3 = pk.core.sizes.eccentric_sphere_of_size("15 mm", "3 mm")
     assert top.offset == pytest.approx(0.2, rel=1e-14) and top.A == pytest.approx(0.4 - 0.2**2, rel=1e-14)
 
 

@@ -4,7 +4,7 @@ rtol / 10 in the other chart, and the approximations it used listed, each with i
 import json
 
 import phasekit as pk
-from phasekit.core.verify import RunCheck
+from phasekit.core import RunCheck
 
 import numpy as np
 import pytest

@@ -3,7 +3,7 @@ a diverging integration; never a crash, a hang or a NaN."""
 
 
 import phasekit as pk
-from phasekit.core.engines import TaylorEngine
+from phasekit.core.engines.taylor import TaylorEngine
 
 import numpy as np
 import pytest

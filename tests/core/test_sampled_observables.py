@@ -7,7 +7,7 @@ from __future__ import annotations
 import dataclasses
 
 import phasekit as pk
-from phasekit._runtime.errors import ParameterError
+from phasekit import ParameterError
 
 import numpy as np
 import pytest

@@ -22,7 +22,10 @@ def test_scales_follow_the_sizes_with_a_floor_and_fall_by_at_most_half():
     assert s0.tolist() == [2.5e-3, scaling.SCALE_FLOOR, 40.0, scaling.SCALE_FLOOR]
     s1 = scaling.next_scales(np.array([1e-6, 0.5, 30.0, 0.0]), s0)
     assert s1.tolist() == [1.25e-3, 0.5, 30.0, scaling.SCALE_FLOOR]
-    assert scaling.next_rescale(0.0) == 1.0 and scaling.next_rescale(2.0) == 3.0 and scaling.next_rescale(2.5) == 3.0
+    # the renewals lie on one grid of times, the same whatever time a run starts from
+    for t in (0.0, 2.0, 2.5, 3.999, 4.0, 123.4):
+        r = scaling.next_rescale(t)
+        assert t < r <= t + scaling.RESCALE_EVERY and (r / scaling.RESCALE_EVERY).is_integer(), (t, r)
 
 
 @pytest.mark.parametrize("rtol", [1e-9, 1e-10])

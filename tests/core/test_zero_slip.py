@@ -3,7 +3,7 @@ hold (at the start and mid-run), and a start that must leave the table."""
 
 import phasekit as pk
 from phasekit import cli
-from phasekit.core.hybrid import Mode
+from phasekit.core import Mode
 from phasekit.core.zero_slip import project_no_slip, sliding_direction
 
 import numpy as np

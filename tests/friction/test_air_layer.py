@@ -92,3 +92,17 @@ def test_the_law_round_trips_through_a_models_description():
     assert again.friction.dissipation == (pk.friction.AirLayer(2e-4),)
     with pytest.raises(pk.ParameterError):
         pk.friction.AirLayer(-1.0)
+
+
+def test_the_air_layer_on_a_body_that_is_not_a_disk_is_warned_about_once():
+    """The law is derived for the film under a disk on its rim: on a disk nothing is said, on a
+    spheroid one warning naming the body."""
+    import warnings
+
+    law = pk.Coulomb(0.1).with_dissipation(pk.friction.AirLayer(1e-3))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        pk.Model(THIN, law)
+    with pytest.warns(UserWarning, match="disk on its rim; a Spheroid") as caught:
+        pk.Model(pk.Spheroid(0.6), law)
+    assert len(caught) == 1

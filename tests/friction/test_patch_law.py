@@ -10,17 +10,8 @@ with the module's ring-by-ring elliptic kernels or closed forms.
 import math
 
 import phasekit as pk  # noqa: F401  (installs the package's start-up, as every test module does)
-from phasekit.friction.patch import (
-    APPROXIMANT_ERRORS,
-    MATERIALS,
-    PATCH_LIMITS,
-    effective_modulus,
-    hertz_ellipse,
-    hertz_radius,
-    patch_friction,
-    patch_resultant,
-    principal_radii,
-)
+from phasekit.friction.hertz import MATERIALS, effective_modulus, hertz_ellipse, hertz_radius, principal_radii
+from phasekit.friction.patch import APPROXIMANT_ERRORS, PATCH_LIMITS, patch_friction, patch_resultant
 
 import casadi as ca
 import numpy as np

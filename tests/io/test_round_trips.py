@@ -10,7 +10,8 @@ import warnings
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.core.trajectory_io import LONG_NAMES, UNITS, run_table, write_run_table
+from phasekit.core.trajectory_files import write_run_table
+from phasekit.core.trajectory_io import LONG_NAMES, UNITS, run_table
 
 import numpy as np
 import pytest

@@ -10,8 +10,9 @@ import json
 import math
 
 import phasekit as pk
+from phasekit.bodies.compound import PieceSupport
 from phasekit.steady.branch_stability import linearise_precession
-from phasekit.steady.pieces import PieceSupport, parts
+from phasekit.steady.pieces import parts
 
 import casadi as ca
 import numpy as np
@@ -168,7 +169,7 @@ def test_a_piece_is_read_off_the_whole_bodys_support_switch_by_switch():
     assert stem.support.h(theta)[0] == pytest.approx(R - TIP * c, rel=1e-14, abs=1e-15)
     inside = theta[theta > TOP.theta_switch]
     assert np.array_equal(stem.support.h(inside)[0], TOP.h(inside)[0])
-    assert ball.edges[1] == {"theta": TOP.theta_switch, "switch": "stem"} and stem.edges[0]["switch"] == "ball"
+    assert (ball.edges[1].theta, ball.edges[1].switch) == (TOP.theta_switch, "stem") and stem.edges[0].switch == "ball"
     for theta_in, want in ((1.0, 1.0 - OFFSET * c), (3.0, R - TIP * c)):  # a body written with fmax instead
         assert PieceSupport(TwoSpheres(), "?", theta_in).h(theta)[0] == pytest.approx(want, rel=1e-14, abs=1e-15)
 

@@ -3,7 +3,7 @@ theta) are recognised and said to be such, with their isolated states listed the
 structure and by fixed_points, instead of a continuum being sampled point by point."""
 
 import phasekit as pk
-from phasekit.steady.branches import _geometry
+from phasekit.steady.branches import precession_geometry
 
 import numpy as np
 import pytest
@@ -16,7 +16,7 @@ SPHERES = [pk.Spheroid(1.0), pk.Spheroid(1.0, A=0.5, C=0.4), pk.EccentricSphere(
 @pytest.mark.parametrize("body", SPHERES, ids=repr)
 def test_a_sphere_with_g_at_its_centre_is_a_continuum_said_as_such(body):
     # the premise, from the closed forms: q = h_theta / sin vanishes at every theta
-    q = _geometry(body, np.linspace(0.0, np.pi, 101))[0]
+    q = precession_geometry(body, np.linspace(0.0, np.pi, 101))[0]
     assert np.max(np.abs(q)) <= 1e-15
     s = pk.steady_structure(body, pk.Coulomb(0.1), max_wall=60.0)
     assert s.status is pk.Status.COMPLETED and s.signature == "degenerate" and s.branches == ()

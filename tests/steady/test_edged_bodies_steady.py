@@ -6,7 +6,7 @@ the range's limits: tests/steady/test_edged_structure.py)."""
 from __future__ import annotations
 
 import phasekit as pk
-from phasekit.steady.precessions import precession_angles
+from phasekit.steady import precession_angles
 
 import numpy as np
 

@@ -4,10 +4,9 @@ limit."""
 
 
 import phasekit as pk
-from phasekit.steady import precessions
-from phasekit.steady.fixedpoints import continue_family, find_fixed_point, fixed_points
-from phasekit.steady.linearisation import linearise
-from phasekit.steady.precessions import horizontal_state, intermediate_state, vertical_state
+from phasekit.steady import find_fixed_point, fixed_points, horizontal_state, linearise, precessions, vertical_state
+from phasekit.steady.fixedpoints import continue_family
+from phasekit.steady.precessions import intermediate_state
 
 import numpy as np
 import pytest

@@ -9,7 +9,7 @@ import collections
 import math
 
 import phasekit as pk
-from phasekit.steady.branches import END_KINDS, _geometry
+from phasekit.steady.branches import END_KINDS, precession_geometry
 
 import numpy as np
 import pytest
@@ -71,7 +71,7 @@ def check_ends(s) -> None:
         lo, hi = b.ends
         assert 0.0 <= lo.theta < hi.theta <= math.pi and {lo.kind, hi.kind} <= set(END_KINDS)
         for e in b.ends:
-            q, rho2, _, D = (float(v[0]) for v in _geometry(body, e.theta)[:4])
+            q, rho2, _, D = (float(v[0]) for v in precession_geometry(body, e.theta)[:4])
             if e.kind == "pole":
                 assert e.theta in (0.0, math.pi) and e.pole == ("0" if e.theta == 0.0 else "pi") and e.Omega > 0
             elif e.kind == "static":
@@ -83,7 +83,7 @@ def check_ends(s) -> None:
         assert np.all((b.theta >= lo.theta) & (b.theta <= hi.theta) & np.isfinite(b.Omega) & np.isfinite(b.n))
     for e in s.static_equilibria:
         if e.kind == "tilted":
-            q, rho2 = (float(v[0]) for v in _geometry(body, e.theta)[:2])
+            q, rho2 = (float(v[0]) for v in precession_geometry(body, e.theta)[:2])
             assert abs(q) <= 1e-8 * rho2
 
 

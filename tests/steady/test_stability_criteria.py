@@ -2,13 +2,9 @@
 non-uniform spheroids) are where the exact linearisation changes sign."""
 
 import phasekit as pk
-from phasekit.steady.linearisation import linearise
-from phasekit.steady.precessions import horizontal_state, vertical_state
+from phasekit.steady import horizontal_state, linearise, vertical_state
 from phasekit.studies.linear_stability import vertical_is_stable
-from phasekit.theory.criteria import (
-    horizontal_stability_threshold,
-    vertical_stability_threshold,
-)
+from phasekit.theory import horizontal_stability_threshold, vertical_stability_threshold
 
 import numpy as np
 import pytest

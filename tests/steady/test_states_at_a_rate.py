@@ -5,7 +5,7 @@ to 1e12, and both against the tippe top's closed forms where the states crowd an
 of spin 0."""
 
 import phasekit as pk
-from phasekit.steady.branches import _geometry
+from phasekit.steady.branches import precession_geometry
 
 import numpy as np
 import pytest
@@ -99,7 +99,7 @@ def test_a_state_next_to_a_pole_is_listed():
     body, law = pk.Spheroid(0.6, offset=0.1), pk.Viscous(0.1)
     s = pk.steady_structure(body, law)
     [end] = [e for b in s.branches for e in b.ends if e.kind == "pole" and e.pole == "0"]
-    q, rho2, z, D = (float(v[0]) for v in _geometry(body, 1e-4)[:4])
+    q, rho2, z, D = (float(v[0]) for v in precession_geometry(body, 1e-4)[:4])
     n0 = float(np.sqrt(q * rho2 / D) * z / rho2)  # the spin on the branch at theta = 1e-4
     assert abs(n0 - end.n) < 1e-6 * abs(end.n)
     states = s.at(n0=n0)

@@ -3,12 +3,11 @@ vector chart's Newton-Euler equations, the tippe top's closed forms and energy c
 pole criterion, closed-form statics, and the pointwise fixed points."""
 
 import phasekit as pk
-from phasekit.core import charts
-from phasekit.core.hybrid import Mode
+from phasekit.core import Mode, charts
+from phasekit.steady import steady_structure
 from phasekit.steady.branch_stability import linearise_precession
 from phasekit.steady.branches import precession_on_branch
 from phasekit.steady.rolling import rolling_state
-from phasekit.steady.structure import steady_structure
 from phasekit.theory import tippetop
 
 import numpy as np
@@ -53,7 +52,7 @@ TOPS = [(0.3, 0.38, 0.4), (0.3, 0.2, 0.4), (0.3, 0.6, 0.4), (0.1, 0.35, 0.4), (0
 @pytest.mark.parametrize("alpha,A,C", TOPS)
 def test_tippe_top_structures_follow_the_inversion_interval(alpha, A, C):
     s = steady_structure(pk.EccentricSphere(alpha, A=A, C=C), pk.Viscous(0.3), stability=False)
-    lo, hi = tippetop.inversion_interval(alpha)
+    lo, hi = tippetop.inversion.inversion_interval(alpha)
     expected = "pole0-polePi" if lo < A / C < hi else "inf-polePi" if A / C <= lo else "pole0-inf"
     assert s.signature == expected
     # the infinite-spin asymptote in closed form: D = (A - C) cos + C alpha = 0
@@ -73,8 +72,8 @@ def test_tippe_top_stability_along_the_branch_is_the_energy_criterion():
         for b in s.branches:
             z = np.cos(b.theta)
             dz = 1e-6
-            gp = (tippetop.steady_state_jellett_sq(alpha, A, C, z + dz) - tippetop.steady_state_jellett_sq(alpha, A, C, z - dz))
-            decided = np.abs(gp) > 1e-6 * np.abs(tippetop.steady_state_jellett_sq(alpha, A, C, z))
+            gp = (tippetop.steady.steady_state_jellett_sq(alpha, A, C, z + dz) - tippetop.steady.steady_state_jellett_sq(alpha, A, C, z - dz))
+            decided = np.abs(gp) > 1e-6 * np.abs(tippetop.steady.steady_state_jellett_sq(alpha, A, C, z))
             assert np.array_equal(b.stable[decided], (gp < 0)[decided])
             assert decided.sum() > 0.9 * b.theta.size
 

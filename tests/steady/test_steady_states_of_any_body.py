@@ -4,23 +4,19 @@ closed-form criteria (general pole criterion; equator criterion and where it sto
 
 
 import phasekit as pk
-from phasekit.bodies.egg import Egg
-from phasekit.steady.fixedpoints import fixed_points
-from phasekit.steady.linearisation import linearise
-from phasekit.steady.precessions import (
+from phasekit.bodies import Egg
+from phasekit.steady import (
+    fixed_points,
     horizontal_state,
     inverted_state,
+    linearise,
     precession_angles,
-    precession_residual,
     side_equilibrium,
     vertical_state,
 )
-from phasekit.theory.criteria import (
-    equator_stability_threshold,
-    horizontal_stability_threshold,
-    pole_stability_threshold,
-    vertical_stability_threshold,
-)
+from phasekit.steady.precessions import precession_residual
+from phasekit.theory import horizontal_stability_threshold, pole_stability_threshold, vertical_stability_threshold
+from phasekit.theory.criteria import equator_stability_threshold
 
 import casadi as ca
 import numpy as np
@@ -180,7 +176,7 @@ def test_the_horizontal_like_state_separates_the_two_ends():
     import phasekit as pk
 
     egg = Egg(57 / 43, 0.05)
-    th_h = pk.steady.horizontal_like_angle(egg, pk.steady.precession_angles(egg, omega0=6.0))
+    th_h = pk.steady.precessions.horizontal_like_angle(egg, pk.steady.precession_angles(egg, omega0=6.0))
     assert th_h - np.pi / 2 > 0.15
     ends = {}
     for d in (-0.02, 0.02):

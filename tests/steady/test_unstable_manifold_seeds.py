@@ -3,13 +3,9 @@ documented signs, for the spheroid's, the tippe top's and the egg's states; the 
 such a seed."""
 
 import phasekit as pk
-from phasekit.bodies.egg import Egg
-from phasekit.steady.linearisation import linearise
-from phasekit.steady.manifolds import unstable_manifold_start, unstable_seeds
-from phasekit.steady.precessions import (
-    inverted_state,
-    vertical_state,
-)
+from phasekit.bodies import Egg
+from phasekit.steady import inverted_state, linearise, unstable_manifold_start, vertical_state
+from phasekit.steady.manifolds import unstable_seeds
 
 import numpy as np
 import pytest

@@ -5,8 +5,7 @@ in the test), its states are not invented, and a bad budget is refused naming ``
 import math
 
 import phasekit as pk
-from phasekit._runtime.watch import wall_deadline
-from phasekit.steady.budget import spend_wall
+from phasekit._runtime.watch import check_deadline, wall_deadline
 
 import pytest
 
@@ -35,7 +34,7 @@ def test_a_callers_earlier_deadline_holds_inside():
         assert s.status is pk.Status.FAILED and "max_wall = 1e-06 s" in s.reason
         with pytest.raises(TimeoutError, match="wall budget"):
             pk.fixed_points(pk.Model(pk.Spheroid(1.5, offset=0.2), pk.Viscous(0.1)), omega0=3.0)
-    spend_wall()  # no deadline in force: nothing to spend
+    check_deadline()  # no deadline in force: nothing to spend
 
 
 @pytest.mark.parametrize("bad", [0.0, -1.0, math.nan, math.inf, "1"])

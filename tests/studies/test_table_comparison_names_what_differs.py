@@ -167,7 +167,7 @@ import phasekit as pk
 
 
 def main(argv=None):
-    st = pk.sweep.Study(__file__, __doc__, resumable=True)
+    st = pk.scaffold.Study(__file__, __doc__, resumable=True)
     st.parse(argv)
     st.csv("tiny.csv", ["key", "x", "wall_s"], [["a", 0.1 + 0.2, st.wall], ["b", 1.5, st.wall]])
     st.json("tiny.json", {"x": 0.5, "wall_s": st.wall})
@@ -175,7 +175,7 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    pk.sweep.run_study(main)
+    pk.scaffold.run_study(main)
 '''
 
 

@@ -5,7 +5,7 @@ ensemble's row."""
 import json
 
 import phasekit as pk
-from phasekit._runtime.errors import ParameterError
+from phasekit import ParameterError
 
 import numpy as np
 import pytest
@@ -78,3 +78,14 @@ def test_ensemble_on_a_dask_client_equals_the_local_run(model, ten_starts):
     assert on_dask[cols].equals(here[cols])
     with pytest.raises(ParameterError, match="`scheduler`"):
         pk.ensemble(model, ten_starts[:1], 10.0, scheduler=3.0, progress=False)
+
+
+def test_rerun_takes_a_new_end_and_names_a_wrong_keyword(model, ten_starts):
+    """`pk.rerun(d, t_end=...)` ends the same run earlier (the state there is the first run's, read
+    from its dense output); a keyword simulate does not take is named, not a TypeError."""
+    full = pk.simulate(model, ten_starts[0], 20.0, dense=True)
+    short = pk.rerun(full.to_dict(), t_end=7.5)
+    assert short.t_end == 7.5 and short.status == "completed"
+    assert np.allclose(short.x, full.states([7.5])[0], rtol=1e-7, atol=1e-9)
+    with pytest.raises(ParameterError, match=r"^`t_ende` is not a keyword of phasekit.simulate"):
+        pk.rerun(full.to_dict(), t_ende=7.5)

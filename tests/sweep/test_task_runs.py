@@ -96,7 +96,7 @@ def test_dask_k_section_round_and_grouped_searches_equal_the_serial_ones(tmp_pat
         jobs = [ps.search_job(asdict(replace(defn, amplitude=d)), 1.5, dict(hi=120.0, levels=3)) for d in (0.01, 0.02, 0.04)]
         specs, members = ps.group_search_tasks(jobs, [1.0, 2.0, 3.0], per_task=2)
         store = ResultStore(tmp_path / "g.csv", tmp_path / "g.json", SearchRow, {})
-        get, add = pk.sweep.stored_rows([store], members)
+        get, add = pk.sweep.stores.stored_rows([store], members)
         run_tasks(specs, store_get=get, on_result=add, client=client, pack=pack, progress=False)
     finally:
         client.close()

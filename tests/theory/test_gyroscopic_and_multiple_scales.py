@@ -3,20 +3,18 @@ exact dynamics; the theory helpers refuse NaN and never return it."""
 
 
 import phasekit as pk
-from phasekit.theory import gyroscopic
-from phasekit.theory.gyroscopic import gyroscopic_closed, gyroscopic_numeric, jellett_constant, mean_slip, rise_time
-from phasekit.theory.multiscale import (
-    Gamma_closed,
-    I1_closed,
-    I2_dominant,
-    I3_closed,
-    I_quadrature,
-    c_xi,
+from phasekit.theory import (
+    amplitude_growth_closed,
+    gyroscopic,
+    gyroscopic_closed,
+    gyroscopic_nutation_frequency,
+    jellett_constant,
     mean_over_periods,
-    omega2,
-    omega_gyro,
-    perturbation_from_c_xi,
+    nutation_perturbation,
 )
+from phasekit.theory.gyroscopic import gyroscopic_numeric, mean_slip, rise_time
+from phasekit.theory.multiscale import I1_closed, I2_dominant, I3_closed, growth_integral, nutation_frequency_squared
+from phasekit.theory.nutation import nutation_amplitude_phase
 
 import numpy as np
 import pytest
@@ -47,15 +45,15 @@ def test_closed_forms_equal_quadrature_away_from_0_and_pi_over_2(a, theta0, omeg
     body = pk.Spheroid(a)
     J = jellett_constant(body, theta0, omega0)
     th = np.array(targets)
-    parts = I_quadrature(body, J, theta0, th, parts=True)
+    parts = growth_integral(body, J, theta0, th, parts=True)
     np.testing.assert_allclose(I1_closed(body, J, theta0, th), parts[:, 0], atol=1e-8)  # (3.53)
     np.testing.assert_allclose(I3_closed(theta0, th), parts[:, 2], atol=1e-8)  # (3.52)
     # (3.57) is only the dominant part of I2: away from 0 and pi/2 it is measurably different
     assert np.max(np.abs(I2_dominant(body, theta0, th) - parts[:, 1])) > 1e-2
     # (3.58)-(3.60) are exactly omega^-1/2 exp(I1 + I2_dominant + I3)
-    w = omega_gyro(body, th, J / (body.A * body.h(th)[0]))
+    w = gyroscopic_nutation_frequency(body, th, J / (body.A * body.h(th)[0]))
     expect = w**-0.5 * np.exp(I1_closed(body, J, theta0, th) + I2_dominant(body, theta0, th) + I3_closed(theta0, th))
-    np.testing.assert_allclose(Gamma_closed(body, J, theta0, th), expect, rtol=1e-10)
+    np.testing.assert_allclose(amplitude_growth_closed(body, J, theta0, th), expect, rtol=1e-10)
 
 
 def test_3_57_is_the_dominant_part_near_pi_over_2():
@@ -65,7 +63,7 @@ def test_3_57_is_the_dominant_part_near_pi_over_2():
     J = jellett_constant(body, theta0, 10.0)
     rel = []
     for d in (1e-1, 1e-2, 1e-3):
-        q = I_quadrature(body, J, theta0, [np.pi / 2 - d], parts=True)[0, 1]
+        q = growth_integral(body, J, theta0, [np.pi / 2 - d], parts=True)[0, 1]
         rel.append(abs(I2_dominant(body, theta0, np.pi / 2 - d) - q) / abs(q))
     assert rel[0] > rel[1] > rel[2] and rel[2] < 0.01
 
@@ -73,15 +71,15 @@ def test_3_57_is_the_dominant_part_near_pi_over_2():
 def test_omega_3_30_tends_to_3_47():
     body = pk.Spheroid(1.5)
     th = 0.9
-    errs = [abs(np.sqrt(omega2(body, th, om)) / omega_gyro(body, th, om) - 1) for om in (5.0, 20.0, 80.0)]
+    errs = [abs(np.sqrt(nutation_frequency_squared(body, th, om)) / gyroscopic_nutation_frequency(body, th, om) - 1) for om in (5.0, 20.0, 80.0)]
     assert errs[0] > errs[1] > errs[2] and errs[2] < 1e-3
 
 
 def test_c_xi_round_trip():
     body = pk.Spheroid(1.5)
     for c, xi in [(-0.00054, 0.0), (0.001, 1.0), (0.0003, -2.0)]:
-        th_p, lam_p, _ = perturbation_from_c_xi(body, 1.2, 9.0, 0.1, c, xi)
-        c2, xi2 = c_xi(body, 1.2, 9.0, 0.1, th_p, lam_p)
+        th_p, lam_p, _ = nutation_perturbation(body, 1.2, 9.0, 0.1, c, xi)
+        c2, xi2 = nutation_amplitude_phase(body, 1.2, 9.0, 0.1, th_p, lam_p)
         assert c2 * np.cos(xi2) == pytest.approx(c * np.cos(xi), rel=1e-10)
         assert c2 * np.sin(xi2) == pytest.approx(c * np.sin(xi), rel=1e-10, abs=1e-15)
 
@@ -118,14 +116,14 @@ def test_gyroscopic_mean_error_shrinks_with_omega0():
 @pytest.mark.parametrize("call, name", [
     (lambda b: pk.core.impact(b, [np.sin(1.0), 0, np.cos(1.0)], [0, 0, 1e308], [0, 0, -1e308], e=0.5, mu=0.1), "w"),
     (lambda b: pk.theory.flight_constants(b, [0, 0, 1e200, 0, 1.0, 1.0], 1e200), "euler_state"),
-    (lambda b: pk.theory.c_xi(b, 1.0, 1e300, 0.1, 0.01, 0.0), "Omega_bar0"),
-    (lambda b: pk.theory.omega2(b, 1.0, 1e300), "Omega"),
-    (lambda b: pk.theory.I_quadrature(b, 1e300, 1.0, 0.5), "J"),
-    (lambda b: pk.theory.Sigma(b, 1e300, 1.0, 0.5, 0.01), "J"),
-    (lambda b: pk.theory.omega2(b, 0.0, 10.0), "theta"),
-    (lambda b: pk.theory.omega2(b, float("nan"), 10.0), "theta"),
-    (lambda b: pk.theory.I_quadrature(b, 0.0, 1.0, 0.5), "J"),
-    (lambda b: pk.theory.c_xi(b, 1.0, 10.0, 0.1, float("nan"), 0.0), "dtheta0"),
+    (lambda b: pk.theory.nutation.nutation_amplitude_phase(b, 1.0, 1e300, 0.1, 0.01, 0.0), "Omega_bar0"),
+    (lambda b: pk.theory.multiscale.nutation_frequency_squared(b, 1.0, 1e300), "Omega"),
+    (lambda b: pk.theory.multiscale.growth_integral(b, 1e300, 1.0, 0.5), "J"),
+    (lambda b: pk.theory.reaction_envelope(b, 1e300, 1.0, 0.5, 0.01), "J"),
+    (lambda b: pk.theory.multiscale.nutation_frequency_squared(b, 0.0, 10.0), "theta"),
+    (lambda b: pk.theory.multiscale.nutation_frequency_squared(b, float("nan"), 10.0), "theta"),
+    (lambda b: pk.theory.multiscale.growth_integral(b, 0.0, 1.0, 0.5), "J"),
+    (lambda b: pk.theory.nutation.nutation_amplitude_phase(b, 1.0, 10.0, 0.1, float("nan"), 0.0), "dtheta0"),
     (lambda b: pk.theory.flight_constants(b, [0, 0, 10.0, 0, 1.0, 1.0], float("nan")), "W"),
 ])
 def test_the_theory_helpers_take_no_nan_and_give_none(call, name):

@@ -9,9 +9,7 @@ import subprocess
 import sys
 
 import phasekit as pk
-from phasekit.steady.fixedpoints import fixed_points
-from phasekit.steady.linearisation import linearise
-from phasekit.steady.precessions import inverted_state, vertical_state
+from phasekit.steady import fixed_points, inverted_state, linearise, vertical_state
 from phasekit.theory import tippetop as tt
 
 import numpy as np
@@ -168,7 +166,7 @@ def test_under_exact_coulomb_the_poles_roll_without_growth(top):
 
 @pytest.mark.parametrize("A_, n0", [(0.31, 1.5), (0.31, 2.0), (0.38, 1.5), (0.56, 3.0)])
 def test_intermediate_states_are_tippetops_steady_precessions(A_, n0):
-    """Every intermediate state phasekit finds for spin n0 is tippetop.steady_precession at its
+    """Every intermediate state phasekit finds for spin n0 is tippetop.steady.steady_precession at its
     angle (Omega, spin), and its stability under viscous friction is the energy criterion of
     tippetop (stable iff g'(z) < 0, g = steady_state_jellett_sq)."""
     body = pk.EccentricSphere(ALPHA, A=A_, C=C)
@@ -182,8 +180,8 @@ def test_intermediate_states_are_tippetops_steady_precessions(A_, n0):
     for p, ze in zip(sorted(pts, key=lambda p: -math.cos(p.x[4])), sorted(expect, reverse=True)):
         th = p.x[4]
         assert math.cos(th) == pytest.approx(ze, abs=2e-5)
-        sp = tt.steady_precession(ALPHA, A_, C, th)
+        sp = tt.steady.steady_precession(ALPHA, A_, C, th)
         assert abs(p.x[2]) == pytest.approx(sp["Omega"], rel=1e-10) and abs(p.x[5]) == pytest.approx(n0, rel=1e-12)
         h = 1e-6
-        gp = (tt.steady_state_jellett_sq(ALPHA, A_, C, math.cos(th) + h) - tt.steady_state_jellett_sq(ALPHA, A_, C, math.cos(th) - h)) / (2 * h)
+        gp = (tt.steady.steady_state_jellett_sq(ALPHA, A_, C, math.cos(th) + h) - tt.steady.steady_state_jellett_sq(ALPHA, A_, C, math.cos(th) - h)) / (2 * h)
         assert (max_growth(p) < 1e-9) == (gp < 0)

@@ -20,7 +20,7 @@ def test_viz_is_an_attribute_that_loads_no_vtk():
 def test_pyvista_is_imported_only_to_draw_3d():
     code = (
         "import sys, phasekit, phasekit.cli.params, phasekit.viz\n"
-        "from phasekit.theory.surface import Scene, compute_scene\n"
+        "from phasekit.scenes import Scene, compute_scene\n"
         "compute_scene(Scene(show=frozenset({'surface'}), resolution=20))\n"
         "print('pyvista' in sys.modules)\n"
     )

@@ -142,3 +142,21 @@ def test_scene_draws_the_body_on_its_trajectory(jump_run, tmp_path):
     assert _body_pixels(with_bodies, 500) > _body_pixels(without, 500) + 300
     with pytest.raises(pk.ParameterError, match="`bodies`"):
         scene.add_trajectory(jump_run, bodies=[jump_run.t + 1.0])
+
+
+def test_cli_animate_without_pyvista_names_bad_inputs_first_then_refuses_before_simulating(monkeypatch, tmp_path):
+    """Without the [viz] extra: a bad input is still named (exit 2); valid inputs end in one line
+    naming the extra (exit 1) before anything is simulated."""
+    import importlib.util
+
+    from phasekit.cli import params
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "pyvista" else real(name, *a))
+    ran = []
+    monkeypatch.setattr(params, "run_start", lambda **kw: ran.append(kw))
+    start = ["--mu", "0.1", "--gyroscopic", "--theta0", "1.56", "--omega0", "11", "--json"]
+    code, text, err = run_cli("animate", tmp_path / "x.gif", "--a", "-1", *start)
+    assert code == 2 and strict_json(text)["parameter"] == "--a"
+    code, text, err = run_cli("animate", tmp_path / "x.gif", "--a", "1.5", *start)
+    assert code == 1 and err.count("\n") == 1 and 'pip install "phasekit[viz]"' in err and ran == []

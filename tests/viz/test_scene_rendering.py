@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.theory.surface import Scene, compute_scene
+from phasekit.scenes import Scene, compute_scene
 
 import numpy as np
 import pytest
@@ -39,7 +39,7 @@ def test_offscreen_render_of_a_full_scene(tmp_path):
 def test_drawn_box_holds_every_point_and_given_ranges_clip():
     """The oblate scene once drew a trajectory segment outside its axes box: the box now holds
     every drawn point, and given ranges cut the trajectories exactly at the faces."""
-    from phasekit.viz.pv import _inside_runs
+    from phasekit.viz.pv import inside_runs
 
     d = compute_scene(Scene("oblate", 2 / 3, values=(9.0, 20.0, 40.0), resolution=20,
                             show=frozenset({"trajectories", "crossings", "fixed_points", "axes"})))
@@ -48,7 +48,7 @@ def test_drawn_box_holds_every_point_and_given_ranges_clip():
         assert np.all((P >= lo) & (P <= hi))
     bounds = (10.0, 20.0, 0.0, 1.0, 0.0, 30.0)
     P = np.column_stack([np.linspace(5.0, 25.0, 201), np.full(201, 0.5), np.full(201, 10.0)])
-    [run] = _inside_runs(P, bounds)
+    [run] = inside_runs(P, bounds)
     assert run[0, 0] == pytest.approx(10.0, abs=1e-12) and run[-1, 0] == pytest.approx(20.0, abs=1e-12)
     assert np.all((run[:, 0] >= 10.0 - 1e-12) & (run[:, 0] <= 20.0 + 1e-12))
 

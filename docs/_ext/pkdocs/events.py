@@ -87,11 +87,12 @@ def declared_events():
 
 def _integrators(sys_, ev) -> set[str]:
     """Which integrators watch ``ev`` (``system.watched``: the Taylor method or pointwise ones)."""
-    from phasekit.core import engines, system
+    from phasekit.core import system
+    from phasekit.core.engines.cvodes import CvodesEngine
+    from phasekit.core.engines.taylor import TaylorEngine
 
     found = set()
-    for engine, cls, label in (("taylor", engines.TaylorEngine, "Taylor"),
-                               ("cvodes", engines.CvodesEngine, "pointwise (CVODES, IDAS)")):
+    for engine, cls, label in (("taylor", TaylorEngine, "Taylor"), ("cvodes", CvodesEngine, "pointwise (CVODES, IDAS)")):
         for f in sys_.flows:  # a flow that names its integrator (flight: Taylor) is run by it alone
             if getattr(f, "engine", None) in (None, engine) and ev in system.watched(sys_, f.mode, cls):
                 found.add(label)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+import pandas as pd
+
 
 def sig(x: float, n: int = 4) -> str:
     """``x`` to ``n`` significant digits, without an exponent for everyday magnitudes."""
@@ -50,3 +52,7 @@ def table(header: list[str], rows: list[list]) -> str:
 def a_label(a: float) -> str:
     """Aspect ratios as the studies name them (2/3, not 0.6667)."""
     return "2/3" if abs(a - 2 / 3) < 1e-9 else f"{a:g}"
+
+
+def eps_label(e, digits: int = 1) -> str:
+    return "exact" if pd.isna(e) else sci(e, digits)

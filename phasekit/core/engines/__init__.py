@@ -11,7 +11,7 @@ compilation costs seconds to minutes).
 
 ``taylor`` (default)
     heyoka's adaptive Taylor method on the CasADi model translated to heyoka
-    expressions (:mod:`phasekit._runtime.translate`), LLVM-compiled once per (flow, guards,
+    expressions (:mod:`phasekit.core.engines.translate`), LLVM-compiled once per (flow, guards,
     tolerance) and cached in memory and on disk. Events are located by polynomial root
     finding on each step's Taylor expansion, i.e. to about machine precision in time.
     Dense output is the steps' Taylor polynomials. The minima of R come from the expansion of
@@ -42,11 +42,7 @@ the steps' polynomials), :mod:`~phasekit.core.engines.taylor`,
 :mod:`~phasekit.core.engines.registry` (the engines by name).
 """
 
-from .batch import TaylorBatchEngine
-from .cvodes import CvodesEngine
 from .protocol import Budget, End, Engine, Propagation
-from .registry import engine_for, engine_names, register_engine
-from .taylor import TaylorEngine
+from .registry import engine_for, register_engine
 
-__all__ = ["Engine", "End", "Propagation", "Budget", "TaylorEngine", "TaylorBatchEngine", "CvodesEngine",
-           "engine_for", "register_engine", "engine_names"]
+__all__ = ["Engine", "End", "Propagation", "Budget", "engine_for", "register_engine"]

@@ -1,6 +1,6 @@
 """The Taylor engine on heyoka's SIMD batch mode (:class:`TaylorBatchEngine`, used by
 :func:`phasekit.core.simulate_batch`): ``lanes`` starts at once, each propagated to a time or its own
-first event, built by the same code as the scalar :class:`~phasekit.core.engines.TaylorEngine`.
+first event, built by the same code as the scalar :class:`~phasekit.core.engines.taylor.TaylorEngine`.
 """
 
 from __future__ import annotations
@@ -10,14 +10,14 @@ from functools import partial
 from ..hybrid import CompiledFlow
 from .cache import compiled
 from .protocol import End
-from .taylor_build import _build_taylor, _heyoka, taylor_end
+from .taylor_build import build_taylor, load_heyoka, taylor_end
 
 
 class TaylorBatchEngine:
     """The Taylor integrator on heyoka's batch mode: ``lanes`` starts of one flow (different states,
     parameters and times) propagated at once, each to its time limit or its own first event.
 
-    Built by the same code as :class:`~phasekit.core.engines.TaylorEngine` (same expressions,
+    Built by the same code as :class:`~phasekit.core.engines.taylor.TaylorEngine` (same expressions,
     tolerance, compact mode and event cooldown); segments it integrates record the name "taylor",
     as they are the same steps.
 
@@ -31,7 +31,7 @@ class TaylorBatchEngine:
     Examples
     --------
     >>> import phasekit as pk
-    >>> e = pk.core.engines.TaylorBatchEngine(1e-9, lanes=8)
+    >>> e = pk.core.engines.batch.TaylorBatchEngine(1e-9, lanes=8)
     >>> e.name, e.pointwise, e.lanes
     ('taylor', False, 8)
     """
@@ -58,7 +58,7 @@ class TaylorBatchEngine:
             (batch integrator, number of parameters).
         """
         return compiled(("batch", flow.signature, self.rtol, self.lanes),
-                        partial(_build_taylor, flow, n_params, self.rtol, self.lanes), disk="taylor-batch")
+                        partial(build_taylor, flow, n_params, self.rtol, self.lanes), disk="taylor-batch")
 
     def propagate(self, ta, limits, max_steps: int) -> list[tuple[End | None, int | None, int, str]]:
         """One call of heyoka's propagate on every lane (to ``limits``, at most ``max_steps``
@@ -81,7 +81,7 @@ class TaylorBatchEngine:
         list of tuple
             Per lane: (End or None, event index or None, steps taken, heyoka's outcome in words).
         """
-        hy = _heyoka()
+        hy = load_heyoka()
         ta.propagate_until(limits, max_steps=max_steps)
         out = []
         for k, res in enumerate(ta.propagate_res):

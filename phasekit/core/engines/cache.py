@@ -26,7 +26,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from .taylor_build import _heyoka
+from .taylor_build import load_heyoka
 
 #: bump when the layout of the pickled cache entries, or how they are built, changes
 CACHE_FORMAT = 6  # 6: integrators in scaled variables (engines/scaling.py)
@@ -54,7 +54,7 @@ def _cache_dir() -> Path | None:
 
 def _place_heyoka_cache() -> None:
     """Point heyoka's disk cache into phasekit's cache directory, bounded (off when caching is)."""
-    llvm = _heyoka().llvm_state
+    llvm = load_heyoka().llvm_state
     cache = _cache_dir()
     if cache is None:
         llvm.set_diskcache_enabled(False)
@@ -90,8 +90,7 @@ def _announced(build: Callable[[], object], disk: str | None, label: str | None 
         where = _cache_dir() if disk is not None else None
         text = (f"compiling {label or _WHAT.get(disk, 'the solver of this model')} "
                 + (f"(heyoka/LLVM; once, then cached in {where}) ..." if where else "(once per process) ..."))
-        _LOG.info(text)
-        print(f"phasekit: {text}", file=sys.stderr, flush=True)
+        _say(text)
 
     timer = threading.Timer(after, say)
     timer.daemon = True
@@ -103,16 +102,26 @@ def _announced(build: Callable[[], object], disk: str | None, label: str | None 
         timer.cancel()
         timer.join()  # a notice being printed is finished before its "compiled" line
         if said.is_set():
-            text = f"compiled in {time.perf_counter() - start:.1f} s"
-            _LOG.info(text)
-            print(f"phasekit: {text}", file=sys.stderr, flush=True)
+            _say(f"compiled in {time.perf_counter() - start:.1f} s")
+
+
+_SAYING = threading.Lock()
+
+
+def _say(text: str) -> None:
+    """One notice line, written whole: print() writes the text and its newline separately, so two
+    compilations in two threads could share a line."""
+    _LOG.info(text)
+    with _SAYING:
+        sys.stderr.write(f"phasekit: {text}\n")
+        sys.stderr.flush()
 
 
 _LOCK = threading.Lock()
 _MEMORY: dict = {}  # key -> compiled entry (what ``build`` returned)
 _BUILDING: dict = {}  # key -> threading.Event, set when the build under way has finished (or failed)
 _PERSISTENT: set = set()  # the keys whose entries are picklable (heyoka's), for snapshot()
-_RECORDERS: dict = {}  # id(integrator) -> the monitor recorder inside it (looked up once)
+RECORDERS: dict = {}  # id(integrator) -> the monitor recorder inside it (looked up once)
 
 
 def compiled(key: tuple, build: Callable[[], object], *, disk: str | None = None, label: str | None = None):
@@ -168,7 +177,7 @@ def _join_prefetches() -> None:
 def _load_or_build(key: tuple, build: Callable[[], object], disk: str | None, label: str | None = None):
     entry = path = None
     if disk is not None:
-        hy = _heyoka()
+        hy = load_heyoka()
         digest = hashlib.sha256(repr((CACHE_FORMAT, key, hy.__version__)).encode()).hexdigest()[:24]
         cache = _cache_dir()
         path = cache / f"{disk}-{digest}.pkl" if cache else None
@@ -273,4 +282,4 @@ def forget() -> None:
     with _LOCK:
         _MEMORY.clear()
         _PERSISTENT.clear()
-        _RECORDERS.clear()
+        RECORDERS.clear()

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..hybrid import CompiledFlow
 from .cache import compiled
-from .dense import HermiteDense, _Span
+from .dense import HermiteDense, Span
 from .protocol import Budget, End, Propagation
 
 
@@ -93,19 +93,19 @@ class CvodesEngine:
 
     def propagate(self, flow: CompiledFlow, x0, t0, t_end, p, levels, *, budget: Budget, dense: bool = False,
                   resume: bool = False) -> Propagation:
-        """As :meth:`~phasekit.core.engines.TaylorEngine.propagate`. A guard at zero at t0 does not fire, nor (after
+        """As :meth:`~phasekit.core.engines.taylor.TaylorEngine.propagate`. A guard at zero at t0 does not fire, nor (after
         ``resume``) does the same guard within 1e-9 of t0. The monitor is recorded to grid
         accuracy.
 
         Parameters
         ----------
         flow, x0, t0, t_end, p, levels, budget, dense, resume
-            As for :meth:`~phasekit.core.engines.TaylorEngine.propagate` (dense output is cubic Hermite on the grid).
+            As for :meth:`~phasekit.core.engines.taylor.TaylorEngine.propagate` (dense output is cubic Hermite on the grid).
 
         Returns
         -------
         Propagation
-            As for :meth:`~phasekit.core.engines.TaylorEngine.propagate`.
+            As for :meth:`~phasekit.core.engines.taylor.TaylorEngine.propagate`.
         """
         p = np.asarray(p, dtype=float)
         levels = np.asarray(levels, dtype=float)
@@ -156,19 +156,25 @@ class CvodesEngine:
                     prop.outcome, prop.event = End.EVENT, hit[2]
                 if flow.monitor is not None:
                     _record_monitor(flow.monitor.direction, M[2 * ne], tk, X, last, prop)
-                keep = tk <= (t if hit is not None else tk[-1])
-                grid_t.extend(tk[1:][keep[1:]])
-                grid_x.extend(X[1:][keep[1:]])
-                if hit is not None:
-                    grid_t.append(t)
-                    grid_x.append(x.copy())
-                else:
-                    t, x = float(tk[-1]), X[-1].copy()
+                t, x = self._keep_grid(grid_t, grid_x, tk, X, hit, t, x)
                 _check_budgets(prop, budget, t, t_end)
         prop.t, prop.x = t, x
         if dense and len(grid_t) > 1:
-            prop.dense.append(_Span(HermiteDense(grid_t, grid_x, flow.field, p), grid_t[0], grid_t[-1]))
+            prop.dense.append(Span(HermiteDense(grid_t, grid_x, flow.field, p), grid_t[0], grid_t[-1]))
         return prop
+
+    @staticmethod
+    def _keep_grid(grid_t, grid_x, tk, X, hit, t, x):
+        """Append the chunk's grid points up to its event (all of them without one) to the dense
+        output's grid; returns (t, x) at the chunk's end: the event's, or the chunk's last point."""
+        keep = tk <= (t if hit is not None else tk[-1])
+        grid_t.extend(tk[1:][keep[1:]])
+        grid_x.extend(X[1:][keep[1:]])
+        if hit is not None:
+            grid_t.append(t)
+            grid_x.append(x.copy())
+            return t, x
+        return float(tk[-1]), X[-1].copy()
 
     def _first_event(self, flow, run, p, levels, X, tk, M, h, ne, cool, t0):
         """The earliest confirmed guard zero on this grid chunk: ((t, x, index), last grid index)."""

@@ -1,7 +1,7 @@
 """Dense output of the engines: callables t -> states over a propagation's span. The Taylor method's
-steps recorded as their Taylor polynomials (:class:`_TaylorSteps`, evaluated by :class:`_TaylorDense`),
+steps recorded as their Taylor polynomials (:class:`TaylorSteps`, evaluated by :class:`_TaylorDense`),
 cubic Hermite interpolation on a pointwise engine's output grid (:class:`HermiteDense`), and the
-restriction of either to its span (:class:`_Span`).
+restriction of either to its span (:class:`Span`).
 """
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import numpy as np
 from .roots import derivative_zeros
 
 
-class _TaylorSteps:
+class TaylorSteps:
     """Dense output of the Taylor method: the Taylor coefficients of every step (heyoka's
     ``tc``, the expansion at the step's start), recorded by a step callback and evaluated
     here by Horner's rule. heyoka's own continuous output costs ~1.4 ms per propagate call
@@ -19,11 +19,14 @@ class _TaylorSteps:
     ~0.4 us per step. ``tc`` is the integrator's ``ta.tc``, read once: it is a view of heyoka's
     buffer (reading the property costs 1 us a step). Each step keeps its bytes (half the cost
     of an array copy), joined into one array at the end. ``callback`` is what heyoka calls.
-    ``scale``: the integrator's scales of its states over these steps (:mod:`.scaling`)."""
+    ``scale``: the integrator's scales of its states from the first step on, :meth:`rescale` the
+    new ones from the next step on (:mod:`.scaling`): one record spans a whole propagation, so
+    what is computed per record (the monitor's zeros) is paid once, not once per renewal."""
 
     def __init__(self, t0: float, tc: np.ndarray, scale=None):
         self.t0, self.shape, self.ends, self.coefs = float(t0), tc.shape, [], []
         self.scale = None if scale is None else np.asarray(scale, dtype=float)[:, None]
+        self._marks = []  # (index of the first step, scales) of each renewal
         self._arrays = None
         keep, end, raw = self.coefs.append, self.ends.append, tc.tobytes
 
@@ -38,6 +41,11 @@ class _TaylorSteps:
     def t_last(self) -> float:
         return self.ends[-1] if self.ends else self.t0
 
+    def rescale(self, scale) -> None:
+        """The steps recorded from now on are in the integrator's new scaled variables."""
+        self._marks.append((len(self.coefs), np.asarray(scale, dtype=float)[:, None]))
+        self._arrays = None
+
     def finish(self, ta) -> None:
         """Record the last, event-truncated step when the callback did not see it."""
         if float(ta.time) != self.t_last:
@@ -49,7 +57,9 @@ class _TaylorSteps:
             ends = np.array(self.ends)
             coefs = np.frombuffer(b"".join(self.coefs)).reshape(len(self.coefs), *self.shape)
             if self.scale is not None:  # the integrator's scaled variables back to the flow's (scaling.py)
-                coefs = coefs * self.scale
+                firsts = [0, *(k for k, _ in self._marks), len(coefs)]
+                scales = [self.scale, *(sc for _, sc in self._marks)]
+                coefs = np.concatenate([coefs[a:b] * sc for a, b, sc in zip(firsts[:-1], firsts[1:], scales)])
             self._arrays = np.concatenate([[self.t0], ends[:-1]]), ends, coefs
         return self._arrays
 
@@ -58,11 +68,11 @@ class _TaylorSteps:
         if not self.coefs:
             return None
         starts, ends, coefs = self.arrays()
-        return _Span(_TaylorDense(starts, ends, coefs[:, :n]), starts[0], ends[-1])
+        return Span(_TaylorDense(starts, ends, coefs[:, :n]), starts[0], ends[-1])
 
     def zeros(self, n: int, direction: int) -> list:
         """[(t, x)] where the second derivative of the last state (z, with z' = s P, see
-        :func:`phasekit.core.engines.taylor_build._build_taylor`) crosses zero in ``direction``, x
+        :func:`phasekit.core.engines.taylor_build.build_taylor`) crosses zero in ``direction``, x
         the first ``n`` states there: the monitor's zeros."""
         if not self.coefs:
             return []
@@ -94,7 +104,7 @@ class _TaylorDense:
         return self.starts, self.ends, self.coefs
 
 
-class _Span:
+class Span:
     """A dense-output callable restricted to [t0, t1]."""
 
     def __init__(self, f, t0: float, t1: float):
@@ -109,11 +119,11 @@ class _Span:
         return self.f.pieces()
 
 
-def linear_span(t0: float, t1: float, x0, x1) -> _Span:
+def linear_span(t0: float, t1: float, x0, x1) -> Span:
     """The straight line from (t0, x0) to (t1, x1) as a dense-output span (a one-step polynomial)."""
     x0, x1 = np.asarray(x0, dtype=float), np.asarray(x1, dtype=float)
     coefs = np.stack([x0, (x1 - x0) / (t1 - t0)], axis=-1)[None]
-    return _Span(_TaylorDense(np.array([t0]), np.array([t1]), coefs), t0, t1)
+    return Span(_TaylorDense(np.array([t0]), np.array([t1]), coefs), t0, t1)
 
 
 class HermiteDense:

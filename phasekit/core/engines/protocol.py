@@ -120,7 +120,7 @@ class Engine(Protocol):
     ``name`` is what the segments it integrates record; ``pointwise`` says it sees the guards
     only at output points (the stick guard is then watched in its smooth form with a rate, see
     :func:`phasekit.core.system.watched`). The batch engine
-    (:class:`~phasekit.core.engines.TaylorBatchEngine`) has the same name and pointwise flag, and
+    (:class:`~phasekit.core.engines.batch.TaylorBatchEngine`) has the same name and pointwise flag, and
     its ``propagate`` takes every lane of an integrator at once.
 
     Attributes

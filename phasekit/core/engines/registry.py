@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from functools import partial
 
-from ..._runtime.errors import ParameterError
+from ...errors import ParameterError
 from .cvodes import CvodesEngine
 from .protocol import Engine
 from .taylor import TaylorEngine
@@ -28,7 +28,7 @@ def engine_names() -> tuple[str, ...]:
     Examples
     --------
     >>> import phasekit as pk
-    >>> pk.core.engines.engine_names()
+    >>> pk.core.engines.registry.engine_names()
     ('auto', 'taylor', 'cvodes', 'cvodes-adams', 'idas')
     """
     return ("auto", *ENGINES)
@@ -55,7 +55,7 @@ def register_engine(name: str, factory: Callable[..., Engine]) -> None:
     --------
     >>> import phasekit as pk
     >>> from phasekit.core.engines import registry
-    >>> pk.core.engines.register_engine('cvodes-loose', lambda rtol, atol=None: pk.core.engines.CvodesEngine(rtol, 1e-6))
+    >>> pk.core.engines.register_engine('cvodes-loose', lambda rtol, atol=None: pk.core.engines.cvodes.CvodesEngine(rtol, 1e-6))
     >>> pk.SolverOptions(backend='cvodes-loose').backend
     'cvodes-loose'
     >>> del registry.ENGINES['cvodes-loose']
@@ -96,7 +96,7 @@ def engine_for(name: str, rtol: float, atol: float | None = None) -> Engine:
     >>> pk.core.engines.engine_for('rk4', 1e-9)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
         ...
-    phasekit._runtime.errors.ParameterError: `backend` must be one of taylor, cvodes, cvodes-adams, idas, got 'rk4'.
+    phasekit.errors.ParameterError: `backend` must be one of taylor, cvodes, cvodes-adams, idas, got 'rk4'.
     """
     if name not in ENGINES:
         raise ParameterError("backend", f"must be one of {', '.join(ENGINES)}", name)

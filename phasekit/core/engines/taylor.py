@@ -11,11 +11,11 @@ from functools import partial
 import numpy as np
 
 from ..hybrid import CompiledFlow
-from .cache import _RECORDERS, compiled, prefetch
-from .dense import _TaylorSteps
+from .cache import RECORDERS, compiled, prefetch
+from .dense import TaylorSteps
 from .protocol import Budget, End, Propagation
 from .scaling import initial_scales, next_rescale, next_scales
-from .taylor_build import _build_taylor, _heyoka, scales_at, taylor_end, taylor_pars
+from .taylor_build import build_taylor, load_heyoka, scales_at, taylor_end, taylor_pars
 
 #: steps per call of heyoka's propagate: between calls the wall clock is checked
 STEP_CHUNK = 20_000
@@ -34,7 +34,7 @@ class TaylorEngine:
     Examples
     --------
     >>> import phasekit as pk
-    >>> e = pk.core.engines.TaylorEngine(1e-9)
+    >>> e = pk.core.engines.taylor.TaylorEngine(1e-9)
     >>> e.name, e.pointwise, e.rtol
     ('taylor', False, 1e-09)
     """
@@ -60,21 +60,21 @@ class TaylorEngine:
         tuple
             (integrator, recorder or None, number of parameters).
         """
-        ta, npar = compiled((flow.signature, self.rtol), partial(_build_taylor, flow, n_params, self.rtol, None),
+        ta, npar = compiled((flow.signature, self.rtol), partial(build_taylor, flow, n_params, self.rtol, None),
                             disk="taylor", label=f"the Taylor integrator of the {flow.mode.value} mode")
         if flow.monitor is None or flow.monitor_primitive is not None:
             return ta, None, npar
         # the recorder inside the integrator is the one that records (heyoka copied ours, and
         # one loaded from disk or a snapshot is a new object): look it up in the integrator
-        recorder = _RECORDERS.get(id(ta))
+        recorder = RECORDERS.get(id(ta))
         if recorder is None:
-            recorder = _RECORDERS.setdefault(id(ta), ta.nt_events[0].callback)
+            recorder = RECORDERS.setdefault(id(ta), ta.nt_events[0].callback)
         return ta, recorder, npar
 
     def prefetch(self, flow: CompiledFlow, n_params: int) -> None:
         """Start compiling :meth:`integrator` of ``flow`` in the background (see
         :func:`phasekit.core.engines.cache.prefetch`)."""
-        prefetch((flow.signature, self.rtol), partial(_build_taylor, flow, n_params, self.rtol, None), disk="taylor",
+        prefetch((flow.signature, self.rtol), partial(build_taylor, flow, n_params, self.rtol, None), disk="taylor",
                  label=f"the Taylor integrator of the {flow.mode.value} mode, in the background,")
 
     def propagate(self, flow: CompiledFlow, x0, t0, t_end, p, levels, *, budget: Budget, dense: bool = False,
@@ -106,7 +106,7 @@ class TaylorEngine:
         Propagation
             The time and state reached, how the call ended, steps, monitor crossings and dense output.
         """
-        hy = _heyoka()
+        hy = load_heyoka()
         ta, recorder, npar = self.integrator(flow, len(p))
         n, first = flow.n_states, scales_at(flow, len(p))
         if not resume:
@@ -118,9 +118,10 @@ class TaylorEngine:
         zeros = flow.monitor is not None and flow.monitor_primitive is not None  # the monitor's zeros from z's expansion
         tc = ta.tc if dense or zeros else None
         t_end = float(t_end)
+        extra = np.ones(len(ta.state) - n)  # z (the monitor's integral) is not scaled
+        record = TaylorSteps(float(ta.time), tc, np.concatenate([scale, extra])) if tc is not None else None
         while True:
             stop = min(t_end, next_rescale(float(ta.time)))  # the scales are renewed on a grid of times
-            record = _TaylorSteps(float(ta.time), tc, np.concatenate([scale, np.ones(len(ta.state) - n)])) if tc is not None else None
             try:
                 res = ta.propagate_until(stop, max_steps=int(max(1, min(budget.steps - prop.n_steps, STEP_CHUNK))),
                                          write_tc=tc is not None, callback=record.callback if record else None)
@@ -129,10 +130,12 @@ class TaylorEngine:
                 break
             prop.n_steps += int(res[3])
             if record is not None and int(res[3]) > 0:
-                _keep(record, ta, prop, flow, dense, zeros)
+                record.finish(ta)  # the last, truncated step, in the scales it was taken in
             end, event = taylor_end(hy, res[0])
             if end is End.TIME and stop < t_end:  # a grid time: renew the scales
                 scale = _rescale(ta, n, first, scale)
+                if record is not None:
+                    record.rescale(np.concatenate([scale, extra]))
                 end = None
             if end is None:  # under way: the step chunk ran out, or a grid time
                 if _out_of_budget(prop, budget, float(ta.time)):
@@ -143,6 +146,8 @@ class TaylorEngine:
                 prop.reason = (f"non-finite state at t = {ta.time:.6g}" if res[0] == hy.taylor_outcome.err_nf_state
                                else f"taylor integrator stopped: {res[0]}")
             break
+        if record is not None:
+            _keep(record, prop, flow, dense, zeros)
         prop.t, prop.x = float(ta.time), ta.state[:n] * scale
         prop.n_rhs = prop.n_steps * (ta.order + 1)
         if recorder is not None:
@@ -168,9 +173,10 @@ def _rescale(ta, n: int, first: int, scale) -> np.ndarray:
     return new
 
 
-def _keep(record, ta, prop: Propagation, flow: CompiledFlow, dense: bool, zeros: bool) -> None:
-    """What a call's recorded steps give: the monitor's zeros and the dense output."""
-    record.finish(ta)
+def _keep(record, prop: Propagation, flow: CompiledFlow, dense: bool, zeros: bool) -> None:
+    """What a propagation's recorded steps give: the monitor's zeros and the dense output."""
+    if not record.coefs:
+        return
     if zeros:
         prop.monitored += record.zeros(flow.n_states, flow.monitor.direction)
     if dense:

@@ -1,6 +1,6 @@
 """heyoka's Taylor integrators of a flow: the field, guards and monitor translated from CasADi
-(:mod:`phasekit._runtime.translate`), every guard a terminal event with a fixed cooldown, compact
-mode for big flows, scalar or batch (:func:`_build_taylor`); and heyoka's outcome of a propagate
+(:mod:`phasekit.core.engines.translate`), every guard a terminal event with a fixed cooldown, compact
+mode for big flows, scalar or batch (:func:`build_taylor`); and heyoka's outcome of a propagate
 call read as an :class:`~phasekit.core.engines.End` (:func:`taylor_end`).
 """
 
@@ -58,7 +58,7 @@ class _MonitorRecorder:
         self.points.append((float(t), x))
 
 
-def _heyoka():
+def load_heyoka():
     import heyoka as hy
 
     # heyoka logs through spdlog to stdout; results go to stdout, so keep it quiet
@@ -77,16 +77,16 @@ def taylor_pars(p, levels, scales) -> np.ndarray:
     return np.concatenate([np.asarray(p, dtype=float), np.asarray(levels, dtype=float), np.asarray(scales, dtype=float)])
 
 
-def _build_taylor(flow: CompiledFlow, n_params: int, rtol: float, lanes: int | None):
+def build_taylor(flow: CompiledFlow, n_params: int, rtol: float, lanes: int | None):
     """heyoka's integrator of ``flow`` (``lanes`` None: scalar; else a batch of that many lanes)
     in the scaled variables xs = x / S of :mod:`.scaling` (S: the last ``flow.n_states``
     parameters, see :func:`scales_at`): the field and guards translated from CasADi, every guard a
     terminal event with the cooldown EVENT_COOLDOWN, the monitor a non-terminal one (scalar only)
     or, when it has a primitive P, one more (unscaled) state z' = PRIMITIVE_SCALE P, compact mode
     for big flows. Returns (integrator, number of parameters it reads)."""
-    from ..._runtime.translate import to_heyoka
+    from .translate import to_heyoka
 
-    hy = _heyoka()
+    hy = load_heyoka()
     batch = lanes is not None
     n = flow.n_states
     xs = hy.make_vars(*[f"x{i}" for i in range(n)])

@@ -88,45 +88,17 @@ for a regularised law; the energy criterion does not depend on the law (nor on m
 """
 
 
-from .groups import theta_f, theta_f_limit, ueda_group, ueda_group_limit
-from .inversion import (
-    classical_inversion,
-    critical_spin_from_jellett,
-    full_inversion_jellett,
-    full_inversion_spin,
-    inversion_interval,
-    jellett_of_vertical_start,
-    moments_about_G,
-    spin_for_jellett,
-)
-from .steady import (
-    effective_potential,
-    inverted_stable_spin,
-    jellett_threshold,
-    steady_precession,
-    steady_state_jellett_sq,
-    upright_unstable_jellett,
-    upright_unstable_spin,
-)
+from .groups import theta_f, ueda_group, ueda_group_limit
+from .inversion import classical_inversion, full_inversion_spin, jellett_of_vertical_start
+from .steady import inverted_stable_spin, upright_unstable_spin
 
 __all__ = [
     "classical_inversion",
-    "critical_spin_from_jellett",
-    "effective_potential",
-    "full_inversion_jellett",
     "full_inversion_spin",
-    "inversion_interval",
     "inverted_stable_spin",
     "jellett_of_vertical_start",
-    "jellett_threshold",
-    "moments_about_G",
-    "spin_for_jellett",
-    "steady_precession",
-    "steady_state_jellett_sq",
     "theta_f",
-    "theta_f_limit",
     "ueda_group",
     "ueda_group_limit",
-    "upright_unstable_jellett",
     "upright_unstable_spin",
 ]

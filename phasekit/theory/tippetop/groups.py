@@ -10,11 +10,9 @@ import math
 
 import numpy as np
 
-from .geometry import _margins, _params
+from .geometry import margins, params
 from .inversion import jellett_of_vertical_start
 from .steady import steady_state_jellett_sq
-
-__all__ = ['ueda_group_limit', 'ueda_group', 'theta_f', 'theta_f_limit']
 
 
 def ueda_group_limit(alpha, A, C) -> str:
@@ -49,8 +47,8 @@ def ueda_group_limit(alpha, A, C) -> str:
     >>> pk.theory.tippetop.ueda_group_limit(0.3, 0.38, 0.4)
     'II'
     """
-    a, A, C = _params(alpha, A, C)
-    up, inv = _margins(a, A, C)
+    a, A, C = params(alpha, A, C)
+    up, inv = margins(a, A, C)
     if up <= 0:
         return "I"
     if inv > 0:
@@ -155,7 +153,7 @@ def ueda_group(alpha, A, C, n, *, theta0: float = 0.0) -> str:
     >>> pk.theory.tippetop.ueda_group(0.3, 0.38, 0.4, 15.0, theta0=0.1)
     'full'
     """
-    a, A, C = _params(alpha, A, C)
+    a, A, C = params(alpha, A, C)
     lam = jellett_of_vertical_start(a, A, C, theta0, n)
     return _classify(a, A, C, lam * lam)[0]
 
@@ -197,7 +195,7 @@ def theta_f(alpha, A, C, n, *, theta0: float = 0.0) -> float:
     >>> round(pk.theory.tippetop.theta_f(0.3, 0.38, 0.4, 15.0, theta0=0.1), 6)
     3.141593
     """
-    a, A, C = _params(alpha, A, C)
+    a, A, C = params(alpha, A, C)
     lam = jellett_of_vertical_start(a, A, C, theta0, n)
     return _classify(a, A, C, lam * lam)[1]
 
@@ -228,10 +226,10 @@ def theta_f_limit(alpha, A, C) -> float:
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(pk.theory.tippetop.theta_f_limit(0.3, 0.38, 0.4), 6)
+    >>> round(pk.theory.tippetop.groups.theta_f_limit(0.3, 0.38, 0.4), 6)
     nan
     """
-    a, A, C = _params(alpha, A, C)
-    if _margins(a, A, C)[1] >= 0:
+    a, A, C = params(alpha, A, C)
+    if margins(a, A, C)[1] >= 0:
         return math.nan
     return math.acos(C * a / (C - A))

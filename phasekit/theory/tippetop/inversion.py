@@ -10,12 +10,10 @@ import math
 
 import numpy as np
 
-from ..._runtime.errors import ParameterError
 from ..._runtime.validate import check_finite, check_positive, check_range, check_real
-from .geometry import _margins, _params, _theta0
+from ...errors import ParameterError
+from .geometry import margins, params, theta0_of
 from .steady import jellett_threshold, steady_state_jellett_sq
-
-__all__ = ['inversion_interval', 'classical_inversion', 'moments_about_G', 'jellett_of_vertical_start', 'spin_for_jellett', 'full_inversion_jellett', 'full_inversion_spin', 'critical_spin_from_jellett']
 
 
 def inversion_interval(alpha) -> tuple[float, float]:
@@ -51,7 +49,7 @@ def inversion_interval(alpha) -> tuple[float, float]:
     Examples
     --------
     >>> import phasekit as pk
-    >>> pk.theory.tippetop.inversion_interval(0.3)
+    >>> pk.theory.tippetop.inversion.inversion_interval(0.3)
     (0.7, 1.3)
     """
     a = check_range("alpha", alpha, 0.0, 1.0, closed="l", label="[0, 1)")
@@ -87,8 +85,8 @@ def classical_inversion(alpha, A, C) -> bool:
     >>> pk.theory.tippetop.classical_inversion(0.3, 0.38, 0.4)
     True
     """
-    a, A, C = _params(alpha, A, C)
-    up, inv = _margins(a, A, C)
+    a, A, C = params(alpha, A, C)
+    up, inv = margins(a, A, C)
     return up > 0 and inv > 0
 
 def moments_about_G(alpha, A_O, C_O) -> tuple[float, float]:
@@ -119,7 +117,7 @@ def moments_about_G(alpha, A_O, C_O) -> tuple[float, float]:
     Examples
     --------
     >>> import phasekit as pk
-    >>> [round(v, 6) for v in pk.theory.tippetop.moments_about_G(0.3, 0.5, 0.4)]
+    >>> [round(v, 6) for v in pk.theory.tippetop.inversion.moments_about_G(0.3, 0.5, 0.4)]
     [0.41, 0.4]
     """
     a = check_range("alpha", alpha, 0.0, 1.0, closed="l", label="[0, 1)")
@@ -171,8 +169,8 @@ def jellett_of_vertical_start(alpha, A, C, theta0, n0) -> float:
     >>> round(pk.theory.tippetop.jellett_of_vertical_start(0.3, 0.38, 0.4, 0.1, 15.0), 6)
     4.206002
     """
-    a, A, C = _params(alpha, A, C)
-    th = _theta0(theta0)
+    a, A, C = params(alpha, A, C)
+    th = theta0_of(theta0)
     n0 = check_finite("n0", n0)
     return n0 * (A * math.sin(th) ** 2 + C * math.cos(th) * (math.cos(th) - a))
 
@@ -210,11 +208,11 @@ def spin_for_jellett(alpha, A, C, jellett, theta0=0.0) -> float:
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(pk.theory.tippetop.spin_for_jellett(0.3, 0.38, 0.4, 6.0, theta0=0.1), 6)
+    >>> round(pk.theory.tippetop.inversion.spin_for_jellett(0.3, 0.38, 0.4, 6.0, theta0=0.1), 6)
     21.39799
     """
-    a, A, C = _params(alpha, A, C)
-    th = _theta0(theta0)
+    a, A, C = params(alpha, A, C)
+    th = theta0_of(theta0)
     lam = check_real("jellett", jellett)
     if not math.isfinite(lam):
         return math.inf
@@ -252,10 +250,10 @@ def full_inversion_jellett(alpha, A, C) -> float:
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(pk.theory.tippetop.full_inversion_jellett(0.3, 0.38, 0.4), 6)
+    >>> round(pk.theory.tippetop.inversion.full_inversion_jellett(0.3, 0.38, 0.4), 6)
     0.989563
     """
-    a, A, C = _params(alpha, A, C)
+    a, A, C = params(alpha, A, C)
     if not classical_inversion(a, A, C):
         return math.inf
     cand = [1.0, -1.0]
@@ -339,7 +337,7 @@ def critical_spin_from_jellett(alpha, A, C, theta0) -> float:
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(pk.theory.tippetop.critical_spin_from_jellett(0.3, 0.38, 0.4, 0.1), 6)
+    >>> round(pk.theory.tippetop.inversion.critical_spin_from_jellett(0.3, 0.38, 0.4, 0.1), 6)
     3.529109
     """
     return spin_for_jellett(alpha, A, C, jellett_threshold(alpha, A, C), theta0)

@@ -10,11 +10,9 @@ import math
 
 import numpy as np
 
-from ..._runtime.errors import ParameterError
 from ..._runtime.validate import check_finite, check_range
-from .geometry import _D, _f, _margins, _params
-
-__all__ = ['effective_potential', 'steady_state_jellett_sq', 'steady_precession', 'upright_unstable_jellett', 'jellett_threshold', 'upright_unstable_spin', 'inverted_stable_spin']
+from ...errors import ParameterError
+from .geometry import D_of, f_of, margins, params
 
 
 def effective_potential(alpha, A, C, jellett, theta):
@@ -49,13 +47,13 @@ def effective_potential(alpha, A, C, jellett, theta):
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(float(pk.theory.tippetop.effective_potential(0.3, 0.38, 0.4, 6.0, 1.0)), 6)
+    >>> round(float(pk.theory.tippetop.steady.effective_potential(0.3, 0.38, 0.4, 6.0, 1.0)), 6)
     62.446725
     """
-    a, A, C = _params(alpha, A, C)
+    a, A, C = params(alpha, A, C)
     lam = check_finite("jellett", jellett)
     z = np.cos(np.asarray(theta, dtype=float))
-    return lam * lam / (2.0 * _f(z, a, A, C)) + 1.0 - a * z
+    return lam * lam / (2.0 * f_of(z, a, A, C)) + 1.0 - a * z
 
 def steady_state_jellett_sq(alpha, A, C, z):
     """g(z) = alpha f(z)^2 / D(z): the squared Jellett integral of the steady state at
@@ -88,14 +86,14 @@ def steady_state_jellett_sq(alpha, A, C, z):
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(float(pk.theory.tippetop.steady_state_jellett_sq(0.3, 0.38, 0.4, 0.5)), 6)
+    >>> round(float(pk.theory.tippetop.steady.steady_state_jellett_sq(0.3, 0.38, 0.4, 0.5)), 6)
     0.247094
     """
-    a, A, C = _params(alpha, A, C)
+    a, A, C = params(alpha, A, C)
     z = np.asarray(z, dtype=float)
-    D = _D(z, a, A, C)
+    D = D_of(z, a, A, C)
     with np.errstate(divide="ignore", invalid="ignore"):
-        out = np.where(D > 0, a * _f(z, a, A, C) ** 2 / np.where(D > 0, D, 1.0), np.inf)
+        out = np.where(D > 0, a * f_of(z, a, A, C) ** 2 / np.where(D > 0, D, 1.0), np.inf)
     return out if out.ndim else float(out)
 
 def steady_precession(alpha, A, C, theta) -> dict:
@@ -130,17 +128,17 @@ def steady_precession(alpha, A, C, theta) -> dict:
     Examples
     --------
     >>> import phasekit as pk
-    >>> {k: round(float(v), 6) for k, v in pk.theory.tippetop.steady_precession(0.3, 0.38, 0.4, 1.0).items()}
+    >>> {k: round(float(v), 6) for k, v in pk.theory.tippetop.steady.steady_precession(0.3, 0.38, 0.4, 1.0).items()}
     {'Omega': 1.65753, 'n': 0.398308, 'jellett': 0.484274, 'D': 0.109194}
     """
-    a, A, C = _params(alpha, A, C)
+    a, A, C = params(alpha, A, C)
     th = check_range("theta", theta, 0.0, math.pi, label="(0, pi)")
     z = math.cos(th)
-    D = _D(z, a, A, C)
+    D = D_of(z, a, A, C)
     if D <= 0:
         raise ParameterError("theta", f"admits no steady precession for these moments ((A - C) cos(theta) + C alpha = {D:.6g} <= 0)", theta)
     Om = math.sqrt(a / D)
-    return {"Omega": Om, "n": Om * (z - a), "jellett": Om * _f(z, a, A, C), "D": D}
+    return {"Omega": Om, "n": Om * (z - a), "jellett": Om * f_of(z, a, A, C), "D": D}
 
 
 # ------------------------------------------------------- 2/3. critical Jellett and spins
@@ -173,11 +171,11 @@ def upright_unstable_jellett(alpha, A, C) -> float:
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(pk.theory.tippetop.upright_unstable_jellett(0.3, 0.38, 0.4), 6)
+    >>> round(pk.theory.tippetop.steady.upright_unstable_jellett(0.3, 0.38, 0.4), 6)
     0.339482
     """
-    a, A, C = _params(alpha, A, C)
-    den = _margins(a, A, C)[0]
+    a, A, C = params(alpha, A, C)
+    den = margins(a, A, C)[0]
     return math.inf if den <= 0 else math.sqrt(a * C * C * (1.0 - a) ** 4 / den)
 
 def jellett_threshold(alpha, A, C) -> float:
@@ -216,11 +214,11 @@ def jellett_threshold(alpha, A, C) -> float:
     Examples
     --------
     >>> import phasekit as pk
-    >>> round(pk.theory.tippetop.jellett_threshold(0.3, 0.38, 0.4), 6)
+    >>> round(pk.theory.tippetop.steady.jellett_threshold(0.3, 0.38, 0.4), 6)
     0.989563
     """
-    a, A, C = _params(alpha, A, C)
-    den = _margins(a, A, C)[1]  # = C (1 + alpha - gamma)
+    a, A, C = params(alpha, A, C)
+    den = margins(a, A, C)[1]  # = C (1 + alpha - gamma)
     return math.inf if den <= 0 else math.sqrt(C * a) * (1.0 + a) ** 2 / math.sqrt(den / C)
 
 def upright_unstable_spin(alpha, A, C) -> float:
@@ -259,8 +257,8 @@ def upright_unstable_spin(alpha, A, C) -> float:
     >>> round(pk.theory.tippetop.upright_unstable_spin(0.3, 0.38, 0.4), 6)
     1.212436
     """
-    a, A, C = _params(alpha, A, C)
-    den = _margins(a, A, C)[0]
+    a, A, C = params(alpha, A, C)
+    den = margins(a, A, C)[0]
     return math.inf if den <= 0 else (1.0 - a) * math.sqrt(a / den)
 
 def inverted_stable_spin(alpha, A, C) -> float:
@@ -299,8 +297,8 @@ def inverted_stable_spin(alpha, A, C) -> float:
     >>> round(pk.theory.tippetop.inverted_stable_spin(0.3, 0.38, 0.4), 6)
     1.903005
     """
-    a, A, C = _params(alpha, A, C)
-    den = _margins(a, A, C)[1]
+    a, A, C = params(alpha, A, C)
+    den = margins(a, A, C)[1]
     return math.inf if den <= 0 else (1.0 + a) * math.sqrt(a / den)
 
 

@@ -5,9 +5,9 @@ the argument."""
 import math
 
 import phasekit as pk
-from phasekit._runtime.errors import ParameterError
-from phasekit.theory.jump_surface import exact_boundary, surface_n
-from phasekit.theory.surface import Scene, compute_scene
+from phasekit import ParameterError
+from phasekit.scenes import Scene, compute_scene, exact_boundary
+from phasekit.theory import surface_n
 
 import numpy as np
 import pytest
@@ -117,13 +117,13 @@ def test_surface_n_valid_matches_closed_form():
 ])
 def test_exact_boundary_rejects(name, kwargs):
     args = dict(body=B, mu=0.1, Omega=12.0, theta=1.0, Lambda=0.0) | kwargs
-    raises_param(name, lambda: pk.theory.exact_boundary(args.pop("body"), args.pop("mu"), args.pop("Omega"), args.pop("theta"),
+    raises_param(name, lambda: pk.scenes.exact_boundary(args.pop("body"), args.pop("mu"), args.pop("Omega"), args.pop("theta"),
                                             **args))
 
 
 def test_exact_boundary_valid_is_6_3_at_lambda_zero():
     th = np.array([0.5, 1.0, 1.3])
-    np.testing.assert_allclose(pk.theory.exact_boundary(B, 0.1, 12.0, th), _closed_form_6_3(1.5, 12.0, th), rtol=1e-10)
+    np.testing.assert_allclose(pk.scenes.exact_boundary(B, 0.1, 12.0, th), _closed_form_6_3(1.5, 12.0, th), rtol=1e-10)
 
 
 @pytest.mark.parametrize("name, kwargs", [

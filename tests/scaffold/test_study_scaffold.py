@@ -1,4 +1,4 @@
-"""The scaffold every study script runs on (phasekit.sweep.study): output folders, atomic writes,
+"""The scaffold every study script runs on (phasekit.scaffold): output folders, atomic writes,
 tables and figures, refused flags, and one line on stderr for an error or Ctrl-C."""
 
 from __future__ import annotations
@@ -9,7 +9,11 @@ import sys
 from pathlib import Path
 
 import phasekit as pk
-from phasekit.sweep.study import atomic_path, output_dir, run_study, save_figure, study_parser, write_csv
+from phasekit.io import atomic_path
+from phasekit.scaffold import run_study
+from phasekit.scaffold.parser import output_dir, study_parser
+from phasekit.scaffold.writers import write_csv
+from phasekit.viz import save_figure
 
 import pytest
 
@@ -79,7 +83,7 @@ def test_ctrl_c_ends_a_study_with_one_line_and_exit_code_130(capsys):
 
 @pytest.mark.parametrize("argv, flag", [(["--quick", "--quick"], "--quick"), (["--out", "a", "--out=b"], "--out")])
 def test_a_study_refuses_a_repeated_flag_too(argv, flag, capsys):
-    from phasekit.sweep.study import study_parser
+    from phasekit.scaffold.parser import study_parser
 
     ap = study_parser("a study", default_out=ROOT / "figures")
     with pytest.raises(SystemExit) as info:
@@ -161,7 +165,7 @@ def test_an_interrupt_that_compiled_code_swallows_still_ends_the_run(capsys):
 def test_an_interrupt_that_compiled_code_turns_into_another_error_ends_a_study_as_interrupted(capsys):
     """CasADi's argument dispatch turns a KeyboardInterrupt into NotImplementedError ("Wrong
     number or type of arguments"), which propagated as a traceback (found at 1.2 s into a study)."""
-    from phasekit.sweep.study import run_study
+    from phasekit.scaffold import run_study
 
     if signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
         pytest.skip("SIGINT is handled by something else in this process")

@@ -6,7 +6,7 @@ A study is the science plus a few lines::
     import phasekit as pk
 
     def main(argv=None) -> dict:
-        st = pk.sweep.Study(__file__, __doc__, dask=True)    # --quick --out --no-progress --fresh, and
+        st = pk.scaffold.Study(__file__, __doc__, dask=True)    # --quick --out --no-progress --fresh, and
                                                             # --serial --scheduler --workers for Dask
         st.parser.add_argument("--seed", type=st.parser.integer(min=0), default=1)  # the study's own
         args = st.parse(argv)                               # checked at parse time; st.out made
@@ -16,7 +16,7 @@ A study is the science plus a few lines::
         st.save(fig, "name.png"); st.csv("name.csv", header, rows); st.json("summary.json", d)
 
     if __name__ == "__main__":
-        pk.sweep.run_study(main)
+        pk.scaffold.run_study(main)
 
 Everything a study writes goes to ``figures/`` next to its folder (``figures/quick/`` with
 ``--quick``, or ``--out DIR``), each file written whole under a temporary name and renamed.
@@ -34,303 +34,26 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import csv
-import json
-import math
 import os
-import re
 import shlex
 import sys
 import time
 from collections.abc import Mapping
 from pathlib import Path
 
-from .._runtime.errors import ParameterError, PhasekitError
 from .._runtime.interrupts import interrupt_guard
-from ..io.tables import atomic_path
-from .stores import ResultStore, provenance, stored_rows
-from .tasks import run_pending
-
-__all__ = ["Study", "study_parser", "StudyParser", "output_dir", "save_figure", "write_csv", "write_json", "atomic_path",
-           "progress", "run_study"]
+from .._runtime.watch import progress_bar
+from ..errors import ParameterError, PhasekitError
+from ..sweep import ResultStore, provenance, run_pending
+from ..sweep.stores import stored_rows
+from ..viz import save_figure
+from .parser import EXIT_FAILED, EXIT_USAGE, Current, output_dir, study_parser
+from .writers import write_csv, write_json
 
 #: exit code of a run ended by Ctrl-C (128 + SIGINT), as shells report it
 EXIT_INTERRUPTED = 130
-#: exit code of bad input (argparse's), and of another phasekit error
-EXIT_USAGE, EXIT_FAILED = 2, 1
-
-#: the parser of the study running in this process (run_study names API parameters by its flags)
-_PARSER: argparse.ArgumentParser | None = None
 #: the result stores the study running in this process opened (run_study names them on Ctrl-C)
 _STORES: list = []
-
-
-def _typed(text: str) -> str:
-    """A value as the user typed it: numbers plain, anything else quoted."""
-    try:
-        float(text)
-    except ValueError:
-        return repr(text)
-    return text.strip()
-
-
-class StudyParser(argparse.ArgumentParser):
-    """argparse with one-line errors (``prog: error: argument --flag: ...``, exit code 2, no
-    usage block) and checked number types for a study's flags: ``type=ap.integer(min=1)``,
-    ``type=ap.real(min=0, min_open=True)``. Abbreviated options are refused."""
-
-    def __init__(self, *args, **kwargs):
-        kwargs.setdefault("allow_abbrev", False)
-        kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
-        super().__init__(*args, **kwargs)
-        # argparse's own pattern misses exponents, so "--mu -1e-4" would read -1e-4 as an option
-        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|nan)$", re.I)
-
-    def error(self, message):  # one line, no usage block
-        self.exit(EXIT_USAGE, f"{self.prog}: error: {' '.join(str(message).split())}\n")
-
-    def parse_args(self, args=None, namespace=None):
-        """As argparse, and an option given twice is refused (argparse would keep the last
-        silently), a switch too, as the CLI does."""
-        argv = sys.argv[1:] if args is None else list(args)
-        argv = argv[:argv.index("--")] if "--" in argv else argv
-        typed = [a.split("=", 1)[0] for a in argv if isinstance(a, str) and a.startswith("--") and len(a) > 2]
-        for flag in dict.fromkeys(typed):
-            if flag in self._option_string_actions and typed.count(flag) > 1:
-                self.error(f"{flag} is given {typed.count(flag)} times: give it once")
-        return super().parse_args(args, namespace)
-
-    @staticmethod
-    def integer(min: int | None = None, max: int | None = None):
-        """An argparse ``type``: an integer in [min, max] (either bound may be None)."""
-        if min is not None and max is not None:
-            want = f"an integer in [{min}, {max}]"
-        else:
-            want = "an integer" + (f" >= {min}" if min is not None else f" <= {max}" if max is not None else "")
-
-        def integer(text: str) -> int:
-            try:
-                value = int(text)
-            except ValueError:
-                raise argparse.ArgumentTypeError(f"must be {want}, got {_typed(text)}") from None
-            if (min is not None and value < min) or (max is not None and value > max):
-                raise argparse.ArgumentTypeError(f"must be {want}, got {_typed(text)}")
-            return value
-
-        return integer
-
-    @staticmethod
-    def real(min: float | None = None, max: float | None = None, *, min_open: bool = False, max_open: bool = False):
-        """An argparse ``type``: a finite number in the range given (bounds inclusive unless
-        ``min_open`` / ``max_open``); nan and inf are refused."""
-        parts = []
-        if min is not None:
-            parts.append(f"{'>' if min_open else '>='} {float(min):g}")
-        if max is not None:
-            parts.append(f"{'<' if max_open else '<='} {float(max):g}")
-        want = "a finite number" + (" " + " and ".join(parts) if parts else "")
-
-        def real(text: str) -> float:
-            try:
-                value = float(text)
-            except ValueError:
-                raise argparse.ArgumentTypeError(f"must be {want}, got {_typed(text)}") from None
-            bad = not math.isfinite(value)
-            if min is not None:
-                bad = bad or value < min or (min_open and value == min)
-            if max is not None:
-                bad = bad or value > max or (max_open and value == max)
-            if bad:
-                raise argparse.ArgumentTypeError(f"must be {want}, got {_typed(text)}")
-            return value
-
-        return real
-
-
-def _directory_name(text: str) -> str:
-    """``--out``: a non-empty path (an empty one would silently mean the default folder)."""
-    if not text.strip():
-        raise argparse.ArgumentTypeError(f"must name a directory, got {text!r} (omit --out for the default folder)")
-    return text
-
-
-def study_parser(doc: str, *, default_out: Path, quick: bool = True, quick_help: str | None = None) -> StudyParser:
-    """An argument parser (a :class:`StudyParser`) with the options every study has:
-    ``--quick`` (a reduced run, written to ``figures/quick/`` unless ``--out`` is given, never
-    over the committed results), ``--out DIR`` and ``--no-progress``. Abbreviated options are
-    refused (``--q`` is not ``--quick``); an error is one line naming the flag, exit code 2."""
-    global _PARSER
-    ap = StudyParser(description=doc)
-    if quick:
-        ap.add_argument("--quick", action="store_true",
-                        help=(quick_help or "a reduced run") + f"; writes to {Path(default_out) / 'quick'} unless --out is given")
-    ap.add_argument("--out", default=None, type=_directory_name, metavar="DIR",
-                    help=f"directory for the figures and tables (default: {default_out})")
-    ap.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
-    ap.set_defaults(default_out=str(default_out))
-    _PARSER = ap
-    return ap
-
-
-def output_dir(args) -> Path:
-    """Where a study writes: --out, else figures/ for a full run and figures/quick/ for --quick
-    (so that a quick run never overwrites the committed results). Created if missing.
-
-    Raises :class:`phasekit.ParameterError` (parameter ``out``) for an empty ``--out``, a path
-    that is not a directory, cannot be created or is not writable."""
-    given = getattr(args, "out", None)
-    if given is not None:
-        if not str(given).strip():
-            raise ParameterError("out", "must name a directory (omit it for the default folder)", str(given))
-        out = Path(given)
-    elif getattr(args, "quick", False):
-        out = Path(args.default_out) / "quick"
-    else:
-        out = Path(args.default_out)
-    value = str(given) if given is not None else str(out)
-
-    def refuse(why: str):
-        return ParameterError("out", f"must be a writable directory, but {why}", value)
-
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except FileExistsError:
-        raise refuse("it is an existing file, not a directory") from None
-    except NotADirectoryError:
-        raise refuse("it cannot be created: a part of the path is a file, not a directory") from None
-    except PermissionError:
-        raise refuse("it cannot be created: permission denied") from None
-    except OSError as exc:
-        raise refuse(f"it cannot be created ({(exc.strerror or type(exc).__name__).lower()})") from None
-    if not out.is_dir():
-        raise refuse("it is not a directory")
-    if not os.access(out, os.W_OK | os.X_OK):
-        raise refuse("it is not writable")
-    return out
-
-
-def save_figure(fig, path, *, dpi: int = 130, **savefig_kwargs) -> Path:
-    """Save a matplotlib figure atomically (see :func:`atomic_path`) and close it.
-
-    Parameters
-    ----------
-    fig : matplotlib.figure.Figure
-        The figure.
-    path : path-like
-        The file; its suffix gives the format (png if it has none).
-    dpi : int, optional
-        Resolution, dots per inch.
-    **savefig_kwargs
-        Go to ``Figure.savefig`` (e.g. ``bbox_inches="tight"``).
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> from phasekit.viz import pyplot, save_figure
-    >>> fig, ax = pyplot().subplots()
-    >>> save_figure(fig, pathlib.Path(tempfile.mkdtemp()) / "line.png").name
-    'line.png'
-    """
-    import matplotlib.pyplot as plt
-
-    path = Path(path)
-    fmt = path.suffix.lstrip(".") or "png"
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=dpi, format=fmt, **savefig_kwargs)
-    plt.close(fig)
-    return path
-
-
-def write_csv(path, header, rows) -> Path:
-    """Write a whole table at once, atomically. A missing value (None or NaN) is an empty cell.
-
-    Parameters
-    ----------
-    path : path-like
-        The CSV file.
-    header : sequence of str
-        The column names.
-    rows : iterable
-        Sequences in the order of ``header``, or mappings (their keys outside ``header`` are left
-        out, missing ones empty).
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-
-    Examples
-    --------
-    >>> import phasekit as pk
-    >>> import tempfile, pathlib
-    >>> path = pk.sweep.write_csv(pathlib.Path(tempfile.mkdtemp()) / 't.csv', ['a', 'b'], [[1, None], {'a': 2, 'b': 'x'}])
-    >>> print(path.read_text(), end="")
-    a,b
-    1,
-    2,x
-    """
-
-    def blank(v):  # one spelling of missing: an empty cell (None and NaN alike)
-        return "" if v is None or (isinstance(v, float) and math.isnan(v)) else v
-
-    def cells(row):
-        if isinstance(row, Mapping):
-            return [blank(row.get(k)) for k in header]
-        return [blank(v) for v in row]
-
-    with atomic_path(path) as tmp:
-        with open(tmp, "w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(header)
-            w.writerows(cells(r) for r in rows)
-            fh.flush()
-            os.fsync(fh.fileno())
-    return Path(path)
-
-
-def write_json(path, obj, *, indent: int = 1, default=str) -> Path:
-    """Write ``obj`` as JSON at once, atomically.
-
-    Parameters
-    ----------
-    path : path-like
-        The JSON file.
-    obj : object
-        What to write.
-    indent : int, optional
-        Indentation of ``json.dumps``.
-    default : callable, optional
-        Turns what JSON cannot hold into text.
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib, phasekit as pk
-    >>> path = pk.sweep.write_json(pathlib.Path(tempfile.mkdtemp()) / "s.json", {"a": 1.5})
-    >>> print(path.read_text())
-    {
-     "a": 1.5
-    }
-    """
-    with atomic_path(path) as tmp:
-        tmp.write_text(json.dumps(obj, indent=indent, default=default))
-    return Path(path)
-
-
-def progress(iterable=None, *, total=None, desc: str = "", enabled: bool = True):
-    """A tqdm progress bar on stderr (stdout stays the study's report); cleared when done."""
-    from tqdm import tqdm
-
-    return tqdm(iterable, total=total, desc=desc, disable=not enabled, file=sys.stderr, leave=False, dynamic_ncols=True)
 
 
 class Study:
@@ -356,7 +79,7 @@ class Study:
     Examples
     --------
     >>> import tempfile, phasekit as pk
-    >>> st = pk.sweep.Study("studies/demo.py", "A demo study.", dask=True)
+    >>> st = pk.scaffold.Study("studies/demo.py", "A demo study.", dask=True)
     >>> args = st.parse(["--quick", "--out", tempfile.mkdtemp(), "--serial"])
     >>> st.name, args.quick, args.serial, st.show
     ('demo', True, True, True)
@@ -480,7 +203,7 @@ class Study:
 
     def progress(self, iterable=None, *, total=None, desc: str = ""):
         """A progress bar on stderr, unless ``--no-progress``."""
-        return progress(iterable, total=total, desc=desc, enabled=self.show)
+        return progress_bar(total, iterable=iterable, desc=desc, unit="it", progress=self.show)
 
     def save(self, fig, name: str, **savefig_kwargs) -> Path:
         """Save a matplotlib figure in the output folder (:func:`save_figure`)."""
@@ -508,12 +231,12 @@ def _flag(param: str, flags: Mapping[str, str] | None) -> str:
     if flags and param in flags:
         return flags[param]
     guess = "--" + param.replace("_", "-")
-    known = getattr(_PARSER, "_option_string_actions", {})
+    known = Current.parser._option_string_actions if Current.parser is not None else {}
     return guess if guess in known else f"`{param}`"
 
 
 def _fail(message: str, code: int):
-    prog = getattr(_PARSER, "prog", None) or Path(sys.argv[0]).name or "study"
+    prog = (Current.parser.prog if Current.parser is not None else None) or Path(sys.argv[0]).name or "study"
     sys.stdout.flush()
     sys.stderr.write(f"{prog}: error: {' '.join(str(message).split())}\n")
     sys.stderr.flush()
@@ -551,7 +274,7 @@ def run_study(main, argv=None, *, resume: str | None = None, flags: Mapping[str,
     Examples
     --------
     >>> import phasekit as pk
-    >>> pk.sweep.run_study(lambda argv: print("ran with", argv), ["--quick"])
+    >>> pk.scaffold.run_study(lambda argv: print("ran with", argv), ["--quick"])
     ran with ['--quick']
     """
     from .._runtime import startup as _startup

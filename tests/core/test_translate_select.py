@@ -1,12 +1,14 @@
 """CasADi's if_else (its comparisons and if_else_zero) translates to heyoka's select: the translated
 field equals CasADi's on both sides of the switch, for every comparison and logical operation; a
 Taylor integration that reaches the switch with the switch as an event stops there and goes on
-with the other branch; the other non-smooth operations stay refused."""
+with the other branch; the other non-smooth operations stay refused; the operations a body may use
+(phasekit.bodies.operations) are exactly those the translator rebuilds."""
 
 import math
 
 import phasekit as pk
-from phasekit._runtime.translate import NON_SMOOTH, PIECEWISE, operations, to_heyoka
+from phasekit.bodies.operations import NON_SMOOTH, PIECEWISE, SMOOTH, operations
+from phasekit.core.engines.translate import binary, to_heyoka, unary
 
 import casadi as ca
 import heyoka as hy
@@ -76,3 +78,7 @@ def test_a_run_that_reaches_the_switch_stops_there_and_goes_on_with_the_other_br
     ta.state[0] = 0.7 + 1e-12  # a reset puts the state just past the switch (core.resets.Transfer)
     ta.propagate_until(1.35)
     assert ta.state[0] == pytest.approx(1.7 + 1e-12, rel=1e-14)
+
+
+def test_the_smooth_operations_a_body_may_use_are_the_ones_the_translator_rebuilds():
+    assert SMOOTH == set(unary(hy)) | set(binary(hy))

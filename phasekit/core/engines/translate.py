@@ -12,17 +12,16 @@ comparisons. heyoka takes the Taylor coefficients of ``select`` from the branch 
 start of a step, so a step must never cross the switch: the hybrid system watches it as an
 event in every mode (:func:`phasekit.core.system.declare`), which cuts the step there, and its
 reset moves the state just past it. The other non-smooth operations (fabs, fmax, sign, ...)
-stay refused.
+stay refused (which operations a body may use: :mod:`phasekit.bodies.operations`, whose
+``SMOOTH`` set lists exactly the keys of :func:`unary` and :func:`binary`).
 """
 
 from __future__ import annotations
 
 import casadi as ca
 
-__all__ = ["to_heyoka"]
 
-
-def _unary(hy):
+def unary(hy):
     return {
         ca.OP_NEG: lambda a: -a,
         ca.OP_SQ: lambda a: a * a,
@@ -50,7 +49,7 @@ def _unary(hy):
     }
 
 
-def _binary(hy):
+def binary(hy):
     return {
         ca.OP_ADD: lambda a, b: a + b,
         ca.OP_SUB: lambda a, b: a - b,
@@ -63,7 +62,7 @@ def _binary(hy):
     }
 
 
-def _piecewise(hy):
+def piecewise(hy):
     # comparisons give 1.0 or 0.0, as CasADi's do; select(cond, x, 0) is CasADi's if_else_zero
     zero = hy.expression(0.0)
     return {
@@ -76,33 +75,6 @@ def _piecewise(hy):
         ca.OP_OR: lambda a, b: hy.logical_or([a, b]),
         ca.OP_IF_ELSE_ZERO: lambda cond, a: hy.select(cond, a, zero),
     }
-
-
-#: operations with a kink or a jump: a body's profile (or a law) built from them is not smooth
-#: (:class:`~phasekit.bodies.custom.CustomBody` refuses them); of these only the PIECEWISE ones
-#: are translated, for the bodies built of pieces whose switches are events
-NON_SMOOTH = {getattr(ca, f"OP_{n}") for n in ("FABS", "FMAX", "FMIN", "IF_ELSE_ZERO", "SIGN", "FLOOR", "CEIL", "FMOD",
-                                                "COPYSIGN", "REMAINDER", "EQ", "NE", "LT", "LE", "AND", "OR", "NOT")}
-PIECEWISE = {getattr(ca, f"OP_{n}") for n in ("IF_ELSE_ZERO", "EQ", "NE", "LT", "LE", "AND", "OR", "NOT")}
-_STRUCTURAL = {ca.OP_CONST, ca.OP_INPUT, ca.OP_OUTPUT}
-_OP_NAMES = {getattr(ca, n): n[3:].lower() for n in dir(ca) if n.startswith("OP_")}
-
-
-class _AnyFunction:
-    """Stands in for the heyoka module where only the keys of the translation tables are
-    wanted (checking a body's profile does not need heyoka loaded)."""
-
-    def __getattr__(self, name):
-        return None
-
-
-def operations(f: ca.Function) -> dict[str, set[str]]:
-    """The operations of an SX function that the Taylor integrator cannot take:
-    ``{"non_smooth": names, "untranslated": names}`` (both empty when all is well)."""
-    known = set(_unary(_AnyFunction())) | set(_binary(_AnyFunction())) | _STRUCTURAL
-    ops = {f.instruction_id(k) for k in range(f.n_instructions())}
-    return {"non_smooth": {_OP_NAMES.get(op, str(op)) for op in ops & NON_SMOOTH},
-            "untranslated": {_OP_NAMES.get(op, str(op)) for op in ops - known - NON_SMOOTH}}
 
 
 def to_heyoka(f: ca.Function, inputs: list[list]) -> list:
@@ -123,7 +95,7 @@ def to_heyoka(f: ca.Function, inputs: list[list]) -> list:
 
     if not f.is_a("SXFunction"):
         raise TypeError("to_heyoka needs an SX function")
-    unary, binary, piecewise = _unary(hy), _binary(hy), _piecewise(hy)
+    unary_ops, binary_ops, piecewise_ops = unary(hy), binary(hy), piecewise(hy)
     work: dict[int, object] = {}
     outputs = [[None] * f.nnz_out(i) for i in range(f.n_out())]
     for k in range(f.n_instructions()):
@@ -136,13 +108,13 @@ def to_heyoka(f: ca.Function, inputs: list[list]) -> list:
             work[o[0]] = inputs[i[0]][i[1]]
         elif op == ca.OP_OUTPUT:
             outputs[o[0]][o[1]] = work[i[0]]
-        elif op in unary:
-            work[o[0]] = unary[op](work[i[0]])
-        elif op in binary:
-            work[o[0]] = binary[op](work[i[0]], work[i[1]])
-        elif op in piecewise:
+        elif op in unary_ops:
+            work[o[0]] = unary_ops[op](work[i[0]])
+        elif op in binary_ops:
+            work[o[0]] = binary_ops[op](work[i[0]], work[i[1]])
+        elif op in piecewise_ops:
             args = [work[i[0]]] if op == ca.OP_NOT else [work[i[0]], work[i[1]]]
-            work[o[0]] = piecewise[op](*args)
+            work[o[0]] = piecewise_ops[op](*args)
         else:
             raise NotImplementedError(f"CasADi operation {op} has no heyoka translation")
     for i, out in enumerate(outputs):

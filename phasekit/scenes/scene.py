@@ -1,7 +1,7 @@
 """3-D scenes of the jump surface in (Omega, theta, n): which elements to draw, and their data.
 
 A :class:`Scene` says which elements to draw (the surface (6.3) and the exact boundary R = 0 of
-:mod:`phasekit.theory.jump_surface`, trajectories, their crossings of R = 0, fixed points, axes);
+:mod:`phasekit.theory.jump_surface` and :mod:`phasekit.scenes.boundary`, trajectories, their crossings of R = 0, fixed points, axes);
 :func:`compute_scene` computes only the data those elements need (no simulation unless
 trajectories or crossings are asked for), and :func:`phasekit.viz.render_scene` draws it
 off-screen with PyVista (imported there only).
@@ -14,7 +14,6 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
-from .._runtime.errors import ParameterError
 from .._runtime.validate import (
     check_array,
     check_instance,
@@ -26,10 +25,10 @@ from .._runtime.validate import (
 from ..bodies.body import Body
 from ..bodies.spheroid import Spheroid
 from ..core.model import Model
+from ..errors import ParameterError
 from ..friction.laws import Coulomb, FrictionLaw
-from .jump_surface import _exact_boundary, _surface_n
-
-__all__ = ["Scene", "SceneData", "Crossing", "compute_scene", "ELEMENTS", "AXES"]
+from ..theory.jump_surface import surface_n_unchecked
+from .boundary import exact_boundary_unchecked
 
 ELEMENTS = frozenset({"surface", "exact_boundary", "trajectories", "crossings", "fixed_points", "axes", "colorbar"})
 
@@ -332,7 +331,7 @@ def _add_run(data: _SceneBuilder, body, r, value, label, show) -> None:
         data.labels.append(label)
     if r.x_jump is not None:
         U, V, Om, Lam, th, n = r.model.chart.to_paper(r.x_jump)
-        data.crossings.append(Crossing(value, r.t_jump, Om, th, n, Lam, float(_surface_n(body, Om, th))))
+        data.crossings.append(Crossing(value, r.t_jump, Om, th, n, Lam, float(surface_n_unchecked(body, Om, th))))
 
 
 def _ranges(scene: Scene, data: SceneData, body) -> tuple:
@@ -423,7 +422,7 @@ def _grids(scene, data, body, om_rng, th_rng) -> None:
     OM, TH = np.meshgrid(om, th, indexing="ij")
     if "surface" in scene.show:
         with np.errstate(divide="ignore", invalid="ignore"):
-            data.surface = (OM, TH, _surface_n(body, OM, TH))
+            data.surface = (OM, TH, surface_n_unchecked(body, OM, TH))
     if "exact_boundary" in scene.show:
         lam = scene.exact_lambda
         if lam is None:
@@ -431,7 +430,7 @@ def _grids(scene, data, body, om_rng, th_rng) -> None:
         data.exact_lambda = lam
         coarse = max(20, scene.resolution // 4)
         OMc, THc = np.meshgrid(np.linspace(*om_rng, coarse), np.linspace(*th_rng, coarse), indexing="ij")
-        data.exact = (OMc, THc, _exact_boundary(body, scene.mu, OMc, THc, lam, friction=scene.friction))
+        data.exact = (OMc, THc, exact_boundary_unchecked(body, scene.mu, OMc, THc, lam, friction=scene.friction))
 
 
 def _bounds(scene, data, om_rng, th_rng) -> tuple:
