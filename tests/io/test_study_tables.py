@@ -1,10 +1,6 @@
-"""The study tables (figures/*.csv): read with honest dtypes, written as Parquet and NetCDF, and
-changed by a format change in their spelling of "none" only."""
+"""The study tables (figures/*.csv): read with honest dtypes, written as Parquet and NetCDF (that
+their cells are what the code produces is studies/reproduce.py --check's, run by the slow tests)."""
 
-import csv
-import io
-import os
-import subprocess
 from pathlib import Path
 
 import phasekit as pk
@@ -13,56 +9,6 @@ import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-#: the commit before the study CSVs' eps columns lost the word "exact" (format only)
-BEFORE = "f0dd6aa"
-CONVERTED = ("threshold_vs_aspect", "outcome_map_boundaries", "threshold_vs_mu", "paper_pairs", "tippe_top_convergence",
-             "bouncing", "figure5_gap")
-
-
-def _cells(text: str) -> list[list[str]]:
-    return list(csv.reader(io.StringIO(text, newline="")))
-
-
-@pytest.mark.parametrize("name", CONVERTED)
-def test_committed_csvs_changed_format_only(name):
-    """Every cell of the committed study tables is what it was before the format change, except
-    the spellings of "none": eps's "exact" (exact Coulomb has no regularisation width) and a
-    missing number's "nan" became empty cells. Columns added later come after the old ones. A main
-    study's threshold searched again in the vector chart (its check failed in the paper's
-    variables, docs/results/maps.md) keeps the published value as its ``euler_threshold``, to
-    within the check's 2%."""
-    try:
-        old = subprocess.run(["git", "-C", str(ROOT), "show", f"{BEFORE}:figures/{name}.csv"], capture_output=True,
-                             text=True, timeout=30, check=True).stdout
-    except (OSError, subprocess.CalledProcessError):
-        if os.environ.get("CI"):
-            raise
-        pytest.skip("no git history of the committed tables here")
-    new = (ROOT / "figures" / f"{name}.csv").read_text()
-    a, b = _cells(old), _cells(new)
-    assert b[0][:len(a[0])] == a[0] and len(a) == len(b)
-    j = a[0].index("eps") if "eps" in a[0] else None
-    # a search's wall time is a measurement of the run that wrote the table, not a result (the main
-    # study's table was rewritten by a faster run with every other cell the same)
-    timed = a[0].index("wall_s") if "wall_s" in a[0] else None
-    changed = 0
-    for ra, rb in zip(a[1:], b[1:]):
-        assert len(rb) == len(b[0])
-        if "euler_threshold" in b[0] and rb[b[0].index("chart")] == "vector":
-            # searched first as before (seeded by its neighbour's row, which may itself be the
-            # vector chart's: to within the check's 2%), that failed its check, the second passed
-            assert abs(float(rb[b[0].index("euler_threshold")]) / float(ra[a[0].index("threshold")]) - 1) < 0.02
-            assert rb[b[0].index("consistent")] == "True"
-            continue
-        for k, (x, y) in enumerate(zip(ra, rb)):
-            if k == timed:
-                continue
-            if (k == j and x == "exact") or x == "nan":
-                assert y == ""
-                changed += 1
-            else:
-                assert x == y
-    assert changed > 0
 
 
 def _mixed(series) -> bool:
