@@ -5,7 +5,8 @@ Progress
 ``progress=None`` (the default of every long call) shows a tqdm bar on stderr only where a
 person is watching: stderr is a terminal, or the call runs in a Jupyter kernel (where tqdm
 draws a widget if ipywidgets is installed, else text). ``progress=True`` asks for a bar
-anyway (a log file then gets tqdm's lines), ``progress=False`` turns it off.
+anyway (a log file then gets tqdm's lines), ``progress=False`` turns it off. Where no bar is
+shown, the CLI asks for a heartbeat (:func:`heartbeats`): a line every few seconds of a long run.
 
 Wall budgets
 ------------
@@ -28,6 +29,48 @@ from .validate import check_positive
 
 #: the start of the reason of a run or a search ended by the caller's wall budget
 WALL_REASON = "the call's wall budget"
+
+#: seconds between heartbeat lines where no bar is shown (None: none; the CLI sets it, see :func:`heartbeats`)
+_HEARTBEAT: contextvars.ContextVar[float | None] = contextvars.ContextVar("phasekit_heartbeat", default=None)
+
+
+@contextlib.contextmanager
+def heartbeats(every: float):
+    """Within the block, a long run that shows no bar (stderr a file, no terminal) writes one
+    line on stderr every ``every`` seconds: how far it is and for how long it has run. The CLI
+    sets it, so a run with --json into a log is not silent; the library's default is silent."""
+    token = _HEARTBEAT.set(float(every))
+    try:
+        yield
+    finally:
+        _HEARTBEAT.reset(token)
+
+
+class Heartbeat:
+    """One stderr line every ``every`` s of wall time: "phasekit: simulate: t = ... of ...", written
+    whole (a line per call to write)."""
+
+    def __init__(self, t0: float, t_end: float, desc: str, every: float):
+        self.t0, self.t_end, self.desc, self.every = t0, t_end, desc, every
+        self.start = time.perf_counter()
+        self.due = self.start + every
+
+    def __call__(self, t: float) -> None:
+        now = time.perf_counter()
+        if now < self.due:
+            return
+        self.due = now + self.every
+        span = self.t_end - self.t0
+        done = f" ({100 * (t - self.t0) / span:.0f}%)" if math.isfinite(span) and span > 0 else ""
+        sys.stderr.write(f"phasekit: {self.desc}: t = {t:.6g} of {self.t_end:.6g}{done} after {now - self.start:.0f} s "
+                         "of wall-clock time\n")
+        sys.stderr.flush()
+
+
+def heartbeat(t0: float, t_end: float, desc: str) -> Heartbeat | None:
+    """The heartbeat of a run where :func:`heartbeats` asked for one, else None."""
+    every = _HEARTBEAT.get()
+    return None if every is None else Heartbeat(t0, t_end, desc, every)
 
 _DEADLINE: contextvars.ContextVar[tuple[float, float] | None] = contextvars.ContextVar("phasekit_deadline", default=None)
 

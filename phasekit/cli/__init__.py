@@ -27,6 +27,7 @@ import os
 import sys
 import warnings
 
+from .._runtime.watch import heartbeats
 from .commands import COMMANDS
 from .flags import FLAGS, flag_names, typed_value
 from .output import (
@@ -45,6 +46,9 @@ __all__ = ["main", "main_entry"]
 
 #: set (to anything) to let unexpected exceptions propagate with their traceback (debugging, tests)
 DEBUG_ENV = "PHASEKIT_DEBUG"
+#: seconds between the lines a long run writes on stderr where no progress bar is shown
+#: ($PHASEKIT_HEARTBEAT overrides it; the tests make it short)
+HEARTBEAT_EVERY = float(os.environ.get("PHASEKIT_HEARTBEAT", "10"))
 
 
 def _run(argv, as_json: bool):
@@ -95,7 +99,8 @@ def _main(argv, guard: dict) -> int:
         with warnings.catch_warnings():
             warnings.simplefilter("default")
             warnings.showwarning = lambda message, *a, **k: held.append(message)
-            out, args = _run(argv, as_json)
+            with heartbeats(HEARTBEAT_EVERY):  # a long run into a log file is not silent
+                out, args = _run(argv, as_json)
     except EarlyExit as exc:
         return exc.code
     except UsageError as exc:

@@ -15,7 +15,7 @@ from dataclasses import replace
 import numpy as np
 
 from .._runtime.validate import check_bool, check_finite, check_range, check_times, check_vector
-from .._runtime.watch import WALL_REASON, deadline, progress_bar, show_progress
+from .._runtime.watch import WALL_REASON, deadline, heartbeat, progress_bar, show_progress
 from ..errors import ConvergenceError, ParameterError, Status
 from .audit import audited_options
 from .charts import FLIGHT, POLE_GUARD
@@ -346,7 +346,8 @@ class _Run(RunState):
         t0 = self.t_start
         bar = progress_bar(self.t_end - t0, desc="simulate", unit="t", progress=progress, delay=PROGRESS_DELAY) \
             if show_progress(progress) else None
-        self.budget.tick = None if bar is None else (lambda t: bar.update(t - t0 - bar.n))
+        self.budget.tick = (lambda t: bar.update(t - t0 - bar.n)) if bar is not None else \
+            heartbeat(t0, self.t_end, "simulate") if progress is None else None
         self.apply(first)
         if self.status is None:
             self.prefetch()

@@ -68,3 +68,27 @@ def test_what_a_step_is_is_stated_and_taylor_stops_at_the_budget_exactly():
     assert "CVODES/IDAS internal steps" in help_text and "a chunk that would pass the budget is not taken" in help_text
     code, out, _ = run_cli(*SIM, "--backend", "taylor", "--max-steps", "20", "--json")
     assert strict_json(out)["n_steps"] == 20  # the Taylor method stops at the budget exactly
+
+
+@pytest.mark.timeout(300)
+def test_a_long_run_into_a_log_file_beats_and_stops_at_its_wall_budget(tmp_path):
+    """With --json and stderr a file (no terminal, no bar), a run that cannot reach its end writes
+    a heartbeat line on stderr every $PHASEKIT_HEARTBEAT seconds, then ends "failed" at its wall
+    budget with the reason; stdout holds only the JSON."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    err = tmp_path / "stderr.log"
+    env = {**os.environ, "PHASEKIT_HEARTBEAT": "0.3", "PHASEKIT_COMPILE_NOTICE": "off"}
+    cmd = [sys.executable, "-m", "phasekit", "simulate", "--a", "1.5", "--mu", "0.1", "--gyroscopic", "--theta0",
+           "1.5607963", "--omega0", "11", "--stop-at", "none", "--t-end", "1e5", "--max-wall", "2", "--json"]
+    with open(err, "w") as fh:
+        proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=fh, text=True, env=env, timeout=240)
+    d = json.loads(proc.stdout)
+    beats = [ln for ln in err.read_text().splitlines() if ln.startswith("phasekit: simulate: t = ")]
+    assert proc.returncode == 1 and d["status"] == "failed" and "wall-time limit" in d["reason"]
+    assert len(beats) >= 2 and all(" of 100000 (" in ln and "s of wall-clock time" in ln for ln in beats)
+    times = [float(ln.split("t = ")[1].split(" of ")[0]) for ln in beats]
+    assert times == sorted(times) and times[-1] <= d["t_end"]

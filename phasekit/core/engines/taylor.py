@@ -19,6 +19,10 @@ from .taylor_build import build_taylor, load_heyoka, scales_at, taylor_end, tayl
 
 #: steps per call of heyoka's propagate: between calls the wall clock is checked
 STEP_CHUNK = 20_000
+#: a propagation's recorded steps are turned into dense output and the monitor's zeros once they
+#: are this many (or at its end): short runs pay that once (it costs ~0.2 ms a time), long ones as
+#: they go, inside their wall budget
+RECORD_STEPS = 20_000
 
 
 class TaylorEngine:
@@ -131,6 +135,9 @@ class TaylorEngine:
             prop.n_steps += int(res[3])
             if record is not None and int(res[3]) > 0:
                 record.finish(ta)  # the last, truncated step, in the scales it was taken in
+                if len(record.coefs) >= RECORD_STEPS:  # kept as it goes: the wall budget sees the cost
+                    _keep(record, prop, flow, dense, zeros)
+                    record = TaylorSteps(float(ta.time), tc, np.concatenate([scale, extra]))
             end, event = taylor_end(hy, res[0])
             if end is End.TIME and stop < t_end:  # a grid time: renew the scales
                 scale = _rescale(ta, n, first, scale)
