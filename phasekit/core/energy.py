@@ -77,13 +77,11 @@ def energy_budget(traj) -> EnergyBudget:
         If the run kept no dense output (simulate with dense=True, the default).
     """
     model = traj.model
-    names = ("sliding friction", *(d.name for d in model.friction.dissipation))
+    names = law_names(model)
     if not traj.segments and traj.mode_stop is not None:  # it ended at its start (e.g. R <= 0 there): nothing lost
         e = float(model.function("energy", traj.mode_stop)(traj.x_stop, model.p))
         return EnergyBudget(e, e, names, tuple(0.0 for _ in names), 0.0, 0.0)
-    if not traj.segments or not all(s.dense for s in traj.segments):
-        raise ParameterError("traj", "has no energy budget: the run kept no dense output (simulate with dense=True)",
-                             show_value=False)
+    require_dense(traj)
     work, jumps, e_prev = np.zeros(len(names)), 0.0, None
     first = traj.segments[0]
     e_start = float(model.function("energy", first.mode)(first.x0, model.p))
@@ -106,6 +104,18 @@ def energy_budget(traj) -> EnergyBudget:
     return EnergyBudget(e_start, e_prev, names, dissipated, jumps, max(worst, abs(end)))
 
 
+def law_names(model) -> tuple:
+    """"sliding friction", then the name of each dissipation law of ``model``."""
+    return ("sliding friction", *(d.name for d in model.friction.dissipation))
+
+
+def require_dense(traj) -> None:
+    """Raise the ParameterError of a run whose energy cannot be followed: no dense output."""
+    if not traj.segments or not all(s.dense for s in traj.segments):
+        raise ParameterError("traj", "has no energy budget: the run kept no dense output (simulate with dense=True)",
+                             show_value=False)
+
+
 def _power_function(model, mode: Mode):
     fns = model.compiled.functions_of(mode)
     name = f"power_{mode.value}"
@@ -114,33 +124,44 @@ def _power_function(model, mode: Mode):
     return None  # a model without dissipation laws: only sliding friction works
 
 
+def step_bounds(span):
+    """(starts, ends) of the Taylor steps (or output intervals) of a dense-output span, cut to it."""
+    try:
+        starts, ends, _ = span.pieces()
+    except AttributeError:  # an interpolant of a pointwise integrator: between its output points
+        starts = np.asarray(getattr(span.f, "ts", [span.t0, span.t1]), dtype=float)
+        starts, ends = starts[:-1], starts[1:]
+    a, b = np.maximum(starts, span.t0), np.minimum(ends, span.t1)
+    keep = b > a
+    return a[keep], b[keep]
+
+
+def gauss_powers(model, mode: Mode, span, a, b):
+    """The Gauss-Legendre nodes of every interval [a, b] (GAUSS_NODES each, interval by interval):
+    their weights, and the power of each law there (one column per law)."""
+    nodes, weights = np.polynomial.legendre.leggauss(GAUSS_NODES)
+    ts = (0.5 * (b - a)[:, None] * nodes[None, :] + 0.5 * (a + b)[:, None]).ravel()
+    X = span(ts)
+    w = (0.5 * (b - a)[:, None] * weights[None, :]).ravel()
+    P = _power_function(model, mode)
+    if P is not None:
+        return w, np.atleast_2d(evaluate_function(P, model.p, X)).reshape(len(ts), -1)
+    if mode is Mode.FLIGHT:
+        return w, np.zeros((len(ts), 1))
+    fns = model.compiled.functions_of(mode)
+    slip = evaluate_function(fns["slip"], model.p, X)
+    F = evaluate_function(fns[f"friction_{mode.value}"], model.p, X)
+    return w, np.sum(np.atleast_2d(F) * np.atleast_2d(slip), axis=1)[:, None]
+
+
 def _segment_work(model, seg, n_laws: int):
     """The integral over the segment of each law's power; and, at the end of each Taylor step
     (or output interval), the time, the state and the work of all laws together so far."""
-    P = _power_function(model, seg.mode)
-    nodes, weights = np.polynomial.legendre.leggauss(GAUSS_NODES)
     total = np.zeros(n_laws)
     all_ends, all_X, steps = [], [], []
     for span in seg.dense:
-        try:
-            starts, ends, _ = span.pieces()
-        except AttributeError:  # an interpolant of a pointwise integrator: between its output points
-            starts = np.asarray(getattr(span.f, "ts", [span.t0, span.t1]), dtype=float)
-            starts, ends = starts[:-1], starts[1:]
-        a, b = np.maximum(starts, span.t0), np.minimum(ends, span.t1)
-        keep = b > a
-        a, b = a[keep], b[keep]
-        ts = (0.5 * (b - a)[:, None] * nodes[None, :] + 0.5 * (a + b)[:, None]).ravel()
-        X = span(ts)
-        w = (0.5 * (b - a)[:, None] * weights[None, :]).ravel()
-        if P is None:
-            slip = evaluate_function(model.compiled.functions_of(seg.mode)["slip"], model.p, X)
-            F = evaluate_function(model.compiled.functions_of(seg.mode)[f"friction_{seg.mode.value}"], model.p, X)
-            vals = np.sum(np.atleast_2d(F) * np.atleast_2d(slip), axis=1)[:, None] if seg.mode is not Mode.FLIGHT \
-                else np.zeros((len(ts), 1))
-        else:
-            vals = np.atleast_2d(evaluate_function(P, model.p, X))
-            vals = vals.reshape(len(ts), -1)
+        a, b = step_bounds(span)
+        w, vals = gauss_powers(model, seg.mode, span, a, b)
         total += w @ vals
         if len(b):
             steps.append((w[:, None] * vals).sum(axis=1).reshape(len(b), GAUSS_NODES).sum(axis=1))

@@ -19,6 +19,7 @@ from ..errors import ParameterError, Status
 from .approximations import Approximation, approximations_of
 from .charts import FLIGHT
 from .energy import EnergyBudget, energy_budget
+from .energy_series import energy_series
 from .fields import STICK_SLIP
 from .hybrid import Mode
 from .model import Model
@@ -194,6 +195,33 @@ class Trajectory:
     def energy_budget(self) -> EnergyBudget:
         """Where the energy went, law by law, and at events (:mod:`phasekit.core.energy`)."""
         return energy_budget(self)
+
+    def energy_series(self, times=None):
+        """The energy budget along the run, as a table (units M g b; :mod:`phasekit.core.energy_series`).
+
+        Parameters
+        ----------
+        times : array of float, optional
+            Instants inside [t0, t] (sorted on return; a time at an event is taken before the
+            reset). None: the start of each segment and the end of every Taylor step (at an
+            event, the row before the reset, then the row after it).
+
+        Returns
+        -------
+        pandas.DataFrame
+            ``t``; ``energy``, the mechanical energy; one column per law of
+            :meth:`energy_budget` ("sliding friction", then each dissipation law's name) with the
+            energy it has taken out since the start (>= 0, non-decreasing); ``at_events``, the
+            energy lost at events so far; ``residual``, energy at the start - ``energy`` - the
+            laws' columns - ``at_events`` (the balance: the integrator's error). The last row of
+            ``energy_series()`` is :meth:`energy_budget`.
+
+        Raises
+        ------
+        ParameterError
+            A time outside the run or not finite (``times``); a run without dense output.
+        """
+        return energy_series(self, times)
 
     @functools.cached_property
     def approximations(self) -> tuple[Approximation, ...]:

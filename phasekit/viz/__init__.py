@@ -10,6 +10,7 @@ Examples
 """
 
 from .animate import animate, film_strip, render_body
+from .energy import plot_energy
 from .mesh import body_mesh
 from .mpl import label, plain_log_ticks, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
 from .output import pyplot, save_figure
@@ -17,6 +18,7 @@ from .pv import render_scene
 
 __all__ = [
     "animate", "film_strip", "render_body", "body_mesh", "render_scene",
-    "plot_timeseries", "plot_events", "plot_section", "plot_phase", "plot_minima", "plain_log_ticks", "label",
+    "plot_timeseries", "plot_events", "plot_section", "plot_phase", "plot_minima", "plot_energy", "plain_log_ticks",
+    "label",
     "pyplot", "save_figure",
 ]

@@ -51,8 +51,9 @@ def test_every_public_package_has_its_own_all_without_private_names():
         assert all(not n.startswith("_") and hasattr(mod, n) for n in mod.__all__), ns
 
 
-#: the cap on distinct public names: lowered as names leave, never raised
-PUBLIC_NAMES_CAP = 144
+#: the cap on distinct public names: lowered as names leave, never raised (but once, by one:
+#: pk.viz.plot_energy, the energy plot of the issue "Energy and data")
+PUBLIC_NAMES_CAP = 145
 
 
 def test_at_most_the_cap_of_distinct_public_names_over_all_public_packages():

@@ -397,7 +397,8 @@ def test_guide_python_blocks_run(code):
     assert p.returncode == 0, p.stderr[-2000:]
 
 
-@pytest.mark.parametrize("module", ["phasekit.core.sections", "phasekit.sweep.ensemble", "phasekit.viz.mpl", "phasekit.theory.paper",
+@pytest.mark.parametrize("module", ["phasekit.core.sections", "phasekit.sweep.ensemble", "phasekit.viz.mpl", "phasekit.viz.energy",
+                                    "phasekit.theory.paper",
                                     "phasekit.scenes.scene", "phasekit.core.units"])
 def test_docstring_examples_run(module):
     mod = importlib.import_module(module)

@@ -30,7 +30,7 @@ def run_example(name, tmp_path, *extra):
 
 def test_every_example_is_tested():
     tested = {"fig4_case.py", "fixed_points.py", "threshold.py", "sweep_to_dataframe.py", "scene_own_trajectory.py",
-              "cli_jq.sh", "section.py", "paper_start_rounding.py", "animate_body.py"}
+              "cli_jq.sh", "section.py", "paper_start_rounding.py", "animate_body.py", "energy_over_time.py"}
     assert {p.name for p in EXAMPLES.iterdir() if p.suffix in (".py", ".sh")} == tested
 
 
@@ -69,6 +69,22 @@ def test_fig4_case(tmp_path):
     assert "t_jump = 45.256004" in out.stdout  # the sliding-branch start of the README
     assert abs(df["R"].iloc[-1]) < 1e-9 and df["R"].max() > 1.5  # R oscillates with growing amplitude to 0
     assert (tmp_path / "fig4_case.png").stat().st_size > 20_000
+
+
+def test_energy_over_time(tmp_path):
+    """The tippe top's energy series: the balance holds at every row, the three mechanisms took
+    out all that was lost (nothing at events), and the figure was drawn."""
+    import pandas as pd
+
+    out = run_example("energy_over_time.py", tmp_path)
+    df = pd.read_csv(tmp_path / "energy_over_time.csv")
+    laws = ["sliding friction", "spin-friction", "rolling-resistance"]
+    assert list(df.columns) == ["t", "energy", *laws, "at_events", "residual"]
+    E0, lost = df["energy"].iloc[0], df["energy"].iloc[0] - df["energy"].iloc[-1]
+    assert lost > 0.9 * E0 and df["residual"].abs().max() < 1e-8 * lost
+    assert all(df[name].iloc[-1] > 0.05 * lost for name in laws) and df["at_events"].abs().max() < 1e-9 * E0
+    assert out.stdout.startswith("status rest") and "(38.5 s)" in out.stdout  # tests/core/test_coming_to_rest.py
+    assert (tmp_path / "energy_over_time.png").stat().st_size > 20_000
 
 
 def test_fixed_points_and_an_unstable_seed(tmp_path):
