@@ -436,26 +436,32 @@ class Trajectory:
         return np.array([self.model.chart.to_paper(z) for z in self.ys])
 
     # -- export ----------------------------------------------------------------------------
-    def to_xarray(self, times=None, *, n: int = 2001):
+    def to_xarray(self, times=None, *, n: int = 2001, scale=None):
         """The run sampled at ``times`` (default ``n`` instants uniform over it) as an xarray
         Dataset: coordinate ``t``, one variable per column of :meth:`sample` with its ``units``
         and ``long_name``, the outcome as attributes, the inputs and the whole run as JSON in
-        ``phasekit_json`` (needs ``phasekit[data]``)."""
-        return trajectory_xarray(self, times, n=n)
+        ``phasekit_json`` (needs ``phasekit[data]``). ``scale`` (a :class:`phasekit.Scale`):
+        the columns in real units (t in ms, lengths in mm, rates in rev/s), each named in its
+        ``units``."""
+        return trajectory_xarray(self, times, n=n, scale=scale)
 
-    def to_netcdf(self, path, times=None, *, n: int = 2001):
-        """Write :meth:`to_xarray` to a NetCDF file (``phasekit[data]``); returns the path."""
-        return write_netcdf(self, path, times, n=n)
+    def to_netcdf(self, path, times=None, *, n: int = 2001, scale=None):
+        """Write :meth:`to_xarray` to a NetCDF file (``phasekit[data]``); returns the path.
+        ``scale``: real units, as for :meth:`to_xarray`."""
+        return write_netcdf(self, path, times, n=n, scale=scale)
 
-    def to_parquet(self, path, times=None, *, n: int = 2001):
-        """Write the sampled table to a Parquet file, the run's inputs in its metadata
-        (``phasekit[data]``); returns the path."""
-        return write_parquet(self, path, times, n=n)
+    def to_parquet(self, path, times=None, *, n: int = 2001, scale=None):
+        """Write the sampled table to a Parquet file, the run's inputs in its metadata and each
+        column's unit where pyarrow (the field's metadata) and plain pandas
+        (``pd.read_parquet(path).attrs["units"]``) see it (``phasekit[data]``); returns the
+        path. ``scale``: real units, as for :meth:`to_xarray`."""
+        return write_parquet(self, path, times, n=n, scale=scale)
 
-    def to_csv(self, path, times=None, *, n: int = 2001):
+    def to_csv(self, path, times=None, *, n: int = 2001, scale=None):
         """Write the sampled table to CSV with its sidecar ``path.json`` (units, long names, the
-        run's inputs; :func:`phasekit.read_table` reads both); returns the path."""
-        return write_run_table(self, path, times, n=n, suffixes=(".csv",))
+        run's inputs; :func:`phasekit.read_table` reads both); returns the path. ``scale``:
+        real units, as for :meth:`to_xarray`."""
+        return write_run_table(self, path, times, n=n, suffixes=(".csv",), scale=scale)
 
     def to_dict(self, *, events: bool = True) -> dict:
         """JSON form in the paper's variables, with the inputs (model, start, options)."""

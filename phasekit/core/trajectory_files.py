@@ -6,7 +6,7 @@ from __future__ import annotations
 from .trajectory_io import run_table
 
 
-def write_run_table(traj, path, times=None, *, n: int = 2001, suffixes=(".csv", ".parquet", ".nc")):
+def write_run_table(traj, path, times=None, *, n: int = 2001, suffixes=(".csv", ".parquet", ".nc"), scale=None):
     """Write :func:`run_table` to ``path`` (:func:`phasekit.write_table`).
 
     Parameters
@@ -15,8 +15,9 @@ def write_run_table(traj, path, times=None, *, n: int = 2001, suffixes=(".csv", 
         The run, with its dense output.
     path : str or os.PathLike
         The file, ending in one of ``suffixes`` (written atomically).
-    times, n
-        As for :func:`run_table`.
+    times, n, scale
+        As for :func:`run_table` (``scale``: the columns in real units, each named in its
+        ``units``).
     suffixes : tuple of str, optional
         The file types allowed.
 
@@ -35,10 +36,10 @@ def write_run_table(traj, path, times=None, *, n: int = 2001, suffixes=(".csv", 
     from ..io.tables import check_path, write_table
 
     path = check_path(path, suffixes)
-    return write_table(run_table(traj, times, n=n), path)
+    return write_table(run_table(traj, times, n=n, scale=scale), path)
 
 
-def write_netcdf(traj, path, times=None, *, n: int = 2001):
+def write_netcdf(traj, path, times=None, *, n: int = 2001, scale=None):
     """Write :func:`run_table` to a NetCDF file (``phasekit[data]``): the Dataset of
     :func:`trajectory_xarray`.
 
@@ -48,8 +49,8 @@ def write_netcdf(traj, path, times=None, *, n: int = 2001):
         The run, with its dense output.
     path : str or os.PathLike
         The file, ending in .nc (written atomically).
-    times, n
-        As for :func:`trajectory_xarray`.
+    times, n, scale
+        As for :func:`trajectory_xarray` (``scale``: real units, :func:`run_table`).
 
     Returns
     -------
@@ -63,10 +64,10 @@ def write_netcdf(traj, path, times=None, *, n: int = 2001):
     PhasekitError
         If the packages of ``phasekit[data]`` are missing.
     """
-    return write_run_table(traj, path, times, n=n, suffixes=(".nc",))
+    return write_run_table(traj, path, times, n=n, suffixes=(".nc",), scale=scale)
 
 
-def write_parquet(traj, path, times=None, *, n: int = 2001):
+def write_parquet(traj, path, times=None, *, n: int = 2001, scale=None):
     """Write :func:`run_table` to a Parquet file, units and inputs in its metadata
     (``phasekit[data]``).
 
@@ -76,8 +77,8 @@ def write_parquet(traj, path, times=None, *, n: int = 2001):
         The run, with its dense output.
     path : str or os.PathLike
         The file, ending in .parquet (written atomically).
-    times, n
-        As for :func:`trajectory_xarray`.
+    times, n, scale
+        As for :func:`trajectory_xarray` (``scale``: real units, :func:`run_table`).
 
     Returns
     -------
@@ -91,4 +92,4 @@ def write_parquet(traj, path, times=None, *, n: int = 2001):
     PhasekitError
         If pyarrow (``phasekit[data]``) is missing.
     """
-    return write_run_table(traj, path, times, n=n, suffixes=(".parquet",))
+    return write_run_table(traj, path, times, n=n, suffixes=(".parquet",), scale=scale)

@@ -15,11 +15,11 @@ from __future__ import annotations
 import numpy as np
 
 from .._runtime.validate import check_int
-from ..errors import Status
+from ..errors import ParameterError, Status
 from .charts import FLIGHT, PAPER_NAMES
 from .observables import evaluate_function
 from .pose import POSE_COLUMNS
-from .units import COLUMN_KINDS
+from .units import COLUMN_KINDS, Scale
 
 #: the observables of a state (columns of :func:`observable_table`)
 STATE_COLUMNS = (*PAPER_NAMES, "R", "energy", "jellett", "slip", "L_Z", "h", "gap")
@@ -362,7 +362,7 @@ def _times(traj, times, n):
     return np.linspace(traj.t0, traj.t, n)
 
 
-def run_table(traj, times=None, *, n: int = 2001):
+def run_table(traj, times=None, *, n: int = 2001, scale=None):
     """The run sampled at ``times`` (default ``n`` instants uniform over it), with what repeats
     it: the table its files hold.
 
@@ -374,6 +374,12 @@ def run_table(traj, times=None, *, n: int = 2001):
         The sampling times, inside the run.
     n : int, optional
         The number of instants without ``times``, in [2, 1e7].
+    scale : Scale, optional
+        The columns in real units (:meth:`phasekit.Scale.table`: t in ms, lengths in mm, rates
+        in rev/s, ...; forces and energies only with the Scale's mass), each column's unit in
+        ``attrs["units"]`` and the scale in ``attrs["scale"]`` (b, g and mass as text); the
+        other attributes (the outcome, such as ``t_jump``, the inputs, the events and ``run``)
+        stay in phasekit's units. Default: phasekit's units (t in sqrt(b/g), ...).
 
     Returns
     -------
@@ -386,18 +392,24 @@ def run_table(traj, times=None, *, n: int = 2001):
     Raises
     ------
     ParameterError
-        For an invalid ``n`` or a time outside the run.
+        For an invalid ``n``, a time outside the run, or a ``scale`` that is not a Scale.
     """
+    if scale is not None and not isinstance(scale, Scale):
+        raise ParameterError("scale", "must be a phasekit Scale such as pk.Scale('21.5 mm'), or None", scale)
     df = traj.sample(_times(traj, times, n))
     d = trajectory_dict(traj, events=False)
     df.attrs.update({k: d[k] for k in RUN_SCALARS if d.get(k) is not None})
     df.attrs.update({k: d[k] for k in RUN_INPUTS})
     df.attrs["events"] = [e.to_dict() for e in traj.events]
     df.attrs["run"] = d
+    if scale is None:
+        return df
+    df = scale.table(df)
+    df.attrs["scale"] = {"b": f"{scale.b:~P}", "g": f"{scale.g:~P}", "mass": None if scale.mass is None else f"{scale.mass:~P}"}
     return df
 
 
-def trajectory_xarray(traj, times=None, *, n: int = 2001):
+def trajectory_xarray(traj, times=None, *, n: int = 2001, scale=None):
     """The run sampled at ``times`` (default ``n`` instants uniform over it) as an xarray
     Dataset (:meth:`~phasekit.core.trajectory.Trajectory.to_xarray`): :func:`run_table` as its
     NetCDF file holds it (:mod:`phasekit.io.netcdf`).
@@ -410,6 +422,8 @@ def trajectory_xarray(traj, times=None, *, n: int = 2001):
         The sampling times, inside the run.
     n : int, optional
         The number of instants without ``times``, in [2, 1e7].
+    scale : Scale, optional
+        Real units, as for :func:`run_table`.
 
     Returns
     -------
@@ -427,4 +441,4 @@ def trajectory_xarray(traj, times=None, *, n: int = 2001):
     """
     from ..io.tables import table_dataset
 
-    return table_dataset(run_table(traj, times, n=n))
+    return table_dataset(run_table(traj, times, n=n, scale=scale))

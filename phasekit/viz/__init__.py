@@ -15,10 +15,11 @@ from .mesh import body_mesh
 from .mpl import label, plain_log_ticks, plot_events, plot_minima, plot_phase, plot_section, plot_timeseries
 from .output import pyplot, save_figure
 from .pv import render_scene
+from .structure import plot_steady_structure
 
 __all__ = [
     "animate", "film_strip", "render_body", "body_mesh", "render_scene",
     "plot_timeseries", "plot_events", "plot_section", "plot_phase", "plot_minima", "plot_energy", "plain_log_ticks",
-    "label",
+    "label", "plot_steady_structure",
     "pyplot", "save_figure",
 ]
