@@ -2,8 +2,8 @@
 0.3 radii below its centre, A = 0.38, C = 0.4; exact Coulomb friction mu = 0.3) with spin
 friction (mu_s = 0.005 b, 75 um) and rolling resistance (delta = 0.002 b, 30 um), spun at
 30 rev/s about the vertical from theta0 = 0.1. It inverts while sliding, then the spin dies and
-it comes to rest on its ball. One call draws the energy and what each mechanism has taken out
-so far (``pk.viz.plot_energy``); the table is ``traj.energy_series()``.
+it comes to rest on its ball. One call of ``plot_energy`` (in ``phasekit.viz``) draws the energy
+and what each mechanism has taken out so far; the table is ``traj.energy_series()``.
 
     python examples/energy_over_time.py            # writes examples/out/energy_over_time/ (git-ignored)
     python examples/energy_over_time.py --out /tmp/energy

@@ -156,8 +156,8 @@ def _initial(stop_at: str, creep: bool, held: bool = False):
         if start.stop is not None or float(model._evaluate("R", start.x, start.mode)) > 0.0:
             return start
         warnings.warn("the start leaves the table at once: its normal reaction R <= 0 there, so it cannot stay in "
-                      "contact (a body released so lifts off at t0; a state on a steady branch, e.g. the CLI's "
-                      "--spinning-in-place, stays)", stacklevel=2)
+                      "contact (a body released so lifts off at t0; a state on one of its steady branches stays)",
+                      stacklevel=2)
         rec = start.records + (Record("lift-off", start.mode.value, "flight", start.x, "R <= 0 at start"),)
         if stop_at == "jump":
             return Transition(start.mode, t, start.x, rec, stop=Status.JUMPED,

@@ -30,9 +30,9 @@ import numpy as np
 
 #: the smallest scale of a component (units of b, sqrt(g b), sqrt(g/b)): the absolute part of the
 #: error test. Measured at rtol 1e-9 (docs/physics.md): on the literal run a = 1.05, Omega0 = 51.74,
-#: eps = 1e-4, whose slow start creeps with U, V < 1e-5, t* is 306.64, 306.15 and 305.52 with floors
-#: 1e-2, 1e-3 and 1e-4 or 1e-6 (converged 305.392; the vector chart 305.52); on the standard workload
-#: t* is off by 8.8e-10, 1.1e-10 and 5.3e-11 with floors 1e-2, 1e-3, 1e-6, for 613, 684, 715 steps
+#: eps = 1e-4, whose slow start creeps with U, V < 1e-5, t* is 306.619, 306.123, 305.495 and 305.370
+#: with floors 1e-2, 1e-3, 1e-4 and 1e-6 (converged 305.368); on the standard workload t* is off by
+#: 8.9e-10, 1.2e-10, 5.9e-11 and 5.7e-11, for 613, 684, 714 and 715 steps
 SCALE_FLOOR = 1e-6
 #: the scales are renewed at every multiple of this time (units sqrt(b/g)): the propagation is cut
 #: there (one short step more per interval); fast changes of size happen at events, which renew them
