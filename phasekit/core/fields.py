@@ -195,6 +195,26 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=(), c
     Fc0, d = ca.SX(Fc0), ca.SX(d)
     R_sl = -(g0 + ca.mtimes(G, Fc0)) / ca.mtimes(G, d)
     rhs_sl, _ = add_mode(Mode.SLIDING, Fc0 + R_sl * d)
+    _build_slip(fn, x, p, slip, rhs_sl, R_sl, eps)
+
+    _build_zero_slip(fn, add_mode, law_cls, creep, bool(laws), x, p, Fc, T, constraint, G, g0, mu, eps)
+
+    _common(fn, T, x, p)
+    fn["gap"] = _function("gap", x, p, ca.SX(0))
+    fn["gap_rate"] = _function("gap_rate", x, p, ca.SX(0))
+    if laws:  # rest, and the modes with a part of w held (spin friction, rolling resistance)
+        _build_rest(fn, T, x, p, ns, laws)
+        out.modes = (*modes, *(m for k in HELD for m in _build_held(fn, chart, x, p, Fc, H, laws, law_cls, ns, k)), Mode.FLIGHT)
+    _build_flight(out.flight, body, ns, laws)
+    blob = "".join(f.serialize() for d in (out.contact, out.flight) for _, f in sorted(d.items()))
+    names = "+".join([law_cls.__qualname__, *(type(d).__qualname__ for d in laws)])
+    out.signature = f"{key[0]}|{names}|{chart.name}|" + hashlib.sha256(blob.encode()).hexdigest()
+    return out
+
+
+def _build_slip(fn, x, p, slip, rhs_sl, R_sl, eps) -> None:
+    """The slip and what watches it: its speed, the starting mode's probe and the stick and
+    unstick guards."""
     speed2 = slip[0] ** 2 + slip[1] ** 2
     fn["slip"] = _function("slip", x, p, slip)
     fn["slip_speed2"] = _function("slip_speed2", x, p, speed2)
@@ -215,20 +235,6 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=(), c
     # Regularised law only: the slip has grown back above 100 eps (hysteresis against chatter).
     fn["unstick_guard"] = _function("unstick_guard", x, p, 100 * eps - ca.sqrt(speed2))
 
-    _build_zero_slip(fn, add_mode, law_cls, creep, bool(laws), x, p, Fc, T, constraint, G, g0, mu, eps)
-
-    _common(fn, T, x, p)
-    fn["gap"] = _function("gap", x, p, ca.SX(0))
-    fn["gap_rate"] = _function("gap_rate", x, p, ca.SX(0))
-    if laws:  # rest, and the modes with a part of w held (spin friction, rolling resistance)
-        _build_rest(fn, T, x, p, ns, laws)
-        out.modes = (*modes, *(m for k in HELD for m in _build_held(fn, chart, x, p, Fc, H, laws, law_cls, ns, k)), Mode.FLIGHT)
-    _build_flight(out.flight, body, ns, laws)
-    blob = "".join(f.serialize() for d in (out.contact, out.flight) for _, f in sorted(d.items()))
-    names = "+".join([law_cls.__qualname__, *(type(d).__qualname__ for d in laws)])
-    out.signature = f"{key[0]}|{names}|{chart.name}|" + hashlib.sha256(blob.encode()).hexdigest()
-    return out
-
 
 #: the components of w a set-valued law can hold at zero: its law, the modes (sliding, rolling)
 #: with them held, and the index of w's components in axes with e_Z vertical
@@ -245,12 +251,9 @@ def _build_held(fn, chart, x, p, Fc, H, laws, law_cls, ns, kind: str) -> tuple[M
     if not any(isinstance(d, cls) for d in laws):
         return ()
     A, C, mu, eps = p[ns], p[ns + 1], p[ns + 2], p[ns + 3]
-    coef, free = None, []
-    for law, i in _offsets(laws, ns + 4):
-        if isinstance(law, cls):
-            coef = p[i]
-        else:
-            free.append((law, i))
+    offsets = _offsets(laws, ns + 4)
+    coef = next(p[i] for law, i in offsets if isinstance(law, cls))
+    free = [(law, i) for law, i in offsets if not isinstance(law, cls)]
     n_tau = part.stop - part.start
     tau = ca.SX.sym("tau", n_tau)
     couple = ca.vertcat(0, 0, tau) if kind == "pivot" else ca.vertcat(tau, 0)

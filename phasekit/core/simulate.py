@@ -356,13 +356,12 @@ class _Run(RunState):
             if self.budget.tick is not None:
                 self.budget.tick(self.t)
             if self.status is None and self.budget.wall_exceeded():  # many short segments (stick-slip chatter)
-                self.status = Status.FAILED
-                self.reason = f"wall-time limit ({self.opts.max_wall:g} s) reached at t = {self.t:.6g}"
+                self.status, self.reason = Status.FAILED, "wall-time limit reached"
         if bar is not None:
             bar.close()
         if self.status is Status.FAILED and (self.reason or "").startswith("wall-time limit reached") \
-                and self.opts.max_wall is not None:  # one wording, whichever check saw the wall budget first
-            self.reason = self.reason.replace("wall-time limit", f"wall-time limit ({self.opts.max_wall:g} s)", 1)
+                and self.opts.max_wall is not None:  # here or an engine's check between chunks: one wording
+            self.reason = f"wall-time limit ({self.opts.max_wall:g} s) reached at t = {self.t:.6g}"
         if self.call_budget is not None and self.status is Status.FAILED and "wall-time limit" in (self.reason or ""):
             self.reason = f"{WALL_REASON} (max_wall = {self.call_budget:g} s) ran out at t = {self.t:.6g}"
 
