@@ -23,7 +23,7 @@ from . import baseline, bodies, core, friction, io, scenes, steady, sweep, theor
 from .bodies import Cone, CustomBody, Disk, EccentricSphere, Egg, Spheroid, TippeTop
 from .core import Event, Model, Scale, SolverOptions, gyroscopic_start, paper_start, simulate
 from .errors import ConvergenceError, ParameterError, PhasekitError, SearchStatus, Status, WorkerError
-from .friction import AirDrag, AirLayer, Coulomb, RegularisedCoulomb, RollingResistance, SpinFriction, Viscous
+from .friction import AirDrag, AirLayer, Contensou, Coulomb, RegularisedCoulomb, RollingResistance, SpinFriction, Viscous
 from .io import read_table, write_table
 from .scenes import Scene, compute_scene
 from .steady import fixed_points, steady_structure
@@ -46,7 +46,7 @@ def __getattr__(name):
 
 __all__ = [
     # bodies and friction laws
-    "Spheroid", "EccentricSphere", "Egg", "Disk", "Cone", "TippeTop", "CustomBody", "Coulomb", "RegularisedCoulomb", "Viscous",
+    "Spheroid", "EccentricSphere", "Egg", "Disk", "Cone", "TippeTop", "CustomBody", "Coulomb", "RegularisedCoulomb", "Viscous", "Contensou",
     "RollingResistance", "SpinFriction", "AirDrag", "AirLayer",
     # the model, simulations and their starts
     "Model", "Event", "SolverOptions", "simulate", "ensemble", "rerun",

@@ -145,7 +145,7 @@ def _say_held(held: list, names: dict) -> None:
 
 #: what a number typed with units is converted to, by the kind of its flag
 CONVERTED = {"angle": "rad", "rate": "in units of sqrt(g/b)", "time": "in units of sqrt(b/g)", "length": "in units of b",
-             "rolling_resistance": "in units of b", "spin_friction": "in units of b",
+             "rolling_resistance": "in units of b", "spin_friction": "in units of b", "patch": "in units of b",
              "air_drag": "in units of M b^2 sqrt(g/b)", "air_layer": "in units of M b^2 sqrt(g/b)",
              "air_drag_quadratic": "in units of M b^2",
              "air_drag_force": "in units of M sqrt(g/b)", "air_drag_force_quadratic": "in units of M/b"}

@@ -135,6 +135,9 @@ def add_friction(p, units: bool = False):
 #: the dissipation laws' flags (phasekit.friction.dissipation): dest -> (metavar, what, phasekit's unit, example with
 #: units); each in [0, 1000], 0 or absent: the law is left out
 DISSIPATION_FLAGS = {
+    "patch": ("A", "Coulomb friction over a contact patch of radius A (Contensou: the slip and the spin about the "
+              "normal coupled, Hertz pressure) in place of the point contact's sliding friction; exact Coulomb only, "
+              "not with --spin-friction (the patch's couple is its spin friction)", "a length, units b", "'0.1 mm'"),
     "rolling_resistance": ("DELTA", "rolling resistance: a couple -DELTA R w_h/|w_h| against the rolling part w_h of "
                            "the angular velocity (DELTA: the pressure's offset ahead of the contact point)",
                            "a length, units b", "'0.2 mm'"),

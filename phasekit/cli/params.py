@@ -24,6 +24,7 @@ from ..core.simulate import simulate
 from ..core.starts import RATE_MAX, gyroscopic_start, raw_start, to_chart, vertical_spin_start
 from ..core.system import STOP_AT
 from ..errors import ParameterError
+from ..friction.contensou import RADIUS_MAX, Contensou
 from ..friction.dissipation import COEFF_MAX, AirDrag, AirLayer, RollingResistance, SpinFriction
 from ..friction.laws import friction_law
 
@@ -136,13 +137,32 @@ DISSIPATION = {"rolling_resistance": (RollingResistance, "delta", "b"), "spin_fr
                "air_drag_force_quadratic": (AirDrag, "translation_quadratic", "M/b")}
 
 
+def _patch_law(friction, mu, slip_eps, dissipation: dict):
+    """Friction over a contact patch (:class:`phasekit.Contensou`) when ``dissipation`` gives a
+    patch radius > 0 (taken out of it), else None; refused with anything but exact Coulomb."""
+    radius = dissipation.pop("patch", None)
+    if radius is None:
+        return None
+    radius = check_range("patch", radius, 0.0, RADIUS_MAX, closed="lr", label=f"[0, {RADIUS_MAX:g}] (units b)")
+    if radius == 0:
+        return None
+    if friction != "coulomb" or slip_eps is not None:
+        raise ParameterError("patch", "is Coulomb friction over a patch: give it with exact Coulomb friction (no "
+                                      "--slip-eps, no --friction viscous)", radius)
+    if dissipation.get("spin_friction"):
+        raise ParameterError("patch", "includes the spin friction (its couple about the normal): give --patch or "
+                                      "--spin-friction, not both", radius)
+    return Contensou(mu, radius)
+
+
 def _law_of(friction, mu, slip_eps=None, dissipation=None):
     """The sliding law with the dissipation laws whose coefficients ``dissipation`` gives by plain
     name ({"spin_friction": 0.02, ...}, :data:`DISSIPATION`): each checked in [0, 1e3] (named so),
     a law whose coefficients are all 0 left out (the sliding law alone is the paper's model)."""
-    law = friction_law(friction, mu, slip_eps)
+    dissipation = dict(dissipation or {})
+    law = _patch_law(friction, mu, slip_eps, dissipation) or friction_law(friction, mu, slip_eps)
     coefficients: dict = {}
-    for name, value in (dissipation or {}).items():
+    for name, value in dissipation.items():
         if name not in DISSIPATION:
             raise ParameterError("dissipation", f"must name coefficients among {', '.join(DISSIPATION)}", name)
         cls, coefficient, unit = DISSIPATION[name]

@@ -112,16 +112,28 @@ def _common(fn: dict, T: dict, x, p) -> None:
     fn["paper"] = _function("paper", x, p, T["paper"])
 
 
-def _wrench(laws, p, first: int):
+def contact_point(H, laws, k):
+    """r_P = -H'(c) (k - c e_Z) - H(c) e_Z, c = k_Z, the vector from G to the contact point (as in
+    :meth:`phasekit.core.charts.VectorChart.rigid_terms`), for the laws that need it (friction over a
+    patch); None when none does."""
+    if not any(law.needs_contact_point for law in laws):
+        return None
+    cs, c, ez = ca.SX.sym("c"), k[2], ca.vertcat(0, 0, 1)
+    Hs = H(cs)
+    Hc, dH = (ca.substitute(e, cs, c) for e in (Hs, ca.jacobian(Hs, cs)))
+    return -dH * (k - c * ez) - Hc * ez
+
+
+def _wrench(laws, p, first: int, H):
     """The dissipation laws' total wrench (f, couple) as a function of (w, v, R, k), k the body's
     axis, each law reading its coefficients from p after index ``first``; None without laws."""
     if not laws:
         return None
 
     def wrench(w, v, R, k):
-        f, G, i = ca.SX.zeros(3), ca.SX.zeros(3), first
+        f, G, i, r = ca.SX.zeros(3), ca.SX.zeros(3), first, contact_point(H, laws, k)
         for law in laws:
-            fi, Gi = law.wrench(w, v, R, p[i:i + law.n_params], k)
+            fi, Gi = law.wrench_at(w, v, R, p[i:i + law.n_params], k, r)
             f, G, i = f + fi, G + Gi, i + law.n_params
         return f, G
 
@@ -140,15 +152,16 @@ def _dissipation_terms(fn, tag, T, x, p, rhs, Fc_mode, laws, first) -> None:
         speed = ca.sqrt(ca.sumsqr(T["w"][part]) + 1e-40)
         fn[f"{kind}_rate_{tag}"] = _function(f"{kind}_rate_{tag}", x, p, ca.jtimes(speed, x, rhs))
     power = [ca.dot(Fc_mode[0:2], T["slip"])]  # the slip and w, v depend on the state only
-    power += _powers(laws, p, first, T["w"], T["v"], Fc_mode[2], T["k"])
+    power += _powers(laws, p, first, T["w"], T["v"], Fc_mode[2], T["k"], T["r_P"])
     fn[f"power_{tag}"] = _function(f"power_{tag}", x, p, ca.vertcat(*power))
 
 
-def _powers(laws, p, first: int, w, v, R, k):
-    """Each dissipation law's power f.v + couple.w, in order (k: the body's axis)."""
+def _powers(laws, p, first: int, w, v, R, k, r):
+    """Each dissipation law's power f.v + couple.w, in order (k: the body's axis, r: the contact
+    point from G, for the laws that need it)."""
     out, i = [], first
     for law in laws:
-        out.append(law.power(w, v, R, p[i:i + law.n_params], k))
+        out.append(law.power(w, v, R, p[i:i + law.n_params], k, r))
         i += law.n_params
     return out
 
@@ -164,7 +177,8 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=(), c
     def H(c):
         return body.height(c, shape)
 
-    T = chart.terms(x, H, A, C, Fc, _wrench(laws, p, ns + 4))
+    T = chart.terms(x, H, A, C, Fc, _wrench(laws, p, ns + 4, H))
+    T["r_P"] = contact_point(H, laws, T["k"])
     xdot, slip = T["xdot"], T["slip"]
     modes = [Mode.SLIDING, Mode.ROLLING] if law_cls.can_stick else [Mode.SLIDING]
     out = CompiledModel(chart=chart, n_params=n_params, modes=(*modes, Mode.FLIGHT), key=key)
@@ -259,9 +273,9 @@ def _build_held(fn, chart, x, p, Fc, H, laws, law_cls, ns, kind: str) -> tuple[M
     couple = ca.vertcat(0, 0, tau) if kind == "pivot" else ca.vertcat(tau, 0)
 
     def wrench(w, v, R, k):
-        f, G = ca.SX.zeros(3), couple
+        f, G, r = ca.SX.zeros(3), couple, contact_point(H, laws, k)
         for law, i in free:
-            fi, Gi = law.wrench(w, v, R, p[i:i + law.n_params], k)
+            fi, Gi = law.wrench_at(w, v, R, p[i:i + law.n_params], k, r)
             f, G = f + fi, G + Gi
         return f, G
 
@@ -281,8 +295,8 @@ def _build_held(fn, chart, x, p, Fc, H, laws, law_cls, ns, kind: str) -> tuple[M
                            ("Fc", Fc_m), ("friction", Fc_m[0:2]), ("motion_rate", ca.jtimes(_motion(T), x, rhs)),
                            (f"{kind}_margin", coef * coef * R * R - ca.dot(tau_m, tau_m)), (f"{kind}_couple", tau_m)):
             fn[f"{name}_{tag}"] = _function(f"{name}_{tag}", x, p, ca.substitute(expr, z, sub))
-        w, v = T["w"], T["v"]
-        power = [ca.dot(Fc_m[0:2], slip)] + [law.power(w, v, R, p[i:i + law.n_params], T["k"]) if not isinstance(law, cls)
+        w, v, r_P = T["w"], T["v"], contact_point(H, laws, T["k"])
+        power = [ca.dot(Fc_m[0:2], slip)] + [law.power(w, v, R, p[i:i + law.n_params], T["k"], r_P) if not isinstance(law, cls)
                                              else ca.dot(tau_m, w[part]) for law, i in _offsets(laws, ns + 4)]
         fn[f"power_{tag}"] = _function(f"power_{tag}", x, p, ca.substitute(ca.vertcat(*power), z, sub))
         return Fc_m
@@ -428,9 +442,11 @@ def _build_flight(fn: dict, body: Body, ns: int, laws=()) -> None:
     x = ca.SX.sym("x", FLIGHT.n_states)
     p = ca.SX.sym("p", ns + 4 + sum(d.n_params for d in laws))
     shape, A, C = p[:ns], p[ns], p[ns + 1]
-    T = FLIGHT.terms(x, lambda c: body.height(c, shape), A, C, None, _wrench(laws, p, ns + 4))
+    H = lambda c: body.height(c, shape)  # noqa: E731
+    T = FLIGHT.terms(x, H, A, C, None, _wrench(laws, p, ns + 4, H))
     if laws:
-        fn["power_flight"] = _function("power_flight", x, p, ca.vertcat(0, *_powers(laws, p, ns + 4, T["w"], T["v"], 0, T["k"])))
+        powers = _powers(laws, p, ns + 4, T["w"], T["v"], 0, T["k"], contact_point(H, laws, T["k"]))
+        fn["power_flight"] = _function("power_flight", x, p, ca.vertcat(0, *powers))
     rhs = T["xdot"]
     fn["rhs_flight"] = _function("rhs_flight", x, p, rhs)
     fn["rhs_jac_flight"] = _function("rhs_jac_flight", x, p, ca.jacobian(rhs, x))

@@ -19,6 +19,7 @@ from ..bodies.by_name import BODIES, make_body
 from ..bodies.edged import Disk
 from ..errors import ParameterError
 from ..friction.dissipation import AirLayer, dissipation_from_dict
+from ..friction.contensou import Contensou
 from ..friction.laws import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous
 from .charts import FLIGHT, POLE_GUARD, get_chart
 from .fields import compiled_model
@@ -350,7 +351,8 @@ class Model:
                          height=d.get("height"), on=d.get("on"), stem_length=d.get("stem_length"),
                          stem_radius=d.get("stem_radius"), flat_angle=d.get("flat_angle"), A=d["A"], C=d["C"])
         laws = {"coulomb": lambda: Coulomb(d["mu"]), "viscous": lambda: Viscous(d["mu"]),
-                "coulomb-regularised": lambda: RegularisedCoulomb(d["mu"], d["slip_eps"])}
+                "coulomb-regularised": lambda: RegularisedCoulomb(d["mu"], d["slip_eps"]),
+                "contensou": lambda: Contensou(d["mu"], d["patch"]["radius"], d["patch"]["pressure"])}
         if d.get("law") not in laws:
             raise ParameterError("model", f"must be given to rerun the friction law {d.get('law')!r} (only the built-in "
                                           "laws can be rebuilt from their description)", show_value=False)

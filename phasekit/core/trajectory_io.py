@@ -55,7 +55,14 @@ PURE_ROLLING = ("pure rolling: energy is conserved while the body rolls without 
 #: what the "rolling" modes are, by law: zero slip held exactly (exact Coulomb), or a regularised law's
 #: slip below 10 eps, followed on its slow manifold (it creeps) or by its own field
 HOLDING = {"exact": "rolling without slip", "creep": "creeping (slip of order eps on the regularised law's slow manifold)",
-           "slow": "slipping slowly (slip below 10 eps, the regularised law's own field)"}
+           "slow": "slipping slowly (slip below 10 eps, the regularised law's own field)",
+           "patch": "sticking (over a contact patch only where the slip and the spin about the normal both vanish)"}
+
+
+def _holding(law) -> str:
+    if law.has_rolling_mode:
+        return "exact"
+    return "creep" if law.creeps else "patch" if any(d.needs_contact_point for d in law.dissipation) else "slow"
 
 
 def contact_summary(traj) -> dict:
@@ -76,7 +83,7 @@ def contact_summary(traj) -> dict:
     moves = {p.name for p in traj.model.body.transfers}
     passages = [f"{e.detail} at t = {e.t:.6g}" for e in traj.events if e.name in moves and e.detail]
     return {"t_first_stick": float(sticks[0]) if sticks else None,
-            "rolling_fraction": float(rolling / span) if span > 0 else None, "holding": HOLDING["exact" if law.has_rolling_mode else "creep" if law.creeps else "slow"],
+            "rolling_fraction": float(rolling / span) if span > 0 else None, "holding": HOLDING[_holding(law)],
             "theta_start": theta0, "theta_change": float(traj.model.chart.to_paper(traj.x)[4]) - theta0,
             "passages": passages, "rests_on": PURE_ROLLING if pure else None}
 

@@ -47,7 +47,7 @@ KINDS = {
     "power": ("[length] ** 2 * [mass] / [time] ** 3", (0.5, 1.5, 1)),
     # the coefficients of the dissipation laws (phasekit.friction.dissipation): delta and mu_s are
     # lengths; air drag's couple per rate (k1, as the air layer's k) and per rate squared (k2), force per speed (c1, c2)
-    "rolling_resistance": ("[length]", (1, 0, 0)), "spin_friction": ("[length]", (1, 0, 0)),
+    "rolling_resistance": ("[length]", (1, 0, 0)), "spin_friction": ("[length]", (1, 0, 0)), "patch": ("[length]", (1, 0, 0)),
     "air_drag": ("[length] ** 2 * [mass] / [time]", (1.5, 0.5, 1)), "air_layer": ("[length] ** 2 * [mass] / [time]", (1.5, 0.5, 1)),
     "air_drag_quadratic": ("[length] ** 2 * [mass]", (2, 0, 1)),
     "air_drag_force": ("[mass] / [time]", (-0.5, 0.5, 1)), "air_drag_force_quadratic": ("[mass] / [length]", (-1, 0, 1)),
@@ -56,7 +56,7 @@ KINDS = {
 #: its spin revolutions per second: the units experiments quote)
 DISPLAY_UNITS = {"length": "mm", "time": "ms", "rate": "rev/s", "speed": "m/s", "acceleration": "m/s**2", "mass": "g",
                  "force": "N", "energy": "mJ", "inertia": "g*cm**2", "angular_momentum": "g*cm**2/s", "power": "mW",
-                 "rolling_resistance": "mm", "spin_friction": "mm", "air_drag": "N*m*s", "air_layer": "N*m*s", "air_drag_quadratic": "N*m*s**2",
+                 "rolling_resistance": "mm", "spin_friction": "mm", "patch": "mm", "air_drag": "N*m*s", "air_layer": "N*m*s", "air_drag_quadratic": "N*m*s**2",
                  "air_drag_force": "N*s/m", "air_drag_force_quadratic": "N*s**2/m**2"}
 #: the kind of each column of a sampled table (Trajectory.sample); angles stay in radians and
 #: columns not listed (mode) are left as they are
@@ -70,7 +70,7 @@ NAMED = {k: f"{'an' if k[0] in 'aeiou' else 'a'} {k.replace('_', ' ')}" for k in
 #: an example of each kind, for the messages
 EXAMPLES = {"length": "21.5 mm", "time": "12 ms", "rate": "30 rev/s", "speed": "0.5 m/s", "acceleration": "9.81 m/s**2",
             "mass": "57 g", "force": "0.5 N", "energy": "1 mJ", "inertia": "2 g*cm**2", "angular_momentum": "1e-4 kg*m**2/s",
-            "power": "1 mW", "rolling_resistance": "0.2 mm", "spin_friction": "0.5 mm", "air_drag": "1e-7 N*m*s", "air_layer": "1e-9 N*m*s",
+            "power": "1 mW", "rolling_resistance": "0.2 mm", "spin_friction": "0.5 mm", "patch": "0.1 mm", "air_drag": "1e-7 N*m*s", "air_layer": "1e-9 N*m*s",
             "air_drag_quadratic": "1e-9 N*m*s**2", "air_drag_force": "1e-4 N*s/m",
             "air_drag_force_quadratic": "1e-3 N*s**2/m**2"}
 

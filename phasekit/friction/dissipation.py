@@ -81,6 +81,8 @@ class Dissipation:
     coefficients: tuple[str, ...] = ()
     #: True when the law acts through the contact (it vanishes in flight, where R = 0)
     contact = True
+    #: True when the wrench needs the contact point (:meth:`wrench_at`): friction over a patch
+    needs_contact_point = False
 
     def __init__(self, *values: float):
         self.values = tuple(check_nonnegative(n, v, upper=COEFF_MAX) for n, v in zip(self.coefficients, values))
@@ -97,9 +99,14 @@ class Dissipation:
     def wrench(self, w, v, R, q, k):
         raise NotImplementedError("a Dissipation subclass must define wrench(w, v, R, q, k)")
 
-    def power(self, w, v, R, q, k):
-        """The power the law adds to the motion, f.v + Gamma.w (<= 0)."""
-        f, G = self.wrench(w, v, R, q, k)
+    def wrench_at(self, w, v, R, q, k, r):
+        """The wrench given also r, the vector from G to the contact point (what the simulator calls;
+        only a law with ``needs_contact_point`` reads r)."""
+        return self.wrench(w, v, R, q, k)
+
+    def power(self, w, v, R, q, k, r=None):
+        """The power the law adds to the motion, f.v + Gamma.w (<= 0); r as in :meth:`wrench_at`."""
+        f, G = self.wrench_at(w, v, R, q, k, r)
         return ca.dot(f, v) + ca.dot(G, w)
 
     def to_dict(self) -> dict:

@@ -1,7 +1,7 @@
 """The public API: the top level re-exports the names a user starts from; every public subpackage
 has its own ``__all__``, and no other module has one (one tier: a name is public, in a package's
-``__all__``, or private); at most 145 distinct public names over all of them together (the cap
-only ever lowered); the errors live in the public module ``phasekit.errors``; every public name has
+``__all__``, or private); at most 147 distinct public names over all of them together (the cap
+raised only for names an issue asks for); the errors live in the public module ``phasekit.errors``; every public name has
 a numpydoc Parameters (or Attributes) section and an example that runs, and is in the API
 reference; the studies' support package is not API; every ``phasekit.a.b`` path written in the
 docs, the README and the docstrings imports."""
@@ -51,10 +51,12 @@ def test_every_public_package_has_its_own_all_without_private_names():
         assert all(not n.startswith("_") and hasattr(mod, n) for n in mod.__all__), ns
 
 
-#: the cap on distinct public names: lowered as names leave, never raised but twice, by one each, for
-#: the two drawings the issue "What users trip on" asks for (pk.viz.plot_energy, the energy plot of
-#: "Energy and data", and pk.viz.plot_steady_structure); the contract test below refuses issue numbers
-PUBLIC_NAMES_CAP = 146
+#: the cap on distinct public names: lowered as names leave, never raised but three times, by one each,
+#: for the two drawings the issue "What users trip on" asks for (pk.viz.plot_energy, the energy plot of
+#: "Energy and data", and pk.viz.plot_steady_structure) and the friction law over a contact patch
+#: (pk.Contensou) that the issue "Friction over a contact patch" asks for; the contract test below
+#: refuses issue numbers
+PUBLIC_NAMES_CAP = 147
 
 
 def test_at_most_the_cap_of_distinct_public_names_over_all_public_packages():
