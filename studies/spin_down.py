@@ -12,7 +12,8 @@ What is run. (a) The egg: pk.Egg(1.33333, 0) (length/breadth 60/45), b = 22.5 mm
 1.33333 --gyroscopic --theta0 "89.4 deg" --omega0 "25 rev/s" --size "22.5 mm"`), mu = 0.2:
 exact Coulomb alone; with spin friction mu_s = 0.05-1 mm; with rolling resistance; regularised
 Coulomb (eps = 1e-3); with air drag (our estimate of a sphere of the egg's size in air, see
-AIR). (b) The tippe top of the README (pk.EccentricSphere(0.3, A=0.38, C=0.4), radius 15 mm)
+AIR); exact Coulomb over a contact patch of radius 0.05-0.2 mm (pk.Contensou, Hertz pressure: the
+slip and the spin about the normal coupled). (b) The tippe top of the README (pk.EccentricSphere(0.3, A=0.38, C=0.4), radius 15 mm)
 spun at 30 rev/s about the vertical from theta0 = 0.1, exact Coulomb mu = 0.3: alone, with spin
 friction, with rolling resistance, and with both over mu_s = 0.05-1 mm and delta = 0.01-0.2 mm.
 Every run: vector chart, rtol 1e-10, through flights and impacts (restitution 0), until rest
@@ -62,7 +63,8 @@ FULL = dict(
          *((f"spin friction {m} mm", {"mu_s": f"{m} mm"}, 120.0, 100_000) for m in (0.05, 0.1, 0.2, 0.5, 1.0)),
          *((f"rolling resistance {d} mm", {"delta": f"{d} mm"}, 120.0, 30_000) for d in (0.05, 0.2)),
          ("regularised Coulomb eps 1e-3", {"sliding": "regularised"}, 20.0, 100_000),
-         ("air drag", {"air": AIR}, 120.0, 100_000)],
+         ("air drag", {"air": AIR}, 120.0, 100_000),
+         *((f"patch {r} mm", {"patch": f"{r} mm"}, 20.0, 100_000) for r in (0.05, 0.1, 0.2))],
     tippe_top=[("exact Coulomb", {}, 60.0, 100_000),
          *((f"spin friction {m} mm", {"mu_s": f"{m} mm"}, 60.0, 100_000) for m in (0.05, 0.2, 1.0)),
          ("rolling resistance 0.05 mm", {"delta": "0.05 mm"}, 60.0, 30_000),
@@ -74,7 +76,8 @@ QUICK = dict(
     egg=[("exact Coulomb", {}, 20.0, 20_000), ("spin friction 0.2 mm", {"mu_s": "0.2 mm"}, 25.0, 20_000),
          ("spin friction 1.0 mm", {"mu_s": "1.0 mm"}, 20.0, 20_000),
          ("rolling resistance 0.2 mm", {"delta": "0.2 mm"}, 20.0, 1_000),
-         ("regularised Coulomb eps 1e-3", {"sliding": "regularised"}, 5.0, 20_000)],
+         ("regularised Coulomb eps 1e-3", {"sliding": "regularised"}, 5.0, 20_000),
+         ("patch 0.1 mm", {"patch": "0.1 mm"}, 5.0, 20_000)],
     tippe_top=[("exact Coulomb", {}, 10.0, 20_000), ("spin friction 0.2 mm", {"mu_s": "0.2 mm"}, 20.0, 20_000),
          ("mu_s 0.2 mm, delta 0.05 mm", {"mu_s": "0.2 mm", "delta": "0.05 mm"}, 60.0, 20_000),
          ("mu_s 1.0 mm, delta 0.05 mm", {"mu_s": "1.0 mm", "delta": "0.05 mm"}, 60.0, 20_000)])
@@ -104,7 +107,7 @@ def run_case(body: str, label: str, spec: dict, t_end: float, max_steps: int) ->
     """One run: its curve rows, then its run row (written last: a run is done when it is stored)."""
     b, sc, y0, mu = setup(body)
     law = ps.spin_down_law(sc, spec.get("sliding", "coulomb"), mu, mu_s=spec.get("mu_s"), delta=spec.get("delta"),
-                           air=spec.get("air"))
+                           air=spec.get("air"), patch=spec.get("patch"))
     rows = ps.spin_down_run(run_key(body, label, spec, t_end, max_steps), body, label, b, law, y0, sc, t_end, rtol=RTOL,
                             rise_deg=EGG["rise_deg"], over_deg=TOP["over_deg"], max_wall=MAX_WALL, max_steps=max_steps)
     return [*rows[1:], rows[0]]

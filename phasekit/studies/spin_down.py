@@ -27,13 +27,14 @@ from ..core.hybrid import Event, Mode
 from ..core.model import Model
 from ..core.simulate import simulate
 from ..core.starts import to_chart
+from ..friction.contensou import Contensou
 from ..friction.dissipation import AirDrag, RollingResistance, SpinFriction
 from ..friction.laws import Coulomb, RegularisedCoulomb
 from ..viz.output import pyplot
 
 #: the energy budget's law names -> the row's column
 LAW_NAMES = {"sliding friction": "diss_sliding", "spin-friction": "diss_spin", "rolling-resistance": "diss_rolling",
-             "air-drag": "diss_air"}
+             "air-drag": "diss_air", "patch": "diss_sliding"}  # over a patch, sliding and pivoting are one friction
 
 
 @dataclass(frozen=True)
@@ -95,12 +96,16 @@ class SpinCurvePoint:
 
 
 def spin_down_law(scale, sliding: str, mu: float, *, eps: float = 1e-3, mu_s: str | None = None,
-                  delta: str | None = None, air: dict | None = None):
-    """A sliding law ("coulomb" exact, or "regularised" with ``eps``) carrying the dissipation
+                  delta: str | None = None, air: dict | None = None, patch: str | None = None):
+    """A sliding law ("coulomb" exact, or "regularised" with ``eps``; exact Coulomb over a contact
+    patch of radius ``patch``, a length, :class:`phasekit.Contensou`) carrying the dissipation
     laws given in real units through ``scale``: spin friction ``mu_s`` and rolling resistance
     ``delta`` as lengths ("0.2 mm"), air drag as a dict of :class:`phasekit.AirDrag`'s
     coefficients in real units ({"rotation_quadratic": "1e-9 N*m*s**2"}; the Scale needs a mass)."""
-    law = Coulomb(mu) if sliding == "coulomb" else RegularisedCoulomb(mu, eps)
+    if patch is not None:
+        law = Contensou(mu, scale.dimensionless(patch, "patch"))
+    else:
+        law = Coulomb(mu) if sliding == "coulomb" else RegularisedCoulomb(mu, eps)
     laws = []
     if mu_s is not None:
         laws.append(SpinFriction(scale.dimensionless(mu_s, "spin_friction")))
@@ -172,7 +177,7 @@ def spin_down_run(key: str, body_name: str, case: str, body, law, y0, scale, t_e
     budget = traj.energy_budget()
     diss = dict.fromkeys(LAW_NAMES.values(), 0.0)
     for name, value in zip(budget.laws, budget.dissipated):
-        diss[LAW_NAMES[name]] = float(value)
+        diss[LAW_NAMES[name]] += float(value)
     note = (traj.to_dict().get("rests_on") or "") if not law.dissipation else ""
     values = {d.name: d.values[0] for d in law.dissipation}
     mm = float(scale.unit("length").to("mm").magnitude)
