@@ -27,7 +27,8 @@ docs/results/robustness.md). It does not fail on a difference: the audit measure
 --only STUDY ... runs those studies only (a committed table of another study is then not
 checked). --scratch DIR (or --out DIR) keeps the reruns in DIR (otherwise a temporary folder,
 deleted unless --keep). --update (with --only) copies the fresh tables and figures of those
-studies into figures/ after the report.
+studies into figures/ after the report, then writes their numbers into the committed Markdown
+(README.md, docs/results/*.md: python docs/_ext/pkdocs/inplace.py --write).
 """
 
 from __future__ import annotations
@@ -232,7 +233,26 @@ def update(runs: dict, scratch: Path) -> int:
             shutil.copyfile(src, tmp)
             os.replace(tmp, FIGURES / src.name)
             print(f"update: figures/{src.name} <- {study}")
+    if skipped < len(runs):
+        skipped += not rewrite_pages()
     return skipped
+
+
+def rewrite_pages() -> bool:
+    """Write the numbers of the fresh tables into the committed Markdown (README.md, docs/results/,
+    docs/_ext/pkdocs/inplace.py --write): whether that worked. In its own process: the docs
+    extension needs Sphinx, which a study does not."""
+    script = ROOT / "docs" / "_ext" / "pkdocs" / "inplace.py"
+    if not script.is_file():  # a copy of the studies without the docs
+        print(f"update: no {script.relative_to(ROOT)}: no pages to rewrite")
+        return True
+    p = subprocess.run([sys.executable, str(script), "--write"], cwd=ROOT, capture_output=True, text=True)
+    for line in p.stdout.splitlines():
+        print(f"update: {line}")
+    if p.returncode:
+        print(f"update: the pages' numbers were not rewritten (exit {p.returncode}): "
+              f"{(p.stderr.strip().splitlines() or [''])[-1]}; run python docs/_ext/pkdocs/inplace.py --write")
+    return p.returncode == 0
 
 
 def main(argv=None) -> dict:

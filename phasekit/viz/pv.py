@@ -24,6 +24,10 @@ from .export import axes_caption, export_scene  # noqa: F401 (axes_caption: what
 #: the optional packages the HTML export needs: ``pip install "phasekit[html]"`` (pyvista's
 #: export starts trame's server in-process, which needs nest_asyncio2 outside Jupyter)
 HTML_EXTRA = ("trame_pyvista", "nest_asyncio2")
+#: what the interactive 3-D view in Jupyter needs: ``pip install "phasekit[notebook]"``. pyvista's
+#: interactive backends ("trame", "server", "client", "html") come from trame-pyvista, which shows
+#: each scene as an anywidget widget (trame_pyvista/jupyter.py raises for want of anywidget)
+NOTEBOOK_EXTRA = ("trame_pyvista", "anywidget", "ipywidgets")
 COLORS = ("#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d", "#666666")
 
 
@@ -195,6 +199,16 @@ def _check_camera(camera):
     return [tuple(float(v) for v in row) for row in arr]
 
 
+def notebook_backend() -> str:
+    """The Jupyter backend for a plotter of :func:`render_scene` when the user chose none:
+    ``"html"`` when everything of :data:`NOTEBOOK_EXTRA` is installed (the scene in the browser,
+    vtk.js: rotate and zoom), else ``"static"`` (an image made in the kernel). Neither fetches
+    anything; pyvista's own choice with trame-pyvista installed, ``"trame"``, starts a trame server
+    in the kernel whose trame-vtklocal downloads VTK's WebAssembly build from gitlab.kitware.com
+    the first time (trame_vtklocal/module/wasm.py), and without anywidget it raises."""
+    return "html" if all(importlib.util.find_spec(m) is not None for m in NOTEBOOK_EXTRA) else "static"
+
+
 def _check_exports(html, gltf) -> None:
     """Fail before drawing when an export cannot be written (one line, naming the fix)."""
     if html is not None:
@@ -234,6 +248,19 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
     RenderInfo or pyvista.Plotter
         RenderInfo when ``path`` is given, else the plotter.
 
+    Notes
+    -----
+    In Jupyter, ``render_scene(data).show()`` draws in the cell with pyvista's Jupyter backend
+    ``"html"`` when ``phasekit[notebook]`` is installed (trame-pyvista, anywidget, ipywidgets:
+    the scene drawn in the browser by vtk.js, to rotate and zoom) and ``"static"`` without it (a
+    PNG made in the kernel). Neither reaches the internet. pyvista's own default with
+    trame-pyvista installed (as ``phasekit[html]`` installs it) would be ``"trame"``, which raises
+    for want of anywidget without the extra and, with it, starts a trame server in the kernel
+    that downloads VTK's WebAssembly build the first time. Choose a backend for one plot with
+    ``.show(jupyter_backend="static")`` (or ``"html"``, ``"trame"``, ``"server"``, ``"client"``),
+    for the session with ``pyvista.set_jupyter_backend(...)`` or the environment variable
+    ``PYVISTA_JUPYTER_BACKEND``: a backend chosen so is kept.
+
     Raises
     ------
     ParameterError
@@ -268,6 +295,8 @@ def render_scene(data, path=None, *, window_size=(1400, 1000), html: str | None 
         counts = _draw(pl, data, title, window_size)
         pl.camera_position = camera or CAMERAS[data.scene.branch]
         if path is None:
+            if pl.notebook and pl.theme.jupyter_backend is None:  # none chosen (pyvista.set_jupyter_backend)
+                pl.theme.jupyter_backend = notebook_backend()
             return pl
         img = pl.screenshot(str(path), return_img=True)
         exported = export_scene(pl, data, html, gltf, title)

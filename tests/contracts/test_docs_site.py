@@ -358,10 +358,10 @@ def test_a_changed_manifest_changes_the_generated_numbers(tmp_path):
     assert changed["new"] in facts.lookup(after, "aspect.table")
     assert "9.877" in facts.lookup(after, "repro.table")
     # ... and the README's generated blocks would be flagged as stale
-    from pkdocs import readme
+    from pkdocs import inplace
 
     readme_text = (ROOT / "README.md").read_text()
-    assert readme.render(readme_text, after) != readme_text
+    assert inplace.render(readme_text, after) != readme_text
 
 
 @pytest.mark.slow  # a second Sphinx build (~13 s); the generated numbers are checked without it above

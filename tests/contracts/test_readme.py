@@ -46,14 +46,14 @@ def test_readme_python_block_runs(code):
 
 def test_generated_blocks_match_the_committed_data():
     """The reproduction table, the class counts, the egg's jumps and the fuzz counts are the values
-    the docs compute from figures/ and docs/data/ (python docs/_ext/pkdocs/readme.py --write)."""
-    from pkdocs import readme
+    the docs compute from figures/ and docs/data/ (python docs/_ext/pkdocs/inplace.py --write)."""
+    from pkdocs import inplace
     from pkdocs.sources import Sources
 
-    names = [name for name, _ in readme.blocks(TEXT)]
+    names = [name for name, _ in inplace.values(TEXT)]
     assert {"repro.table", "readme.steady_counts", "readme.egg_jumps", "readme.robustness_counts"} <= set(names)
-    for (name, body), (_, fresh) in zip(readme.blocks(TEXT), readme.blocks(readme.render(TEXT, Sources()))):
-        assert body == fresh, f"README block {name} is stale: python docs/_ext/pkdocs/readme.py --write"
+    for (name, body), (_, fresh) in zip(inplace.values(TEXT), inplace.values(inplace.render(TEXT, Sources()))):
+        assert body == fresh, f"README block {name} is stale: python docs/_ext/pkdocs/inplace.py --write"
 
 
 def test_the_readme_has_its_sections_and_figures():

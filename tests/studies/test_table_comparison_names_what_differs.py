@@ -227,6 +227,33 @@ def test_the_script_passes_identical_tables_and_fails_a_changed_cell_or_an_unown
     assert again.returncode == 0 and "tiny.csv (tiny): identical" in again.stdout
 
 
+#: a stand-in for the docs' generator: it notes its arguments and what figures/tiny.csv held then
+FAKE_INPLACE = """import pathlib, sys
+root = pathlib.Path(__file__).resolve().parents[3]
+(root / "pages.txt").write_text(" ".join(sys.argv[1:]) + "\\n" + (root / "figures" / "tiny.csv").read_text())
+print("wrote README.md")
+sys.exit(int((root / "fail").exists()))
+"""
+
+
+def test_an_update_writes_the_fresh_numbers_into_the_pages(tmp_path):
+    """--update runs docs/_ext/pkdocs/inplace.py --write after copying the tables (so the pages get
+    the fresh numbers), and fails, naming it, when that fails."""
+    repo = _repo(tmp_path)
+    (repo / "docs" / "_ext" / "pkdocs").mkdir(parents=True)
+    (repo / "docs" / "_ext" / "pkdocs" / "inplace.py").write_text(FAKE_INPLACE)
+    (repo / "figures" / "tiny.csv").write_text("key,x,wall_s\na,0.3,0.1\nb,1.25,0.1\n")
+    updated = _check(repo, "--update", "--only", "tiny")
+    assert updated.returncode == 0, updated.stdout + updated.stderr
+    assert "update: wrote README.md" in updated.stdout
+    args, header, *rows = (repo / "pages.txt").read_text().splitlines()
+    assert args == "--write" and [r.split(",")[:2] for r in rows] == [["a", "0.30000000000000004"], ["b", "1.5"]]
+    (repo / "fail").write_text("")
+    failed = _check(repo, "--update", "--only", "tiny")
+    assert failed.returncode == 1
+    assert "update: the pages' numbers were not rewritten (exit 1)" in failed.stdout
+
+
 def test_the_script_refuses_bad_input_in_one_line_naming_the_flag(tmp_path):
     repo = _repo(tmp_path)
     for args, says in ((["--check", "--only", "nope"], "argument --only: invalid choice: 'nope' (choose from 'tiny')"),

@@ -3,6 +3,8 @@
 * ``{pk}`group.name``` (role) and ``{pk-table} group.name`` (directive): numbers and tables
   generated from the committed study outputs in ``figures/`` and the reports in ``docs/data/``
   (:mod:`pkdocs.facts`); config ``pk_figures``, ``pk_data`` point elsewhere (tests use copies).
+  The pages hold these values in place between ``<!-- pk:NAME -->`` markers (:mod:`pkdocs.inplace`),
+  which the build reads back as the role and the directives (``source-read``).
 * ``{pk-event-table}``: the table of events, from the declarations in ``phasekit/core/system.py``.
 * ``{pk-cli-schema} COMMAND``: the JSON a CLI command prints, from real runs at build time.
 * the gallery (``docs/gallery/``, generated): every script in ``examples/`` run and shown.
@@ -13,7 +15,6 @@ Config ``pk_execute = False`` skips running the examples and the CLI (pages say 
 from __future__ import annotations
 
 import json
-import shlex
 import time
 
 from docutils import nodes
@@ -21,7 +22,7 @@ from docutils.statemachine import StringList
 from sphinx.util import logging
 from sphinx.util.docutils import SphinxDirective, SphinxRole
 
-from . import cli_schema, events, facts, gallery
+from . import cli_schema, events, facts, gallery, inplace
 from .sources import DOCS, Sources
 
 LOG = logging.getLogger(__name__)
@@ -96,39 +97,20 @@ class PkCliSchema(SphinxDirective):
             if self.env.app.config.pk_execute:
                 raise self.error(f"no runs of `phasekit {command}` (known: {', '.join(cli_schema.RUNS)})")
             return _markdown(self, "*(not run in this build: `pk_execute = False`)*")
-        results = [r for r in runs if r.returncode != 2]  # exit 2: bad input, its own small object
-        errors = [r for r in runs if r.returncode == 2]
-        labels = [r.label for r in results]
-        node = cli_schema.merge([(r.label, r.output) for r in results])
+        rec = cli_schema.record(runs)
         schema_dir = DOCS / "_generated" / "schemas"
         schema_dir.mkdir(parents=True, exist_ok=True)
-        (schema_dir / f"{command}.schema.json").write_text(
-            json.dumps(cli_schema.json_schema(node, labels, f"phasekit {command} --json"), indent=1)
-        )
+        (schema_dir / f"{command}.schema.json").write_text(json.dumps(cli_schema.schema_of(rec, command), indent=1))
         LOG.info(f"pkdocs: wrote _generated/schemas/{command}.schema.json and the {command} table")
-        lines = ["The runs (made when these pages were built):", ""]
-        for r in runs:
-            status = r.output.get("status", "") if isinstance(r.output, dict) else ""
-            lines.append(
-                f"- **{r.label}**: `{shlex.join(r.argv)}` (exit {r.returncode}"
-                + (f", status `{status}`)" if status else ")")
-            )
-        lines += [
-            "",
-            f"JSON Schema of the results: {{download}}`{command}.schema.json "
-            f"</_generated/schemas/{command}.schema.json>`",
-            "",
-            cli_schema.schema_table(node, labels),
-            "",
-        ]
-        if errors:
-            enode = cli_schema.merge([(r.label, r.output) for r in errors])
-            lines += [
-                "Bad input (exit 2) prints instead:",
-                "",
-                cli_schema.schema_table(enode, [r.label for r in errors]),
-            ]
-        return _markdown(self, "\n".join(lines))
+        link = f"{{download}}`{command}.schema.json </_generated/schemas/{command}.schema.json>`"
+        text = cli_schema.page_block(rec, command, "The runs (made when these pages were built):", link)
+        return _markdown(self, text + "\n")
+
+
+def _source_read(app, docname, source):
+    # the committed values between <!-- pk:NAME --> markers are read as the roles and directives
+    # that compute them: the site shows the values of the data it is pointed at (pk_figures)
+    source[0] = inplace.to_directives(source[0])
 
 
 def _builder_inited(app):
@@ -174,5 +156,6 @@ def setup(app):
     app.add_directive("pk-event-table", PkEventTable)
     app.add_directive("pk-cli-schema", PkCliSchema)
     app.connect("builder-inited", _builder_inited)
+    app.connect("source-read", _source_read)
     app.connect("env-get-outdated", _env_get_outdated)
     return {"version": "1", "parallel_read_safe": False, "parallel_write_safe": True}

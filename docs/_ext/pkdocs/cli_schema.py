@@ -4,6 +4,11 @@ into one schema per command: every key path, the JSON types seen there, and whic
 Nothing here lists a key by hand; a new key appears on the page the next time the docs build.
 The same merge is written as a JSON Schema (draft 2020-12) file per command.
 
+The runs are also recorded in the repository (``python docs/_ext/pkdocs/cli_schema.py --write``):
+``docs/data/cli_schema.json`` (:func:`record`), the schema files ``docs/data/cli/*.schema.json``
+and the tables in docs/cli.md (the group ``cli``, written by :mod:`pkdocs.inplace`), so that they
+read without a build; tests/contracts/test_committed_numbers.py checks the record against fresh runs.
+
 Each example value on the page is what one run printed: that of the first run listed, or, for a
 key that run lacks, of the first run that has it (named beside the value), never a mix of
 runs within one value."""
@@ -18,9 +23,20 @@ import subprocess
 import sys
 import tempfile
 from dataclasses import dataclass, field
+from pathlib import Path
 
-from .fmt import table
-from .sources import ROOT
+if __package__ in (None, ""):  # run as a script: python docs/_ext/pkdocs/cli_schema.py --write
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    __package__ = "pkdocs"
+
+from pkdocs.fmt import table  # noqa: E402
+from pkdocs.registry import group  # noqa: E402
+from pkdocs.sources import DOCS, ROOT, Sources  # noqa: E402
+
+#: the committed record of the runs (docs/data/): what docs/cli.md shows without a build
+RECORD = "cli_schema.json"
+#: the committed JSON Schema files, one per command
+SCHEMAS = DOCS / "data" / "cli"
 
 PROLATE = "--a 1.5 --mu 0.1 --gyroscopic --theta0 1.5607963"
 TOP = "--body tippe-top --offset 0.3 --A 0.38 --C 0.4 --mu 0.3"
@@ -71,6 +87,21 @@ class CommandRun:
     stderr: str
 
 
+#: what the temporary folder of the runs is shown as (in the arguments and in the outputs)
+TMP = "DIR"
+
+
+def _untemp(value, tmp: str):
+    """``value`` (an output, an argument) with the runs' temporary folder written as :data:`TMP`."""
+    if isinstance(value, str):
+        return value.replace(tmp, TMP) if tmp else value
+    if isinstance(value, list):
+        return [_untemp(v, tmp) for v in value]
+    if isinstance(value, dict):
+        return {k: _untemp(v, tmp) for k, v in value.items()}
+    return value
+
+
 def _run(command: str, label: str, args: str, tmp: str) -> CommandRun:
     argv = ["phasekit", command, *shlex.split(args.format(tmp=tmp)), "--json"]
     env = {
@@ -85,7 +116,7 @@ def _run(command: str, label: str, args: str, tmp: str) -> CommandRun:
         out = json.loads(p.stdout)
     except json.JSONDecodeError:
         raise RuntimeError(f"`{shlex.join(argv)}` printed no JSON (exit {p.returncode}): {p.stderr[-500:]}") from None
-    return CommandRun(command, label, argv, p.returncode, out, p.stderr)
+    return CommandRun(command, label, _untemp(argv, tmp), p.returncode, _untemp(out, tmp), p.stderr)
 
 
 def run_all(jobs: int = 2, log=None) -> list[CommandRun]:
@@ -219,3 +250,102 @@ def json_schema(node: Node, labels: list[str], title: str = "") -> dict:
         **conv(node),
     }
     return out
+
+
+# -- the committed record: docs/data/cli_schema.json and docs/data/cli/*.schema.json ------------------
+
+
+def node_dict(n: Node, labels: list[str]) -> dict:
+    """A merged node as JSON: its types, the runs that have it (in the order of ``labels``), the
+    one example shown ([run, value]; an object or a list as ``{}`` or ``[]``), its members."""
+    d = {"types": sorted(n.types), "runs": [r for r in labels if r in n.runs]}
+    if n.examples:  # not the items of a list that was empty in every run
+        run, v = n.example(labels)
+        d["example"] = [run, {} if isinstance(v, dict) else [] if isinstance(v, list) else v]
+    if n.keys:
+        d["keys"] = {k: node_dict(c, labels) for k, c in n.keys.items()}
+    if n.items is not None:
+        d["items"] = node_dict(n.items, labels)
+    return d
+
+
+def node_from_dict(d: dict) -> Node:
+    """The inverse of :func:`node_dict` (for what the pages and schemas read: types, runs, the example)."""
+    n = Node(types=set(d["types"]), runs=set(d["runs"]), examples=dict([d["example"]]) if "example" in d else {})
+    n.keys = {k: node_from_dict(c) for k, c in d.get("keys", {}).items()}
+    n.items = node_from_dict(d["items"]) if "items" in d else None
+    return n
+
+
+def _status(r: CommandRun) -> str:
+    return r.output.get("status", "") if isinstance(r.output, dict) else ""
+
+
+def record(runs: list[CommandRun]) -> dict:
+    """What the pages need of the runs, per command: each run (label, arguments, exit code, status),
+    the merged results and the merged bad-input outputs (exit 2), as :func:`node_dict`."""
+    out = {}
+    for command in [c for c in RUNS if any(r.command == c for r in runs)]:
+        mine = [r for r in runs if r.command == command]
+        results = [r for r in mine if r.returncode != 2]
+        errors = [r for r in mine if r.returncode == 2]
+        out[command] = {
+            "runs": [{"label": r.label, "argv": r.argv, "returncode": r.returncode, "status": _status(r)} for r in mine],
+            "results": node_dict(merge([(r.label, r.output) for r in results]), [r.label for r in results]),
+            "errors": node_dict(merge([(r.label, r.output) for r in errors]), [r.label for r in errors]) if errors else None,
+        }
+    return out
+
+
+def schema_of(rec: dict, command: str) -> dict:
+    """The JSON Schema of one command's results, from the record."""
+    c = rec[command]
+    labels = [r["label"] for r in c["runs"] if r["returncode"] != 2]
+    return json_schema(node_from_dict(c["results"]), labels, f"phasekit {command} --json")
+
+
+def page_block(rec: dict, command: str, intro: str, link: str) -> str:
+    """The Markdown of one command: its runs, a link to its JSON Schema (``link``), the table of
+    its results and that of its bad input."""
+    c = rec[command]
+    lines = [intro, ""]
+    for r in c["runs"]:
+        status = f", status `{r['status']}`" if r["status"] else ""
+        lines.append(f"- **{r['label']}**: `{shlex.join(r['argv'])}` (exit {r['returncode']}{status})")
+    labels = [r["label"] for r in c["runs"] if r["returncode"] != 2]
+    lines += ["", f"JSON Schema of the results: {link}", "", schema_table(node_from_dict(c["results"]), labels)]
+    if c["errors"]:
+        elabels = [r["label"] for r in c["runs"] if r["returncode"] == 2]
+        lines += ["", "Bad input (exit 2) prints instead:", "", schema_table(node_from_dict(c["errors"]), elabels)]
+    return "\n".join(lines)
+
+
+COMMITTED_INTRO = ("The runs (recorded by `python docs/_ext/pkdocs/cli_schema.py --write` in "
+                   f"`docs/data/{RECORD}`; the built site shows the runs made when it was built):")
+
+
+@group("cli")
+def _cli(src: Sources) -> dict:
+    rec = src.report(RECORD)
+    return {c: page_block(rec, c, COMMITTED_INTRO, f"[`{c}.schema.json`](data/cli/{c}.schema.json)") for c in rec}
+
+
+def write(jobs: int = 2) -> dict:
+    """Run every command of :data:`RUNS` and write the record and the schema files; the record."""
+    rec = record(run_all(jobs, print))
+    (DOCS / "data" / RECORD).write_text(json.dumps(rec, indent=1) + "\n")
+    SCHEMAS.mkdir(exist_ok=True)
+    for command in rec:
+        (SCHEMAS / f"{command}.schema.json").write_text(json.dumps(schema_of(rec, command), indent=1) + "\n")
+    return rec
+
+
+if __name__ == "__main__":
+    if sys.argv[1:] != ["--write"]:
+        sys.exit("usage: python docs/_ext/pkdocs/cli_schema.py --write   (runs every command of RUNS; writes "
+                 f"docs/data/{RECORD}, docs/data/cli/*.schema.json and the blocks of docs/cli.md)")
+    write()
+    from pkdocs import inplace
+
+    for path in inplace.write():
+        print(f"wrote {path.relative_to(ROOT)}")

@@ -9,6 +9,7 @@ import inspect
 import re
 
 from .fmt import table
+from .registry import group
 
 LAWS = ("exact Coulomb", "regularised Coulomb", "viscous", "with dissipation laws")
 STOPS = ("jump", "touchdown", "none", "rest")  # system.STOP_AT
@@ -160,3 +161,9 @@ def event_table() -> str:
         ],
         lines,
     )
+
+
+@group("events")
+def _events(src) -> dict:
+    """The event table, as the group ``events`` (``events.table``): from the code, not from ``src``."""
+    return {"table": event_table()}

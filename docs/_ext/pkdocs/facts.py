@@ -9,5 +9,7 @@ does exactly that on a copy).
 
 from __future__ import annotations
 
-from . import facts_runs, facts_steady, facts_theory, facts_thresholds  # noqa: F401  (each registers its groups)
+# each registers its groups (cli: the commands' tables from docs/data/cli_schema.json; events: the event table;
+# csv: study tables shown whole)
+from . import cli_schema, events, facts_runs, facts_steady, facts_tables, facts_theory, facts_thresholds  # noqa: F401
 from .registry import GROUPS, group, lookup, values  # noqa: F401  (the registry, as pkdocs and the tests read it)

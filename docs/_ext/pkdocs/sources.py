@@ -4,6 +4,7 @@ benchmarks). No Sphinx here, so that a test can render a page's numbers from a c
 
 from __future__ import annotations
 
+import csv
 import json
 from pathlib import Path
 
@@ -39,6 +40,14 @@ class Sources:
         if key not in self._cache:
             self._cache[key] = pd.read_csv(self._path(self.figures, name))
         return self._cache[key].copy()
+
+    def cells(self, name: str) -> list[list[str]]:
+        """The rows of a CSV table in figures/ as written (the text of each cell, not parsed)."""
+        key = ("cells", name)
+        if key not in self._cache:
+            with self._path(self.figures, name).open(newline="") as f:
+                self._cache[key] = list(csv.reader(f))
+        return [list(r) for r in self._cache[key]]
 
     def json(self, name: str) -> dict:
         key = ("json", name)
