@@ -24,7 +24,7 @@ FLAGS = {
     "spinning_in_place": "--spinning-in-place",
     "frames": "--frames", "fps": "--fps", "out": "OUT", "gap_scale": "--gap-scale", "camera": "--camera",
     "panel": "--panel", "timing": "--timing", "window_size": "--window-size", "path": "OUT", "mass": "--mass",
-    "rolling_resistance": "--rolling-resistance", "spin_friction": "--spin-friction", "patch": "--patch", "air_drag": "--air-drag", "air_layer": "--air-layer",
+    "rolling_resistance": "--rolling-resistance", "spin_friction": "--spin-friction", "patch": "--patch", "hertz": "--hertz", "air_drag": "--air-drag", "air_layer": "--air-layer",
     "air_drag_quadratic": "--air-drag-quadratic", "air_drag_force": "--air-drag-force",
     "air_drag_force_quadratic": "--air-drag-force-quadratic", "thickness": "--thickness", "radius": "--radius",
     "height": "--height", "on": "--on", "flat_angle": "--flat-angle", "stem_length": "--stem-length", "stem_radius": "--stem-radius",

@@ -120,8 +120,39 @@ def law_args(args) -> tuple[str, float, float | None]:
 
 def dissipation_of(args) -> dict:
     """The coefficients of the dissipation laws given (flag dest -> value, in phasekit's units):
-    what :func:`phasekit.cli.params._law_of` builds the laws from."""
-    return {dest: getattr(args, dest) for dest in DISSIPATION_FLAGS if getattr(args, dest, None) is not None}
+    what :func:`phasekit.cli.params._law_of` builds the laws from; ``hertz``: the patch radius at
+    principal radii of b (:func:`hertz_of`)."""
+    out = {dest: getattr(args, dest) for dest in DISSIPATION_FLAGS if getattr(args, dest, None) is not None}
+    if getattr(args, "hertz", None) is not None:
+        out["hertz"] = args.hertz
+    return out
+
+
+def hertz_of(text: str, scale) -> float:
+    """--hertz "BODY, TABLE" (materials by name) or "E1, nu1, E2, nu2" (Pa) as the Hertz patch radius
+    at principal radii of b under the weight (units b), from --size and --mass."""
+    from ..friction.hertz import MATERIALS, unit_patch_radius
+
+    parts = [p.strip() for p in str(text).split(",")]
+    try:
+        if len(parts) == 2:
+            (E1, nu1), (E2, nu2) = ((MATERIALS[p.lower()].E, MATERIALS[p.lower()].nu) for p in parts)
+        elif len(parts) == 4:
+            E1, nu1, E2, nu2 = (float(p) for p in parts)
+        else:
+            raise ValueError
+    except (KeyError, ValueError):
+        raise UsageError(f"--hertz must be two materials among {', '.join(MATERIALS)} (the body's, then the "
+                          f"table's) or 'E1, nu1, E2, nu2' (Pa), got {text!r}.", "--hertz") from None
+    if scale is None or scale.mass is None:
+        raise UsageError(f"--hertz needs the body's weight: give --size and --mass, got --hertz {text!r}.", "--hertz")
+    weight = float((scale.mass * scale.g).to("N").magnitude)
+    from ..errors import ParameterError
+
+    try:
+        return unit_patch_radius(weight, float(scale.b.to("m").magnitude), E1, nu1, E2, nu2)
+    except ParameterError as exc:
+        raise UsageError(f"--hertz {text!r}: {exc}", "--hertz") from None
 
 
 #: options that take a value with units: dest -> kind (angles need no --size; the dissipation laws'
@@ -181,6 +212,8 @@ def apply_units(args):
             setattr(args, dest, _in_phasekit_units(scale, str(value), kind, dest))
     if getattr(args, "si", False) and scale is None:
         raise UsageError(f"--si needs {_size_flag(args)}.", "--si")
+    if getattr(args, "hertz", None) is not None:
+        args.hertz = hertz_of(args.hertz, scale)
     return scale
 
 

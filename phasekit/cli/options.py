@@ -165,6 +165,12 @@ def add_dissipation(p, units: bool) -> None:
         typed = f", or e.g. {example} with {needs}" if units else ""
         g.add_argument("--" + dest.replace("_", "-"), dest=dest, metavar=metavar, default=None,
                        type=real_or_units if units else real, help=f"{what}; {unit}{typed}")
+    if units:
+        g.add_argument("--hertz", default=None, metavar="MATERIALS",
+                       help="a patch as --patch whose radius is Hertz's, from the body's curvature where it touches "
+                            "and its weight: the body's and the table's materials by name ('hardwood, laminate'; "
+                            "the table in docs/physics.md) or 'E1, nu1, E2, nu2' in Pa; needs --size and --mass; "
+                            "a smooth body (not a disk's rim)")
 
 
 def add_solver(p):

@@ -140,7 +140,16 @@ DISSIPATION = {"rolling_resistance": (RollingResistance, "delta", "b"), "spin_fr
 def _patch_law(friction, mu, slip_eps, dissipation: dict):
     """Friction over a contact patch (:class:`phasekit.Contensou`) when ``dissipation`` gives a
     patch radius > 0 (taken out of it), else None; refused with anything but exact Coulomb."""
-    radius = dissipation.pop("patch", None)
+    radius, unit_radius = dissipation.pop("patch", None), dissipation.pop("hertz", None)
+    if unit_radius is not None:
+        if radius is not None:
+            raise ParameterError("hertz", "sets the patch's radius from the materials: give --hertz or --patch, not "
+                                          "both", show_value=False)
+        if friction != "coulomb" or slip_eps is not None or dissipation.get("spin_friction"):
+            raise ParameterError("hertz", "is Coulomb friction over a patch: give it with exact Coulomb friction and "
+                                          "without --slip-eps or --spin-friction", show_value=False)
+        return Contensou(mu, check_range("hertz", unit_radius, 0.0, RADIUS_MAX, closed="r",
+                                         label=f"(0, {RADIUS_MAX:g}] (units b)"), curvature=True)
     if radius is None:
         return None
     radius = check_range("patch", radius, 0.0, RADIUS_MAX, closed="lr", label=f"[0, {RADIUS_MAX:g}] (units b)")

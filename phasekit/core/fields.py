@@ -24,6 +24,7 @@ from __future__ import annotations
 import hashlib
 import threading
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import casadi as ca
 
@@ -112,16 +113,28 @@ def _common(fn: dict, T: dict, x, p) -> None:
     fn["paper"] = _function("paper", x, p, T["paper"])
 
 
+class ContactGeometry(NamedTuple):
+    """What a law over the contact patch needs of the body where it touches: r, the vector from G
+    to the contact point, and radii, the product rho1 rho2 of the surface's principal radii there."""
+
+    r: ca.SX
+    radii: ca.SX
+
+
 def contact_point(H, laws, k):
-    """r_P = -H'(c) (k - c e_Z) - H(c) e_Z, c = k_Z, the vector from G to the contact point (as in
-    :meth:`phasekit.core.charts.VectorChart.rigid_terms`), for the laws that need it (friction over a
-    patch); None when none does."""
+    """The :class:`ContactGeometry` at the contact, for the laws that need it (friction over a patch;
+    None when none does): r_P = -H'(c) (k - c e_Z) - H(c) e_Z, c = k_Z (as in
+    :meth:`phasekit.core.charts.VectorChart.rigid_terms`), and the principal radii rho1 = H - c H' +
+    (1 - c^2) H'' (meridional), rho2 = H - c H' (parallel, Meusnier: x_P / sin(theta)), as
+    :func:`phasekit.friction.hertz.principal_radii` with d/dtheta = -sin(theta) d/dc."""
     if not any(law.needs_contact_point for law in laws):
         return None
     cs, c, ez = ca.SX.sym("c"), k[2], ca.vertcat(0, 0, 1)
     Hs = H(cs)
-    Hc, dH = (ca.substitute(e, cs, c) for e in (Hs, ca.jacobian(Hs, cs)))
-    return -dH * (k - c * ez) - Hc * ez
+    H1 = ca.jacobian(Hs, cs)
+    Hc, dH, ddH = (ca.substitute(e, cs, c) for e in (Hs, H1, ca.jacobian(H1, cs)))
+    rho2 = Hc - c * dH
+    return ContactGeometry(-dH * (k - c * ez) - Hc * ez, (rho2 + (1 - c * c) * ddH) * rho2)
 
 
 def _wrench(laws, p, first: int, H):

@@ -16,7 +16,7 @@ import numpy as np
 from .._runtime.validate import check_array
 from ..bodies.body import Body
 from ..bodies.by_name import BODIES, make_body
-from ..bodies.edged import Disk
+from ..bodies.edged import Disk, EdgedBody
 from ..errors import ParameterError
 from ..friction.dissipation import AirLayer, dissipation_from_dict
 from ..friction.contensou import Contensou
@@ -352,7 +352,8 @@ class Model:
                          stem_radius=d.get("stem_radius"), flat_angle=d.get("flat_angle"), A=d["A"], C=d["C"])
         laws = {"coulomb": lambda: Coulomb(d["mu"]), "viscous": lambda: Viscous(d["mu"]),
                 "coulomb-regularised": lambda: RegularisedCoulomb(d["mu"], d["slip_eps"]),
-                "contensou": lambda: Contensou(d["mu"], d["patch"]["radius"], d["patch"]["pressure"])}
+                "contensou": lambda: Contensou(d["mu"], d["patch"]["radius"], d["patch"]["pressure"],
+                                                curvature=d["patch"].get("curvature", False))}
         if d.get("law") not in laws:
             raise ParameterError("model", f"must be given to rerun the friction law {d.get('law')!r} (only the built-in "
                                           "laws can be rebuilt from their description)", show_value=False)
@@ -488,7 +489,12 @@ def _digest(f: ca.Function) -> str:
 
 def _warn_misapplied(body: Body, friction: FrictionLaw) -> None:
     """A dissipation law derived for one kind of body, given another, is said once: the air layer
-    is Moffatt's film under a disk on its rim (phasekit/friction/dissipation.py)."""
+    is Moffatt's film under a disk on its rim (phasekit/friction/dissipation.py). A patch that
+    follows the curvature is refused on a body with a rim (no curvature there)."""
+    if isinstance(friction, Contensou) and friction.curvature and isinstance(body, EdgedBody):
+        raise ParameterError("friction", f"follows the curvature at the contact (Hertz), which a {type(body).__name__}'s "
+                                         "rim does not have (it is sharp): give the patch's radius instead",
+                             friction.describe())
     if any(isinstance(d, AirLayer) for d in friction.dissipation) and not isinstance(body, Disk):
         warnings.warn(f"the air layer is Moffatt's law for a disk on its rim; a {type(body).__name__} has no such film, "
                       "and its couple grows without bound as theta -> 0 (runs near the vertical crawl)", stacklevel=3)

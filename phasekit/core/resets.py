@@ -413,9 +413,13 @@ def flight_start_state(model, x) -> np.ndarray:
 
 # -- compound bodies ----------------------------------------------------------------------------
 
-#: a transfer puts theta this far past the switch between two pieces (radians; heyoka takes a step's field from the side it
-#: starts on); its event fires SWITCH_EARLY before it, so that a segment ends on its own side (the located root can overshoot)
-SWITCH_NUDGE, SWITCH_EARLY = 1e-12, 1e-9
+#: a transfer's event fires SWITCH_EARLY before the switch between two pieces, so that a segment ends on its own side (the
+#: located root can overshoot), and the transfer puts theta SWITCH_NUDGE past it (radians; heyoka takes a step's field from
+#: the side it starts on): past the reverse transfer's level too, or a body that turns back within that band would cross
+#: the switch with no transfer and integrate a step on the other piece's support function (energy budgets then missed
+#: up to 9e-2 of the start; with the nudge past the band they close to 1e-13, docs/physics.md)
+SWITCH_EARLY = 1e-9
+SWITCH_NUDGE = 2 * SWITCH_EARLY
 #: the impacts alternated between the two pieces at most (each stops one piece's approach)
 TRANSFER_IMPACTS = 24
 #: a piece's contact point moving up slower than this (units sqrt(g b)) has not left the table

@@ -82,13 +82,18 @@ class PatchTraction(Dissipation):
         self.pressure = check_choice("pressure", pressure, PRESSURES)
 
     def wrench(self, w, v, R, q, k):
-        raise ParameterError("law", "the patch's wrench needs the contact point: wrench_at(w, v, R, q, k, r)",
+        raise ParameterError("law", "the patch's wrench needs the contact's geometry: wrench_at(w, v, R, q, k, contact)",
                              show_value=False)
 
-    def wrench_at(self, w, v, R, q, k, r):
+    def radius(self, q, contact):
+        """The patch radius in the field: the coefficient itself (a fixed patch)."""
+        return q[1]
+
+    def wrench_at(self, w, v, R, q, k, contact):
         # v = (v_h, W): the contact point's vertical velocity is zero in contact, so u is horizontal
+        r = contact.r
         u = (v + ca.cross(w, r))[0:2]
-        F, M = patch_friction(u, w[2], q[0], R, q[1], pressure=self.pressure)
+        F, M = patch_friction(u, w[2], q[0], R, self.radius(q, contact), pressure=self.pressure)
         f = ca.vertcat(F[0], F[1], 0)
         return f, ca.cross(r, f) + ca.vertcat(0, 0, M)
 
@@ -128,9 +133,45 @@ class UniformPatchTraction(PatchTraction):
         super().__init__(mu, radius, pressure)
 
 
-def patch_traction(mu: float, radius: float, pressure: str = "hertz") -> PatchTraction:
-    """The patch wrench of the pressure named (one class per pressure: they compile differently)."""
+class CurvedPatchTraction(PatchTraction):
+    """:class:`PatchTraction` whose Hertz radius follows the body's curvature at the contact:
+    a = radius (rho1 rho2)^(1/6), rho1, rho2 the principal radii there (units b), so ``radius`` is
+    the patch of a contact whose radii are both b (Hertz: a ~ (R sqrt(rho1 rho2))^(1/3), at R = M g).
+
+    Parameters
+    ----------
+    mu, radius : float
+        As :class:`PatchTraction` (radius: at rho1 rho2 = 1).
+
+    Examples
+    --------
+    >>> from phasekit.friction.contensou import CurvedPatchTraction
+    >>> CurvedPatchTraction(0.3, 0.004).describe()
+    'patch(mu=0.3, radius=0.004 (rho1 rho2)^(1/6), hertz)'
+    """
+
+    def radius(self, q, contact):
+        # |rho1 rho2|^(1/6), smooth (the Taylor integrator takes no max): a body on the table is convex there
+        return q[1] * (contact.radii * contact.radii + 1e-24) ** (1.0 / 12.0)
+
+    def to_dict(self) -> dict:
+        return {**super().to_dict(), "curvature": True}
+
+    def describe(self) -> str:
+        return f"patch(mu={self.values[0]:g}, radius={self.values[1]:g} (rho1 rho2)^(1/6), {self.pressure})"
+
+    def __repr__(self) -> str:
+        return super().__repr__()[:-1] + ", curvature=True)"
+
+
+def patch_traction(mu: float, radius: float, pressure: str = "hertz", curvature: bool = False) -> PatchTraction:
+    """The patch wrench of the pressure named (one class per kind: they compile differently)."""
     pressure = check_choice("pressure", pressure, PRESSURES)
+    if curvature:
+        if pressure != "hertz":
+            raise ParameterError("pressure", "must be hertz for a patch that follows the curvature (Hertz's radius)",
+                                 pressure)
+        return CurvedPatchTraction(mu, radius)
     return UniformPatchTraction(mu, radius) if pressure == "uniform" else PatchTraction(mu, radius)
 
 
@@ -147,6 +188,10 @@ class Contensou(FrictionLaw):
         :func:`phasekit.friction.hertz.hertz_radius` (SI) divided by the body's size b.
     pressure : {"hertz", "uniform"}, optional
         Hertz's elliptic pressure (a curved body on the table, default) or uniform (a flat face).
+    curvature : bool, optional
+        False (default): the radius is fixed. True: ``radius`` is Hertz's radius for principal radii
+        of b (:func:`phasekit.friction.hertz.unit_patch_radius`) and the field scales it by
+        (rho1 rho2)^(1/6) at the contact (Hertz pressure only; a smooth body: not a disk's rim).
 
     Raises
     ------
@@ -164,9 +209,14 @@ class Contensou(FrictionLaw):
 
     name = "contensou"
 
-    def __init__(self, mu: float, radius: float, pressure: str = "hertz"):
+    def __init__(self, mu: float, radius: float, pressure: str = "hertz", *, curvature: bool = False):
         super().__init__(mu)
-        self.dissipation = (patch_traction(self.mu, radius, pressure),)
+        self.dissipation = (patch_traction(self.mu, radius, pressure, bool(curvature)),)
+
+    @property
+    def curvature(self) -> bool:
+        """Whether the radius follows the body's curvature at the contact."""
+        return isinstance(self.patch, CurvedPatchTraction)
 
     @property
     def patch(self) -> PatchTraction:
@@ -235,15 +285,17 @@ class Contensou(FrictionLaw):
 
     def describe(self) -> str:
         extra = [d.describe() for d in self.dissipation[1:]]
-        return " + ".join([f"{self.name}(mu={self.mu:g}, radius={self.radius:g}, {self.patch.pressure})", *extra])
+        radius = f"{self.radius:g}" + (" (rho1 rho2)^(1/6)" if self.curvature else "")
+        return " + ".join([f"{self.name}(mu={self.mu:g}, radius={radius}, {self.patch.pressure})", *extra])
 
     def to_dict(self) -> dict:
         out = {"law": self.name, "mu": self.mu, "slip_eps": None,
-               "patch": {"radius": self.radius, "pressure": self.patch.pressure}}
+               "patch": {"radius": self.radius, "pressure": self.patch.pressure, "curvature": self.curvature}}
         if len(self.dissipation) > 1:
             out["dissipation"] = [d.to_dict() for d in self.dissipation[1:]]
         return out
 
     def __repr__(self) -> str:
         tail = f".with_dissipation({', '.join(map(repr, self.dissipation[1:]))})" if len(self.dissipation) > 1 else ""
-        return f"Contensou(mu={self.mu!r}, radius={self.radius!r}, pressure={self.patch.pressure!r})" + tail
+        curved = ", curvature=True" if self.curvature else ""
+        return f"Contensou(mu={self.mu!r}, radius={self.radius!r}, pressure={self.patch.pressure!r}{curved})" + tail

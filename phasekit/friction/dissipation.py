@@ -99,14 +99,15 @@ class Dissipation:
     def wrench(self, w, v, R, q, k):
         raise NotImplementedError("a Dissipation subclass must define wrench(w, v, R, q, k)")
 
-    def wrench_at(self, w, v, R, q, k, r):
-        """The wrench given also r, the vector from G to the contact point (what the simulator calls;
-        only a law with ``needs_contact_point`` reads r)."""
+    def wrench_at(self, w, v, R, q, k, contact):
+        """The wrench given also the contact's geometry (:class:`phasekit.core.fields.ContactGeometry`:
+        the contact point from G and the principal radii there), what the simulator calls; only a law
+        with ``needs_contact_point`` reads it."""
         return self.wrench(w, v, R, q, k)
 
-    def power(self, w, v, R, q, k, r=None):
-        """The power the law adds to the motion, f.v + Gamma.w (<= 0); r as in :meth:`wrench_at`."""
-        f, G = self.wrench_at(w, v, R, q, k, r)
+    def power(self, w, v, R, q, k, contact=None):
+        """The power the law adds to the motion, f.v + Gamma.w (<= 0); contact as in :meth:`wrench_at`."""
+        f, G = self.wrench_at(w, v, R, q, k, contact)
         return ca.dot(f, v) + ca.dot(G, w)
 
     def to_dict(self) -> dict:

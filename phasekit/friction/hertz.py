@@ -63,6 +63,28 @@ def hertz_radius(R_newton: float, E1: float, nu1: float, E2: float, nu2: float, 
     return (3 * R_newton * math.sqrt(rho1 * rho2) / (4 * effective_modulus(E1, nu1, E2, nu2))) ** (1 / 3)
 
 
+def unit_patch_radius(weight_newton: float, b: float, E1: float, nu1: float, E2: float, nu2: float) -> float:
+    """Hertz's patch radius, in units of b, of a contact whose principal radii are both b, under the
+    weight: what :class:`phasekit.Contensou` with ``curvature=True`` scales by (rho1 rho2)^(1/6).
+
+    Parameters
+    ----------
+    weight_newton, b : float
+        The body's weight M g (N) and its unit of length b (m).
+    E1, nu1, E2, nu2 : float
+        As :func:`hertz_radius` (body, then table).
+
+    Examples
+    --------
+    >>> from phasekit.friction.hertz import MATERIALS, unit_patch_radius
+    >>> m, t = MATERIALS["hardwood"], MATERIALS["laminate"]   # a 5.9 g maple tippe top, b = 12.5 mm
+    >>> round(unit_patch_radius(5.9e-3 * 9.81, 0.0125, m.E, m.nu, t.E, t.nu) * 12.5, 4)   # mm
+    0.0706
+    """
+    b = check_positive("b", b)
+    return hertz_radius(weight_newton, E1, nu1, E2, nu2, b, b) / b
+
+
 def hertz_ellipse(R_newton: float, E1: float, nu1: float, E2: float, nu2: float, rho1: float,
                   rho2: float) -> tuple[float, float]:
     """The exact Hertz contact ellipse of a body on a flat table: semi-axes (a_major, b_minor), SI.
