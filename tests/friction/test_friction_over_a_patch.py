@@ -121,3 +121,60 @@ def test_the_cli_refuses_a_patch_it_cannot_apply_in_one_line_naming_it(extra, sa
     out = subprocess.run([sys.executable, "-m", "phasekit", *args], capture_output=True, text=True, timeout=120)
     lines = out.stderr.strip().splitlines()
     assert out.returncode == 2 and len(lines) == 1 and "--patch" in lines[0] and says in lines[0]
+
+
+def test_the_contact_radii_in_the_field_are_the_principal_radii_of_the_support_function():
+    # fields' c-derivative form against phasekit.friction.hertz.principal_radii's theta-derivative form
+    import casadi as ca
+    from phasekit.core.fields import contact_point
+    from phasekit.friction.hertz import principal_radii
+
+    for body in (pk.Spheroid(1.5), pk.Egg(1.33333, 0.1), pk.EccentricSphere(0.3)):
+        shape = ca.DM(list(body.shape_params))
+        k = ca.SX.sym("k", 3)
+        radii = ca.Function("radii", [k], [contact_point(lambda c: body.height(c, shape), [pk.Contensou(0.2, 0.01).patch], k).radii])
+        th = ca.SX.sym("th")
+        h = body.height(ca.cos(th), shape)
+        hs = ca.Function("h", [th], [h, ca.jacobian(h, th), ca.jacobian(ca.jacobian(h, th), th)])
+        for theta in (0.3, 1.0, 1.5, 2.4):
+            rho1, rho2 = principal_radii(*(float(x) for x in hs(theta)), theta)
+            got = float(radii([np.sin(theta), 0.0, np.cos(theta)]))
+            assert got == pytest.approx(rho1 * rho2, rel=1e-12)
+
+
+def test_a_curvature_following_patch_on_a_sphere_is_the_fixed_patch():
+    # an eccentric sphere's radii are both b everywhere: the factor (rho1 rho2)^(1/6) is 1 on the whole run
+    top = pk.EccentricSphere(0.3, A=0.38, C=0.4)
+    y0 = pk.core.vertical_spin_start(0.1, 8.0)
+    ends = [pk.simulate(pk.Model(top, pk.Contensou(0.3, 0.005, curvature=c), "vector"),
+                        pk.core.to_chart("vector", y0), 20.0, stop_at="none", rtol=1e-10).x for c in (False, True)]
+    assert np.max(np.abs(ends[0] - ends[1])) < 1e-9
+
+
+def test_a_patch_that_follows_the_curvature_is_refused_on_a_rim():
+    with pytest.raises(ParameterError) as err:
+        pk.Model(pk.Disk(0.1), pk.Contensou(0.3, 0.004, curvature=True))
+    assert err.value.param == "friction"
+
+
+def test_hertz_materials_on_the_cli_give_the_hand_computed_patch():
+    # a 5.9 g maple tippe top (b = 12.5 mm) on a laminate table: a = (3 W b / (4 E*))^(1/3) at radii b
+    from phasekit.friction.hertz import MATERIALS, effective_modulus
+
+    m, t = MATERIALS["hardwood"], MATERIALS["laminate"]
+    a_hand = (3 * 5.9e-3 * 9.81 * 0.0125 / (4 * effective_modulus(m.E, m.nu, t.E, t.nu))) ** (1 / 3) / 0.0125
+    args = ["simulate", "--body", "tippe-top", "--offset", "0.3", "--size", "12.5 mm", "--mass", "5.9 g", "--mu", "0.3",
+            "--spin-about-vertical", "20 rev/s", "--theta0", "5 deg", "--t-end", "10 ms", "--json"]
+    out = subprocess.run([sys.executable, "-m", "phasekit", *args, "--hertz", "hardwood, laminate"], capture_output=True,
+                         text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    patch = json.loads(out.stdout)["model"]["patch"]
+    assert patch["curvature"] is True and patch["radius"] == pytest.approx(a_hand, rel=1e-12)
+    for bad, says in ((["--hertz", "cheese, laminate"], "two materials"), (["--hertz", "hardwood, laminate", "--patch", "0.01"], "not both")):
+        out = subprocess.run([sys.executable, "-m", "phasekit", *args, *bad], capture_output=True, text=True, timeout=300)
+        lines = out.stderr.strip().splitlines()
+        assert out.returncode == 2 and len(lines) == 1 and "--hertz" in lines[0] and says in lines[0], out.stderr
+    no_mass = [a for a in args if a not in ("--mass", "5.9 g")]
+    out = subprocess.run([sys.executable, "-m", "phasekit", *no_mass, "--hertz", "hardwood, laminate"], capture_output=True,
+                         text=True, timeout=300)
+    assert out.returncode == 2 and "--mass" in out.stderr and len(out.stderr.strip().splitlines()) == 1
