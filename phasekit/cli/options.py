@@ -212,6 +212,16 @@ def add_run_options(sim) -> None:
     start.add_argument("--spinning-in-place", action="store_true",
                        help="on the steady branch at --theta0 where G stays at rest: a disk or coin spinning in place "
                             "as Euler's disk is launched (rolling on its rim, the contact circling G)")
+    start.add_argument("--spun-about-axis", type=real_or_units, metavar="N0",
+                       help="a top as people launch it: spun about its own axis at N0, tilted --theta0 (a cone on its "
+                            "tip: near pi), with its slow precession (on a point the Lagrange top's steady one), or "
+                            "none and a warning where there is none")
+    start.add_argument("--spun-on-edge", type=real_or_units, metavar="N0",
+                       help="a coin spun on its edge about a vertical diameter: N0 about the vertical, G at rest, at "
+                            "--theta0 (default pi/2, standing on its edge)")
+    start.add_argument("--rolled", type=real_or_units, metavar="SPEED",
+                       help="rolled on its edge without slip, G moving at SPEED (units sqrt(g b), or e.g. '0.5 m/s'), "
+                            "tilted --theta0 (default pi/2, upright)")
     g.add_argument("--theta0", type=real_or_units, default=None, help="initial inclination of the axis, radians "
                                                                         "(or e.g. '89.4 deg')")
     g.add_argument("--omega0", type=real_or_units, default=None,

@@ -63,7 +63,8 @@ def contact_summary(traj) -> dict:
     no-slip mode ("rolling", "rolling_no_pivot"; for a regularised law that creeps, the creep) and
     what that is called (``holding``), theta at the start and its change (negative: the axis
     turned towards the upward vertical), the contact's passages between a compound body's pieces
-    (``passages``: "ball -> stem at t = ..."), and ``rests_on`` (:data:`PURE_ROLLING`) when the
+    (``passages``: "ball -> stem at t = ...") and the piece it ends on (``piece_end``, None on a
+    body of one piece), and ``rests_on`` (:data:`PURE_ROLLING`) when the
     run reached its end time rolling under exact Coulomb friction with no dissipation law (then no
     energy is lost while it rolls), else None."""
     span = traj.t - traj.t0
@@ -75,9 +76,12 @@ def contact_summary(traj) -> dict:
         and str(traj.status) == "completed"
     moves = {p.name for p in traj.model.body.transfers}
     passages = [f"{e.detail} at t = {e.t:.6g}" for e in traj.events if e.name in moves and e.detail]
-    return {"t_first_stick": float(sticks[0]) if sticks else None,
+    theta_end = float(traj.model.chart.to_paper(traj.x)[4])
+    # the piece under it at the end, from its tilt (a bounce train at a switch may end without a passage)
+    ends = [tr.to_piece for tr in traj.model.body.transfers if (theta_end - tr.theta) * tr.direction > 0]
+    return {"t_first_stick": float(sticks[0]) if sticks else None, "piece_end": ends[0] if ends else None,
             "rolling_fraction": float(rolling / span) if span > 0 else None, "holding": HOLDING["exact" if law.has_rolling_mode else "creep" if law.creeps else "slow"],
-            "theta_start": theta0, "theta_change": float(traj.model.chart.to_paper(traj.x)[4]) - theta0,
+            "theta_start": theta0, "theta_change": theta_end - theta0,
             "passages": passages, "rests_on": PURE_ROLLING if pure else None}
 
 
