@@ -107,7 +107,8 @@ def add_body(p, units: bool = False):
 STABILITY = """stability (which law each statement is for):
   --friction coulomb (default)  exact stick-slip. The steady states have zero slip and static
       friction holds them, so small disturbances roll: stability is that of the rolling
-      (no-slip) linearisation, in which the zero-slip states are neutral (no growth, no decay).
+      (no-slip) linearisation: a zero-slip state is neutral or grows, never decays (a spin at a
+      pole is neutral above its fast-top condition, e.g. C^2 n^2 > 4 A' M g l on a point).
   --friction coulomb --slip-eps E  the regularised field's linearisation: the rolling spectrum
       plus two fast slip modes (rates ~ mu/E).
   --friction viscous  part I's wet friction F = -mu u: friction drives or damps the modes; for

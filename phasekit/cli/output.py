@@ -203,6 +203,9 @@ def _print_fixed_points(out: dict) -> None:
         crit = (fp.get("parameter") or {}).get("stable_under_sliding_friction")
         if crit is not None:
             line += f"; closed-form criterion under sliding friction: {'stable' if crit else 'unstable'}"
+            if fp["parameter"].get("rolling_critical_spin") is not None:  # G at its highest: the fast-top condition
+                line += (f", rolling: {'stable' if fp['parameter']['stable_rolling'] else 'unstable'} (fast-top "
+                         f"condition |n| > {_fmt(fp['parameter']['rolling_critical_spin'], '.8g')})")
         print(line)
     print(f"({out['note']})")
 

@@ -306,8 +306,9 @@ def steady_structure_report(*, body: Body, mu, friction="coulomb", slip_eps=None
 
 #: what "stable" means for each linearisation (see phasekit.steady.linearisation)
 STABILITY_MEANING = {
-    "coulomb-rolling": "exact Coulomb friction: the rolling (no-slip) linearisation, in which zero-slip states are "
-                       "neutral; the viscous law gives the friction-driven instabilities of part I",
+    "coulomb-rolling": "exact Coulomb friction: the rolling (no-slip) linearisation, in which a zero-slip state is "
+                       "neutral or grows, never decays (a spin at a pole grows below its fast-top condition); the "
+                       "viscous law gives the friction-driven instabilities of part I",
     "coulomb-regularised": "regularised Coulomb friction: the smooth field's linearisation (the rolling spectrum plus "
                            "two fast slip modes)",
     "viscous": "viscous friction (part I): friction drives or damps the modes",

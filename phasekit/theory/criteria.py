@@ -216,6 +216,7 @@ class PoleCriterion:
              "rolling_critical_spin": self.rolling_threshold}
         if n0 is not None:
             d["stable_under_sliding_friction"] = self.stable(n0)
+            d["stable_rolling"] = self.stable_rolling(n0)
         return d
 
 

@@ -80,3 +80,18 @@ def test_a_coin_rolled_at_a_speed_rolls_without_slip_from_the_start():
 def test_bad_named_starts_name_the_flag_typed(args, flag, says):
     msg = usage_error(["simulate", "--body", "disk", "--radius", "12 mm", "--mu", "0.3", "--t-end", "0.1 s", *args], flag)
     assert says in msg
+
+
+@pytest.mark.parametrize("n0, word", [(7.0, "unstable"), (12.0, "stable")])
+def test_fixed_points_state_the_fast_top_condition_as_the_rolling_linearisation_finds_it(n0, word):
+    """The closed form's word (rolling) and the exact linearisation's classification agree on either
+    side of n_c = 8.660254 for the cone on its tip."""
+    code, out, _ = run_cli("fixed-points", "--body", "cone", "--on", "tip", "--height", "1.5", "--mu", "0.5", "--n0",
+                           str(n0), "--json")
+    [fp] = strict_json(out)["fixed_points"]
+    assert code == 0 and fp["parameter"]["stable_rolling"] == (word == "stable")
+    assert fp["parameter"]["rolling_critical_spin"] == pytest.approx(8.660254037844386, rel=1e-14)
+    assert fp["classification"].startswith("neutral" if word == "stable" else "unstable")
+    _, text, _ = run_cli("fixed-points", "--body", "cone", "--on", "tip", "--height", "1.5", "--mu", "0.5", "--n0",
+                         str(n0))
+    assert f"rolling: {word} (fast-top condition |n| > 8.660254)" in text
