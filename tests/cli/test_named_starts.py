@@ -76,6 +76,8 @@ def test_a_coin_rolled_at_a_speed_rolls_without_slip_from_the_start():
     (["--rolled", "0.5 m/s", "--thickness", "2 mm"], "--rolled", "give a tilt in (0, 1.5708)"),
     (["--rolled", "0.5 rev/s", "--theta0", "80 deg"], "--rolled", "must be a speed"),
     (["--spun-on-edge", "5 rev/s", "--n0", "3"], "--n0", "does not go with --spun-on-edge"),
+    (["--rolled", "0", "--theta0", "80 deg"], "--rolled", "must be a finite nonzero number, got 0.0."),
+    (["--spun-on-edge", "nan"], "--spun-on-edge", "must be a finite nonzero number, got nan."),
 ])
 def test_bad_named_starts_name_the_flag_typed(args, flag, says):
     msg = usage_error(["simulate", "--body", "disk", "--radius", "12 mm", "--mu", "0.3", "--t-end", "0.1 s", *args], flag)
