@@ -95,6 +95,8 @@ def _simulate_args(args, runner, scale=None, before_run=None):
         paper_body(args)
     body = body_of(args)
     start = start_of(args, body)
+    if scale is not None:  # the fast-top warning says its spins in rev/s too
+        start["rev_per_s"] = float(scale.to_real(1.0, "rate", "rev/s").magnitude)
     friction, mu, eps = law_args(args)
     opts = dict(rtol=args.rtol, atol=args.atol, backend=args.backend, max_steps=args.max_steps, max_wall=args.max_wall,
                 creep=not args.no_creep)

@@ -21,7 +21,8 @@ FLAGS = {
     "t": "--t", "T": "--t", "label": "--paper-start", "level": "--stop-at", "max_switches": "--max-switches",
     "b": "--size", "g": "--g", "pose0.psi": "--psi0", "pose0.phi": "--phi0", "pose0.X": "--X0", "pose0.Y": "--Y0",
     "psi0": "--psi0", "phi0": "--phi0", "X0": "--X0", "Y0": "--Y0", "spin_about_vertical": "--spin-about-vertical",
-    "spinning_in_place": "--spinning-in-place",
+    "spinning_in_place": "--spinning-in-place", "spun_about_axis": "--spun-about-axis", "spun_on_edge": "--spun-on-edge",
+    "rolled": "--rolled", "speed": "--rolled",
     "frames": "--frames", "fps": "--fps", "out": "OUT", "gap_scale": "--gap-scale", "camera": "--camera",
     "panel": "--panel", "timing": "--timing", "window_size": "--window-size", "path": "OUT", "mass": "--mass",
     "rolling_resistance": "--rolling-resistance", "spin_friction": "--spin-friction", "patch": "--patch", "hertz": "--hertz", "air_drag": "--air-drag", "air_layer": "--air-layer",
@@ -33,7 +34,8 @@ FLAGS = {
 #: (e.g. `n0` is --spin-about-vertical's value in that start, and theta its --theta0)
 SOURCES = {
     "chart": (("--formulation", "--formulation"), ("--chart", "--chart")),  # --formulation: the old name
-    "n0": (("--spin-about-vertical", "--spin-about-vertical"), ("--n0", "--n0")),
+    "n0": (("--spin-about-vertical", "--spin-about-vertical"), ("--spun-about-axis", "--spun-about-axis"),
+           ("--spun-on-edge", "--spun-on-edge"), ("--n0", "--n0")),
     "theta": (("--state", "--state (theta)"), ("--theta0", "--theta0")),
     "Omega": (("--state", "--state (Omega)"), ("--spin-about-vertical", "--spin-about-vertical")),
     "n": (("--state", "--state (n)"), ("--spin-about-vertical", "--spin-about-vertical")),

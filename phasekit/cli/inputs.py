@@ -157,7 +157,8 @@ def hertz_of(text: str, scale) -> float:
 
 #: options that take a value with units: dest -> kind (angles need no --size; the dissipation laws'
 #: coefficients are kinds of phasekit.Scale of their own, air drag's need --mass)
-UNIT_OPTIONS = {"theta0": "angle", "omega0": "rate", "n0": "rate", "spin_about_vertical": "rate", "t_end": "time",
+UNIT_OPTIONS = {"theta0": "angle", "omega0": "rate", "n0": "rate", "spin_about_vertical": "rate", "spun_about_axis": "rate",
+                "spun_on_edge": "rate", "rolled": "speed", "t_end": "time",
                 "psi0": "angle", "phi0": "angle", "X0": "length", "Y0": "length", "thickness": "length", "flat_angle": "angle",
                 "height": "length", "stem_length": "length", "stem_radius": "length",
                 **{dest: dest for dest in DISSIPATION_FLAGS}}
@@ -311,6 +312,19 @@ def _manifold_start(args, body) -> dict:
                 seed_law="viscous" if args.seed_law is None else args.seed_law)
 
 
+def _on_edge(args, body, name: str) -> float:
+    """The default --theta0 of a start on the edge: pi/2 (standing on it), where the body's model
+    holds it (a thick coin's side touches the table there: a line contact, not modelled)."""
+    from ..steady.branches import holds_state
+
+    if holds_state(body, math.pi / 2):
+        return math.pi / 2
+    lo, hi = body.theta_range
+    raise UsageError(f"{FLAGS[name]} needs --theta0 for the {args.body} body: it cannot stand upright on its edge "
+                      f"(at pi/2 its side touches the table, a line contact not modelled); give a tilt in ({lo:.6g}, "
+                      f"{hi:.6g}), e.g. --theta0 '80 deg'", FLAGS[name])
+
+
 def start_of(args, body) -> dict:
     if args.unstable_manifold is not None:
         return _manifold_start(args, body)
@@ -327,6 +341,17 @@ def start_of(args, body) -> dict:
             raise UsageError("--spin-about-vertical needs --theta0 (a number in [0, pi])", "--spin-about-vertical")
         _refuse(args, ["omega0", "n0"], "does not go with --spin-about-vertical (it sets the spin)")
         return dict(kind="spin-about-vertical", theta0=args.theta0, n0=args.spin_about_vertical)
+    if args.spun_about_axis is not None:
+        if args.theta0 is None:
+            raise UsageError("--spun-about-axis needs --theta0 (the tilt, a number in [0, pi]; a cone on its tip: near "
+                              "pi)", "--spun-about-axis")
+        _refuse(args, ["omega0", "n0"], "does not go with --spun-about-axis (it sets the spin and the precession)")
+        return dict(kind="spun-about-axis", theta0=args.theta0, n0=args.spun_about_axis)
+    for name, kind, key in (("spun_on_edge", "spin-about-vertical", "n0"), ("rolled", "rolled", "speed")):
+        if getattr(args, name) is not None:
+            _refuse(args, ["omega0", "n0"], f"does not go with {FLAGS[name]} (it sets the rates)")
+            return {"kind": kind, "theta0": _on_edge(args, body, name) if args.theta0 is None else args.theta0,
+                    key: getattr(args, name)}
     if args.spinning_in_place:
         if args.theta0 is None:
             raise UsageError("--spinning-in-place needs --theta0 (the tilt it spins at)", "--spinning-in-place")

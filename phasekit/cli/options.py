@@ -107,7 +107,8 @@ def add_body(p, units: bool = False):
 STABILITY = """stability (which law each statement is for):
   --friction coulomb (default)  exact stick-slip. The steady states have zero slip and static
       friction holds them, so small disturbances roll: stability is that of the rolling
-      (no-slip) linearisation, in which the zero-slip states are neutral (no growth, no decay).
+      (no-slip) linearisation: a zero-slip state is neutral or grows, never decays (a spin at a
+      pole is neutral above its fast-top condition, e.g. C^2 n^2 > 4 A' M g l on a point).
   --friction coulomb --slip-eps E  the regularised field's linearisation: the rolling spectrum
       plus two fast slip modes (rates ~ mu/E).
   --friction viscous  part I's wet friction F = -mu u: friction drives or damps the modes; for
@@ -221,6 +222,16 @@ def add_run_options(sim) -> None:
     start.add_argument("--spinning-in-place", action="store_true",
                        help="on the steady branch at --theta0 where G stays at rest: a disk or coin spinning in place "
                             "as Euler's disk is launched (rolling on its rim, the contact circling G)")
+    start.add_argument("--spun-about-axis", type=real_or_units, metavar="N0",
+                       help="a top as people launch it: spun about its own axis at N0, tilted --theta0 (a cone on its "
+                            "tip: near pi), with its slow precession (on a point the Lagrange top's steady one), or "
+                            "none and a warning where there is none")
+    start.add_argument("--spun-on-edge", type=real_or_units, metavar="N0",
+                       help="a coin spun on its edge about a vertical diameter: N0 about the vertical, G at rest, at "
+                            "--theta0 (default pi/2, standing on its edge)")
+    start.add_argument("--rolled", type=real_or_units, metavar="SPEED",
+                       help="rolled on its edge without slip, G moving at SPEED (units sqrt(g b), or e.g. '0.5 m/s'), "
+                            "tilted --theta0 (default pi/2, upright)")
     g.add_argument("--theta0", type=real_or_units, default=None, help="initial inclination of the axis, radians "
                                                                         "(or e.g. '89.4 deg')")
     g.add_argument("--omega0", type=real_or_units, default=None,

@@ -61,6 +61,10 @@ def _print_structure(out: dict) -> None:
             f"stability changes at |{f['parameter']}| = {', '.join(_fmt(c, '.10g') for c in f['criticals'])}; "
             f"{side(f['stable_above_critical'])} above")
         what = {"pole": "spin about the vertical", "precession": "precession", "rolling": "straight rolling"}[f["kind"]]
+        sliding = f.get("sliding_criticals")
+        if sliding is not None:  # exact Coulomb: the rolling criterion above, the sliding one beside it
+            crit += "; under sliding friction " + (f"it changes at |n| = {', '.join(_fmt(c, '.10g') for c in sliding)}"
+                                                    if sliding else "no spin is stable")
         print(f"{what} family at theta = {_fmt(f['theta'], '.6f')} (any {f['parameter']}{_on(f)}): {crit}"
               + ("; a branch meets it there" if f["branch_meets"] else ""))
     if out.get("states"):
@@ -96,10 +100,32 @@ def _print_contact(out: dict) -> None:
     print(f"theta {turned}{by}, {start:.6g} -> {end:.6g}{over}; "
           f"{out.get('holding', 'rolling without slip')} {100 * (out['rolling_fraction'] or 0.0):.1f}% of the run"
           + (f", first from t = {_fmt(stick, '.6g')}" if stick is not None else " (it never stuck)"))
-    for passage in out.get("passages") or ():
-        print(f"the contact passed {passage}")
+    for line in _passage_lines(out.get("passages") or (), out.get("piece_end")):
+        print(line)
     if out.get("rests_on"):
         print(out["rests_on"])
+
+
+#: at most this many passages of the contact are listed one a line; more are said in one line
+PASSAGES_LISTED = 4
+
+
+def _passage_lines(passages, piece_end=None) -> list[str]:
+    """The contact's passages between a compound body's pieces ("ball -> stem at t = 17.15"): each
+    on its line, or, when it rocks across the switch many times, one line with their count and the
+    first and last times (the JSON lists them all); then the piece it ends on, from its tilt at the
+    end (a bounce train at the switch can end without a passage of its own)."""
+    if len(passages) <= PASSAGES_LISTED:
+        lines = [f"the contact passed {p}" for p in passages]
+    else:
+        moves = [p.partition(" at t = ") for p in passages]
+        first, last = moves[0], moves[-1]
+        pieces = " and ".join(dict.fromkeys(x.strip() for m in moves for x in m[0].split("->")))
+        lines = [f"the contact passed between the {pieces} {len(passages)} times, first {first[0]} at t = {first[2]}, "
+                 f"last {last[0]} at t = {last[2]} (--json lists every passage)"]
+    if passages and piece_end:
+        lines.append(f"at the end it is on the {piece_end}")
+    return lines
 
 
 def _print_energy(out: dict) -> None:
@@ -177,6 +203,9 @@ def _print_fixed_points(out: dict) -> None:
         crit = (fp.get("parameter") or {}).get("stable_under_sliding_friction")
         if crit is not None:
             line += f"; closed-form criterion under sliding friction: {'stable' if crit else 'unstable'}"
+            if fp["parameter"].get("rolling_critical_spin") is not None:  # G at its highest: the fast-top condition
+                line += (f", rolling: {'stable' if fp['parameter']['stable_rolling'] else 'unstable'} (fast-top "
+                         f"condition |n| > {_fmt(fp['parameter']['rolling_critical_spin'], '.8g')})")
         print(line)
     print(f"({out['note']})")
 

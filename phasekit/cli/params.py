@@ -8,6 +8,7 @@ run, and return dicts in the paper's variables.
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 
@@ -72,6 +73,18 @@ def _start(body, law, start: dict, chart: str):
         y0 = gyroscopic_start(body, start["theta0"], omega0=start.get("omega0"), n0=start.get("n0"))
     elif kind == "spin-about-vertical":
         y0 = vertical_spin_start(start["theta0"], start["n0"])
+    elif kind == "spun-about-axis":
+        from ..core.starts import axis_spin_start
+
+        _check_range_of(body, float(start["theta0"]), "theta0")
+        y0, note = axis_spin_start(body, start["theta0"], start["n0"],
+                                   mu=law.mu if law.has_rolling_mode else None)
+        if note:
+            warnings.warn(note)
+    elif kind == "rolled":
+        from ..core.starts import rolled_start
+
+        y0 = rolled_start(body, start["theta0"], start["speed"])
     elif kind == "spinning-in-place":
         from ..steady.precessions import intermediate_state
 
@@ -98,10 +111,40 @@ def _start(body, law, start: dict, chart: str):
         # the Euler chart only if asked for: "auto" takes a state at a pole into the vector chart
         y0 = raw_start(start["state"], chart="euler" if chart == "euler" else "vector")
     _check_range_of(body, float(y0[4]), "theta" if kind == "state" else "theta0")
+    if kind != "state":
+        _fast_top(body, y0, start.get("rev_per_s"))
     chart = choose_chart(float(y0[4]), chart)
     if chart == "euler":
         raw_start(y0, chart="euler")  # theta strictly inside (0, pi)
     return Model(body, law, chart), to_chart(chart, y0), None
+
+
+#: how near a pole (radians) a start counts as a top spinning there, for the fast-top warning
+NEAR_POLE = 0.35
+
+
+def _fast_top(body, y0, rev_per_s: float | None = None) -> None:
+    """Warn, in one line, when a start near a pole where G is highest (h_thetatheta < 0) spins
+    below the fast-top condition (phasekit.theory.PoleCriterion.rolling_threshold: for a point
+    C^2 n^2 > 4 A' M g l; the rolling linearisation's, phasekit.steady): its spin cannot hold it up.
+    ``rev_per_s``: rev/s per unit sqrt(g/b), to say the spins in rev/s too (the CLI with --size)."""
+    from ..steady.branches import holds_state
+    from ..theory.criteria import pole_stability_threshold
+
+    theta = float(y0[4])
+    pole = "upright" if theta < np.pi / 2 else "inverted"
+    at = 0.0 if pole == "upright" else np.pi
+    if abs(theta - at) > NEAR_POLE or not holds_state(body, at):
+        return
+    crit = pole_stability_threshold(body, pole)
+    need = crit.rolling_threshold
+    if need is None or abs(y0[5]) >= need:
+        return
+    point = " (on a point: C^2 n^2 > 4 A' M g l, A' the moment about the point)" if abs(crit.rho) < 1e-12 else ""
+    real = lambda v: "" if rev_per_s is None else f" ({v * rev_per_s:.4g} rev/s)"  # noqa: E731
+    warnings.warn(f"the spin n = {abs(y0[5]):.4g}{real(abs(y0[5]))} is below the fast-top condition |n| > {need:.6g}"
+                  f"{real(need)} at theta = {at:.6g}{point}: the spin cannot hold the axis near the vertical, and it "
+                  "falls")
 
 
 def _check_range_of(body, theta: float, name: str) -> None:
@@ -292,8 +335,9 @@ def steady_structure_report(*, body: Body, mu, friction="coulomb", slip_eps=None
 
 #: what "stable" means for each linearisation (see phasekit.steady.linearisation)
 STABILITY_MEANING = {
-    "coulomb-rolling": "exact Coulomb friction: the rolling (no-slip) linearisation, in which zero-slip states are "
-                       "neutral; the viscous law gives the friction-driven instabilities of part I",
+    "coulomb-rolling": "exact Coulomb friction: the rolling (no-slip) linearisation, in which a zero-slip state is "
+                       "neutral or grows, never decays (a spin at a pole grows below its fast-top condition); the "
+                       "viscous law gives the friction-driven instabilities of part I",
     "coulomb-regularised": "regularised Coulomb friction: the smooth field's linearisation (the rolling spectrum plus "
                            "two fast slip modes)",
     "viscous": "viscous friction (part I): friction drives or damps the modes",

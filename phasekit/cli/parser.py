@@ -37,7 +37,9 @@ EXAMPLES = """examples:
   phasekit simulate --body disk --radius "37.5 mm" --thickness "12 mm" --mu 0.3 --theta0 "30 deg" \\
       --spinning-in-place --t-end "2 s"
   phasekit simulate --body cone --on tip --radius "2 cm" --height "3 cm" --mu 0.5 --theta0 "175 deg" \\
-      --spin-about-vertical "40 rev/s" --t-end "2 s"
+      --spun-about-axis "40 rev/s" --t-end "2 s" --si
+  phasekit simulate --body disk --radius "12 mm" --thickness "1.5 mm" --mu 0.3 --theta0 "85 deg" \\
+      --rolled "0.5 m/s" --t-end "1 s" --si
   phasekit fixed-points --a 1.5 --mu 0.1 --omega0 10 --json
   phasekit steady-states --body spheroid --a 1.5 --offset 0.2 --mu 0.1 --friction viscous
   phasekit steady-states --body tippe-top --offset 0.3 --A 0.38 --C 0.4 --mu 0.3 --json

@@ -109,6 +109,124 @@ def vertical_spin_start(theta0: float, n0: float) -> np.ndarray:
     return np.array([0.0, 0.0, n0, 0.0, theta0, n0 * np.cos(theta0)])
 
 
+def axis_spin_start(body: Body, theta0: float, n0: float, *, mu: float | None = None) -> tuple[np.ndarray, str | None]:
+    """A top as people launch it: spun about its own axis at n0, tilted theta0, with the slow
+    precession if there is one, else none (and a note saying so).
+
+    On a point (the contact on the axis, x_P = 0: a cone on its tip) the slow precession is the
+    Lagrange top's steady one, exact while friction holds the point: the slow root of
+    (A + l^2) cos(theta) Omega^2 - C n Omega - l = 0 (l = h_theta / sin(theta), G circling the
+    vertical through the point at V = -l Omega sin(theta)); it exists iff
+    C^2 n^2 >= 4 (A + l^2) l |cos(theta)| (the fast-top condition at that tilt) and needs the
+    friction l Omega^2 sin(theta) <= mu. On any other body it is the slow root of the gyroscopic
+    balance (3.14c), A cos(theta) sin(theta) Omega^2 - C n sin(theta) Omega - h_theta = 0, with G
+    at rest (a leading-order balance: the top nutates a little about it). At a pole the spin is
+    about the vertical, Omega = 0.
+
+    Parameters
+    ----------
+    body : Body
+        The top, e.g. ``Cone(1.5, on="tip")``.
+    theta0 : float
+        The tilt, radians in [0, pi] (a cone on its tip: near pi).
+    n0 : float
+        The spin about the axis, units sqrt(g/b): nonzero, ``abs(n0) <= 1e5``.
+    mu : float, optional
+        The friction coefficient (exact Coulomb): a point's precession needing more friction
+        than that is not used.
+
+    Returns
+    -------
+    (numpy.ndarray, str or None)
+        The state (U, V, Omega, Lambda, theta, n) and None, or the state with zero precession
+        (Omega = 0, G at rest) and a note on why there is no slow precession.
+
+    Raises
+    ------
+    ParameterError
+        If ``theta0`` is outside [0, pi], or ``n0`` is 0, not finite or ``abs(n0) > 1e5``.
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> from phasekit.core.starts import axis_spin_start
+    >>> y, note = axis_spin_start(pk.bodies.Cone(1.5, on="tip"), np.pi - 0.1, 30.0)
+    >>> [round(float(v), 4) for v in y], note      # Omega ~ -l / (C n): slow, G circling the tip
+    ([0.0, 0.0143, -0.1277, 0.0, 3.0416, 30.0], None)
+    """
+    theta0 = check_range("theta0", theta0, 0.0, np.pi, closed="lr", label="[0, pi]")
+    n0 = checked_rate("n0", n0)
+    s, c = np.sin(theta0), np.cos(theta0)
+    if s < 1e-12:
+        return np.array([0.0, 0.0, 0.0, 0.0, theta0, n0]), None
+    h, ht = (float(v) for v in body.h(theta0)[:2])
+    point = abs(h * s + ht * c) <= 1e-12 * (1.0 + abs(h))  # x_P = 0: the contact on the axis
+    if point:
+        l = ht / s
+        big, a2, a0 = body.C * n0, (body.A + l * l) * c, -l
+    else:
+        big, a2, a0 = body.C * n0 * s, body.A * c * s, -ht
+    disc = big * big - 4.0 * a2 * a0
+    none = np.array([0.0, 0.0, 0.0, 0.0, theta0, n0])
+    if disc < 0.0:
+        what = "C^2 n^2 < 4 (A + l^2) l |cos(theta)|" if point else "the gyroscopic balance has no real root"
+        return none, (f"no slow precession at this spin and tilt ({what}): started spinning about its axis with "
+                      "zero precession")
+    omega = 2.0 * a0 / (big + np.copysign(np.sqrt(disc), big))  # the slow root, without cancellation
+    if point:
+        if mu is not None and l * omega * omega * s > mu:
+            return none, (f"its slow precession Omega = {omega:.4g} needs friction {l * omega * omega * s:.3g} > "
+                          f"mu = {mu:g} at the point: started with zero precession")
+        return np.array([0.0, -l * omega * s, omega, 0.0, theta0, n0]), None
+    return np.array([0.0, 0.0, omega, 0.0, theta0, n0]), None
+
+
+def rolled_start(body: Body, theta0: float, speed: float) -> np.ndarray:
+    """Rolled along the table at ``speed`` without slip, tilted theta0 (a coin rolled on its edge:
+    theta0 = pi/2): Omega = Lambda = 0, the spin n = speed / x_P about the axis, V = -n x_P, with
+    x_P = h sin(theta) + h_theta cos(theta) the contact's distance from G along the table
+    (phasekit.steady.rolling: a steady straight rolling where h_theta = 0, else a start that
+    leans and curves).
+
+    Parameters
+    ----------
+    body : Body
+        The body, e.g. ``Disk(0.1)`` (a coin).
+    theta0 : float
+        The tilt, radians in (0, pi).
+    speed : float
+        The speed of G, units sqrt(g b): nonzero, ``abs(speed) <= 1e5`` (its sign: the way it rolls).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (6,): (U, V, Omega, Lambda, theta, n) = (0, -speed, 0, 0, theta0, speed / x_P).
+
+    Raises
+    ------
+    ParameterError
+        If ``theta0`` is outside (0, pi), ``speed`` is 0, not finite or beyond 1e5, or the
+        contact is on the axis there (x_P = 0: a point cannot roll).
+
+    Examples
+    --------
+    >>> import numpy as np, phasekit as pk
+    >>> from phasekit.core.starts import rolled_start
+    >>> rolled_start(pk.Disk(0.1), np.pi / 3, 2.0).round(6)
+    array([ 0.      , -2.      ,  0.      ,  0.      ,  1.047198,  2.      ])
+    """
+    theta0 = check_range("theta0", theta0, 0.0, np.pi, label="(0, pi)")
+    speed = checked_rate("speed", speed)
+    h, ht = (float(v) for v in body.h(theta0)[:2])
+    x_p = h * np.sin(theta0) + ht * np.cos(theta0)
+    if abs(x_p) <= 1e-12 * (1.0 + abs(h)):
+        raise ParameterError("theta0", "puts the contact on the axis (a point): it cannot roll", theta0)
+    n = speed / x_p
+    if abs(n) > RATE_MAX:
+        raise ParameterError("speed", f"needs a spin |n| = {abs(n):.3g} > {RATE_MAX:g}", speed)
+    return np.array([0.0, -n * x_p, 0.0, 0.0, theta0, n])
+
+
 def raw_start(state, *, chart="euler") -> np.ndarray:
     """Validate a raw (U, V, Omega, Lambda, theta, n); theta in (0, pi) for the Euler chart,
     [0, pi] for the vector chart, which is regular at the poles."""

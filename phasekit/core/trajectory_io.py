@@ -59,22 +59,30 @@ HOLDING = {"exact": "rolling without slip", "creep": "creeping (slip of order ep
            "patch": "sticking (over a contact patch only where the slip and the spin about the normal both vanish)"}
 
 
-def _holding(law) -> str:
-    if law.has_rolling_mode:
-        return "exact"
-    return "creep" if law.creeps else "patch" if any(d.needs_contact_point for d in law.dissipation) else "slow"
+#: the modes without slip: rolling, rolling with the spin held by spin friction, and pivoting (the
+#: rolling held by rolling resistance: the body spins in place)
+NO_SLIP = ("rolling", "rolling_no_pivot", "pivoting")
+
+
+def _holding(law, pivoting: bool) -> str:
+    """What the no-slip modes are called (:data:`HOLDING`), "rolling or pivoting" once it pivoted."""
+    patch = any(d.needs_contact_point for d in law.dissipation)
+    word = HOLDING["exact" if law.has_rolling_mode else "creep" if law.creeps else "patch" if patch else "slow"]
+    return word.replace("rolling without slip", "rolling or pivoting without slip") if pivoting else word
 
 
 def contact_summary(traj) -> dict:
     """How a run held the table: the time of its first stick, the fraction of the run spent in a
-    no-slip mode ("rolling", "rolling_no_pivot"; for a regularised law that creeps, the creep) and
+    no-slip mode (:data:`NO_SLIP`; for a regularised law that creeps, the creep) and
     what that is called (``holding``), theta at the start and its change (negative: the axis
     turned towards the upward vertical), the contact's passages between a compound body's pieces
-    (``passages``: "ball -> stem at t = ..."), and ``rests_on`` (:data:`PURE_ROLLING`) when the
+    (``passages``: "ball -> stem at t = ...") and the piece it ends on (``piece_end``, None on a
+    body of one piece), and ``rests_on`` (:data:`PURE_ROLLING`) when the
     run reached its end time rolling under exact Coulomb friction with no dissipation law (then no
     energy is lost while it rolls), else None."""
     span = traj.t - traj.t0
-    rolling = sum(s.t1 - s.t0 for s in traj.segments if s.mode.value.startswith("rolling"))
+    rolling = sum(s.t1 - s.t0 for s in traj.segments if s.mode.value in NO_SLIP)
+    pivoting = any(s.mode.value == "pivoting" and s.t1 > s.t0 for s in traj.segments)
     sticks = [e.t for e in traj.events if e.name == "stick"]
     theta0 = float(traj.model.chart.to_paper(traj.x0)[4])
     law = traj.model.friction
@@ -82,9 +90,12 @@ def contact_summary(traj) -> dict:
         and str(traj.status) == "completed"
     moves = {p.name for p in traj.model.body.transfers}
     passages = [f"{e.detail} at t = {e.t:.6g}" for e in traj.events if e.name in moves and e.detail]
-    return {"t_first_stick": float(sticks[0]) if sticks else None,
-            "rolling_fraction": float(rolling / span) if span > 0 else None, "holding": HOLDING[_holding(law)],
-            "theta_start": theta0, "theta_change": float(traj.model.chart.to_paper(traj.x)[4]) - theta0,
+    theta_end = float(traj.model.chart.to_paper(traj.x)[4])
+    # the piece under it at the end, from its tilt (a bounce train at a switch may end without a passage)
+    ends = [tr.to_piece for tr in traj.model.body.transfers if (theta_end - tr.theta) * tr.direction > 0]
+    return {"t_first_stick": float(sticks[0]) if sticks else None, "piece_end": ends[0] if ends else None,
+            "rolling_fraction": float(rolling / span) if span > 0 else None, "holding": _holding(law, pivoting),
+            "theta_start": theta0, "theta_change": theta_end - theta0,
             "passages": passages, "rests_on": PURE_ROLLING if pure else None}
 
 

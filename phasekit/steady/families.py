@@ -51,10 +51,11 @@ class SpinFamily:
       (Omega = 0, G moving at n x_P: part I's rolling on the equator).
 
     ``criticals`` are the values of abs(parameter) where its stability changes (the closed-form
-    pole criterion; for a precession family the rate at which a branch crosses it; located by
-    bisection for a rolling family), ``stable_on`` the stability on each interval between
-    them from 0 up (None: not computed), ``branch_meets`` whether a branch ends on or crosses
-    the family."""
+    pole criterion of the law's linearisation: under exact Coulomb friction the rolling one, the
+    fast-top condition, with the sliding one in ``sliding_criticals``; for a precession family
+    the rate at which a branch crosses it; located by bisection for a rolling family),
+    ``stable_on`` the stability on each interval between them from 0 up (None: not computed),
+    ``branch_meets`` whether a branch ends on or crosses the family."""
 
     kind: str
     theta: float
@@ -63,6 +64,7 @@ class SpinFamily:
     stable_on: tuple[bool | None, ...]
     branch_meets: bool
     criterion: PoleCriterion | None = field(default=None, repr=False)
+    sliding_criticals: tuple[float, ...] | None = None
 
     @property
     def critical(self) -> float | None:
@@ -76,7 +78,8 @@ class SpinFamily:
     def to_dict(self) -> dict:
         return {"kind": self.kind, "theta": self.theta, "parameter": self.parameter, "critical": self.critical,
                 "criticals": list(self.criticals), "stable_on_intervals": list(self.stable_on),
-                "stable_above_critical": self.stable_above, "branch_meets": self.branch_meets}
+                "stable_above_critical": self.stable_above, "branch_meets": self.branch_meets,
+                "sliding_criticals": None if self.sliding_criticals is None else list(self.sliding_criticals)}
 
 
 # -- statics and families -----------------------------------------------------------------------
@@ -101,9 +104,15 @@ def families_of(model, body, pts, intervals, stability: bool) -> tuple[SpinFamil
         if not holds_state(body, t):  # an edged body's pole off its range (a disk lying flat)
             continue
         crit = pole_stability_threshold(body, pole)
-        side = (not crit.stable_above, crit.stable_above) if crit.threshold else (crit.stable(1.0),)
-        out.append(SpinFamily("pole", t, "n", (crit.threshold,) if crit.threshold else (), side,
-                              ("0" if t == 0.0 else "pi") in ends, crit))
+        sliding = (crit.threshold,) if crit.threshold else ()
+        if model.friction.has_rolling_mode:  # exact Coulomb: the rolling spectrum, as along the branches
+            crits = (crit.rolling_threshold,) if crit.rolling_threshold else ()
+            side = (False, True) if crits else (crit.stable_rolling(1.0),)
+        else:
+            crits = sliding
+            side = (not crit.stable_above, crit.stable_above) if crit.threshold else (crit.stable(1.0),)
+        out.append(SpinFamily("pole", t, "n", crits, side, ("0" if t == 0.0 else "pi") in ends, crit,
+                              sliding if model.friction.has_rolling_mode else None))
     crossed = {c for p in intervals for c in p.crossings}
     for p in pts:
         if p.q and p.D:

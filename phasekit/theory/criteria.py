@@ -113,6 +113,15 @@ class PoleCriterion:
     The spin n0 state is stable iff n0^2 rho (A rho - C h0) < h2 h0^2; ``threshold`` is the
     abs(n0) where that changes (None: never), ``stable_above`` whether the fast side is stable.
 
+    Rolling (exact Coulomb friction holding the contact, no slip), the fast-top condition: with
+    zeta the horizontal part of k, the contact point lies h2 zeta from G horizontally and
+    -h0 below it; no slip makes v_G = h0 zeta' - i n rho zeta (complex notation, i = e_Z x),
+    and the torque about G then gives (A + h0^2) zeta'' - i (C + h0 rho) n zeta' - h2 zeta = 0.
+    Its modes exp(i sigma t) are neutral iff (C + h0 rho)^2 n0^2 + 4 (A + h0^2) h2 >= 0:
+    always where h2 > 0 (G at its lowest), else above ``rolling_threshold``
+    2 sqrt((A + h0^2)(-h2)) / (C + h0 rho). On a point (rho = 0, h0 = -h2 = l, A + l^2 = A' the
+    moment about the point) this is the classical fast-top condition C^2 n^2 > 4 A' M g l.
+
     Attributes
     ----------
     pole : {"upright", "inverted"}
@@ -130,6 +139,10 @@ class PoleCriterion:
         sqrt(g/b); None when there is no such spin.
     stable_above : bool
         Whether the spins above ``threshold`` are the stable ones (A rho - C h0 < 0).
+    rolling_threshold : float or None
+        abs(n0) above which the spin is stable rolling (exact Coulomb friction), the fast-top
+        condition: 2 sqrt((A + h0^2)(-h2)) / (C + h0 rho), units sqrt(g/b); None when h2 >= 0
+        (stable rolling at every spin, or degenerate).
 
     Examples
     --------
@@ -137,6 +150,9 @@ class PoleCriterion:
     >>> crit = pk.theory.pole_stability_threshold(pk.Spheroid(0.6))
     >>> isinstance(crit, pk.theory.PoleCriterion), crit.pole
     (True, 'upright')
+    >>> top = pk.theory.pole_stability_threshold(pk.bodies.Cone(1.5, on="tip"), "inverted")
+    >>> top.threshold, round(top.rolling_threshold, 6), top.stable_rolling(9.0)   # C^2 n^2 > 4 A' l
+    (None, 8.660254, True)
     """
 
     pole: str
@@ -162,12 +178,45 @@ class PoleCriterion:
         n0 = check_finite("n0", n0)
         return bool(n0 * n0 * self.rho * (self.A * self.rho - self.C * self.h0) < self.h2 * self.h0**2)
 
+    @property
+    def rolling_threshold(self) -> float | None:
+        if not self.h2 < 0.0:
+            return None
+        return float(2.0 * np.sqrt((self.A + self.h0**2) * -self.h2) / (self.C + self.h0 * self.rho))
+
+    def stable_rolling(self, n0: float) -> bool:
+        """Whether the spin ``n0`` is stable rolling (exact Coulomb friction): the fast-top
+        condition (C + h0 rho)^2 n0^2 + 4 (A + h0^2) h2 > 0 (class notes).
+
+        Parameters
+        ----------
+        n0 : float
+            The spin, units sqrt(g/b).
+
+        Returns
+        -------
+        bool
+            True where the rolling modes are neutral (h2 = 0, n0 = 0: degenerate, False).
+
+        Examples
+        --------
+        >>> import phasekit as pk
+        >>> crit = pk.theory.pole_stability_threshold(pk.bodies.Cone(1.5, on="tip"), "inverted")
+        >>> crit.stable_rolling(8.0), crit.stable_rolling(-9.0)
+        (False, True)
+        """
+        n0 = check_finite("n0", n0)
+        return bool((self.C + self.h0 * self.rho) ** 2 * n0 * n0 + 4.0 * (self.A + self.h0**2) * self.h2 > 0.0)
+
     def to_dict(self, n0: float | None = None) -> dict:
         d = {"criterion": "stable under sliding friction iff n0^2 rho (A rho - C h0) < h2 h0^2",
              "h0": self.h0, "h2": self.h2, "rho": self.rho, "critical_spin": self.threshold,
-             "stable_above_critical_spin": self.stable_above}
+             "stable_above_critical_spin": self.stable_above,
+             "rolling_criterion": "stable rolling (exact Coulomb) iff (C + h0 rho)^2 n0^2 + 4 (A + h0^2) h2 > 0",
+             "rolling_critical_spin": self.rolling_threshold}
         if n0 is not None:
             d["stable_under_sliding_friction"] = self.stable(n0)
+            d["stable_rolling"] = self.stable_rolling(n0)
         return d
 
 

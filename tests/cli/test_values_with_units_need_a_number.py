@@ -14,12 +14,16 @@ RUN = ["--a", "1.5", "--mu", "0.1", "--gyroscopic", "--theta0", "1.56", "--omega
        "--size", "21.5 mm"]
 #: a unit without its number for each kind of value, and the same with a number (accepted)
 BARE = {"--thickness": ("cm", "1.2 cm"), "--flat-angle": ("deg", "0.05 deg"), "--height": ("cm", "4 cm"), "--stem-length": ("mm", "6 mm"), "--air-layer": ("N*m*s", "1e-9 N*m*s"), "--stem-radius": ("mm", "3.2 mm"), "--radius": ("cm", "3.7 cm"), "--theta0": ("deg", "89 deg"), "--omega0": ("rev/s", "41 rev/s"), "--n0": ("rpm", "2000 rpm"),
-        "--spin-about-vertical": ("rev/s", "10 rev/s"), "--t-end": ("s", "0.5 s"), "--psi0": ("deg", "30 deg"),
+        "--spin-about-vertical": ("rev/s", "10 rev/s"), "--spun-about-axis": ("rev/s", "40 rev/s"),
+        "--spun-on-edge": ("rev/s", "5 rev/s"), "--rolled": ("m/s", "0.3 m/s"), "--t-end": ("s", "0.5 s"), "--psi0": ("deg", "30 deg"),
         "--phi0": ("turn", "0.5 turn"), "--X0": ("mm", "3 mm"), "--Y0": ("cm", "1 cm"), "--size": ("mm", "21.5 mm"),
         "--g": ("m/s^2", "9.81 m/s^2"), "--mass": ("g", "57 g"), "--rolling-resistance": ("mm", "0.2 mm"),
         "--spin-friction": ("um", "50 um"), "--air-drag": ("N*m*s", "1e-7 N*m*s"),
         "--air-drag-quadratic": ("N*m*s^2", "1e-9 N*m*s^2"), "--air-drag-force": ("N*s/m", "1e-4 N*s/m"),
         "--air-drag-force-quadratic": ("kg/m", "0.001 kg/m")}
+
+#: the starts that take a value with units (another start given with them is left out)
+STARTS = ("--spin-about-vertical", "--spun-about-axis", "--spun-on-edge", "--rolled")
 
 
 def unit_flags(command: str) -> set[str]:
@@ -49,7 +53,7 @@ def test_a_unit_without_its_number_is_refused(command, flag):
     args = [command, *(["x.gif"] if command == "animate" else []), *RUN]
     args = [a for i, a in enumerate(args) if not (a == flag or (i and args[i - 1] == flag))]  # the flag once
     args = [a for i, a in enumerate(args)
-            if flag != "--spin-about-vertical" or a not in ("--gyroscopic", "--omega0") and args[i - 1] != "--omega0"]
+            if flag not in STARTS or a not in ("--gyroscopic", "--omega0") and args[i - 1] != "--omega0"]
     code, out, err = run_cli(*args, flag, bare, "--json")
     d = strict_json(out)
     assert code == 2 and d["status"] == "error" and d["parameter"] == flag
