@@ -109,6 +109,51 @@ def vertical_spin_start(theta0: float, n0: float) -> np.ndarray:
     return np.array([0.0, 0.0, n0, 0.0, theta0, n0 * np.cos(theta0)])
 
 
+def face_start(body: Body, v0: float, w0: float, *, upside_down: bool = False) -> np.ndarray:
+    """Lying flat on a face, G sliding at ``v0`` along e_X and the body spinning at ``w0`` about the
+    vertical: the start of the face mode (``simulate(..., mode="face")``, :mod:`phasekit.core.face`).
+
+    Parameters
+    ----------
+    body : Body
+        A body with a flat face among its ``limits`` (a Disk, a Cone on its rim).
+    v0 : float
+        Speed of G, units sqrt(g b), in [0, 1e5].
+    w0 : float
+        Spin about the vertical, units sqrt(g/b), |w0| <= 1e5.
+    upside_down : bool
+        On the face at theta = pi (a thin disk's other face), not at 0 (default False).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (6,): (U, V, Omega, Lambda, theta, n) = (v0, 0, w0, 0, theta_f, w0 cos(theta_f)), theta_f the
+        face-down angle the body's limit takes as flat (the angular velocity w0 e_Z).
+
+    Raises
+    ------
+    ParameterError
+        If ``body`` has no such face, or ``v0`` or ``w0`` is out of range.
+
+    Examples
+    --------
+    >>> import phasekit as pk
+    >>> disk = pk.Disk(0.0)
+    >>> x0 = pk.core.face_start(disk, 1.0, 3.0)
+    >>> traj = pk.simulate(pk.Model(disk, pk.Coulomb(0.3)), x0, 50.0, mode="face")
+    >>> traj.status.value, round(traj.face.t_stop_slide, 4), round(traj.face.t_stop_spin, 4)
+    ('rest', 8.5113, 8.5113)
+    """
+    if not isinstance(body, Body):
+        raise ParameterError("body", "must be a phasekit Body, e.g. Disk(0.0)", body)
+    v0 = check_range("v0", v0, 0.0, RATE_MAX, closed="lr", label=f"[0, {RATE_MAX:g}]")
+    w0 = check_range("w0", w0, -RATE_MAX, RATE_MAX, closed="lr", label=f"[-{RATE_MAX:g}, {RATE_MAX:g}]")
+    faces = [lim.theta for lim in body.limits if lim.face is not None and (lim.theta > np.pi / 2) == bool(upside_down)]
+    if not faces:
+        raise ParameterError("body", "has no flat face to lie on" + (" upside down" if upside_down else ""), body)
+    return np.array([v0, 0.0, w0, 0.0, faces[0], w0 * np.cos(faces[0])])
+
+
 def raw_start(state, *, chart="euler") -> np.ndarray:
     """Validate a raw (U, V, Omega, Lambda, theta, n); theta in (0, pi) for the Euler chart,
     [0, pi] for the vector chart, which is regular at the poles."""

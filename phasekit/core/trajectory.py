@@ -94,6 +94,8 @@ class Trajectory:
     runner: object = field(default=None, repr=False, compare=False)
     #: the run against its repeat at rtol / 10 in the other chart (:meth:`verify`; simulate's ``verify=True``)
     verification: object = field(default=None, repr=False, compare=False)
+    #: the face phase (:class:`phasekit.core.face.FacePhase`): the body lying flat, after the segments
+    face: object = field(default=None, repr=False, compare=False)
 
     def __post_init__(self):
         set_ = object.__setattr__  # frozen: the inputs are normalised once, here
@@ -123,11 +125,15 @@ class Trajectory:
     @property
     def t(self) -> float:
         """The time the run ended."""
+        if self.face is not None:
+            return self.face.t1
         return self.segments[-1].t1 if self.segments else self.t0
 
     @property
     def x(self) -> np.ndarray:
         """The final state, in the model's chart."""
+        if self.face is not None:
+            return self.face.chart_states(self.model, self.face.y1)[0]
         if self.x_stop is not None:
             return self.x_stop
         seg = self.segments[-1]
@@ -135,6 +141,8 @@ class Trajectory:
 
     @property
     def mode(self) -> str:
+        if self.face is not None:
+            return Mode.FACE.value
         return (self.mode_stop or self.segments[-1].mode).value if (self.mode_stop or self.segments) else Mode.SLIDING.value
 
     @property
@@ -348,14 +356,28 @@ class Trajectory:
         if bad.size:
             raise ParameterError("times", f"must lie in the simulated span [{lo:.10g}, {hi:.10g}] ({bad.size} outside)",
                                  float(bad[0]) if bad.size == 1 else [float(bad[0]), float(bad[-1])])
-        if not self.segments:
+        if not self.segments and self.face is None:
             raise ParameterError("times", "cannot be sampled: the run has no segment", show_value=False)
         if not all(s.dense for s in self.segments):
             raise ParameterError("times", "cannot be sampled: this run kept no dense output (simulate with dense=True)",
                                  show_value=False)
         return ts
 
+    def _face_split(self, ts):
+        """(times before the face phase, times in it): a time at the landing belongs to the segment before."""
+        if self.face is None:
+            return ts, ts[:0]
+        on = ts > self.face.t0 if self.segments else np.ones(ts.shape, dtype=bool)
+        return ts[~on], ts[on]
+
     def _chart_states(self, ts) -> np.ndarray:
+        before, on = self._face_split(ts)
+        if on.size:
+            rest = self._chart_states_of_segments(before) if before.size else np.empty((0, self.model.n_states))
+            return np.vstack([rest, self.face.chart_states(self.model, self.face.states(on))])
+        return self._chart_states_of_segments(ts)
+
+    def _chart_states_of_segments(self, ts) -> np.ndarray:
         idx = self._locate(ts)
         out = np.empty((ts.size, self.model.n_states))
         for k in np.unique(idx):
@@ -399,7 +421,13 @@ class Trajectory:
         the order of the tolerance (CVODES segments use cubic Hermite interpolation on their
         output grid, whose error can be larger).
         """
-        return sample_table(self, self._check_times(times))
+        ts = self._check_times(times)
+        before, on = self._face_split(ts)
+        if not on.size:
+            return sample_table(self, ts)
+        from .face_table import face_table  # the face phase's rows
+
+        return face_table(self, before, on)
 
     def _pose(self, idx, ts) -> dict:
         return self._pose_track(idx, ts)

@@ -86,10 +86,11 @@ def _dissipation_summary(traj) -> dict:
     ``energy_budget`` (:meth:`~phasekit.core.trajectory.Trajectory.energy_budget`, units M g b;
     None only for a run made with dense=False; a run that ended at its start has one, with nothing lost) and ``t_rest`` (the "rest" event's time, or None); an empty dict
     for a model without them (its JSON is as before)."""
-    if not traj.model.friction.dissipation:
+    face = getattr(traj, "face", None)
+    if not traj.model.friction.dissipation and face is None:
         return {}
     dense = all(s.dense for s in traj.segments) and (bool(traj.segments) or traj.mode_stop is not None)
-    rest = [e.t for e in traj.events if e.name == "rest"]
+    rest = [e.t for e in traj.events if e.name in ("rest", "at rest")]
     return {"t_rest": float(rest[-1]) if rest else None,
             "energy_budget": traj.energy_budget().to_dict() if dense else None}
 
@@ -286,6 +287,10 @@ def trajectory_dict(traj, *, events: bool = True) -> dict:
                 e["pose"] = pose
     if poses is not None:
         d["pose_end"] = poses[-1]
+    if getattr(traj, "face", None) is not None:  # lying flat (phasekit.core.face)
+        d["face"] = traj.face.to_dict()
+        if not traj.segments:
+            d["start_mode"] = "face"
     fl = traj.flights
     if fl:
         d["flight"] = fl[0].to_dict()
@@ -320,7 +325,21 @@ def event_poses(traj) -> list[dict] | None:
     """
     if not traj.segments or not all(s.dense for s in traj.segments):
         return None
-    ts = np.array([e.t for e in traj.events] + [traj.t])
+    face = getattr(traj, "face", None)
+    if face is not None:  # the events on the face have the face's pose
+        from .face_table import face_pose
+
+        ts = np.array([e.t for e in traj.events] + [traj.t])
+        on = ts > face.t0
+        head = event_poses_before(traj, ts[~on])
+        tail = face_pose(traj, ts[on])
+        rows = [{n: float(tail[n][i]) for n in POSE_COLUMNS} for i in range(int(on.sum()))]
+        return head + rows
+    return event_poses_before(traj, np.array([e.t for e in traj.events] + [traj.t]))
+
+
+def event_poses_before(traj, ts) -> list[dict]:
+    """The poses at times ``ts`` of the run's segments, in the order given."""
     ts = np.clip(ts, traj.t0, traj.t)
     order = np.argsort(ts, kind="stable")
     cols = traj._pose(traj._locate(ts[order]), ts[order])
