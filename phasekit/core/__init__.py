@@ -26,7 +26,7 @@ from .sections import poincare
 from .settle import Settle
 from .simulate import simulate
 from .sizes import egg_of_size
-from .starts import face_start, gyroscopic_start, paper_start, to_chart, to_paper, vertical_spin_start
+from .starts import gyroscopic_start, paper_start, to_chart, to_paper, vertical_spin_start
 from .trajectory import Trajectory
 from .units import Scale
 from .verify import RunCheck
@@ -34,6 +34,6 @@ from .verify import RunCheck
 __all__ = [
     "Model", "OBSERVABLES", "Mode", "Event", "SolverOptions", "Settle",
     "simulate", "simulate_batch", "Trajectory", "Segment", "EventRecord", "Flight", "poincare",
-    "gyroscopic_start", "vertical_spin_start", "face_start", "paper_start", "to_chart", "to_paper", "choose_chart", "PAPER_NAMES",
+    "gyroscopic_start", "vertical_spin_start", "paper_start", "to_chart", "to_paper", "choose_chart", "PAPER_NAMES",
     "impact", "Pose", "Scale", "egg_of_size", "RunCheck", "Approximation",
 ]

@@ -2,7 +2,8 @@
 
 An edged body (a disk, a coin, a cone on its rim) whose flat face comes down reaches the limit event
 "face down" (its ``limits``, :class:`phasekit.bodies.body.Limit`, with the face's radius and inner
-ratio in ``face``). With ``stop_at="none"`` or ``"rest"`` the run goes on, as a hybrid system does:
+ratio in ``face``). With ``stop_at="rest"`` (the run goes on until the body rests) it goes on, as a
+hybrid system does (with the other stop rules the run still ends there, status "stopped"):
 
 event "face down" -> reset :class:`FaceLanding` -> mode FACE (flow :func:`face_motion`) -> event "at rest"
 
@@ -18,9 +19,12 @@ Flow. Lying flat, the state is (v_1, v_2, w) (the horizontal velocity of G, the 
 vertical), with the position of G and the spin angle carried along: the face state is
 ``(v_1, v_2, w, X_1, X_2, phi, work)`` (:data:`FACE_NAMES`), v in the horizontal axes of the model's
 chart at the landing. Coulomb friction with uniform pressure over the face (radius a, or the annulus
-beta a < rho < a, the full disk minus the inner one), normal force M g, gives the force and the couple
-about the normal of :func:`phasekit.friction.patch.patch_friction` (rational approximant, relative
-error <= 7e-6):
+beta a < rho < a, the full disk minus the inner one at the same pressure), normal force M g, gives the
+force and the couple about the normal: by the closed forms of
+:func:`phasekit.friction.patch.patch_resultant` (``law="exact"``, the default, ~1e-15), or by the smooth
+rational approximant of :func:`phasekit.friction.patch.patch_friction` (``law="rational"``, relative error
+<= 7e-6 on a full disk; the annulus' difference amplifies it near s = 1: with beta = 0.9 its terminal
+ratio is 0.930 against 0.951, measured):
 
     M dv/dt = F(v, w),    C dw/dt = M_z(v, w),    d(work)/dt = F.v + M_z w.
 
@@ -32,7 +36,9 @@ to zero along its rate (both v and w fall at finite rates under Coulomb friction
 :class:`phasekit.core.resets.Rest` does; the stop times of the sliding and of the spin are each
 extrapolated too (``t_stop_slide``, ``t_stop_spin``). The run ends with status "rest".
 
-The closed problem: :func:`phasekit.core.face_start` and ``simulate(..., mode="face")``; the theory
+The closed problem: ``simulate(model, vertical_spin_start(0.0, w0, v0=v0), t_end, mode="face")``
+(:func:`phasekit.core.vertical_spin_start`: sliding at v0, spinning at w0; theta0 = pi for the other face
+of a thin disk); the theory
 it is checked against is :mod:`phasekit.theory.face_down` (terminal ratio, stop time, a scipy run).
 """
 
@@ -48,7 +54,8 @@ from scipy.integrate import DOP853
 from scipy.optimize import brentq
 
 from ..errors import ParameterError, Status
-from ..friction.patch import patch_friction
+from ..friction.patch import patch_friction, patch_resultant
+from ..theory.face_down import RATIO_MAX
 from .fields import REST_SPEED
 from .hybrid import Mode, Record, Transition
 from .resets import flight_state, rigid_velocities
@@ -56,13 +63,16 @@ from .resets import flight_state, rigid_velocities
 #: the face state: horizontal velocity of G (chart axes at the landing), spin about the vertical,
 #: position of G from the landing, spin angle turned, work of friction since the landing
 FACE_NAMES = ("v_1", "v_2", "w", "X_1", "X_2", "phi", "work")
+#: the patch law on the face: the closed forms (default) or the smooth rational approximant
+FACE_LAWS = ("exact", "rational")
 
 
 @dataclass(frozen=True)
 class FaceContact:
     """What the face mode needs of the body and the law: the face (radius ``a``, inner ratio ``inner``),
     the friction coefficient ``mu``, the moment ``C`` about the normal, the height ``h0`` of G lying
-    flat, the face-down angle ``theta`` the model keeps as flat and the axis' azimuth ``psi``."""
+    flat, the face-down angle ``theta`` the model keeps as flat, the axis' azimuth ``psi`` and the patch
+    law ``law`` (:data:`FACE_LAWS`)."""
 
     a: float
     inner: float
@@ -71,6 +81,13 @@ class FaceContact:
     h0: float
     theta: float
     psi: float = 0.0
+    law: str = "exact"
+
+    def __post_init__(self):
+        if self.law not in FACE_LAWS:
+            raise ParameterError("law", f"must be one of {', '.join(FACE_LAWS)}", self.law)
+        if not 0.0 <= self.inner <= RATIO_MAX:
+            raise ParameterError("inner", f"must be in [0, {RATIO_MAX:g}]", self.inner)
 
     def energy(self, Y) -> np.ndarray:
         """Mechanical energy of face states (rows of :data:`FACE_NAMES`), units M g b."""
@@ -97,8 +114,9 @@ def face_contact(model, theta: float, psi: float = 0.0) -> FaceContact:
 
 
 @functools.lru_cache(maxsize=16)
-def face_field(a: float, inner: float = 0.0):
-    """The CasADi function (y, [mu, C]) -> (dy/dt, F, M_z) of the face state (module notes)."""
+def _rational_field(a: float, inner: float):
+    """The CasADi function (y, [mu, C]) -> (dy/dt, F, M_z) of the face state with the rational
+    approximant of :func:`phasekit.friction.patch.patch_friction`."""
     y, p = ca.SX.sym("y", len(FACE_NAMES)), ca.SX.sym("p", 2)
     v, w, mu, C = y[0:2], y[2], p[0], p[1]
     if inner == 0.0:
@@ -110,6 +128,35 @@ def face_field(a: float, inner: float = 0.0):
         F, M = F1 - F2, M1 - M2
     ydot = ca.vertcat(F, M / C, v, w, ca.dot(F, v) + M * w)
     return ca.Function("face_field", [y, p], [ydot, F, M])
+
+
+def _exact_part(v, w: float, load: float, a: float):
+    """(F, M_z) of uniform pressure over a disk of radius ``a`` bearing ``load`` (units mu M g), from the
+    closed forms of :func:`phasekit.friction.patch.patch_resultant`."""
+    speed, spin = math.hypot(v[0], v[1]), a * abs(w)
+    if speed == 0.0 and spin == 0.0:
+        return np.zeros(2), 0.0
+    f, g = (1.0, 0.0) if spin == 0.0 else patch_resultant(speed / spin)
+    F = -load * f * np.asarray(v[0:2], dtype=float) / speed if speed > 0 else np.zeros(2)
+    return F, -load * a * g * math.copysign(1.0, w)
+
+
+def face_field(cc: "FaceContact"):
+    """y -> dy/dt of the face state (module notes): F, M_z by ``cc.law`` ("exact": the closed forms,
+    ~1e-15; "rational": the smooth approximant, relative error <= 7e-6)."""
+    if cc.law == "rational":
+        f, p = _rational_field(cc.a, cc.inner), [cc.mu, cc.C]
+        return lambda y: np.asarray(f(y, p)[0], dtype=float).ravel()
+    share = 1.0 / (1.0 - cc.inner * cc.inner)
+
+    def field(y):
+        F, M = _exact_part(y, y[2], cc.mu * share, cc.a)
+        if cc.inner > 0.0:  # the annulus: the full disk minus the inner one, at the same pressure
+            F2, M2 = _exact_part(y, y[2], cc.mu * share * cc.inner * cc.inner, cc.inner * cc.a)
+            F, M = F - F2, M - M2
+        return np.array([F[0], F[1], M / cc.C, y[0], y[1], y[2], F[0] * y[0] + F[1] * y[1] + M * y[2]])
+
+    return field
 
 
 @dataclass(frozen=True, eq=False)
@@ -146,7 +193,8 @@ class FacePhase:
     --------
     >>> import phasekit as pk
     >>> disk = pk.Disk(0.0)
-    >>> traj = pk.simulate(pk.Model(disk, pk.Coulomb(0.3)), pk.core.face_start(disk, 1.0, 3.0), 50.0, mode="face")
+    >>> traj = pk.simulate(pk.Model(disk, pk.Coulomb(0.3)), pk.core.vertical_spin_start(0.0, 3.0, v0=1.0), 50.0,
+    ...                    mode="face")
     >>> traj.face.status.value, round(traj.face.ratio_end, 4)
     ('rest', 0.653)
     """
@@ -238,8 +286,7 @@ class _Stepper:
     """DOP853 over the face field, one step at a time, with the steps' dense output kept."""
 
     def __init__(self, cc: FaceContact, t0, y0, t_end, rtol, atol):
-        f, p = face_field(cc.a, cc.inner), [cc.mu, cc.C]
-        self.field = lambda y: np.asarray(f(y, p)[0], dtype=float).ravel()
+        self.field = face_field(cc)
         scale = max(_speed(cc, y0), 1e-3)
         tol = np.full(len(FACE_NAMES), atol * scale)
         tol[3:6] = atol * max(1.0, scale)
@@ -296,7 +343,8 @@ def face_motion(cc: FaceContact, y0, t0: float, t_end: float, *, rtol: float = 1
     while status is None:
         if budget is not None and (budget.steps - len(st.pieces) <= 0 or budget.wall_exceeded()):
             status, reason = Status.FAILED, ("wall-time limit reached" if budget.wall_exceeded() else
-                                             "step limit reached on the face")
+                                             f"step limit ({len(st.pieces)} steps on the face) reached at t = "
+                                             f"{st.ts[-1]:.6g}")
             break
         msg = st.step()
         if msg is not None:
@@ -350,8 +398,9 @@ def _line(t0, t1, y0, y1):
 
 
 def _ended(cc, t0, y0, y1, t1, e0, pieces, status, reason, stops, ratio, residual, n_steps, n_rhs=0) -> FacePhase:
+    num = lambda q: None if q is None else float(q)  # noqa: E731
     return FacePhase(cc, float(t0), float(t1), np.array(y0, dtype=float), np.array(y1, dtype=float), status, reason,
-                     stops[0], stops[1], ratio, e0, float(cc.energy(y1)[0]), float(residual), int(n_steps), int(n_rhs),
+                     num(stops[0]), num(stops[1]), num(ratio), e0, float(cc.energy(y1)[0]), float(residual), int(n_steps), int(n_rhs),
                      tuple(pieces))
 
 
@@ -378,7 +427,7 @@ def landing(model, x) -> tuple[FaceContact, np.ndarray, dict]:
 
 @dataclass(frozen=True)
 class FaceLanding:
-    """The reset of "face down" (runs with ``stop_at`` "none" or "rest"): the plastic landing of
+    """The reset of "face down" (runs with ``stop_at="rest"``): the plastic landing of
     :func:`landing`, into Mode.FACE. The face state is the transition's state."""
 
     def __call__(self, model, event, mode, t, x) -> Transition:
@@ -390,7 +439,7 @@ class FaceLanding:
 
 
 def face_state_of(model, x) -> np.ndarray:
-    """A chart state given to start on the face (:func:`phasekit.core.face_start`): its horizontal
+    """A chart state given to start on the face (``simulate(..., mode="face")``): its horizontal
     velocity of G and the vertical component of w, as they are; + the face-down angle and azimuth."""
     k, w, v = rigid_velocities(model, flight_state(model, x))
     cc = face_contact(model, math.acos(max(-1.0, min(1.0, float(k[2])))), math.atan2(k[1], k[0]))

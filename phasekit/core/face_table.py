@@ -36,10 +36,23 @@ def face_pose(traj, ts) -> dict:
             "Y_P": Yc.copy()}
 
 
-def face_table(traj, before, on):
-    """:meth:`phasekit.Trajectory.sample`'s rows at ``before`` (the segments) and ``on`` (the face phase)."""
+def face_split(traj, ts):
+    """(times of the segments, times of the face phase): a time at the landing belongs to the segment
+    that ends there."""
+    if traj.face is None:
+        return ts, ts[:0]
+    on = ts > traj.face.t0 if traj.segments else np.ones(ts.shape, dtype=bool)
+    return ts[~on], ts[on]
+
+
+def face_table(traj, ts):
+    """:meth:`phasekit.core.Trajectory.sample`'s rows at the checked times ``ts``: those of the segments
+    (:func:`phasekit.core.trajectory_io.sample_table`), then those of the face phase."""
     import pandas as pd
 
+    before, on = face_split(traj, ts)
+    if not on.size:
+        return sample_table(traj, ts)
     face = traj.face
     Y = face.states(on)
     cols = {"t": on, "mode": np.full(len(on), "face", dtype=object)}

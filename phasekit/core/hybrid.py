@@ -44,8 +44,8 @@ class Mode(str, enum.Enum):
         without slip the body then only spins about the normal, in place.
     FACE : Mode
         Value "face": an edged body lying flat on its face, sliding and spinning under Coulomb
-        friction over the face (:mod:`phasekit.core.face`), after its "face down" with ``stop_at``
-        "none" or "rest", or from :func:`phasekit.core.face_start` with ``mode="face"``.
+        friction over the face (:mod:`phasekit.core.face`), after its "face down" with
+        ``stop_at="rest"``, or from a start lying flat with ``mode="face"``.
 
     Examples
     --------

@@ -94,7 +94,8 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
         Times at which to return states in ``traj.ts``, ``traj.ys`` (the model's chart).
     mode : "flight" or "face", optional
         Start in free flight instead of in contact; or lying flat on a face, sliding and spinning
-        (:func:`phasekit.core.face_start`; an edged body, :mod:`phasekit.core.face`).
+        (e.g. :func:`phasekit.core.vertical_spin_start` at theta0 = 0 with ``v0``; a body with a flat
+        face, :mod:`phasekit.core.face`).
     options : SolverOptions, optional
         Tolerances, integrator, step and wall budgets (its fields also as keywords: ``rtol=1e-12``).
     throw : bool
@@ -209,7 +210,8 @@ def _checked_span(model, x0, t0, t_end, start_mode):
     t_end = check_finite("t_end", t_end)
     if not t_end > t0:
         raise ParameterError("t_end", f"must be > t0 = {t0:g}", t_end)
-    if n == model.n_states and not model.chart.regular_at_poles and min(x0[4], np.pi - x0[4]) < POLE_GUARD:
+    if n == model.n_states and not model.chart.regular_at_poles and min(x0[4], np.pi - x0[4]) < POLE_GUARD \
+            and start_mode is not Mode.FACE:  # lying flat, only v and w_Z are read
         raise ParameterError("x0", "has theta at 0 or pi, where the Euler chart is singular (2.7c): use "
                                    "Model(body, law, chart='vector')", x0)
     return x0, t0, t_end

@@ -18,8 +18,8 @@ import numpy as np
 
 from .._runtime.validate import check_choice, check_range
 from ..errors import ParameterError, Status
-from .fields import STICK_SLIP
 from .face import FaceLanding, face_start_transition
+from .fields import STICK_SLIP
 from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
 from .resets import (
     BOUNCE_STOP,
@@ -148,7 +148,7 @@ def _initial(stop_at: str, creep: bool, held: bool = False):
         state that would need R <= 0 lifts off at once."""
         if mode is Mode.FLIGHT:
             return _flight_start(model, t, x)
-        if mode is Mode.FACE:  # lying flat (phasekit.core.face_start): the face mode
+        if mode is Mode.FACE:  # lying flat (simulate's mode="face"): the face mode
             return face_start_transition(model, t, x)
         speed, R = np.asarray(model.function("start_probe")(x, model.p)).ravel()
         if speed > STICK_SLIP + 10 * model.friction.eps and R > 0.0:  # the common case, in one call

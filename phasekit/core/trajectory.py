@@ -20,6 +20,7 @@ from .approximations import Approximation, approximations_of
 from .charts import FLIGHT
 from .energy import EnergyBudget, energy_budget
 from .energy_series import energy_series
+from .face_table import face_pose, face_split, face_table
 from .fields import STICK_SLIP
 from .hybrid import Mode
 from .model import Model
@@ -31,7 +32,6 @@ from .trajectory_io import (
     STATE_COLUMNS,
     events_table,
     pose_table,
-    sample_table,
     trajectory_dict,
     trajectory_xarray,
 )
@@ -363,28 +363,15 @@ class Trajectory:
                                  show_value=False)
         return ts
 
-    def _face_split(self, ts):
-        """(times before the face phase, times in it): a time at the landing belongs to the segment before."""
-        if self.face is None:
-            return ts, ts[:0]
-        on = ts > self.face.t0 if self.segments else np.ones(ts.shape, dtype=bool)
-        return ts[~on], ts[on]
-
     def _chart_states(self, ts) -> np.ndarray:
-        before, on = self._face_split(ts)
-        if on.size:
-            rest = self._chart_states_of_segments(before) if before.size else np.empty((0, self.model.n_states))
-            return np.vstack([rest, self.face.chart_states(self.model, self.face.states(on))])
-        return self._chart_states_of_segments(ts)
-
-    def _chart_states_of_segments(self, ts) -> np.ndarray:
+        ts, on = face_split(self, ts)  # the face phase's states after the segments' (core/face_table.py)
         idx = self._locate(ts)
         out = np.empty((ts.size, self.model.n_states))
         for k in np.unique(idx):
             sel = idx == k
             seg = self.segments[k]
             out[sel] = self._to_chart(seg.mode, seg.states(ts[sel])).reshape(int(sel.sum()), -1)
-        return out
+        return out if not on.size else np.vstack([out, self.face.chart_states(self.model, self.face.states(on))])
 
     def states(self, times) -> np.ndarray:
         """States at ``times`` in the model's chart (flight states with the gap dropped)."""
@@ -421,16 +408,13 @@ class Trajectory:
         the order of the tolerance (CVODES segments use cubic Hermite interpolation on their
         output grid, whose error can be larger).
         """
-        ts = self._check_times(times)
-        before, on = self._face_split(ts)
-        if not on.size:
-            return sample_table(self, ts)
-        from .face_table import face_table  # the face phase's rows
-
-        return face_table(self, before, on)
+        return face_table(self, self._check_times(times))  # sample_table's rows, then the face phase's
 
     def _pose(self, idx, ts) -> dict:
         return self._pose_track(idx, ts)
+
+    def _face_pose(self, ts) -> dict:
+        return face_pose(self, ts)
 
     def pose(self, times):
         """Where the body is and how it is turned at ``times``: a DataFrame with ``t`` and

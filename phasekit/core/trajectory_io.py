@@ -287,10 +287,7 @@ def trajectory_dict(traj, *, events: bool = True) -> dict:
                 e["pose"] = pose
     if poses is not None:
         d["pose_end"] = poses[-1]
-    if getattr(traj, "face", None) is not None:  # lying flat (phasekit.core.face)
-        d["face"] = traj.face.to_dict()
-        if not traj.segments:
-            d["start_mode"] = "face"
+    d.update(_face_dict(traj))
     fl = traj.flights
     if fl:
         d["flight"] = fl[0].to_dict()
@@ -310,6 +307,13 @@ def trajectory_dict(traj, *, events: bool = True) -> dict:
     return d
 
 
+def _face_dict(traj) -> dict:
+    """Lying flat (:mod:`phasekit.core.face`): the face phase, and the start mode of a run started on it."""
+    if getattr(traj, "face", None) is None:
+        return {}
+    return {"face": traj.face.to_dict(), **({} if traj.segments else {"start_mode": "face"})}
+
+
 def event_poses(traj) -> list[dict] | None:
     """The pose at each event and at the end (None without dense output).
 
@@ -325,17 +329,13 @@ def event_poses(traj) -> list[dict] | None:
     """
     if not traj.segments or not all(s.dense for s in traj.segments):
         return None
-    face = getattr(traj, "face", None)
-    if face is not None:  # the events on the face have the face's pose
-        from .face_table import face_pose
-
-        ts = np.array([e.t for e in traj.events] + [traj.t])
-        on = ts > face.t0
-        head = event_poses_before(traj, ts[~on])
-        tail = face_pose(traj, ts[on])
-        rows = [{n: float(tail[n][i]) for n in POSE_COLUMNS} for i in range(int(on.sum()))]
-        return head + rows
-    return event_poses_before(traj, np.array([e.t for e in traj.events] + [traj.t]))
+    ts = np.array([e.t for e in traj.events] + [traj.t])
+    if getattr(traj, "face", None) is not None:  # the events on the face have the face's pose
+        on = ts > traj.face.t0
+        tail = traj._face_pose(ts[on])
+        return event_poses_before(traj, ts[~on]) + [{n: float(tail[n][i]) for n in POSE_COLUMNS}
+                                                     for i in range(int(on.sum()))]
+    return event_poses_before(traj, ts)
 
 
 def event_poses_before(traj, ts) -> list[dict]:
