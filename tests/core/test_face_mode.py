@@ -131,6 +131,22 @@ def test_the_landing_loses_the_normal_and_tilt_motion_and_keeps_v_and_the_vertic
     assert float(m.function("energy", seg.mode)(seg.x1, m.p)) - traj.face.energy_start == pytest.approx(loss, rel=1e-9)
 
 
+def test_the_energy_series_goes_on_over_the_face_and_ends_at_the_budget():
+    """The series' rows on the face: the face's friction growing from 0 to its budget line, the landing
+    counted at events from the landing on, the balance closing on every row, the last row the budget."""
+    m, traj = _eulers_disk()
+    df = traj.energy_series()
+    budget = traj.energy_budget()
+    on = np.asarray(df["t"] > traj.face.t0)
+    assert on.sum() == traj.face.n_steps + 1 and np.all(df["face friction"][~on] == 0.0)  # the step ends, the rest
+    assert np.all(np.diff(df["face friction"][on]) >= 0) and abs(df["residual"]).max() < 1e-8
+    last = df.iloc[-1]
+    assert last["face friction"] == budget.dissipated[-1] and last["at_events"] == budget.at_events
+    assert last["energy"] == budget.energy_end == 0.0
+    mid = traj.energy_series([0.5 * (traj.face.t0 + traj.t)]).iloc[0]
+    assert 0 < mid["face friction"] < budget.dissipated[-1] and abs(mid["residual"]) < 1e-8
+
+
 def test_the_face_phase_is_sampled_with_its_mode_energy_and_pose():
     m, traj = _eulers_disk()
     f = traj.face
