@@ -450,7 +450,7 @@ class _Run(RunState):
     def result(self, x0, stop_at, restitution, events, te, pose0) -> Trajectory:
         wall = time.perf_counter() - self.wall0
         kw = dict(stop_at=stop_at, restitution=restitution, user_events=events, pose0=pose0)
-        if te is not None and self.segments:
+        if te is not None and (self.segments or self.face is not None):
             traj = self.trajectory(x0, wall, **kw)
             te = te[(te >= traj.t0) & (te <= traj.t)]
             if te.size:

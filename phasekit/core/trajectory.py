@@ -411,10 +411,14 @@ class Trajectory:
         return face_table(self, self._check_times(times))  # sample_table's rows, then the face phase's
 
     def _pose(self, idx, ts) -> dict:
-        return self._pose_track(idx, ts)
-
-    def _face_pose(self, ts) -> dict:
-        return face_pose(self, ts)
+        before, on = face_split(self, ts)  # sorted times: the face phase's after the segments'
+        if not on.size:
+            return self._pose_track(idx, ts)
+        tail = face_pose(self, on)
+        if not before.size:
+            return tail
+        head = self._pose_track(idx[:before.size], before)
+        return {k: np.concatenate([head[k], tail[k]]) for k in tail}
 
     def pose(self, times):
         """Where the body is and how it is turned at ``times``: a DataFrame with ``t`` and

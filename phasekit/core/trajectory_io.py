@@ -327,19 +327,9 @@ def event_poses(traj) -> list[dict] | None:
     list of dict or None
         One pose per event, then the pose at the end.
     """
-    if not traj.segments or not all(s.dense for s in traj.segments):
+    if (not traj.segments and getattr(traj, "face", None) is None) or not all(s.dense for s in traj.segments):
         return None
     ts = np.array([e.t for e in traj.events] + [traj.t])
-    if getattr(traj, "face", None) is not None:  # the events on the face have the face's pose
-        on = ts > traj.face.t0
-        tail = traj._face_pose(ts[on])
-        return event_poses_before(traj, ts[~on]) + [{n: float(tail[n][i]) for n in POSE_COLUMNS}
-                                                     for i in range(int(on.sum()))]
-    return event_poses_before(traj, ts)
-
-
-def event_poses_before(traj, ts) -> list[dict]:
-    """The poses at times ``ts`` of the run's segments, in the order given."""
     ts = np.clip(ts, traj.t0, traj.t)
     order = np.argsort(ts, kind="stable")
     cols = traj._pose(traj._locate(ts[order]), ts[order])
