@@ -29,7 +29,9 @@ ratio is 0.930 against 0.951, measured):
     M dv/dt = F(v, w),    C dw/dt = M_z(v, w),    d(work)/dt = F.v + M_z w.
 
 Regularised laws are taken at their Coulomb limit on the face (the patch law's own floor, 1e-9, is
-its only regularisation); dissipation laws do not act on it.
+its only regularisation); a viscous law (its force independent of R) as viscous traction over the face,
+-(mu/area) u, so F = -mu v and M_z = -mu w a^2 (1 + beta^2)/2 (``law="viscous"``: v and w then decay
+exponentially, and the rest below is a cut-off); dissipation laws do not act on the face.
 
 Event "at rest". When the speed sqrt(|v|^2 + a^2 w^2) falls to REST_SPEED (1e-7) it is extrapolated
 to zero along its rate (both v and w fall at finite rates under Coulomb friction), as
@@ -63,8 +65,9 @@ from .resets import flight_state, rigid_velocities
 #: the face state: horizontal velocity of G (chart axes at the landing), spin about the vertical,
 #: position of G from the landing, spin angle turned, work of friction since the landing
 FACE_NAMES = ("v_1", "v_2", "w", "X_1", "X_2", "phi", "work")
-#: the patch law on the face: the closed forms (default) or the smooth rational approximant
-FACE_LAWS = ("exact", "rational")
+#: the patch law on the face: Coulomb's closed forms (default) or its smooth rational approximant; or
+#: viscous traction (a viscous law, independent of R)
+FACE_LAWS = ("exact", "rational", "viscous")
 
 
 @dataclass(frozen=True)
@@ -110,7 +113,8 @@ def face_contact(model, theta: float, psi: float = 0.0) -> FaceContact:
     a, inner = lim.face
     c = 1.0 if lim.theta < math.pi / 2 else -1.0
     return FaceContact(float(a), float(inner), float(model.friction.mu), float(model.body.C),
-                       float(model.body.height_slope(c)[0]), float(lim.theta), float(psi))
+                       float(model.body.height_slope(c)[0]), float(lim.theta), float(psi),
+                       "exact" if model.friction.can_stick else "viscous")
 
 
 @functools.lru_cache(maxsize=16)
@@ -147,6 +151,10 @@ def face_field(cc: "FaceContact"):
     if cc.law == "rational":
         f, p = _rational_field(cc.a, cc.inner), [cc.mu, cc.C]
         return lambda y: np.asarray(f(y, p)[0], dtype=float).ravel()
+    if cc.law == "viscous":  # traction -(mu/area) u: F = -mu v, M_z = -mu w <rho^2> = -mu w a^2 (1 + beta^2)/2
+        k = cc.mu * cc.a * cc.a * (1 + cc.inner * cc.inner) / 2
+        return lambda y: np.array([-cc.mu * y[0], -cc.mu * y[1], -k * y[2] / cc.C, y[0], y[1], y[2],
+                                   -cc.mu * (y[0] ** 2 + y[1] ** 2) - k * y[2] ** 2])
     share = 1.0 / (1.0 - cc.inner * cc.inner)
 
     def field(y):
