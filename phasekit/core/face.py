@@ -391,18 +391,25 @@ def _at_rest(cc: FaceContact, st: _Stepper, t0: float, y0, e0: float) -> FacePha
     y1[6] = ye[6] - (float(cc.energy(ye)[0]) - cc.h0)  # the last stretch takes the rest of the motion
     pieces = list(st.pieces)
     if dt > 0:
-        pieces.append((te, te + dt, _line(te, te + dt, ye, y1)))
+        pieces.append((te, te + dt, _Line(te, te + dt, ye, y1)))
     ratio = slide / (cc.a * spin) if spin > 0 else math.inf
     return _ended(cc, t0, y0, y1, te + dt, e0, pieces, Status.REST,
                   f"lies flat; slid and spun on its face to rest at t = {te + dt:.10g}", (t_slide, t_spin), ratio,
                   _residual(cc, st, e0), len(st.pieces), st.solver.nfev)
 
 
-def _line(t0, t1, y0, y1):
-    def f(ts):
-        s = (np.atleast_1d(ts) - t0) / (t1 - t0)
-        return (y0[:, None] * (1 - s) + y1[:, None] * s)
-    return f
+@dataclass(frozen=True)
+class _Line:
+    """The straight stretch from (t0, y0) to (t1, y1): the motion extrapolated to rest (picklable)."""
+
+    t0: float
+    t1: float
+    y0: np.ndarray
+    y1: np.ndarray
+
+    def __call__(self, ts) -> np.ndarray:
+        s = (np.atleast_1d(ts) - self.t0) / (self.t1 - self.t0)
+        return self.y0[:, None] * (1 - s) + self.y1[:, None] * s
 
 
 def _ended(cc, t0, y0, y1, t1, e0, pieces, status, reason, stops, ratio, residual, n_steps, n_rhs=0) -> FacePhase:

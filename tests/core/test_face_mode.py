@@ -5,6 +5,7 @@ PRL 90 248302 (2003): 0.653), the energy accounted for; checked against phasekit
 
 import json
 import math
+import pickle
 
 import phasekit as pk
 from phasekit.core.face import FaceContact, face_motion, landing
@@ -205,6 +206,8 @@ def test_a_run_on_its_face_round_trips_through_its_json_and_rerun(how):
     again = pk.rerun(back)
     assert again.t == traj.t and again.face.t_stop_slide == traj.face.t_stop_slide
     assert back["pose_end"] == again.to_dict()["pose_end"] and traj.verify().verdict == "converged"
+    ts = [0.5 * (traj.face.t0 + traj.t), traj.t]  # pickled (ensembles' processes): the same face phase
+    assert pickle.loads(pickle.dumps(traj)).sample(ts).equals(traj.sample(ts))
 
 
 def test_a_cone_on_its_base_and_a_coin_slide_and_spin_to_rest_with_their_own_inertia_and_height():
