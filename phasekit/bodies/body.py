@@ -39,13 +39,17 @@ class Limit(NamedTuple):
 
     ``direction`` is that of the guard cos(theta_limit) - cos(theta) as
     :class:`phasekit.core.Event` takes it: -1 as theta falls to the limit, +1 as it rises
-    to it. ``reason`` is formatted with the time ``t`` of the event.
+    to it. ``reason`` is formatted with the time ``t`` of the event. ``face``: at a flat face coming
+    down, (radius, inner ratio) of the face (units b; the ratio 0 for a full disk, r_i/r for an
+    annulus), which a run with ``stop_at="rest"`` goes on to slide and spin on
+    (:mod:`phasekit.core.face`); None (default) where the run ends.
     """
 
     name: str
     theta: float
     direction: int
     reason: str
+    face: tuple | None = None
 
 
 class PieceTransfer(NamedTuple):

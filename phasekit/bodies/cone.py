@@ -139,7 +139,7 @@ class Cone(EdgedBody):
         if self.on == "tip":
             return (Limit("side down", self.theta_side, -1, side),)
         return (Limit("face down", FLAT_ANGLE, -1, "the base reached the table at t = {t:.10g}: the cone stands on "
-                                                   "its base"),
+                                                   "its base", (1.0, 0.0)),
                 Limit("side down", self.theta_side, +1, side))
 
     def _range_text(self) -> tuple[str, str, bool]:

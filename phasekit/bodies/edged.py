@@ -256,9 +256,9 @@ class Disk(EdgedBody):
     @property
     def limits(self) -> tuple[Limit, ...]:
         face = "the flat face reached the table at t = {t:.10g}: the " + self.kind + " lies flat"
-        down = Limit("face down", self.flat_angle, -1, face)
+        down = Limit("face down", self.flat_angle, -1, face, (1.0, 0.0))
         if self.thickness == 0.0:
-            return (down, Limit("face down", math.pi - self.flat_angle, +1, face))
+            return (down, Limit("face down", math.pi - self.flat_angle, +1, face, (1.0, 0.0)))
         return (down, Limit("side down", math.pi / 2, +1, "the side touched the table at t = {t:.10g}: a " + self.kind +
                             " on its side (a line contact) is not modelled"))
 

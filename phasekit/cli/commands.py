@@ -110,7 +110,7 @@ def _simulate_args(args, runner, scale=None, before_run=None):
     if args.atol is not None and args.backend == "taylor":
         warnings.warn("--atol has no effect with --backend taylor (the Taylor method has the one tolerance --rtol)")
     dissipation = dissipation_of(args)
-    if args.stop_at == "rest" and not any(dissipation.values()):
+    if args.stop_at == "rest" and not any(dissipation.values()) and not any(lim.face for lim in body.limits):
         warnings.warn("--stop-at rest runs as --stop-at none without a dissipation law: the body never comes to rest "
                       "(give --rolling-resistance, --spin-friction or an --air-drag option)")
     if args.no_creep and eps is None:

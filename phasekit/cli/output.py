@@ -171,6 +171,10 @@ def print_human(out: dict, events: bool) -> None:
         if out.get(key) is not None:
             print(f"{key}: {_fmt(out[key])}")
     _print_contact(out)
+    if out.get("face"):  # lying flat (phasekit.core.face): when the sliding and the spin stopped
+        f = out["face"]
+        print(f"on its face from t = {_fmt(f['t_start'])}: stopped sliding at t = {_fmt(f['t_stop_slide'])}, "
+              f"spinning at t = {_fmt(f['t_stop_spin'])} (v/(r w) then {_fmt(f['ratio_end'], '.6g')})")
     _print_energy(out)
     if out.get("flight"):
         print("first flight: " + ", ".join(f"{k}={_fmt(v)}" for k, v in out["flight"].items()))

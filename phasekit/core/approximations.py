@@ -5,7 +5,7 @@ Each is read off the finished run (its law, options, modes and event log), so th
 run actually used are listed: a regularised law's width, its creep on the slow manifold, the
 restart of sliding from zero slip, the stick located at a small slip, the held spin or roll of
 the set-valued couples, the rest, the settle rule, the end of a bounce train, the minima of R
-located on the Taylor expansion.
+located on the Taylor expansion, a body lying flat on its face.
 """
 
 from __future__ import annotations
@@ -75,6 +75,23 @@ def _friction(traj) -> list[Approximation]:
     return out
 
 
+def _face(traj) -> list[Approximation]:
+    """A run that lies flat (:mod:`phasekit.core.face`): the landing, the flat pose, the rest on the face."""
+    face = getattr(traj, "face", None)
+    if face is None:
+        return []
+    out = [Approximation("flat", "lying flat: the axis taken vertical (the tilt of the face-down angle dropped), the "
+                         "pressure uniform over the face (docs/physics.md, 'A body on its face')",
+                         min(face.contact.theta, 3.141592653589793 - face.contact.theta))]
+    if traj.segments:
+        out.append(Approximation("plastic landing", "at face down the normal velocity of G and the tilt rates lost, L_Z "
+                                 "and v kept: the friction impulse during it, at most mu |v_z| (the event's detail), neglected"))
+    if face.status is Status.REST:
+        out.append(Approximation("rest on the face", f"sliding and spin taken to rest once sqrt(|v|^2 + a^2 w^2) falls to "
+                                 f"{REST_SPEED:g} (extrapolated to zero)", REST_SPEED))
+    return out
+
+
 def approximations_of(traj) -> tuple[Approximation, ...]:
     """The approximations ``traj`` used, in a fixed order (module notes).
 
@@ -86,7 +103,7 @@ def approximations_of(traj) -> tuple[Approximation, ...]:
     >>> [a.name for a in traj.approximations]
     ['regularised friction', 'creep', 'minima of R']
     """
-    out = _friction(traj)
+    out = _friction(traj) + _face(traj)
     if traj.status is Status.SETTLED:
         out.append(Approximation("settled", "ended one period into a roll, which repeats (docs/physics.md, 'A roll is "
                                  "periodic'): the state at two maxima of theta compared to 1e3 rtol", 1e3 * traj.options.rtol))

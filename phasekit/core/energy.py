@@ -23,6 +23,8 @@ from .observables import evaluate_function
 
 #: Gauss-Legendre nodes per Taylor step
 GAUSS_NODES = 12
+#: the budget's line for the friction over a face the body lies on (:mod:`phasekit.core.face`)
+FACE_LAW = "face friction"
 
 
 @dataclass(frozen=True)
@@ -78,6 +80,9 @@ def energy_budget(traj) -> EnergyBudget:
     """
     model = traj.model
     names = law_names(model)
+    face = getattr(traj, "face", None)
+    if face is not None and not traj.segments:  # started on its face: the face phase alone
+        return _with_face(EnergyBudget(face.energy_start, face.energy_start, names, tuple(0.0 for _ in names), 0.0), face)
     if not traj.segments and traj.mode_stop is not None:  # it ended at its start (e.g. R <= 0 there): nothing lost
         e = float(model.function("energy", traj.mode_stop)(traj.x_stop, model.p))
         return EnergyBudget(e, e, names, tuple(0.0 for _ in names), 0.0, 0.0)
@@ -101,7 +106,17 @@ def energy_budget(traj) -> EnergyBudget:
         work += seg_work
     dissipated = tuple(float(v) for v in -work)
     end = (e_start - e_prev) - float(np.sum(dissipated)) - jumps  # EnergyBudget.residual, as it computes it
-    return EnergyBudget(e_start, e_prev, names, dissipated, jumps, max(worst, abs(end)))
+    budget = EnergyBudget(e_start, e_prev, names, dissipated, jumps, max(worst, abs(end)))
+    return budget if face is None else _with_face(budget, face)
+
+
+def _with_face(budget: EnergyBudget, face) -> EnergyBudget:
+    """``budget`` carried on over the face phase: the landing's loss at events, the face's friction its
+    own line (FACE_LAW), its balance along its steps added to the residual so far."""
+    landing = budget.energy_end - face.energy_start
+    return EnergyBudget(budget.energy_start, face.energy_end, (*budget.laws, FACE_LAW),
+                        (*budget.dissipated, face.dissipated), budget.at_events + landing,
+                        max(budget.residual_max, abs(budget.residual) + face.residual_max))
 
 
 def law_names(model) -> tuple:

@@ -13,13 +13,16 @@ import numpy as np
 
 from .._runtime.validate import check_times
 from ..errors import ParameterError
-from .energy import GAUSS_NODES, gauss_powers, law_names, require_dense, step_bounds
+from .energy import FACE_LAW, GAUSS_NODES, energy_budget, gauss_powers, law_names, require_dense, step_bounds
+from .face_table import face_split
 from .observables import evaluate_function
 
 
 def energy_series(traj, times=None):
     """The energy budget along a run, one row per time (units M g b); see
     :meth:`phasekit.core.Trajectory.energy_series`."""
+    if getattr(traj, "face", None) is not None:
+        return _with_face(traj, times)
     model = traj.model
     names = law_names(model)
     if not traj.segments and traj.mode_stop is not None:  # it ended at its start: nothing lost, ever
@@ -52,6 +55,34 @@ def energy_series(traj, times=None):
         return _table(names, np.zeros(0), np.zeros(0), np.zeros((0, len(names))), np.zeros(0), e_start)
     t, E, lost, at_events = (np.concatenate(c) for c in zip(*parts))
     return _table(names, t, E, lost, at_events, e_start)
+
+
+def _with_face(traj, times):
+    """The series of a run that lies flat at its end (:mod:`phasekit.core.face`): the segments' rows
+    (the face's friction 0 there), then the face phase's at its steps' ends or at the times asked in
+    it: each law's total before the landing, the landing at events, the face's friction its work."""
+    face, names = traj.face, (*law_names(traj.model), FACE_LAW)
+    ts = None if times is None else traj._check_times(times)
+    before, on = (None, None) if ts is None else face_split(traj, ts)
+    if on is None:
+        on = np.concatenate([[face.t0], [p[1] for p in face.pieces]]) if face.pieces else np.array([face.t0])
+    head = energy_series(_without_face(traj), before) if traj.segments else None
+    budget = energy_budget(traj)
+    Y = face.states(on)
+    lost = np.column_stack([np.tile(budget.dissipated[:-1], (on.size, 1)), -Y[:, 6]])
+    tail = _table(names, on, face.contact.energy(Y), lost, np.full(on.size, budget.at_events), budget.energy_start)
+    if head is None:
+        return tail
+    import pandas as pd
+
+    head.insert(len(names) + 1, FACE_LAW, 0.0)
+    return pd.concat([head, tail], ignore_index=True)
+
+
+def _without_face(traj):
+    from dataclasses import replace
+
+    return replace(traj, face=None)
 
 
 def _times_at_start(traj, times) -> np.ndarray:

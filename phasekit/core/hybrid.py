@@ -42,12 +42,16 @@ class Mode(str, enum.Enum):
         Values "sliding_no_roll", "pivoting": as SLIDING and ROLLING, with the rolling part of
         the angular velocity held at zero by rolling resistance (:class:`phasekit.RollingResistance`);
         without slip the body then only spins about the normal, in place.
+    FACE : Mode
+        Value "face": an edged body lying flat on its face, sliding and spinning under Coulomb
+        friction over the face (:mod:`phasekit.core.face`), after its "face down" with
+        ``stop_at="rest"``, or from a start lying flat with ``mode="face"``.
 
     Examples
     --------
     >>> import phasekit as pk
     >>> [m.value for m in pk.core.Mode]
-    ['sliding', 'rolling', 'flight', 'sliding_no_pivot', 'rolling_no_pivot', 'sliding_no_roll', 'pivoting']
+    ['sliding', 'rolling', 'flight', 'sliding_no_pivot', 'rolling_no_pivot', 'sliding_no_roll', 'pivoting', 'face']
     """
 
     SLIDING = "sliding"
@@ -57,6 +61,7 @@ class Mode(str, enum.Enum):
     ROLLING_NO_PIVOT = "rolling_no_pivot"
     SLIDING_NO_ROLL = "sliding_no_roll"
     PIVOTING = "pivoting"
+    FACE = "face"
 
     @property
     def free(self) -> "Mode":

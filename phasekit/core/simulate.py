@@ -21,6 +21,7 @@ from .audit import audited_options
 from .charts import FLIGHT, POLE_GUARD
 from .engines import Budget, End, Propagation, engine_for
 from .engines.dense import linear_span
+from .face import run_face
 from .hybrid import Event, Mode, Transition
 from .model import Model
 from .options import SolverOptions
@@ -91,8 +92,10 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
         or ``[pk.Event("Lambda", 0.0, direction=+1, terminal=False)]`` (a section).
     t_eval : array, optional
         Times at which to return states in ``traj.ts``, ``traj.ys`` (the model's chart).
-    mode : "flight", optional
-        Start in free flight instead of in contact.
+    mode : "flight" or "face", optional
+        Start in free flight instead of in contact; or lying flat on a face, sliding and spinning
+        (e.g. :func:`phasekit.core.vertical_spin_start` at theta0 = 0 with ``v0``; a body with a flat
+        face, :mod:`phasekit.core.face`).
     options : SolverOptions, optional
         Tolerances, integrator, step and wall budgets (its fields also as keywords: ``rtol=1e-12``).
     throw : bool
@@ -175,9 +178,11 @@ def _checked_arguments(model, x0, t0, t_end, mode, throw, events, t_eval, max_wa
     ``t_end`` is out of reach of ``max_wall``): (x0, t0, t_end, start mode, t_eval)."""
     if not isinstance(model, Model):
         raise ParameterError("model", "must be a phasekit Model such as Model(Spheroid(1.5), Coulomb(0.1))", model)
-    if mode is not None and mode not in ("flight", Mode.FLIGHT):
-        raise ParameterError("mode", "must be None (start in contact) or 'flight'", mode)
-    start_mode = None if mode is None else Mode.FLIGHT
+    if mode is not None and mode not in ("flight", Mode.FLIGHT, "face", Mode.FACE):
+        raise ParameterError("mode", "must be None (start in contact), 'flight' or 'face'", mode)
+    start_mode = None if mode is None else Mode(mode)
+    if start_mode is Mode.FACE and not any(lim.face is not None for lim in model.body.limits):
+        raise ParameterError("mode", "'face' needs a body with a flat face (a Disk, or a Cone on its rim)", mode)
     check_bool("throw", throw)
     if isinstance(events, Event) or not isinstance(events, (list, tuple)):
         raise ParameterError("events", "must be a list of phasekit Event objects, e.g. [pk.Event('theta', 0.4)]", events)
@@ -205,7 +210,8 @@ def _checked_span(model, x0, t0, t_end, start_mode):
     t_end = check_finite("t_end", t_end)
     if not t_end > t0:
         raise ParameterError("t_end", f"must be > t0 = {t0:g}", t_end)
-    if n == model.n_states and not model.chart.regular_at_poles and min(x0[4], np.pi - x0[4]) < POLE_GUARD:
+    if n == model.n_states and not model.chart.regular_at_poles and min(x0[4], np.pi - x0[4]) < POLE_GUARD \
+            and start_mode is not Mode.FACE:  # lying flat, only v and w_Z are read
         raise ParameterError("x0", "has theta at 0 or pi, where the Euler chart is singular (2.7c): use "
                                    "Model(body, law, chart='vector')", x0)
     return x0, t0, t_end
@@ -246,6 +252,7 @@ class RunState:
         self.mode, self.t, self.x = Mode.SLIDING, 0.0, None
         self.status = self.reason = None
         self.segments, self.records = [], []
+        self.face = None  # the face phase (phasekit.core.face.FacePhase), once the body lies flat
         self.resume = False  # a non-terminal event or a graze: the segment goes on from where it stopped
 
     def record(self, name, t, before, after, x, detail="") -> None:
@@ -324,7 +331,7 @@ class RunState:
                           status=self.status, reason=self.reason, segments=self.segments, events=self.records,
                           wall_s=wall_s, stop_at=stop_at, restitution=restitution, user_events=user_events, pose0=pose0,
                           ts=ts, ys=ys, x_stop=self.x if here else None, mode_stop=self.mode if here else None,
-                          runner=simulate)
+                          runner=simulate, face=self.face)
 
 
 class _Run(RunState):
@@ -369,7 +376,7 @@ class _Run(RunState):
         """Compile in the background the Taylor integrator of the other of the two contact modes a
         run most often reaches (sliding, rolling): a body's first run then waits for one
         compilation on two cores, not for each in turn ($PHASEKIT_COMPILE_AHEAD=off: never)."""
-        if os.environ.get("PHASEKIT_COMPILE_AHEAD", "on").strip().lower() in ("off", "no", "0"):
+        if self.mode is Mode.FACE or os.environ.get("PHASEKIT_COMPILE_AHEAD", "on").strip().lower() in ("off", "no", "0"):
             return
         for mode in (Mode.SLIDING, Mode.ROLLING):
             if mode is self.mode or mode not in self.model.modes:
@@ -390,6 +397,10 @@ class _Run(RunState):
 
     def step(self) -> None:
         """Propagate the current mode to its first event and handle that event."""
+        if self.mode is Mode.FACE:  # lying flat: its own flow (phasekit.core.face), to rest
+            self.budget.steps = self.opts.max_steps - self.steps_done
+            run_face(self)
+            return
         flow = tracked(self.system.flow(self.mode), self.opts.track_minima)
         engine = self.engine(flow)
         events = watched(self.system, self.mode, engine)
@@ -439,7 +450,7 @@ class _Run(RunState):
     def result(self, x0, stop_at, restitution, events, te, pose0) -> Trajectory:
         wall = time.perf_counter() - self.wall0
         kw = dict(stop_at=stop_at, restitution=restitution, user_events=events, pose0=pose0)
-        if te is not None and self.segments:
+        if te is not None and (self.segments or self.face is not None):
             traj = self.trajectory(x0, wall, **kw)
             te = te[(te >= traj.t0) & (te <= traj.t)]
             if te.size:

@@ -74,10 +74,12 @@ def gyroscopic_start(body: Body, theta0: float, *, omega0: float | None = None, 
     return balanced_state(body, theta0, omega0=omega0, n0=n0)
 
 
-def vertical_spin_start(theta0: float, n0: float) -> np.ndarray:
+def vertical_spin_start(theta0: float, n0: float, *, v0: float = 0.0) -> np.ndarray:
     """Spun about the vertical with the centre of mass at rest: angular velocity n0 e_Z at
     inclination theta0, i.e. Omega = n0, Lambda = 0, n = n0 cos(theta0), U = V = 0 (the
-    usual start of a tippe top).
+    usual start of a tippe top); or with G sliding at ``v0`` along e_X. With theta0 = 0 (or pi)
+    and ``simulate(..., mode="face")`` it is the start of a body lying on its face, sliding at v0
+    and spinning at n0 (:mod:`phasekit.core.face`).
 
     Parameters
     ----------
@@ -86,16 +88,19 @@ def vertical_spin_start(theta0: float, n0: float) -> np.ndarray:
     n0 : float
         The rate of the spin about the vertical, units sqrt(g/b): nonzero, with
         ``abs(n0) <= 1e5``.
+    v0 : float, optional
+        The velocity of G along e_X, units sqrt(g b), ``abs(v0) <= 1e5`` (default 0).
 
     Returns
     -------
     numpy.ndarray
-        Shape (6,): (U, V, Omega, Lambda, theta, n) = (0, 0, n0, 0, theta0, n0 cos(theta0)).
+        Shape (6,): (U, V, Omega, Lambda, theta, n) = (v0, 0, n0, 0, theta0, n0 cos(theta0)).
 
     Raises
     ------
     ParameterError
-        If ``theta0`` is outside [0, pi], or ``n0`` is 0, not finite or ``abs(n0) > 1e5``.
+        If ``theta0`` is outside [0, pi], ``n0`` is 0, not finite or ``abs(n0) > 1e5``, or ``v0``
+        is not finite or ``abs(v0) > 1e5``.
 
     Examples
     --------
@@ -103,10 +108,16 @@ def vertical_spin_start(theta0: float, n0: float) -> np.ndarray:
     >>> pk.core.vertical_spin_start(0.1, 15.0)
     array([ 0.        ,  0.        , 15.        ,  0.        ,  0.1       ,
            14.92506248])
+    >>> disk = pk.Disk(0.0)                     # on its face: sliding at 1, spinning at 3, to rest
+    >>> traj = pk.simulate(pk.Model(disk, pk.Coulomb(0.3)), pk.core.vertical_spin_start(0.0, 3.0, v0=1.0), 50.0,
+    ...                    mode="face")
+    >>> traj.status.value, round(traj.face.t_stop_slide, 4), round(traj.face.t_stop_spin, 4)
+    ('rest', 8.5113, 8.5113)
     """
     theta0 = check_range("theta0", theta0, 0.0, np.pi, closed="lr", label="[0, pi]")
     n0 = checked_rate("n0", n0)
-    return np.array([0.0, 0.0, n0, 0.0, theta0, n0 * np.cos(theta0)])
+    v0 = check_range("v0", v0, -RATE_MAX, RATE_MAX, closed="lr", label=f"[-{RATE_MAX:g}, {RATE_MAX:g}]")
+    return np.array([v0, 0.0, n0, 0.0, theta0, n0 * np.cos(theta0)])
 
 
 def axis_spin_start(body: Body, theta0: float, n0: float, *, mu: float | None = None) -> tuple[np.ndarray, str | None]:

@@ -18,6 +18,7 @@ import numpy as np
 
 from .._runtime.validate import check_choice, check_range
 from ..errors import ParameterError, Status
+from .face import FaceLanding, face_start_transition
 from .fields import STICK_SLIP
 from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
 from .resets import (
@@ -112,7 +113,7 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     evs.append(Event("gap", name="touchdown", direction=-1, modes={Mode.FLIGHT}, arm_after=GUARD_DELAY,
                      stop=Status.TOUCHDOWN,
                      reset=None if stop_at == "touchdown" else hold(Touchdown(restitution, *bounce))))
-    evs += _body_events(model.body, contact, hold, restitution, bounce[0])
+    evs += _body_events(model.body, contact, hold, restitution, bounce[0], face=stop_at == "rest")
     for ev in events:
         if not isinstance(ev, Event):
             raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
@@ -120,13 +121,14 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     return HybridSystem(flows, tuple(evs), _initial(stop_at, creep, bool(held)))
 
 
-def _body_events(body, contact, hold, restitution: float, bounce_stop: float) -> list[Event]:
+def _body_events(body, contact, hold, restitution: float, bounce_stop: float, face: bool = False) -> list[Event]:
     """The events the body declares (its contract, phasekit.bodies.Body): a run stops at each of
-    its ``limits`` (an edged body's model ends there), and the contact passes between its pieces at
+    its ``limits`` (an edged body's model ends there), or with ``face`` lands on a flat face there
+    (:class:`phasekit.core.face.FaceLanding`, into Mode.FACE), and the contact passes between its pieces at
     each of its ``transfers`` (a compound body), watched in every mode so that no step crosses the
     switch."""
-    evs = [Event("theta", lim.theta, direction=lim.direction, name=lim.name, reset=BodyLimit(lim.reason))
-           for lim in body.limits]
+    evs = [Event("theta", lim.theta, direction=lim.direction, name=lim.name,
+                 reset=FaceLanding() if face and lim.face is not None else BodyLimit(lim.reason)) for lim in body.limits]
     for tr in body.transfers:
         level = tr.theta - tr.direction * SWITCH_EARLY
         evs += [Event("theta", level, direction=tr.direction, name=tr.name, modes=contact,
@@ -146,6 +148,8 @@ def _initial(stop_at: str, creep: bool, held: bool = False):
         state that would need R <= 0 lifts off at once."""
         if mode is Mode.FLIGHT:
             return _flight_start(model, t, x)
+        if mode is Mode.FACE:  # lying flat (simulate's mode="face"): the face mode
+            return face_start_transition(model, t, x)
         speed, R = np.asarray(model.function("start_probe")(x, model.p)).ravel()
         if speed > STICK_SLIP + 10 * model.friction.eps and R > 0.0:  # the common case, in one call
             tr = Transition(Mode.SLIDING, t, x)

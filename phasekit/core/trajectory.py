@@ -20,6 +20,7 @@ from .approximations import Approximation, approximations_of
 from .charts import FLIGHT
 from .energy import EnergyBudget, energy_budget
 from .energy_series import energy_series
+from .face_table import face_pose, face_split, face_table
 from .fields import STICK_SLIP
 from .hybrid import Mode
 from .model import Model
@@ -31,7 +32,6 @@ from .trajectory_io import (
     STATE_COLUMNS,
     events_table,
     pose_table,
-    sample_table,
     trajectory_dict,
     trajectory_xarray,
 )
@@ -94,6 +94,8 @@ class Trajectory:
     runner: object = field(default=None, repr=False, compare=False)
     #: the run against its repeat at rtol / 10 in the other chart (:meth:`verify`; simulate's ``verify=True``)
     verification: object = field(default=None, repr=False, compare=False)
+    #: the face phase (:class:`phasekit.core.face.FacePhase`): the body lying flat, after the segments
+    face: object = field(default=None, repr=False, compare=False)
 
     def __post_init__(self):
         set_ = object.__setattr__  # frozen: the inputs are normalised once, here
@@ -123,11 +125,15 @@ class Trajectory:
     @property
     def t(self) -> float:
         """The time the run ended."""
+        if self.face is not None:
+            return self.face.t1
         return self.segments[-1].t1 if self.segments else self.t0
 
     @property
     def x(self) -> np.ndarray:
         """The final state, in the model's chart."""
+        if self.face is not None:
+            return self.face.chart_states(self.model, self.face.y1)[0]
         if self.x_stop is not None:
             return self.x_stop
         seg = self.segments[-1]
@@ -135,6 +141,8 @@ class Trajectory:
 
     @property
     def mode(self) -> str:
+        if self.face is not None:
+            return Mode.FACE.value
         return (self.mode_stop or self.segments[-1].mode).value if (self.mode_stop or self.segments) else Mode.SLIDING.value
 
     @property
@@ -348,7 +356,7 @@ class Trajectory:
         if bad.size:
             raise ParameterError("times", f"must lie in the simulated span [{lo:.10g}, {hi:.10g}] ({bad.size} outside)",
                                  float(bad[0]) if bad.size == 1 else [float(bad[0]), float(bad[-1])])
-        if not self.segments:
+        if not self.segments and self.face is None:
             raise ParameterError("times", "cannot be sampled: the run has no segment", show_value=False)
         if not all(s.dense for s in self.segments):
             raise ParameterError("times", "cannot be sampled: this run kept no dense output (simulate with dense=True)",
@@ -356,13 +364,14 @@ class Trajectory:
         return ts
 
     def _chart_states(self, ts) -> np.ndarray:
+        ts, on = face_split(self, ts)  # the face phase's states after the segments' (core/face_table.py)
         idx = self._locate(ts)
         out = np.empty((ts.size, self.model.n_states))
         for k in np.unique(idx):
             sel = idx == k
             seg = self.segments[k]
             out[sel] = self._to_chart(seg.mode, seg.states(ts[sel])).reshape(int(sel.sum()), -1)
-        return out
+        return out if not on.size else np.vstack([out, self.face.chart_states(self.model, self.face.states(on))])
 
     def states(self, times) -> np.ndarray:
         """States at ``times`` in the model's chart (flight states with the gap dropped)."""
@@ -399,10 +408,17 @@ class Trajectory:
         the order of the tolerance (CVODES segments use cubic Hermite interpolation on their
         output grid, whose error can be larger).
         """
-        return sample_table(self, self._check_times(times))
+        return face_table(self, self._check_times(times))  # sample_table's rows, then the face phase's
 
     def _pose(self, idx, ts) -> dict:
-        return self._pose_track(idx, ts)
+        before, on = face_split(self, ts)  # sorted times: the face phase's after the segments'
+        if not on.size:
+            return self._pose_track(idx, ts)
+        tail = face_pose(self, on)
+        if not before.size:
+            return tail
+        head = self._pose_track(idx[:before.size], before)
+        return {k: np.concatenate([head[k], tail[k]]) for k in tail}
 
     def pose(self, times):
         """Where the body is and how it is turned at ``times``: a DataFrame with ``t`` and

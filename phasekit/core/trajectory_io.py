@@ -104,10 +104,11 @@ def _dissipation_summary(traj) -> dict:
     ``energy_budget`` (:meth:`~phasekit.core.trajectory.Trajectory.energy_budget`, units M g b;
     None only for a run made with dense=False; a run that ended at its start has one, with nothing lost) and ``t_rest`` (the "rest" event's time, or None); an empty dict
     for a model without them (its JSON is as before)."""
-    if not traj.model.friction.dissipation:
+    face = getattr(traj, "face", None)
+    if not traj.model.friction.dissipation and face is None:
         return {}
     dense = all(s.dense for s in traj.segments) and (bool(traj.segments) or traj.mode_stop is not None)
-    rest = [e.t for e in traj.events if e.name == "rest"]
+    rest = [e.t for e in traj.events if e.name in ("rest", "at rest")]
     return {"t_rest": float(rest[-1]) if rest else None,
             "energy_budget": traj.energy_budget().to_dict() if dense else None}
 
@@ -304,6 +305,7 @@ def trajectory_dict(traj, *, events: bool = True) -> dict:
                 e["pose"] = pose
     if poses is not None:
         d["pose_end"] = poses[-1]
+    d.update(_face_dict(traj))
     fl = traj.flights
     if fl:
         d["flight"] = fl[0].to_dict()
@@ -323,6 +325,13 @@ def trajectory_dict(traj, *, events: bool = True) -> dict:
     return d
 
 
+def _face_dict(traj) -> dict:
+    """Lying flat (:mod:`phasekit.core.face`): the face phase, and the start mode of a run started on it."""
+    if getattr(traj, "face", None) is None:
+        return {}
+    return {"face": traj.face.to_dict(), **({} if traj.segments else {"start_mode": "face"})}
+
+
 def event_poses(traj) -> list[dict] | None:
     """The pose at each event and at the end (None without dense output).
 
@@ -336,7 +345,7 @@ def event_poses(traj) -> list[dict] | None:
     list of dict or None
         One pose per event, then the pose at the end.
     """
-    if not traj.segments or not all(s.dense for s in traj.segments):
+    if (not traj.segments and getattr(traj, "face", None) is None) or not all(s.dense for s in traj.segments):
         return None
     ts = np.array([e.t for e in traj.events] + [traj.t])
     ts = np.clip(ts, traj.t0, traj.t)

@@ -98,7 +98,8 @@ def _repeat(traj, chart: str, rtol: float):
     x0 = traj.x0 if traj.x0.size != traj.model.n_states else model.chart.from_paper(traj.model.chart.to_paper(traj.x0))
     opts = replace(traj.options, rtol=rtol, atol=None if traj.options.atol is None else traj.options.atol / CHECK_TIGHTER,
                    dense=True)
-    mode = "flight" if traj.x0.size != traj.model.n_states else None
+    on_face = getattr(traj, "face", None) is not None and not traj.segments  # started lying flat
+    mode = "flight" if traj.x0.size != traj.model.n_states else "face" if on_face else None
     return traj.runner(model, x0, traj.t_end, t0=traj.t0, stop_at=traj.stop_at, restitution=traj.restitution,
                        events=list(traj.user_events), options=opts, pose0=traj.pose0, progress=False, mode=mode)
 

@@ -397,6 +397,8 @@ def _rerun_inputs(source, index, model, overrides):
         kw["pose0"] = source["pose0"]
     if len(source["start_chart_state"]) == FLIGHT.n_states != m.n_states:
         kw["mode"] = "flight"
+    if source.get("start_mode") == "face":  # started lying on its face (vertical_spin_start with mode="face")
+        kw["mode"] = "face"
     kw.update(overrides)
     return m, np.array(source["start_chart_state"]), source["t_end_requested"], \
         _events_from(source.get("user_events") or []), kw

@@ -4,6 +4,7 @@ range and the value typed."""
 
 import math
 
+import phasekit as pk
 from phasekit import cli
 
 import pytest
@@ -142,3 +143,26 @@ def test_a_start_that_leaves_the_table_at_once_warns():
     warned = [ln for ln in err.splitlines() if "leaves the table at once" in ln]
     assert code == 0 and d["events"][0]["t"] == 0.0 and d["events"][0]["kind"] == "lift-off" and len(warned) == 1
     assert warned[0].startswith("phasekit: warning: ")
+
+
+FALLING = ["simulate", "--body", "disk", "--mu", "0.5", "--rolling-resistance", "0.05", "--spinning-in-place",
+           "--theta0", "0.3", "--t-end", "100", "--stop-at", "rest"]
+
+
+def test_with_stop_at_rest_a_disk_that_comes_down_flat_slides_and_spins_on_its_face_to_rest():
+    """Euler's disk brought down by rolling resistance: with --stop-at rest it lands on its face and
+    slides and spins there to rest (phasekit.core.face); the summary says so, the energy line has the
+    face's friction, and the strict JSON carries the face phase and reruns to the same end."""
+    code, text, err = run_cli(*FALLING)
+    assert code == 0 and "status: rest (lies flat; slid and spun on its face to rest at t = 15.468" in text
+    assert "on its face from t = 15.44696" in text and "face friction" in text and "mode_end: face" in text
+    assert "never comes to rest" not in err
+    code, out, _ = run_cli(*FALLING, "--json")
+    d = strict_json(out)
+    f = d["face"]
+    assert code == 0 and d["status"] == "rest" and d["t_end"] == f["t_end"] and d["mode_end"] == "face"
+    assert abs(f["t_stop_slide"] - f["t_stop_spin"]) < 1e-9 and f["t_start"] == d["events"][-3]["t"]
+    assert [e["kind"] for e in d["events"][-3:]] == ["face down", "on its face", "at rest"]
+    b = d["energy_budget"]
+    assert b["dissipated"]["face friction"] == pytest.approx(f["energy_start"], rel=1e-9) and abs(b["residual"]) < 1e-8
+    assert pk.rerun(d).t == d["t_end"]
