@@ -479,5 +479,8 @@ class Transfer:
         if quiet < 2 or (vn_old <= TWO_PIECE_TOL or len(recent) >= TWO_PIECE_PASSES) and vn_new <= self.bounce_stop:
             why = (f"the impacts between the {tr.from_piece} and the {tr.to_piece} did not settle" if quiet < 2 else
                    f"the body rests on two pieces at once (the {tr.from_piece} and the {tr.to_piece}): not integrated")
-            return Transition(None, t, contact_state(model, x_post), tuple(recs), stop=Status.FAILED, reason=f"{why} (t = {t:.10g})")
+            # resting on two pieces is where the one-point model ends (as a limit does: "stopped"); impacts that
+            # do not settle are the integration's failure
+            return Transition(None, t, contact_state(model, x_post), tuple(recs),
+                              stop=Status.FAILED if quiet < 2 else Status.STOPPED, reason=f"{why} (t = {t:.10g})")
         return _after_impact(model, t, x_post, recs, vn_new > self.bounce_stop)

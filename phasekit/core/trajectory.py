@@ -254,12 +254,12 @@ class Trajectory:
 
     @property
     def R_min(self) -> float | None:
-        """The smallest normal reaction met: over the located minima, the segment ends, and 0
-        at a lift-off."""
+        """The smallest normal reaction met: over the located minima, the segments' ends and starts
+        (R jumps at a reset: an impact, a transfer between pieces), and 0 at a lift-off."""
         # R is 0 at a located lift-off (to the event tolerance): count it as 0
         vals = [float(self.model._evaluate("R", s.x1, s.mode)) for s in self.segments
                 if s.mode is not Mode.FLIGHT and s.end != "lift-off"]
-        vals += [float(self.model._evaluate("R", s.x0, s.mode)) for s in self.segments[:1] if s.mode is not Mode.FLIGHT]
+        vals += [float(self.model._evaluate("R", s.x0, s.mode)) for s in self.segments if s.mode is not Mode.FLIGHT]
         m = self.minima
         if m.size:
             vals.append(float(m[:, 1].min()))

@@ -159,7 +159,7 @@ def test_air_drag_typed_with_units_is_converted_with_the_mass():
 
 
 
-UNITS = {"rolling_resistance": "b", "spin_friction": "b", "air_drag": "M b^2 sqrt(g/b)", "air_layer": "M b^2 sqrt(g/b)",
+UNITS = {"rolling_resistance": "b", "spin_friction": "b", "patch": "b", "air_drag": "M b^2 sqrt(g/b)", "air_layer": "M b^2 sqrt(g/b)",
          "air_drag_quadratic": "M b^2",
          "air_drag_force": "M sqrt(g/b)", "air_drag_force_quadratic": "M/b"}
 
@@ -171,7 +171,8 @@ def test_a_bad_coefficient_is_one_line_naming_the_flag_its_range_and_the_value(c
     flag = "--" + dest.replace("_", "-")
     base = SPINNING if command == "simulate" else ["steady-states", "--a", "1.5", "--mu", "0.1"]
     msg = usage_error([*base, flag, value], flag)
-    assert msg == f"{flag} must lie in [0, 1000] (units {UNITS[dest]}), got {float(value)!r}."
+    upper = "0.5" if dest == "patch" else "1000"  # a patch as wide as the body is not a contact patch
+    assert msg == f"{flag} must lie in [0, {upper}] (units {UNITS[dest]}), got {float(value)!r}."
 
 
 @pytest.mark.parametrize("args, flag, says", [

@@ -104,9 +104,10 @@ def test_status_lines_match_the_run_and_a_rest_is_at_the_runs_end(runs):
     pattern = r"status: (\w+)(?: \((.*)\))?$"
     for task, m, traj, df in _lines(runs, pattern):
         assert m[1] == traj.status.value, task
-        if m[1] == "rest":  # "at rest at t = X: every motion stopped", X the run's end
-            assert float(re.search(r"at t = ([\d.e+-]+)", m[2])[1]) == pytest.approx(df["t"].iloc[-1], rel=1e-9)
-    assert {m[1] for _, m, _, _ in _lines(runs, pattern)} == {"completed", "rest"}
+        if m[1] in ("rest", "stopped"):  # "at rest at t = X: ...", "... not integrated (t = X)": X the run's end
+            assert float(re.search(r"t = ([\d.e+-]+)", m[2])[1]) == pytest.approx(df["t"].iloc[-1], rel=1e-9)
+    # the tippe top reaches its stem and rests on ball and stem: the one-point model's limit
+    assert {m[1] for _, m, _, _ in _lines(runs, pattern)} == {"completed", "rest", "stopped"}
 
 
 def test_theta_lines_say_how_the_tilt_changed_over_the_samples(runs):
@@ -189,7 +190,7 @@ def test_passage_lines_are_at_the_switch_and_the_end_piece_is_the_lower_one(runs
         body = traj.model.body
         times = [float(t) for line in runs[task][0] if line.startswith("the contact passed")
                  for t in re.findall(r"at t = ([\d.e+-]+)", line)]
-        at = traj.sample(np.array(times))
+        at = traj.sample(np.clip(times, traj.t0, traj.t))  # a time printed to 6 digits can round past the end
         # the times are printed to 6 digits: theta is within |Lambda| x that rounding of the switch angle
         slack = np.abs(at["Lambda"].to_numpy()) * 5e-6 * np.array(times) + 1e-8
         assert (np.abs(at["theta"].to_numpy() - body.theta_switch) <= slack).all(), task

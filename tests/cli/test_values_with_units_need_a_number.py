@@ -18,7 +18,7 @@ BARE = {"--thickness": ("cm", "1.2 cm"), "--flat-angle": ("deg", "0.05 deg"), "-
         "--spun-on-edge": ("rev/s", "5 rev/s"), "--rolled": ("m/s", "0.3 m/s"), "--t-end": ("s", "0.5 s"), "--psi0": ("deg", "30 deg"),
         "--phi0": ("turn", "0.5 turn"), "--X0": ("mm", "3 mm"), "--Y0": ("cm", "1 cm"), "--size": ("mm", "21.5 mm"),
         "--g": ("m/s^2", "9.81 m/s^2"), "--mass": ("g", "57 g"), "--rolling-resistance": ("mm", "0.2 mm"),
-        "--spin-friction": ("um", "50 um"), "--air-drag": ("N*m*s", "1e-7 N*m*s"),
+        "--spin-friction": ("um", "50 um"), "--patch": ("um", "50 um"), "--air-drag": ("N*m*s", "1e-7 N*m*s"),
         "--air-drag-quadratic": ("N*m*s^2", "1e-9 N*m*s^2"), "--air-drag-force": ("N*s/m", "1e-4 N*s/m"),
         "--air-drag-force-quadratic": ("kg/m", "0.001 kg/m")}
 
