@@ -178,3 +178,14 @@ def test_hertz_materials_on_the_cli_give_the_hand_computed_patch():
     out = subprocess.run([sys.executable, "-m", "phasekit", *no_mass, "--hertz", "hardwood, laminate"], capture_output=True,
                          text=True, timeout=300)
     assert out.returncode == 2 and "--mass" in out.stderr and len(out.stderr.strip().splitlines()) == 1
+
+
+def test_over_a_patch_only_rest_and_straight_rolling_survive():
+    # every spin about the vertical meets the patch's couple, every slip its force: rest keeps its energy,
+    # and so does the spheroid rolling straight on its equator (w horizontal: no pivot, no slip)
+    bare = pk.steady_structure(pk.Spheroid(1.5), pk.Coulomb(0.3), samples=False)
+    patch = pk.steady_structure(pk.Spheroid(1.5), pk.Contensou(0.3, 0.005), samples=False)
+    assert bare.branches and len(bare.families) > 1
+    assert patch.branches == ()
+    assert [(f.kind, f.theta) for f in patch.families] == [("rolling", pytest.approx(np.pi / 2))]
+    assert len(patch.static_equilibria) == len(bare.static_equilibria) > 0
