@@ -13,7 +13,7 @@ What is run. (a) The egg: pk.Egg(1.33333, 0) (length/breadth 60/45), b = 22.5 mm
 exact Coulomb alone; with spin friction mu_s = 0.05-1 mm; with rolling resistance; regularised
 Coulomb (eps = 1e-3); with air drag (our estimate of a sphere of the egg's size in air, see
 AIR); exact Coulomb over a contact patch of radius 0.05-0.2 mm (pk.Contensou, Hertz pressure: the
-slip and the spin about the normal coupled). (b) The tippe top of the README (pk.EccentricSphere(0.3, A=0.38, C=0.4), radius 15 mm)
+slip and the spin about the normal coupled), at mu = 0.2 and 0.3, and at 10 rev/s. (b) The tippe top of the README (pk.EccentricSphere(0.3, A=0.38, C=0.4), radius 15 mm)
 spun at 30 rev/s about the vertical from theta0 = 0.1, exact Coulomb mu = 0.3: alone, with spin
 friction, with rolling resistance, and with both over mu_s = 0.05-1 mm and delta = 0.01-0.2 mm.
 Every run: vector chart, rtol 1e-10, through flights and impacts (restitution 0), until rest
@@ -64,7 +64,9 @@ FULL = dict(
          *((f"rolling resistance {d} mm", {"delta": f"{d} mm"}, 120.0, 30_000) for d in (0.05, 0.2)),
          ("regularised Coulomb eps 1e-3", {"sliding": "regularised"}, 20.0, 100_000),
          ("air drag", {"air": AIR}, 120.0, 100_000),
-         *((f"patch {r} mm", {"patch": f"{r} mm"}, 20.0, 100_000) for r in (0.05, 0.1, 0.2))],
+         *((f"patch {r} mm", {"patch": f"{r} mm"}, 20.0, 100_000) for r in (0.05, 0.1, 0.2)),
+         *((f"patch {r} mm, mu 0.3", {"patch": f"{r} mm", "mu": 0.3}, 20.0, 100_000) for r in (0.05, 0.1, 0.2)),
+         *((f"patch {r} mm, 10 rev/s", {"patch": f"{r} mm", "spin": "10 rev/s"}, 20.0, 100_000) for r in (0.05, 0.2))],
     tippe_top=[("exact Coulomb", {}, 60.0, 100_000),
          *((f"spin friction {m} mm", {"mu_s": f"{m} mm"}, 60.0, 100_000) for m in (0.05, 0.2, 1.0)),
          ("rolling resistance 0.05 mm", {"delta": "0.05 mm"}, 60.0, 30_000),
@@ -84,14 +86,15 @@ QUICK = dict(
 MAX_WALL = 60.0
 
 
-def setup(body: str):
-    """(body, scale, the paper's start state, law coefficient mu) of the egg or the tippe top."""
+def setup(body: str, spin: str | None = None):
+    """(body, scale, the paper's start state, law coefficient mu) of the egg or the tippe top; ``spin``:
+    the egg's spin if not EGG's."""
     if body == "egg":
         egg = pk.Egg(EGG["a"], 0.0)
         size = pk.Scale(EGG["size"])
         mass = EGG["density"] * egg.volume * float(size.b.to("cm").magnitude) ** 3
         sc = pk.Scale(EGG["size"], mass=f"{mass} g")
-        y0 = pk.gyroscopic_start(egg, math.radians(EGG["theta0_deg"]), omega0=sc.dimensionless(EGG["spin"]))
+        y0 = pk.gyroscopic_start(egg, math.radians(EGG["theta0_deg"]), omega0=sc.dimensionless(spin or EGG["spin"]))
         return egg, sc, y0, EGG["mu"]
     sc = pk.Scale(TOP["size"])
     top = pk.EccentricSphere(TOP["alpha"], A=TOP["A"], C=TOP["C"])
@@ -105,9 +108,9 @@ def run_key(body: str, label: str, spec: dict, t_end: float, max_steps: int) -> 
 
 def run_case(body: str, label: str, spec: dict, t_end: float, max_steps: int) -> list:
     """One run: its curve rows, then its run row (written last: a run is done when it is stored)."""
-    b, sc, y0, mu = setup(body)
-    law = ps.spin_down_law(sc, spec.get("sliding", "coulomb"), mu, mu_s=spec.get("mu_s"), delta=spec.get("delta"),
-                           air=spec.get("air"), patch=spec.get("patch"))
+    b, sc, y0, mu = setup(body, spec.get("spin"))
+    law = ps.spin_down_law(sc, spec.get("sliding", "coulomb"), spec.get("mu", mu), mu_s=spec.get("mu_s"),
+                           delta=spec.get("delta"), air=spec.get("air"), patch=spec.get("patch"))
     rows = ps.spin_down_run(run_key(body, label, spec, t_end, max_steps), body, label, b, law, y0, sc, t_end, rtol=RTOL,
                             rise_deg=EGG["rise_deg"], over_deg=TOP["over_deg"], max_wall=MAX_WALL, max_steps=max_steps)
     return [*rows[1:], rows[0]]
@@ -176,7 +179,7 @@ def figures(st, runs, curves, quick: bool) -> None:
     top = [r for r in runs if r.body == "tippe-top"]
     st.save(ps.plot_spin_down(egg, curves, early_s=5.0, title=(
         f"60 x 45 mm egg, b = {EGG['size']}, mu = {EGG['mu']}, from theta0 = {EGG['theta0_deg']} deg at {EGG['spin']} "
-        f"(gyroscopic start)\n{note(egg, quick)}")), "spin_down_egg.png")
+        f"(gyroscopic start; other mu or spin where the label says)\n{note(egg, quick)}")), "spin_down_egg.png")
     shown = [r for r in top if r.case in TOP_SHOWN]
     st.save(ps.plot_spin_down(shown, curves, early_s=2.0, title=(
         f"Tippe top alpha = {TOP['alpha']}, A = {TOP['A']}, C = {TOP['C']}, radius {TOP['size']}, mu = {TOP['mu']}, "

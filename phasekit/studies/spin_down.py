@@ -289,7 +289,8 @@ def plot_spin_down(runs, curves, *, title: str, panels=("theta", "spin", "energy
         axes[0, 0].set_xlim(0, early_s)
         axes[0, 0].set_title(f"first {early_s:g} s", fontsize=9)
         axes[0, 1].set_title("whole run", fontsize=9)
-    axes[0, -1].legend(fontsize=7, loc="best")
+    # beside the panels: with many runs a legend inside would cover the curves
+    axes[0, -1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()
     return fig
