@@ -23,7 +23,16 @@ from . import baseline, bodies, core, friction, io, scenes, steady, sweep, theor
 from .bodies import Cone, CustomBody, Disk, EccentricSphere, Egg, Spheroid, TippeTop
 from .core import Event, Model, Scale, SolverOptions, gyroscopic_start, paper_start, simulate
 from .errors import ConvergenceError, ParameterError, PhasekitError, SearchStatus, Status, WorkerError
-from .friction import AirDrag, AirLayer, Contensou, Coulomb, RegularisedCoulomb, RollingResistance, SpinFriction, Viscous
+from .friction import (
+    AirDrag,
+    AirLayer,
+    Contensou,
+    Coulomb,
+    RegularisedCoulomb,
+    RollingResistance,
+    SpinFriction,
+    Viscous,
+)
 from .io import read_table, write_table
 from .scenes import Scene, compute_scene
 from .steady import fixed_points, steady_structure

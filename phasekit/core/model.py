@@ -18,8 +18,8 @@ from ..bodies.body import Body
 from ..bodies.by_name import BODIES, make_body
 from ..bodies.edged import Disk, EdgedBody
 from ..errors import ParameterError
-from ..friction.dissipation import AirLayer, dissipation_from_dict
 from ..friction.contensou import Contensou
+from ..friction.dissipation import AirLayer, dissipation_from_dict
 from ..friction.laws import Coulomb, FrictionLaw, RegularisedCoulomb, Viscous
 from .charts import FLIGHT, POLE_GUARD, get_chart
 from .fields import compiled_model

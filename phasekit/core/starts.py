@@ -173,8 +173,8 @@ def axis_spin_start(body: Body, theta0: float, n0: float, *, mu: float | None = 
     h, ht = (float(v) for v in body.h(theta0)[:2])
     point = abs(h * s + ht * c) <= 1e-12 * (1.0 + abs(h))  # x_P = 0: the contact on the axis
     if point:
-        l = ht / s
-        big, a2, a0 = body.C * n0, (body.A + l * l) * c, -l
+        lever = ht / s
+        big, a2, a0 = body.C * n0, (body.A + lever * lever) * c, -lever
     else:
         big, a2, a0 = body.C * n0 * s, body.A * c * s, -ht
     disc = big * big - 4.0 * a2 * a0

@@ -5,7 +5,6 @@ below its fast-top condition."""
 
 import math
 
-import numpy as np
 from phasekit import cli
 
 import pytest

@@ -13,13 +13,13 @@ import math
 import re
 import warnings
 
-import numpy as np
-import pandas as pd
 import phasekit as pk
 import phasekit.cli.params as params
 from phasekit.bodies.by_name import make_body
 from phasekit.cli.inputs import _stem
 
+import numpy as np
+import pandas as pd
 import pytest
 
 from ..helpers import run_cli

@@ -125,9 +125,10 @@ def test_the_cli_refuses_a_patch_it_cannot_apply_in_one_line_naming_it(extra, sa
 
 def test_the_contact_radii_in_the_field_are_the_principal_radii_of_the_support_function():
     # fields' c-derivative form against phasekit.friction.hertz.principal_radii's theta-derivative form
-    import casadi as ca
     from phasekit.core.fields import contact_point
     from phasekit.friction.hertz import principal_radii
+
+    import casadi as ca
 
     for body in (pk.Spheroid(1.5), pk.Egg(1.33333, 0.1), pk.EccentricSphere(0.3)):
         shape = ca.DM(list(body.shape_params))

@@ -7,20 +7,20 @@ a second formulation: the closed form, the linearisation, a direct simulation.""
 import math
 import warnings
 
-import numpy as np
 import phasekit as pk
-import pytest
-
 from phasekit.bodies.cone import Cone
 from phasekit.cli.params import run_start
+
+import numpy as np
+import pytest
 
 TOP = Cone(1.5, on="tip")
 
 
 def _classical(body):
     """sqrt(4 A' M g l) / C for a top on a fixed point, A' = A + l^2 about the point, l = 3 h / 4."""
-    l = 0.75 * body.altitude
-    return math.sqrt(4.0 * (body.A + l * l) * l) / body.C
+    lever = 0.75 * body.altitude
+    return math.sqrt(4.0 * (body.A + lever * lever) * lever) / body.C
 
 
 def _n_unstable(structure, n, pole="inverted"):
