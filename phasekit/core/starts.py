@@ -185,10 +185,10 @@ def axis_spin_start(body: Body, theta0: float, n0: float, *, mu: float | None = 
                       "zero precession")
     omega = 2.0 * a0 / (big + np.copysign(np.sqrt(disc), big))  # the slow root, without cancellation
     if point:
-        if mu is not None and l * omega * omega * s > mu:
-            return none, (f"its slow precession Omega = {omega:.4g} needs friction {l * omega * omega * s:.3g} > "
+        if mu is not None and lever * omega * omega * s > mu:
+            return none, (f"its slow precession Omega = {omega:.4g} needs friction {lever * omega * omega * s:.3g} > "
                           f"mu = {mu:g} at the point: started with zero precession")
-        return np.array([0.0, -l * omega * s, omega, 0.0, theta0, n0]), None
+        return np.array([0.0, -lever * omega * s, omega, 0.0, theta0, n0]), None
     return np.array([0.0, 0.0, omega, 0.0, theta0, n0]), None
 
 
