@@ -56,6 +56,7 @@ from scipy.integrate import DOP853
 from scipy.optimize import brentq
 
 from ..errors import ParameterError, Status
+from ..friction.laws import Viscous
 from ..friction.patch import patch_friction, patch_resultant
 from ..theory.face_down import RATIO_MAX
 from .fields import REST_SPEED
@@ -114,7 +115,7 @@ def face_contact(model, theta: float, psi: float = 0.0) -> FaceContact:
     c = 1.0 if lim.theta < math.pi / 2 else -1.0
     return FaceContact(float(a), float(inner), float(model.friction.mu), float(model.body.C),
                        float(model.body.height_slope(c)[0]), float(lim.theta), float(psi),
-                       "exact" if model.friction.can_stick else "viscous")
+                       "viscous" if isinstance(model.friction, Viscous) else "exact")  # Coulomb's, over a patch too
 
 
 @functools.lru_cache(maxsize=16)

@@ -190,3 +190,14 @@ def test_over_a_patch_only_rest_and_straight_rolling_survive():
     assert patch.branches == ()
     assert [(f.kind, f.theta) for f in patch.families] == [("rolling", pytest.approx(np.pi / 2))]
     assert len(patch.static_equilibria) == len(bare.static_equilibria) > 0
+
+
+def test_a_disk_on_its_face_under_the_patch_law_slides_under_coulomb_traction():
+    # the face's traction is Coulomb's (R-proportional) under the patch law as under pk.Coulomb: the same
+    # stop, at the terminal ratio 0.6530 of Farkas et al. (uniform pressure over the face)
+    disk = pk.Disk(0.1)
+    runs = [pk.simulate(pk.Model(disk, law), pk.core.vertical_spin_start(0.0, 3.0, v0=1.0), 100.0, mode="face")
+            for law in (pk.Coulomb(0.3), pk.Contensou(0.3, 0.004))]
+    faces = [r.to_dict()["face"] for r in runs]
+    assert faces[1]["t_stop_slide"] == pytest.approx(faces[0]["t_stop_slide"], rel=1e-12)
+    assert faces[1]["ratio_end"] == pytest.approx(0.6530017892, abs=1e-3)
