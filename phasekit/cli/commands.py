@@ -17,7 +17,7 @@ def _cmd_simulate(args) -> dict:
 
     scale = apply_units(args)
     traj, seed = _simulate_args(args, run_start, scale)
-    out = _run_output(traj, seed)
+    out = _run_output(traj, seed, args.max_wall)
     if args.si:
         from ..errors import ParameterError
         from .params import real_units_report
@@ -48,7 +48,7 @@ def _cmd_animate(args) -> dict:
                             camera=args.camera, panel=args.panel, window_size=size, scale=scale)
 
     traj, seed = _simulate_args(args, run_start, scale, before_run=before_run)
-    out = _run_output(traj, seed)
+    out = _run_output(traj, seed, args.max_wall)
     if traj.status.value == "failed":
         return out
     if str(args.out).lower().endswith(".png"):
@@ -63,10 +63,18 @@ def _cmd_animate(args) -> dict:
     return out
 
 
-def _run_output(traj, seed) -> dict:
+def _run_output(traj, seed, max_wall: float) -> dict:
     """The JSON dict of a run: the Trajectory's, its start's seed, every flight and their summary
-    (the dict's ``flight`` is the first flight only)."""
-    out = traj.to_dict()
+    (the dict's ``flight`` is the first flight only). The work after the run (the energy budget, the
+    poses at the events) gets what the run left of ``max_wall`` (--max-wall): past it, the dict says
+    what it left out ("post_run")."""
+    from .._runtime.watch import wall_deadline
+
+    with wall_deadline(max(max_wall - traj.wall_s, 1e-3)):
+        out = traj.to_dict()
+    if "post_run" in out:
+        out["post_run"]["reason"] = (f"--max-wall {max_wall:g} s ran out after the run ({traj.wall_s:.3g} s of it): its "
+                                     f"{' and '.join(out['post_run']['skipped'])} not computed")
     if seed is not None:
         out["seed"] = seed
     out["flights"] = [f.to_dict() for f in traj.flights]

@@ -351,8 +351,10 @@ class Trajectory:
         if not self.segments:
             raise ParameterError("times", "cannot be sampled: the run has no segment", show_value=False)
         if not all(s.dense for s in self.segments):
-            raise ParameterError("times", "cannot be sampled: this run kept no dense output (simulate with dense=True)",
-                                 show_value=False)
+            from .energy import dropped_note
+
+            raise ParameterError("times", "cannot be sampled: " + (dropped_note(self) or "this run kept no dense output "
+                                                                   "(simulate with dense=True)"), show_value=False)
         return ts
 
     def _chart_states(self, ts) -> np.ndarray:
