@@ -45,11 +45,16 @@ def test_past_the_cap_the_energy_budget_samples_and_events_are_those_of_the_dens
 
 
 def test_what_needs_the_dense_output_names_the_cap(pair):
-    _, capped = pair
+    capped = pair[1]
     for call in (lambda: capped.sample([10.0]), lambda: capped.pose([10.0]), capped.energy_series):
         with pytest.raises(pk.ParameterError, match=r"dropped its dense output when it passed max_dense_mb = 0\.5 MB"):
             call()
-    assert capped.to_dict()["pose_end"] is None if "pose_end" in capped.to_dict() else True
+    kept, _ = pair
+    assert "pose_end" in kept.to_dict() and "pose_end" not in capped.to_dict()  # poses need the dense output
+    from phasekit.viz.mpl import _check_traj
+
+    with pytest.raises(pk.ParameterError, match="must keep its dense output .*passed max_dense_mb = 0.5 MB"):
+        _check_traj(capped)
 
 
 def test_without_dense_output_t_eval_alone_is_kept_under_the_cap():
