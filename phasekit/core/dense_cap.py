@@ -16,7 +16,8 @@ from each span, then and from there on, what the run was asked for:
 
 The events, the minima of R and the summary never needed the dense output. What does (sampling at
 other times, the pose, the energy series, movies) raises a ParameterError naming ``max_dense_mb``
-(:func:`phasekit.core.energy.dropped_note`). The tally is paid inside the run, so its wall budget counts it.
+(:func:`phasekit.core.energy.dropped_note`). The tally is paid inside the run, so its wall budget counts it; a run whose wall budget runs out
+while it tallies stops tallying (and has no energy budget, :data:`ABANDONED`).
 """
 
 from __future__ import annotations
@@ -64,6 +65,10 @@ class SpanTally:
     @property
     def nbytes(self) -> int:
         return int(self.work.nbytes + self.steps.nbytes + self.energy.nbytes)
+
+
+#: the tally of a run whose wall budget ran out while it tallied (its energy budget then says so)
+ABANDONED = SpanTally(float("nan"), float("nan"), np.zeros(0), np.zeros(0), np.zeros(0))
 
 
 def tally(model, mode: Mode, span) -> SpanTally:
@@ -147,6 +152,7 @@ class DenseCap:
         self.te = None if t_eval is None else np.asarray(t_eval, dtype=float)
         self.ys = None if self.te is None else np.full((self.te.size, model.n_states), np.nan)
         self.owner = None if self.te is None else np.full(self.te.size, -1)
+        self.budget, self.abandoned = None, False  # the run's Budget: its wall clock stops the tally
 
     def __call__(self, span) -> bool:
         """Keep ``span`` (True), or take what is asked of it and drop it (False)."""
@@ -166,6 +172,8 @@ class DenseCap:
         return False
 
     def _take(self, seg: int, mode: Mode, span) -> None:
+        if self.energy and self.budget is not None and self.budget.wall_exceeded():
+            self.energy, self.tallies, self.abandoned = False, {}, True  # the run ends at its next check
         if self.energy:
             self.tallies.setdefault(seg, []).append(tally(self.model, mode, span))
         if self.te is None:
@@ -182,6 +190,8 @@ class DenseCap:
 
         if not self.dropped:
             return segments
+        if self.abandoned:  # the wall budget ran out while it tallied: no energy budget, and why
+            return [replace(s, dense=(), tally=(ABANDONED,)) for s in segments]
         return [replace(s, dense=(), tally=tuple(self.tallies.get(i, ()))) for i, s in enumerate(segments)]
 
     def states(self, segments: list, te: np.ndarray) -> np.ndarray:

@@ -110,11 +110,21 @@ def law_names(model) -> tuple:
     return ("sliding friction", *(d.name for d in model.friction.dissipation))
 
 
+def has_budget(traj) -> bool:
+    """Can :func:`energy_budget` follow ``traj``'s energy (dense output, or a complete tally)?"""
+    if not traj.segments:
+        return traj.mode_stop is not None
+    return all((s.dense or s.tally) and all(t.t0 == t.t0 for t in s.tally) for s in traj.segments)
+
+
 def require_dense(traj, tallied: bool = False) -> None:
     """Raise the ParameterError of a run whose energy cannot be followed: no dense output (nor,
     with ``tallied``, the tally kept when the dense output was dropped under its cap:
     :mod:`phasekit.core.dense_cap`)."""
     if traj.segments and all(s.dense or (tallied and s.tally) for s in traj.segments):
+        if any(t.t0 != t.t0 for s in traj.segments for t in s.tally):  # dense_cap.ABANDONED (t0 NaN)
+            raise ParameterError("traj", "has no energy budget: the run dropped its dense output past max_dense_mb and "
+                                         "its wall budget ran out while it tallied the energy", show_value=False)
         return
     note = dropped_note(traj)
     raise ParameterError("traj", f"has no energy {'budget' if tallied else 'series'}: "

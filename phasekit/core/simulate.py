@@ -347,6 +347,8 @@ class _Run(RunState):
         # the caller's budget (a search, a map) when it ends first: the reason then names it
         self.call_budget = call[1] if call is not None and call[0] < own else None
         self.budget = Budget(opts.max_steps, own if self.call_budget is None else call[0], keep=self.cap)
+        if self.cap is not None:
+            self.cap.budget = self.budget
         self.engines, self.steps_done = {}, 0
 
     def loop(self, first: Transition, progress) -> None:

@@ -17,6 +17,7 @@ import numpy as np
 from .._runtime.validate import check_int
 from ..errors import ParameterError, Status
 from .charts import FLIGHT, PAPER_NAMES
+from .energy import has_budget
 from .observables import evaluate_function
 from .pose import POSE_COLUMNS
 from .units import COLUMN_KINDS, Scale
@@ -99,7 +100,7 @@ def _dissipation_summary(traj, skipped: list) -> dict:
     for a model without them (its JSON is as before)."""
     if not traj.model.friction.dissipation:
         return {}
-    dense = all(s.dense or s.tally for s in traj.segments) and (bool(traj.segments) or traj.mode_stop is not None)
+    dense = has_budget(traj)
     rest = [e.t for e in traj.events if e.name == "rest"]
     return {"t_rest": float(rest[-1]) if rest else None,
             "energy_budget": _within_budget(lambda: traj.energy_budget().to_dict(), skipped, "energy budget") if dense

@@ -116,3 +116,32 @@ def test_the_work_after_a_run_stops_when_the_wall_budget_runs_out(pair):
     with wall_deadline(600.0):
         full = fresh.to_dict()
     assert "post_run" not in full and full["energy_budget"] == kept.to_dict()["energy_budget"]
+
+
+class _Clock:
+    """A Budget's wall clock that runs out after ``after`` looks."""
+
+    def __init__(self, after: int):
+        self.left = after
+
+    def wall_exceeded(self) -> bool:
+        self.left -= 1
+        return self.left < 0
+
+
+def test_a_wall_budget_that_runs_out_while_tallying_stops_the_tally(pair):
+    from dataclasses import replace
+
+    kept, _ = pair
+    fresh = pk.simulate(kept.model, kept.x0, 300.0, stop_at="none")
+    cap = DenseCap(fresh.model, 0.1, None, energy=True)
+    cap.budget = _Clock(3)
+    for i, seg in enumerate(fresh.segments):
+        cap.where = (i, seg.mode)
+        for sp in seg.dense:
+            cap(sp)
+    assert cap.dropped and cap.abandoned and cap.tallies == {}
+    stopped = replace(fresh, segments=cap.segments(list(fresh.segments)))
+    with pytest.raises(pk.ParameterError, match="wall budget ran out while it tallied the energy"):
+        stopped.energy_budget()
+    assert stopped.to_dict()["energy_budget"] is None
