@@ -13,6 +13,13 @@ from .parser import UsageError
 
 
 def _cmd_simulate(args) -> dict:
+    from .._runtime.watch import wall_started
+
+    with wall_started():  # --max-wall counts the whole command: the run and the work before and after it
+        return _simulate_command(args)
+
+
+def _simulate_command(args) -> dict:
     from .params import run_start
 
     scale = apply_units(args)
@@ -35,6 +42,13 @@ def _cmd_simulate(args) -> dict:
 
 def _cmd_animate(args) -> dict:
     """Simulate as `simulate` does, then write the movie (or film strip) of the run."""
+    from .._runtime.watch import wall_started
+
+    with wall_started():  # as simulate's (the movie after the run is not counted)
+        return _animate_command(args)
+
+
+def _animate_command(args) -> dict:
     from ..viz.animate import animate, check_movie_options, film_strip
     from .params import run_start
 
@@ -68,12 +82,13 @@ def _run_output(traj, seed, max_wall: float) -> dict:
     (the dict's ``flight`` is the first flight only). The work after the run (the energy budget, the
     poses at the events) gets what the run left of ``max_wall`` (--max-wall): past it, the dict says
     what it left out ("post_run")."""
-    from .._runtime.watch import wall_deadline
+    from .._runtime.watch import spent, wall_deadline
 
-    with wall_deadline(max(max_wall - traj.wall_s, 1e-3)):
+    used = spent() or traj.wall_s  # the command's time so far (wall_started), else the run's
+    with wall_deadline(max(max_wall - used, 1e-3)):
         out = traj.to_dict()
     if "post_run" in out:
-        out["post_run"]["reason"] = (f"--max-wall {max_wall:g} s ran out after the run ({traj.wall_s:.3g} s of it): its "
+        out["post_run"]["reason"] = (f"--max-wall {max_wall:g} s ran out after the run ({used:.3g} s of it): its "
                                      f"{' and '.join(out['post_run']['skipped'])} not computed")
     if seed is not None:
         out["seed"] = seed

@@ -15,7 +15,7 @@ from dataclasses import replace
 import numpy as np
 
 from .._runtime.validate import check_bool, check_finite, check_range, check_times, check_vector
-from .._runtime.watch import WALL_REASON, deadline, heartbeat, progress_bar, show_progress
+from .._runtime.watch import WALL_REASON, claim_start, deadline, heartbeat, progress_bar, show_progress
 from ..errors import ConvergenceError, ParameterError, Status
 from .audit import audited_options
 from .charts import FLIGHT, POLE_GUARD
@@ -343,7 +343,8 @@ class _Run(RunState):
         self.dense = dense
         self.cap = DenseCap(model, opts.max_dense_mb, te, energy=opts.dense) if dense else None
         self.wall0 = time.perf_counter()
-        own, call = self.wall0 + opts.max_wall, deadline()
+        start = claim_start()  # the CLI's command counts in its --max-wall: from its start
+        own, call = (self.wall0 if start is None else start) + opts.max_wall, deadline()
         # the caller's budget (a search, a map) when it ends first: the reason then names it
         self.call_budget = call[1] if call is not None and call[0] < own else None
         self.budget = Budget(opts.max_steps, own if self.call_budget is None else call[0], keep=self.cap)
