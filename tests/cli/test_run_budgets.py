@@ -109,3 +109,15 @@ def test_the_work_after_a_run_counts_in_its_wall_budget():
     assert code == 1 and d["status"] == "failed" and "wall-time limit (1 s)" in d["reason"] and d["n_steps"] > 5000
     assert d["energy_budget"] is None and "pose_end" not in d and d["post_run"]["skipped"] == ["energy budget", "poses"]
     assert d["post_run"]["reason"].startswith("--max-wall 1 s ran out after the run (") and "not computed" in d["post_run"]["reason"]
+
+
+def test_the_command_s_start_is_claimed_by_its_first_run_only():
+    """--max-wall counts the whole simulate command: its run's own budget counts from the command's
+    start (claimed once: a run that run makes, its verification, counts from its own start), and
+    the work after it gets what is left (spent)."""
+    from phasekit._runtime.watch import claim_start, spent, wall_started
+
+    assert claim_start() is None and spent() == 0.0  # outside a command
+    with wall_started() as start:
+        assert claim_start() == start and claim_start() is None and spent() > 0.0
+    assert claim_start() is None
