@@ -1,8 +1,8 @@
 """The memory cap of a run's dense output (``SolverOptions.max_dense_mb``).
 
-The dense output is the Taylor polynomials of every step (measured ~0.75 KB a step for a spheroid
-on Coulomb friction, :mod:`phasekit.core.engines.dense`): a run of ten million steps would hold
-~7.5 GB. :class:`DenseCap` sees each span of dense output as the engine makes it (every ~20 000
+The dense output is the Taylor polynomials of every step (:mod:`phasekit.core.engines.dense`): 744
+bytes a step for a spheroid on Coulomb friction in contact (7 states, the integral of R included,
+13 coefficients each at order 12, and the step's ends): a run of ten million steps would hold ~7.5 GB. :class:`DenseCap` sees each span of dense output as the engine makes it (every ~20 000
 steps, :data:`phasekit.core.engines.taylor.RECORD_STEPS`, through ``Budget.keep``) and counts its
 bytes. Once they pass the cap, it drops the dense output, the spans kept so far included, and keeps
 from each span, then and from there on, what the run was asked for:
