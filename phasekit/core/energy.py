@@ -127,8 +127,9 @@ def require_dense(traj, tallied: bool = False) -> None:
                                          "its wall budget ran out while it tallied the energy", show_value=False)
         return
     note = dropped_note(traj)
-    raise ParameterError("traj", f"has no energy {'budget' if tallied else 'series'}: "
-                         + (note or "the run kept no dense output (simulate with dense=True)"), show_value=False)
+    what = "series" if note and not tallied else "budget"  # a run past its cap has a budget, not a series
+    raise ParameterError("traj", f"has no energy {what}: " + (note or "the run kept no dense output (simulate with "
+                                                                   "dense=True)"), show_value=False)
 
 
 def dropped_note(traj) -> str | None:

@@ -46,6 +46,8 @@ def test_past_the_cap_the_energy_budget_samples_and_events_are_those_of_the_dens
 
 def test_what_needs_the_dense_output_names_the_cap(pair):
     capped = pair[1]
+    with pytest.raises(pk.ParameterError, match="^`traj` has no energy series: the run dropped"):
+        capped.energy_series()
     for call in (lambda: capped.sample([10.0]), lambda: capped.pose([10.0]), capped.energy_series):
         with pytest.raises(pk.ParameterError, match=r"dropped its dense output when it passed max_dense_mb = 0\.5 MB"):
             call()
