@@ -13,7 +13,7 @@
    without it, and with ``--air-drag 0`` (the bookkeeping with a law that takes nothing), in one
    process, interleaved: the simulated time reached per second of each, as ratios (goal <= 1.5),
    and each command's wall time (the run and the work after it: the energy budget, the poses)
-   against --max-wall (goal: within 10%).
+   against --max-wall (goal: within 10% with a dissipation law, the worst of the rounds).
 
     python benchmarks/bench_memory.py [--quick] [--steps N] [--repeats N] [--json] [--report PATH]
 """
@@ -159,7 +159,7 @@ def main(argv=None) -> int:
     r["long_run_peak_mb"] = r["long"]["peak_rss_mb"]
     r["ratio_long_tenth_rss"] = r["long"]["peak_rss_mb"] / r["tenth"]["peak_rss_mb"]
     r["ratio_bookkeeping"] = r["bookkeeping"]["ratio_drag"]
-    r["wall_overrun"] = max(r["bookkeeping"]["wall_overrun"].values())
+    r["wall_overrun"] = max(r["bookkeeping"]["wall_overrun"][k] for k in ("drag", "zero"))  # with a dissipation law
     r["goals"] = GOALS
     r["goals_met"] = {"long_run_peak_mb": r["long_run_peak_mb"] <= GOALS["long_run_peak_mb"]
                       and r["long"]["samples_finite"],
