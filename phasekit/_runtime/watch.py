@@ -141,6 +141,40 @@ def wall_deadline(max_wall: float | None):
         _DEADLINE.reset(token)
 
 
+#: [start, unclaimed] of the command that runs a simulation (the CLI's): its first run's own wall
+#: budget counts from that start (:func:`claim_start`)
+_STARTED: contextvars.ContextVar[list | None] = contextvars.ContextVar("phasekit_started", default=None)
+
+
+@contextlib.contextmanager
+def wall_started():
+    """Within the block, the first run's own wall budget (``max_wall``) counts from now, not from the
+    run's start: the CLI sets it, so that the work before a run (the inputs, the model) and after it
+    (its energy budget, its poses: :func:`spent`) count in --max-wall. Yields the start
+    (``time.perf_counter()``)."""
+    token = _STARTED.set([time.perf_counter(), True])
+    try:
+        yield _STARTED.get()[0]
+    finally:
+        _STARTED.reset(token)
+
+
+def claim_start() -> float | None:
+    """The start of :func:`wall_started`'s block the first time it is asked (the command's run),
+    None after (a run that run makes, its verification, counts from its own start) or outside one."""
+    holder = _STARTED.get()
+    if holder is None or not holder[1]:
+        return None
+    holder[1] = False
+    return holder[0]
+
+
+def spent() -> float:
+    """Seconds since :func:`wall_started`'s block began (0 outside one)."""
+    holder = _STARTED.get()
+    return 0.0 if holder is None else time.perf_counter() - holder[0]
+
+
 def deadline() -> tuple[float, float] | None:
     """The deadline in force, (``time.perf_counter()`` value, the budget in seconds), or None."""
     return _DEADLINE.get()

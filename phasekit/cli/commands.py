@@ -13,11 +13,18 @@ from .parser import UsageError
 
 
 def _cmd_simulate(args) -> dict:
+    from .._runtime.watch import wall_started
+
+    with wall_started():  # --max-wall counts the whole command: the run and the work before and after it
+        return _simulate_command(args)
+
+
+def _simulate_command(args) -> dict:
     from .params import run_start
 
     scale = apply_units(args)
     traj, seed = _simulate_args(args, run_start, scale)
-    out = _run_output(traj, seed)
+    out = _run_output(traj, seed, args.max_wall)
     if args.si:
         from ..errors import ParameterError
         from .params import real_units_report
@@ -35,6 +42,13 @@ def _cmd_simulate(args) -> dict:
 
 def _cmd_animate(args) -> dict:
     """Simulate as `simulate` does, then write the movie (or film strip) of the run."""
+    from .._runtime.watch import wall_started
+
+    with wall_started():  # as simulate's (the movie after the run is not counted)
+        return _animate_command(args)
+
+
+def _animate_command(args) -> dict:
     from ..viz.animate import animate, check_movie_options, film_strip
     from .params import run_start
 
@@ -48,7 +62,7 @@ def _cmd_animate(args) -> dict:
                             camera=args.camera, panel=args.panel, window_size=size, scale=scale)
 
     traj, seed = _simulate_args(args, run_start, scale, before_run=before_run)
-    out = _run_output(traj, seed)
+    out = _run_output(traj, seed, args.max_wall)
     if traj.status.value == "failed":
         return out
     if str(args.out).lower().endswith(".png"):
@@ -63,10 +77,19 @@ def _cmd_animate(args) -> dict:
     return out
 
 
-def _run_output(traj, seed) -> dict:
+def _run_output(traj, seed, max_wall: float) -> dict:
     """The JSON dict of a run: the Trajectory's, its start's seed, every flight and their summary
-    (the dict's ``flight`` is the first flight only)."""
-    out = traj.to_dict()
+    (the dict's ``flight`` is the first flight only). The work after the run (the energy budget, the
+    poses at the events) gets what the run left of ``max_wall`` (--max-wall): past it, the dict says
+    what it left out ("post_run")."""
+    from .._runtime.watch import spent, wall_deadline
+
+    used = spent() or traj.wall_s  # the command's time so far (wall_started), else the run's
+    with wall_deadline(max(max_wall - used, 1e-3)):
+        out = traj.to_dict()
+    if "post_run" in out:
+        out["post_run"]["reason"] = (f"--max-wall {max_wall:g} s ran out after the run ({used:.3g} s of it): its "
+                                     f"{' and '.join(out['post_run']['skipped'])} not computed")
     if seed is not None:
         out["seed"] = seed
     out["flights"] = [f.to_dict() for f in traj.flights]

@@ -187,8 +187,9 @@ def add_solver(p):
                         "chunk of 100 output points: a chunk that would pass the budget is not taken, so the run "
                         "ends within it; the reason gives the count) (default: %(default)s)")
     g.add_argument("--max-wall", type=real, default=600.0,
-                   help="wall-time budget in seconds; a --t-end it cannot reach is refused at once (default: "
-                        "%(default)s)")
+                   help="wall-time budget in seconds of the whole command: the run and the work after it (its "
+                        "energy budget and poses, left out and said so in \"post_run\" past it); a --t-end it cannot "
+                        "reach is refused at once (default: %(default)s)")
     g.add_argument("--verify", action="store_true",
                    help="repeat the run at rtol/10 in the other chart and report how far it is from converged "
                         "(\"converged to ~X\", or \"not converged\" with what differs); costs that run")

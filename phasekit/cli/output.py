@@ -142,6 +142,8 @@ def _print_energy(out: dict) -> None:
               + (" (give --mass for mJ)" if si and unit != "mJ" else ""))
     if si.get("t_rest") is not None:
         print(f"at rest at t = {_fmt(si['t_rest'] / 1e3, '.6g')} s")
+    if out.get("post_run"):
+        print(out["post_run"]["reason"])
 
 
 def print_human(out: dict, events: bool) -> None:

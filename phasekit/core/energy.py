@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._runtime.watch import check_deadline
 from ..errors import ParameterError
 from .hybrid import Mode
 from .observables import evaluate_function
@@ -76,7 +77,8 @@ def energy_budget(traj) -> EnergyBudget:
     Raises
     ------
     ParameterError
-        If the run kept no dense output (simulate with dense=True, the default).
+        If the run kept no dense output (simulate with dense=True, the default), nor its tally
+        (a run past ``max_dense_mb`` keeps one: :mod:`phasekit.core.dense_cap`).
     """
     model = traj.model
     names = law_names(model)
@@ -86,7 +88,7 @@ def energy_budget(traj) -> EnergyBudget:
     if not traj.segments and traj.mode_stop is not None:  # it ended at its start (e.g. R <= 0 there): nothing lost
         e = float(model.function("energy", traj.mode_stop)(traj.x_stop, model.p))
         return EnergyBudget(e, e, names, tuple(0.0 for _ in names), 0.0, 0.0)
-    require_dense(traj)
+    require_dense(traj, tallied=True)
     work, jumps, e_prev = np.zeros(len(names)), 0.0, None
     first = traj.segments[0]
     e_start = float(model.function("energy", first.mode)(first.x0, model.p))
@@ -98,9 +100,8 @@ def energy_budget(traj) -> EnergyBudget:
         if e_prev is not None:
             jumps += e_prev - e0
         e_prev = e1
-        seg_work, ends, X_ends, cumulative = _segment_work(model, seg, len(names))
-        if len(ends):  # the balance at every step's end: lost - dissipated - at events, so far
-            E = np.atleast_1d(evaluate_function(energy, model.p, X_ends)).reshape(-1)
+        seg_work, E, cumulative = _segment_work(model, seg, len(names))
+        if len(E):  # the balance at every step's end: lost - dissipated - at events, so far
             along = (e_start - E) + (np.sum(work) + cumulative) - jumps
             worst = max(worst, float(np.max(np.abs(along))))
         work += seg_work
@@ -124,11 +125,35 @@ def law_names(model) -> tuple:
     return ("sliding friction", *(d.name for d in model.friction.dissipation))
 
 
-def require_dense(traj) -> None:
-    """Raise the ParameterError of a run whose energy cannot be followed: no dense output."""
-    if not traj.segments or not all(s.dense for s in traj.segments):
-        raise ParameterError("traj", "has no energy budget: the run kept no dense output (simulate with dense=True)",
-                             show_value=False)
+def has_budget(traj) -> bool:
+    """Can :func:`energy_budget` follow ``traj``'s energy (dense output, or a complete tally)?"""
+    if not traj.segments:
+        return traj.mode_stop is not None
+    return all((s.dense or s.tally) and all(t.t0 == t.t0 for t in s.tally) for s in traj.segments)
+
+
+def require_dense(traj, tallied: bool = False) -> None:
+    """Raise the ParameterError of a run whose energy cannot be followed: no dense output (nor,
+    with ``tallied``, the tally kept when the dense output was dropped under its cap:
+    :mod:`phasekit.core.dense_cap`)."""
+    if traj.segments and all(s.dense or (tallied and s.tally) for s in traj.segments):
+        if any(t.t0 != t.t0 for s in traj.segments for t in s.tally):  # dense_cap.ABANDONED (t0 NaN)
+            raise ParameterError("traj", "has no energy budget: the run dropped its dense output past max_dense_mb and "
+                                         "its wall budget ran out while it tallied the energy", show_value=False)
+        return
+    note = dropped_note(traj)
+    what = "series" if note and not tallied else "budget"  # a run past its cap has a budget, not a series
+    raise ParameterError("traj", f"has no energy {what}: " + (note or "the run kept no dense output (simulate with "
+                                                                   "dense=True)"), show_value=False)
+
+
+def dropped_note(traj) -> str | None:
+    """Why ``traj`` has no dense output when it dropped it under its cap (else None): a clause for
+    the messages of what needs it."""
+    if not any(s.tally for s in traj.segments):
+        return None
+    return (f"the run dropped its dense output when it passed max_dense_mb = {traj.options.max_dense_mb:g} MB "
+            f"(simulate with a larger max_dense_mb, or None; times asked as t_eval are kept)")
 
 
 def _power_function(model, mode: Mode):
@@ -171,17 +196,29 @@ def gauss_powers(model, mode: Mode, span, a, b):
 
 def _segment_work(model, seg, n_laws: int):
     """The integral over the segment of each law's power; and, at the end of each Taylor step
-    (or output interval), the time, the state and the work of all laws together so far."""
+    (or output interval), the energy and the work of all laws together so far. From the dense
+    output, or from the tallies of a run that dropped it (the same numbers: :mod:`.dense_cap`)."""
     total = np.zeros(n_laws)
-    all_ends, all_X, steps = [], [], []
-    for span in seg.dense:
-        a, b = step_bounds(span)
-        w, vals = gauss_powers(model, seg.mode, span, a, b)
-        total += w @ vals
-        if len(b):
-            steps.append((w[:, None] * vals).sum(axis=1).reshape(len(b), GAUSS_NODES).sum(axis=1))
-            all_ends.append(b)
-            all_X.append(span(b))
+    all_E, steps = [], []
+    if seg.tally:
+        for t in seg.tally:
+            total += t.work
+            if len(t.steps):
+                steps.append(t.steps)
+                all_E.append(t.energy)
+    else:
+        all_X = []
+        for span in seg.dense:
+            check_deadline()  # a wall budget in force (the CLI's --max-wall) counts this work
+            a, b = step_bounds(span)
+            w, vals = gauss_powers(model, seg.mode, span, a, b)
+            total += w @ vals
+            if len(b):
+                steps.append((w[:, None] * vals).sum(axis=1).reshape(len(b), GAUSS_NODES).sum(axis=1))
+                all_X.append(span(b))
+        if steps:
+            X_ends = np.concatenate(all_X)
+            all_E = [np.atleast_1d(evaluate_function(model.function("energy", seg.mode), model.p, X_ends)).reshape(-1)]
     if not steps:
-        return total, np.zeros(0), np.zeros((0, 0)), np.zeros(0)
-    return total, np.concatenate(all_ends), np.concatenate(all_X), np.cumsum(np.concatenate(steps))
+        return total, np.zeros(0), np.zeros(0)
+    return total, np.concatenate(all_E), np.cumsum(np.concatenate(steps))

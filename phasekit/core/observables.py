@@ -37,5 +37,25 @@ def evaluate_function(f: ca.Function, p: np.ndarray, x):
         return float(r.item()) if r.size == 1 else r.ravel()
     if X.shape[0] == 0:
         return np.empty((0,) if f.numel_out(0) == 1 else (0, f.numel_out(0)))
-    r = np.asarray(f.map(X.shape[0])(X.T, np.tile(p[:, None], (1, X.shape[0]))))
+    if X.shape[0] <= MAP_BLOCK:
+        r = np.asarray(f.map(X.shape[0])(X.T, np.tile(p[:, None], (1, X.shape[0]))))
+    else:  # one map of MAP_BLOCK columns, built once per function (building a map costs ~5 ms)
+        m, P = _mapped(f), np.tile(p[:, None], (1, MAP_BLOCK))
+        pad = -X.shape[0] % MAP_BLOCK
+        XT = np.concatenate([X, np.repeat(X[-1:], pad, axis=0)]).T if pad else X.T
+        r = np.concatenate([np.asarray(m(XT[:, a:a + MAP_BLOCK], P)) for a in range(0, XT.shape[1], MAP_BLOCK)],
+                           axis=1)[:, :X.shape[0]]
     return r.ravel() if r.shape[0] == 1 else r.T
+
+
+#: states evaluated by one map of a compiled function (:func:`evaluate_function` on more of them)
+MAP_BLOCK = 4096
+_MAPS: dict = {}
+
+
+def _mapped(f: ca.Function) -> ca.Function:
+    key = id(f)
+    hit = _MAPS.get(key)
+    if hit is None or hit[0] is not f:
+        hit = _MAPS[key] = (f, f.map(MAP_BLOCK))
+    return hit[1]

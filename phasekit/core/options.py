@@ -68,6 +68,12 @@ class SolverOptions:
         Keep the integrator's dense output (heyoka's Taylor polynomials) so that
         :meth:`Trajectory.sample` can evaluate any instant without re-integration. Costs
         ~2.5x the integration time of a bare run; sweeps turn it off.
+    max_dense_mb : float or None, default 1000
+        Memory cap of the dense output in MB (measured ~0.75 MB per thousand Taylor steps:
+        ~1.3 million steps fit). A run that passes it goes on and keeps what was asked of it
+        (the samples at ``t_eval``, events, minima, the energy budget, tallied as it goes, ~16
+        bytes a step, and the summary) but drops its dense output: sample, pose, energy_series
+        and animate then say so (:mod:`phasekit.core.dense_cap`). None: no cap.
     creep : bool, default True
         Let a stiff regularised law (mu/eps > 500) creep on its slow manifold while its slip is
         below 10 eps (an asymptotic reduction, listed in ``Trajectory.approximations``;
@@ -79,7 +85,7 @@ class SolverOptions:
         If a field is outside its range: ``rtol`` outside [1e-16, 0.1], ``atol`` or
         ``max_wall`` not a finite number > 0, ``backend`` not a registered engine,
         ``max_steps``, ``max_switches`` or ``bounce_tail`` not an integer >= 1,
-        ``bounce_stop`` outside (0, 1], ``settle`` not None, a bool, a Settle or its dict, or
+        ``bounce_stop`` outside (0, 1], ``max_dense_mb`` not None or a finite number > 0, ``settle`` not None, a bool, a Settle or its dict, or
         ``track_minima``, ``dense`` or ``creep`` not a bool.
 
     Examples
@@ -102,6 +108,7 @@ class SolverOptions:
     settle: Settle | None = None
     track_minima: bool = True
     dense: bool = True
+    max_dense_mb: float | None = 1000.0
     creep: bool = True
 
     def __post_init__(self):
@@ -121,6 +128,8 @@ class SolverOptions:
         object.__setattr__(self, "track_minima", check_bool("track_minima", self.track_minima))
         object.__setattr__(self, "dense", check_bool("dense", self.dense))
         object.__setattr__(self, "creep", check_bool("creep", self.creep))
+        if self.max_dense_mb is not None:
+            object.__setattr__(self, "max_dense_mb", check_positive("max_dense_mb", self.max_dense_mb))
 
     @classmethod
     def names(cls) -> tuple[str, ...]:

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._runtime.validate import check_finite
+from .._runtime.watch import check_deadline
 from ..errors import ParameterError
 from .charts import EULER
 
@@ -131,6 +132,10 @@ def rotation_matrix(psi, theta, phi) -> np.ndarray:
     c, s, z, o = np.cos(theta), np.sin(theta), np.zeros_like(theta), np.ones_like(theta)
     ry = np.stack([np.stack([c, z, s], -1), np.stack([z, o, z], -1), np.stack([-s, z, c], -1)], -2)
     return rz(psi) @ ry @ rz(phi)
+
+
+#: steps whose pose increments are computed together (each block ~0.1 s of a 1e5-step budget)
+POSE_BLOCK = 4096
 
 
 def _horner(coefs, tau):
@@ -231,6 +236,13 @@ class PoseTrack:
 
     def __init__(self, traj, pose0: Pose):
         if not traj.segments or not all(s.dense for s in traj.segments):
+            from .energy import dropped_note
+
+            note = dropped_note(traj)
+            if note is not None:
+                raise ParameterError("max_dense_mb", f"was passed: no orientation and position (psi, phi, X, Y, X_P, "
+                                                     f"Y_P), quadratures of the dense output: {note}",
+                                     traj.options.max_dense_mb)
             raise ParameterError("dense", "must be True (the default of SolverOptions) for the orientation and "
                                           "position (psi, phi, X, Y, X_P, Y_P): they are quadratures of the dense "
                                           "output", False)
@@ -265,7 +277,11 @@ class PoseTrack:
         h = ends - starts
         if euler:  # psi first: each step's turn e^{i psi_k} enters its increment of X + iY
             tr.psi = psi + _exclusive_cumsum(_horner(anti[:, None, :], h[:, None])[:, 0, 0])
-        dpsi, dphi, dxy, _ = tr.increments(np.arange(n), h)
+        parts = []
+        for a in range(0, n or 1, POSE_BLOCK):  # in blocks: a wall budget in force (the CLI's --max-wall) counts this
+            check_deadline()
+            parts.append(tr.increments(np.arange(a, min(a + POSE_BLOCK, n)), h[a:a + POSE_BLOCK])[:3])
+        dpsi, dphi, dxy = (np.concatenate(c) for c in zip(*parts))
         tr.psi = psi + _exclusive_cumsum(dpsi)
         tr.phi = phi + _exclusive_cumsum(dphi)
         tr.xy = xy + _exclusive_cumsum(dxy)

@@ -80,7 +80,11 @@ class Segment:
     monitored : tuple
         The (t, x) where the flow's monitor crossed zero (minima of R; the maximum of the gap in flight).
     dense : tuple
-        The dense output, callables t -> states in time order (empty without ``dense=True``).
+        The dense output, callables t -> states in time order (empty without ``dense=True``, or
+        once the run passed ``max_dense_mb``).
+    tally : tuple
+        With the dense output dropped under ``max_dense_mb``: the energy tally of each span of it
+        (:class:`phasekit.core.dense_cap.SpanTally`), from which the energy budget is computed.
 
     Examples
     --------
@@ -103,6 +107,7 @@ class Segment:
     n_rhs: int = 0
     monitored: tuple = field(default=(), repr=False)
     dense: tuple = field(default=(), repr=False)
+    tally: tuple = field(default=(), repr=False)
 
     def states(self, ts) -> np.ndarray:
         """States at times inside [t0, t1] from the dense output.
@@ -125,7 +130,8 @@ class Segment:
         ts = np.asarray(ts, dtype=float)
         out = np.empty((ts.size, self.x0.size))
         if not self.dense:
-            raise ValueError("no dense output was kept: simulate with dense=True")
+            raise ValueError("no dense output was kept: simulate with dense=True"
+                             + (" and a larger max_dense_mb" if self.tally else ""))
         starts = np.array([s.t0 for s in self.dense])
         idx = np.clip(np.searchsorted(starts, ts, side="right") - 1, 0, len(self.dense) - 1)
         for k in np.unique(idx):

@@ -15,12 +15,13 @@ from dataclasses import replace
 import numpy as np
 
 from .._runtime.validate import check_bool, check_finite, check_range, check_times, check_vector
-from .._runtime.watch import WALL_REASON, deadline, heartbeat, progress_bar, show_progress
+from .._runtime.watch import WALL_REASON, claim_start, deadline, heartbeat, progress_bar, show_progress
 from ..errors import ConvergenceError, ParameterError, Status
 from .audit import audited_options
 from .charts import FLIGHT, POLE_GUARD
 from .engines import Budget, End, Propagation, engine_for
 from .engines.dense import linear_span
+from .dense_cap import DenseCap
 from .face import run_face
 from .hybrid import Event, Mode, Transition
 from .model import Model
@@ -156,7 +157,7 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
         model = Model(model.body, model.friction.without_creep(), model.chart)
     opts = audited_options(opts)  # PHASEKIT_AUDIT (core/audit.py)
     system = _declared(model, stop_at, restitution, events, (opts.bounce_stop, opts.bounce_tail), opts.settle is not None)
-    run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None)
+    run = _Run(model, system, opts, t0, t_end, dense=opts.dense or te is not None, te=te)
     run.loop(system.initial(model, t0, x0, start_mode), progress)
     traj = run.result(x0, stop_at, restitution, events, te, pose0)
     if check_bool("verify", verify) and traj.status is not Status.FAILED:
@@ -166,9 +167,13 @@ def simulate(model: Model, x0, t_end: float, *, t0: float = 0.0, stop_at: str = 
     return traj
 
 
-def extended(seg: Segment, t1: float, x1: np.ndarray) -> Segment:
+def extended(seg: Segment, t1: float, x1: np.ndarray, cap=None) -> Segment:
     """``seg`` carried on in a straight line to (t1, x1): the instants a reset extrapolates over (to
-    the exact zero of the motion, or of the spin about the normal); its dense output gains that line."""
+    the exact zero of the motion, or of the spin about the normal); its dense output gains that line
+    (unless ``cap``, the run's memory cap, dropped the dense output: it takes the line: :mod:`.dense_cap`)."""
+    if cap is not None and (seg.dense or cap.dropped):
+        line = linear_span(seg.t1, t1, seg.x1, x1)
+        return replace(seg, t1=t1, x1=x1, dense=seg.dense + (line,) if cap(line) else seg.dense)
     dense = seg.dense + (linear_span(seg.t1, t1, seg.x1, x1),) if seg.dense else ()
     return replace(seg, t1=t1, x1=x1, dense=dense)
 
@@ -254,6 +259,7 @@ class RunState:
         self.segments, self.records = [], []
         self.face = None  # the face phase (phasekit.core.face.FacePhase), once the body lies flat
         self.resume = False  # a non-terminal event or a graze: the segment goes on from where it stopped
+        self.cap = None  # the memory cap of the dense output (simulate's: dense_cap.DenseCap)
 
     def record(self, name, t, before, after, x, detail="") -> None:
         x = None if x is None else np.asarray(x, dtype=float)
@@ -271,7 +277,9 @@ class RunState:
             self.resume = True
         else:
             if tr.carried and self.segments and tr.t > self.segments[-1].t1:  # see Transition
-                self.segments[-1] = extended(self.segments[-1], tr.t, np.asarray(tr.x, dtype=float))
+                if self.cap is not None:
+                    self.cap.where = (len(self.segments) - 1, self.segments[-1].mode)
+                self.segments[-1] = extended(self.segments[-1], tr.t, np.asarray(tr.x, dtype=float), self.cap)
                 self.t, self.x = tr.t, np.asarray(tr.x, dtype=float)
             if tr.stop is not None:
                 self.status, self.reason = tr.stop, tr.reason
@@ -337,14 +345,18 @@ class RunState:
 class _Run(RunState):
     """One run of simulate's loop: the state, the engines it uses and its budgets."""
 
-    def __init__(self, model, system, opts, t0, t_end, dense):
+    def __init__(self, model, system, opts, t0, t_end, dense, te=None):
         super().__init__(model, system, opts, t0, t_end)
         self.dense = dense
+        self.cap = DenseCap(model, opts.max_dense_mb, te, energy=opts.dense) if dense else None
         self.wall0 = time.perf_counter()
-        own, call = self.wall0 + opts.max_wall, deadline()
+        start = claim_start()  # the CLI's command counts in its --max-wall: from its start
+        own, call = (self.wall0 if start is None else start) + opts.max_wall, deadline()
         # the caller's budget (a search, a map) when it ends first: the reason then names it
         self.call_budget = call[1] if call is not None and call[0] < own else None
-        self.budget = Budget(opts.max_steps, own if self.call_budget is None else call[0])
+        self.budget = Budget(opts.max_steps, own if self.call_budget is None else call[0], keep=self.cap)
+        if self.cap is not None:
+            self.cap.budget = self.budget
         self.engines, self.steps_done = {}, 0
 
     def loop(self, first: Transition, progress) -> None:
@@ -442,6 +454,9 @@ class _Run(RunState):
 
     def _call(self, cflow, engine, events, x, t, t_stop) -> tuple[Propagation, Event | None]:
         self.budget.steps = self.opts.max_steps - self.steps_done
+        if self.cap is not None:  # the segment the spans will belong to (add_segment's rule)
+            on = self.resume and self.segments and self.segments[-1].mode is self.mode
+            self.cap.where = (len(self.segments) - (1 if on else 0), self.mode)
         prop = engine.propagate(cflow, x, t, t_stop, self.model.p, [e.level for e in events],
                                 budget=self.budget, dense=self.dense, resume=self.resume)
         self.resume = False
@@ -450,11 +465,14 @@ class _Run(RunState):
     def result(self, x0, stop_at, restitution, events, te, pose0) -> Trajectory:
         wall = time.perf_counter() - self.wall0
         kw = dict(stop_at=stop_at, restitution=restitution, user_events=events, pose0=pose0)
+        dropped = self.cap is not None and self.cap.dropped
+        if dropped:
+            self.segments = self.cap.segments(self.segments)
         if te is not None and (self.segments or self.face is not None):
             traj = self.trajectory(x0, wall, **kw)
             te = te[(te >= traj.t0) & (te <= traj.t)]
             if te.size:
-                kw.update(ts=te, ys=traj._chart_states(te))
+                kw.update(ts=te, ys=self.cap.states(self.segments, te) if dropped else traj._chart_states(te))
         if not self.opts.dense and self.dense:  # dense output was kept only to answer t_eval
             self.segments = [replace(s, dense=()) for s in self.segments]
         return self.trajectory(x0, wall, **kw)

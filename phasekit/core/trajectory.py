@@ -1,7 +1,8 @@
 """Results of a simulation: segments (one mode each), the event log, and one status.
 
 A :class:`Trajectory` is what :func:`phasekit.simulate` returns. It keeps the integrator's
-dense output (heyoka's Taylor polynomials) per segment, so :meth:`Trajectory.sample`
+dense output (heyoka's Taylor polynomials) per segment, up to ``max_dense_mb``
+(:mod:`phasekit.core.dense_cap`), so :meth:`Trajectory.sample`
 evaluates the state and any observable at any instant without re-integrating, and it
 carries its inputs (model, start, options) so that it can be rerun from :meth:`to_dict`. Its
 other forms (JSON, tables, xarray, NetCDF, Parquet) are built in :mod:`phasekit.core.trajectory_io`.
@@ -359,8 +360,10 @@ class Trajectory:
         if not self.segments and self.face is None:
             raise ParameterError("times", "cannot be sampled: the run has no segment", show_value=False)
         if not all(s.dense for s in self.segments):
-            raise ParameterError("times", "cannot be sampled: this run kept no dense output (simulate with dense=True)",
-                                 show_value=False)
+            from .energy import dropped_note
+
+            raise ParameterError("times", "cannot be sampled: " + (dropped_note(self) or "this run kept no dense output "
+                                                                   "(simulate with dense=True)"), show_value=False)
         return ts
 
     def _chart_states(self, ts) -> np.ndarray:

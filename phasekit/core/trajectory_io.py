@@ -17,6 +17,7 @@ import numpy as np
 from .._runtime.validate import check_int
 from ..errors import ParameterError, Status
 from .charts import FLIGHT, PAPER_NAMES
+from .energy import has_budget
 from .observables import evaluate_function
 from .pose import POSE_COLUMNS
 from .units import COLUMN_KINDS, Scale
@@ -99,18 +100,30 @@ def contact_summary(traj) -> dict:
             "passages": passages, "rests_on": PURE_ROLLING if pure else None}
 
 
-def _dissipation_summary(traj) -> dict:
+def _within_budget(work, skipped: list, name: str):
+    """``work()``, or None when the wall budget in force ran out in it (``skipped`` then gets
+    (name, why)): the work after a run (its energy budget, its poses) counts in the CLI's
+    --max-wall (:func:`phasekit._runtime.watch.wall_deadline`)."""
+    try:
+        return work()
+    except TimeoutError as exc:
+        skipped.append((name, f"{exc} after the run: its {name} not computed"))
+        return None
+
+
+def _dissipation_summary(traj, skipped: list) -> dict:
     """With dissipation laws, where the energy went and when the body came to rest:
     ``energy_budget`` (:meth:`~phasekit.core.trajectory.Trajectory.energy_budget`, units M g b;
-    None only for a run made with dense=False; a run that ended at its start has one, with nothing lost) and ``t_rest`` (the "rest" event's time, or None); an empty dict
+    None only for a run made with dense=False (a run past ``max_dense_mb`` has one, from its tally); a run that ended at its start has one, with nothing lost) and ``t_rest`` (the "rest" event's time, or None); an empty dict
     for a model without them (its JSON is as before)."""
     face = getattr(traj, "face", None)
     if not traj.model.friction.dissipation and face is None:
         return {}
-    dense = all(s.dense for s in traj.segments) and (bool(traj.segments) or traj.mode_stop is not None)
+    dense = has_budget(traj)
     rest = [e.t for e in traj.events if e.name in ("rest", "at rest")]
     return {"t_rest": float(rest[-1]) if rest else None,
-            "energy_budget": traj.energy_budget().to_dict() if dense else None}
+            "energy_budget": _within_budget(lambda: traj.energy_budget().to_dict(), skipped, "energy budget") if dense
+            else None}
 
 
 #: the scalars of a run's outcome and inputs that a run's table carries as attributes of their own
@@ -281,7 +294,7 @@ def trajectory_dict(traj, *, events: bool = True) -> dict:
         "mode_end": traj.mode,
         "stuck": traj.stuck,  # ever held zero slip (not "did not rise": see contact_summary)
         **contact_summary(traj),
-        **_dissipation_summary(traj),
+        **_dissipation_summary(traj, skipped := []),
         "n_events": len(traj.events),
         "n_steps": int(traj.n_steps),
         "n_rhs": int(traj.n_rhs),
@@ -297,7 +310,9 @@ def trajectory_dict(traj, *, events: bool = True) -> dict:
     if traj.status is Status.STOPPED and stops:
         d["t_stop"] = stops[-1].t
         d["stopped_by"] = stops[-1].name
-    poses = event_poses(traj) if events else None
+    poses = _within_budget(lambda: event_poses(traj), skipped, "poses") if events else None
+    if skipped:  # the wall budget's rest, after the run, ran out (the CLI's --max-wall counts this work)
+        d["post_run"] = {"skipped": [s for s, _ in skipped], "reason": skipped[0][1]}
     if events:
         d["events"] = [e.to_dict() for e in traj.events]
         if poses is not None:

@@ -195,8 +195,8 @@ class Scene:
         if not isinstance(traj, Trajectory):
             raise ParameterError("traj", "must be a phasekit Trajectory (from pk.simulate)", traj)
         if not traj.segments or not all(s.dense for s in traj.segments):
-            raise ParameterError("traj", "must keep its dense output (simulate with dense=True, the default)",
-                                 show_value=False)
+            raise ParameterError("traj", "must keep its dense output (simulate with dense=True, the default)"
+                                 + _dropped(traj), show_value=False)
         if label is not None and not isinstance(label, str):
             raise ParameterError("label", "must be a string or None", label)
         times = check_array("bodies", bodies, allow_empty=True).ravel()
@@ -459,3 +459,11 @@ def _bounds(scene, data, om_rng, th_rng) -> tuple:
     if data.fixed_points is not None and scene.omega_range is None:
         om_lo, om_hi = min(om_lo, data.fixed_points[:, 0].min()), max(om_hi, data.fixed_points[:, 0].max())
     return tuple(float(v) for v in (om_lo, om_hi, th_lo, th_hi, n_lo, n_hi))
+
+
+def _dropped(traj) -> str:
+    """The clause of a run that dropped its dense output under ``max_dense_mb`` (else empty)."""
+    from ..core.energy import dropped_note
+
+    note = dropped_note(traj)
+    return f": {note}" if note else ""

@@ -72,8 +72,8 @@ def _check_traj(traj):
     if not isinstance(traj, Trajectory):
         raise ParameterError("traj", "must be a phasekit Trajectory (from pk.simulate)", traj)
     if not traj.segments or not all(s.dense for s in traj.segments):
-        raise ParameterError("traj", "must keep its dense output (simulate with dense=True, the default)",
-                             show_value=False)
+        raise ParameterError("traj", "must keep its dense output (simulate with dense=True, the default)"
+                             + _dropped(traj), show_value=False)
 
 
 def _check_path(path, suffixes=SUFFIXES) -> Path:
@@ -411,3 +411,11 @@ def render_body(traj, t: float, path, *, scale=None, gap_scale: float = 1.0, win
     imgs = render_frames(traj, np.array([t]), style, (traj.t0, traj.t), progress=False)
     _write(imgs, path, 1.0)
     return AnimationInfo(str(path), 1, np.array([t]), tuple(imgs[0].shape[:2][::-1]), 0.0, None, path.stat().st_size)
+
+
+def _dropped(traj) -> str:
+    """The clause of a run that dropped its dense output under ``max_dense_mb`` (else empty)."""
+    from ..core.energy import dropped_note
+
+    note = dropped_note(traj)
+    return f": {note}" if note else ""

@@ -95,8 +95,8 @@ def _check_traj(traj, *, dense: bool = True):
     if not isinstance(traj, Trajectory):
         raise ParameterError("traj", "must be a phasekit Trajectory (from pk.simulate)", traj)
     if dense and (not traj.segments or not all(s.dense for s in traj.segments)):
-        raise ParameterError("traj", "must keep its dense output (simulate with dense=True, the default)",
-                             show_value=False)
+        raise ParameterError("traj", "must keep its dense output (simulate with dense=True, the default)"
+                             + _dropped(traj), show_value=False)
     return traj
 
 
@@ -471,3 +471,11 @@ def plain_log_ticks(ax, axis: str = "both", subs=(2, 3, 5)):
         ax_.set_major_formatter(ticker.FuncFormatter(major))
         ax_.set_minor_formatter(ticker.FuncFormatter(minor))
     return ax
+
+
+def _dropped(traj) -> str:
+    """The clause of a run that dropped its dense output under ``max_dense_mb`` (else empty)."""
+    from ..core.energy import dropped_note
+
+    note = dropped_note(traj)
+    return f": {note}" if note else ""

@@ -92,3 +92,32 @@ def test_a_long_run_into_a_log_file_beats_and_stops_at_its_wall_budget(tmp_path)
     assert len(beats) >= 2 and all(" of 100000 (" in ln and "s of wall-clock time" in ln for ln in beats)
     times = [float(ln.split("t = ")[1].split(" of ")[0]) for ln in beats]
     assert times == sorted(times) and times[-1] <= d["t_end"]
+
+
+def test_the_work_after_a_run_counts_in_its_wall_budget():
+    """A dissipative run that spends its whole --max-wall leaves its energy budget and poses out,
+    and says so; one that ends well within it has both (the same command otherwise; it runs first,
+    so that the other's budget is not spent compiling)."""
+    air = ["--a", 1.5, "--mu", 0.1, "--gyroscopic", "--theta0", 1.5607963, "--omega0", 11, "--air-drag", 1e-4,
+           "--stop-at", "none", "--json"]
+    code, out, _ = run_cli("simulate", *air, "--t-end", 50, "--max-wall", 60)
+    d = strict_json(out)
+    assert code == 0 and "post_run" not in d and d["energy_budget"]["dissipated"]["air-drag"] > 0
+    assert abs(d["energy_budget"]["residual"]) < 1e-8 and set(d["pose_end"]) >= {"psi", "X", "Y"}
+    code, out, _ = run_cli("simulate", *air, "--t-end", 2e4, "--max-wall", 1)
+    d = strict_json(out)
+    assert code == 1 and d["status"] == "failed" and "wall-time limit (1 s)" in d["reason"] and d["n_steps"] > 5000
+    assert d["energy_budget"] is None and "pose_end" not in d and d["post_run"]["skipped"] == ["energy budget", "poses"]
+    assert d["post_run"]["reason"].startswith("--max-wall 1 s ran out after the run (") and "not computed" in d["post_run"]["reason"]
+
+
+def test_the_command_s_start_is_claimed_by_its_first_run_only():
+    """--max-wall counts the whole simulate command: its run's own budget counts from the command's
+    start (claimed once: a run that run makes, its verification, counts from its own start), and
+    the work after it gets what is left (spent)."""
+    from phasekit._runtime.watch import claim_start, spent, wall_started
+
+    assert claim_start() is None and spent() == 0.0  # outside a command
+    with wall_started() as start:
+        assert claim_start() == start and claim_start() is None and spent() > 0.0
+    assert claim_start() is None

@@ -27,7 +27,8 @@ from pkdocs.sources import Sources  # noqa: E402
 BENCHMARKS = {"bench_performance.json": ("bench_performance.py", facts_runs.bench_performance),
               "bench_threshold_sweep.json": ("bench_threshold_sweep.py", facts_runs.bench_sweep),
               "bench_steady_structure.json": ("bench_steady_structure.py", facts_runs.bench_structure),
-              "bench_first_run.json": ("bench_first_run.py", facts_runs.bench_first_run)}
+              "bench_first_run.json": ("bench_first_run.py", facts_runs.bench_first_run),
+              "bench_memory.json": ("bench_memory.py", facts_runs.bench_memory)}
 
 PERFORMANCE = {"repeats": 50, "phasekit_rtol": 1e-8, "sweep_ms": 0.75, "default_ms": 1.4, "scipy_bdf_ms": 900.0,
                "ratio_scipy_bdf_sweep": 1200.0, "ratio_scipy_bdf_default": 640.0, "ratio_sweep_bare_heyoka": 1.3,
@@ -50,6 +51,21 @@ FIRST_RUN = {"bodies": {"egg": {"command": "phasekit simulate --body egg", "firs
                         "cone": {"command": "phasekit simulate --body cone", "first_s": 1.83, "second_s": 0.98, "notices": 0,
                                  "longest_noticed_compile_s": 0.0}},
              "worst_first_s": 3.45, "goals": {"first_s": 5.0}, "goals_met": {"first_s": True}}
+
+MEMORY = {"standard": {"steps": 715, "traced_peak_kb": 2175.0, "held_kb": 560.0, "peak_rss_mb": 160.2},
+          "per_step": {"dense_mb_per_million_steps": 752.0, "tally_mb_per_million_steps": 17.5, "dense_wall_s": 2.0,
+                       "tally_wall_s": 7.0, "steps": 142284, "ratio_tally_dense_wall": 3.5},
+          "long": {"steps": 10000000, "status": "completed", "t": 234741.8, "samples": 1001, "samples_finite": True,
+                   "events": 82, "energy_residual_max": 7.6e-8, "dropped": True, "wall_s": 900.0, "peak_rss_mb": 1380.0},
+          "tenth": {"steps": 1000000, "status": "completed", "t": 23474.2, "samples": 1001, "samples_finite": True,
+                    "events": 82, "energy_residual_max": 1e-8, "dropped": False, "wall_s": 60.0, "peak_rss_mb": 1000.0},
+          "bookkeeping": {"t_per_s": {"without": 860.0, "drag": 895.0, "zero": 859.0}, "ratio_drag": 0.96,
+                          "ratio_zero": 1.0, "wall_overrun": {"without": 0.06, "drag": 0.08, "zero": 0.08},
+                          "post_run_uncapped_s": 3.1, "post_run_uncapped_steps": 30599, "post_run_uncapped_overrun": 1.55,
+                          "post_run_uncapped_has_budget": True},
+          "long_run_peak_mb": 1380.0, "ratio_long_tenth_rss": 1.38, "ratio_bookkeeping": 0.96, "wall_overrun": 0.08,
+          "goals": {"long_run_peak_mb": 2000.0, "bookkeeping": 1.5, "wall_overrun": 0.1},
+          "goals_met": {"long_run_peak_mb": True, "bookkeeping": True, "wall_overrun": False}}
 
 
 def _write(data: Path, name: str, result: dict, argv=("--quick",)) -> dict:
@@ -93,7 +109,8 @@ def test_a_report_into_a_missing_directory_is_refused_before_the_run(tmp_path, c
 
 def test_the_page_shows_each_report_with_its_goals(tmp_path):
     for name, result in (("bench_performance.json", PERFORMANCE), ("bench_threshold_sweep.json", SWEEP),
-                         ("bench_steady_structure.json", STRUCTURE), ("bench_first_run.json", FIRST_RUN)):
+                         ("bench_steady_structure.json", STRUCTURE), ("bench_first_run.json", FIRST_RUN),
+                         ("bench_memory.json", MEMORY)):
         _write(tmp_path, name, result)
     src = Sources(data=tmp_path)
     bench = facts.lookup(src, "performance.bench_report")
@@ -109,7 +126,12 @@ def test_the_page_shows_each_report_with_its_goals(tmp_path):
     first = facts.lookup(src, "performance.first_run_report")
     assert "| egg: `phasekit simulate --body egg` | 3.5 s | 1.6 s | 1 |  |" in first
     assert re.search(r"\| the slowest first run \| 3\.5 s \|  \|  \| <= 5 s: yes \|", first)
-    assert "not measured" not in (bench + sweep + structure + first).lower()
+    memory = facts.lookup(src, "performance.memory_report")
+    assert "| dense output held per million Taylor steps (no cap) | 752 MB |" in memory
+    assert re.search(r"a long run of 10000000 steps .*energy residual 7\.6e-8\): peak resident \| 1380 MB \| <= 2000 MB \| yes \|",
+                     memory)
+    assert re.search(r"\| 0\.96 \| <= 1\.5 \| yes \|", memory) and re.search(r"\| 0\.08 \| <= 0\.1 \| \*\*no\*\* \|", memory)
+    assert "not measured" not in (bench + sweep + structure + first + memory).lower()
 
 
 def test_a_missing_report_is_not_measured_and_an_older_one_gets_its_ratio_from_its_times(tmp_path):
@@ -119,7 +141,7 @@ def test_a_missing_report_is_not_measured_and_an_older_one_gets_its_ratio_from_i
     src = Sources(data=tmp_path)
     assert re.search(r"its sweep path \(rtol 1e-9\) \| 1\.90 \|  \|  \|", facts.lookup(src, "performance.bench_report"))
     for key, name in (("sweep", "bench_threshold_sweep.json"), ("structure", "bench_steady_structure.json"),
-                      ("first_run", "bench_first_run.json")):
+                      ("first_run", "bench_first_run.json"), ("memory", "bench_memory.json")):
         block = facts.lookup(src, f"performance.{key}_report")
         assert block.startswith("Not measured") and name in block and "|" not in block
 

@@ -587,6 +587,7 @@ def test_api_sample_of_every_kind_of_run(runs, which, fractions):
     "bounce_stop": mostly(st.sampled_from([1e-4, 1e-6, 1e-2]), st.sampled_from([0.0, -1.0, 2.0, math.nan, "x"])),
     "bounce_tail": mostly(st.sampled_from([None, 100, 3]), st.sampled_from([0, -1, 2.5, "x"])),
     "max_switches": mostly(st.sampled_from([None, 10, 10**6]), st.sampled_from([0, -1, 2.5, True])),
+    "max_dense_mb": mostly(st.sampled_from([None, 1000.0, 0.5, 4]), st.sampled_from([0, -1.0, math.inf, math.nan, "x"])),
     "max_wall": real_or_wrong(2.0, 600.0)}),
           **fuzz(100))
 def test_api_new_solver_options(kw):

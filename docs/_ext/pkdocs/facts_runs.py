@@ -122,6 +122,36 @@ def bench_first_run(src: Sources) -> dict:
                         ["body: command", "first run (empty caches)", "second run", "compile notices on stderr", "goal: met"])
 
 
+def bench_memory(src: Sources) -> dict:
+    b = _bench(src, "bench_memory.json")
+    if b is None:
+        return _bench_block("memory", _bench_note(b, "bench_memory.json"), None, [])
+    r = b["result"]
+    st, ps, lg, k = r["standard"], r["per_step"], r["long"], r["bookkeeping"]
+    rows = [["the standard workload (to the jump, default options): the process's peak",
+             f"{fixed(st['peak_rss_mb'], 0)} MB", "", ""],
+            ["... one run of it, traced (tracemalloc peak)", f"{fixed(st['traced_peak_kb'], 0)} KB", "", ""],
+            ["dense output held per million Taylor steps (no cap)", f"{fixed(ps['dense_mb_per_million_steps'], 0)} MB", "", ""],
+            ["past `max_dense_mb`: the energy tally held per million steps",
+             f"{fixed(ps['tally_mb_per_million_steps'], 1)} MB", "", ""],
+            ["... the run's wall time with the tally, against keeping the dense output",
+             f"{fixed(ps['ratio_tally_dense_wall'], 2)}x", "", ""],
+            _goal_row(r, f"a long run of {lg['steps']} steps (status {lg['status']}, {lg['samples']} samples, "
+                         f"{lg['events']} events, energy residual {sci(lg['energy_residual_max'], 1)}): peak resident",
+                      f"{fixed(r['long_run_peak_mb'], 0)} MB", r["long_run_peak_mb"], "long_run_peak_mb", "<=", " MB"),
+            ["... its peak against a run of a tenth of its steps", f"{fixed(r['ratio_long_tenth_rss'], 2)}", "", ""],
+            _goal_row(r, "air drag's bookkeeping: time simulated per second, without / with the law",
+                      f"{fixed(r['ratio_bookkeeping'], 2)}", r["ratio_bookkeeping"], "bookkeeping", "<="),
+            ["... without / with a zero coefficient", f"{fixed(k['ratio_zero'], 2)}", "", ""],
+            _goal_row(r, "the commands with a dissipation law: wall time past --max-wall 2 s (the run and the work "
+                         "after it), a fraction of it, the worst round",
+                      f"{fixed(r['wall_overrun'], 2)}", r["wall_overrun"], "wall_overrun", "<="),
+            ["... the command without the law", f"{fixed(k['wall_overrun']['without'], 2)}", "", ""],
+            ["... the work after the drag run left uncapped (as before), a fraction of --max-wall",
+             f"{fixed(k['post_run_uncapped_overrun'], 2)} ({k['post_run_uncapped_steps']} steps)", "", ""]]
+    return _bench_block("memory", _bench_note(b, "bench_memory.json"), rows, ["measured", "value", "goal", "met"])
+
+
 def _study_profile(t) -> dict:
     """Where the main study's task time goes, by threshold definition (its committed table keeps
     each search's simulations and wall time)."""
@@ -166,7 +196,7 @@ def performance(src: Sources) -> dict:
     fail = s[s["status"] == "failed"]
     out["stiff_failed"] = "; ".join(f"{r.case}: {r.reason}" for r in fail.itertuples()) or "none"
     out.update(_study_profile(src.csv("threshold_vs_aspect.csv")))
-    for bench in (bench_performance, bench_sweep, bench_structure, bench_first_run):
+    for bench in (bench_performance, bench_sweep, bench_structure, bench_first_run, bench_memory):
         out.update(bench(src))
     return out
 

@@ -160,7 +160,9 @@ class CvodesEngine:
                 _check_budgets(prop, budget, t, t_end)
         prop.t, prop.x = t, x
         if dense and len(grid_t) > 1:
-            prop.dense.append(Span(HermiteDense(grid_t, grid_x, flow.field, p), grid_t[0], grid_t[-1]))
+            span = Span(HermiteDense(grid_t, grid_x, flow.field, p), grid_t[0], grid_t[-1])
+            if budget.keep is None or budget.keep(span):
+                prop.dense.append(span)
         return prop
 
     @staticmethod

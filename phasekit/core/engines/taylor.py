@@ -136,7 +136,7 @@ class TaylorEngine:
             if record is not None and int(res[3]) > 0:
                 record.finish(ta)  # the last, truncated step, in the scales it was taken in
                 if len(record.coefs) >= RECORD_STEPS:  # kept as it goes: the wall budget sees the cost
-                    _keep(record, prop, flow, dense, zeros)
+                    _keep(record, prop, flow, dense, zeros, budget.keep)
                     record = TaylorSteps(float(ta.time), tc, np.concatenate([scale, extra]))
             end, event = taylor_end(hy, res[0])
             if end is End.TIME and stop < t_end:  # a grid time: renew the scales
@@ -154,7 +154,7 @@ class TaylorEngine:
                                else f"taylor integrator stopped: {res[0]}")
             break
         if record is not None:
-            _keep(record, prop, flow, dense, zeros)
+            _keep(record, prop, flow, dense, zeros, budget.keep)
         prop.t, prop.x = float(ta.time), ta.state[:n] * scale
         prop.n_rhs = prop.n_steps * (ta.order + 1)
         if recorder is not None:
@@ -180,14 +180,17 @@ def _rescale(ta, n: int, first: int, scale) -> np.ndarray:
     return new
 
 
-def _keep(record, prop: Propagation, flow: CompiledFlow, dense: bool, zeros: bool) -> None:
-    """What a propagation's recorded steps give: the monitor's zeros and the dense output."""
+def _keep(record, prop: Propagation, flow: CompiledFlow, dense: bool, zeros: bool, keep=None) -> None:
+    """What a propagation's recorded steps give: the monitor's zeros and the dense output (unless
+    ``keep``, the run's memory cap, :class:`.protocol.Budget`, declines it)."""
     if not record.coefs:
         return
     if zeros:
         prop.monitored += record.zeros(flow.n_states, flow.monitor.direction)
     if dense:
-        prop.dense.append(record.span(flow.n_states))
+        span = record.span(flow.n_states)
+        if keep is None or keep(span):
+            prop.dense.append(span)
 
 
 def _out_of_budget(prop: Propagation, budget: Budget, t: float) -> bool:
