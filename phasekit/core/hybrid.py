@@ -42,12 +42,15 @@ class Mode(str, enum.Enum):
         Values "sliding_no_roll", "pivoting": as SLIDING and ROLLING, with the rolling part of
         the angular velocity held at zero by rolling resistance (:class:`phasekit.RollingResistance`);
         without slip the body then only spins about the normal, in place.
+    EDGE : Mode
+        Value "edge": exact Coulomb's contact sliding on the edge of the friction cone, |F| = mu R,
+        at a slip below 1e-3 whose direction the dynamics decides (:mod:`phasekit.core.cone_edge`).
 
     Examples
     --------
     >>> import phasekit as pk
     >>> [m.value for m in pk.core.Mode]
-    ['sliding', 'rolling', 'flight', 'sliding_no_pivot', 'rolling_no_pivot', 'sliding_no_roll', 'pivoting']
+    ['sliding', 'rolling', 'flight', 'sliding_no_pivot', 'rolling_no_pivot', 'sliding_no_roll', 'pivoting', 'edge']
     """
 
     SLIDING = "sliding"
@@ -57,6 +60,7 @@ class Mode(str, enum.Enum):
     ROLLING_NO_PIVOT = "rolling_no_pivot"
     SLIDING_NO_ROLL = "sliding_no_roll"
     PIVOTING = "pivoting"
+    EDGE = "edge"
 
     @property
     def free(self) -> "Mode":
