@@ -58,7 +58,7 @@ def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump",
     >>> import phasekit as pk
     >>> ta, pars = pk.baseline.taylor_integrator(pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)))
     >>> type(ta).__name__, len(pars)
-    ('taylor_adaptive_dbl', 14)
+    ('taylor_adaptive_dbl', 13)
     """
     mode = Mode(mode)
     system = declare(model, stop_at=stop_at, events=events)

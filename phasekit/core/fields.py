@@ -184,8 +184,8 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=(), c
     T["r_P"] = contact_point(H, laws, T["k"])
     xdot, slip = T["xdot"], T["slip"]
     modes = [Mode.SLIDING, Mode.ROLLING] if law_cls.can_stick else [Mode.SLIDING]
-    if law_cls.has_rolling_mode:  # exact Coulomb: sliding on the cone's edge (cone_edge)
-        modes.append(Mode.EDGE)
+    if law_cls.has_rolling_mode:  # exact Coulomb: sliding on the cone's edge, and off it (cone_edge)
+        modes += [Mode.EDGE, Mode.OFF_EDGE]
     out = CompiledModel(chart=chart, n_params=n_params, modes=(*modes, Mode.FLIGHT), key=key)
     fn = out.contact
 
@@ -214,6 +214,9 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=(), c
     Fc0, d = ca.SX(Fc0), ca.SX(d)
     R_sl = -(g0 + ca.mtimes(G, Fc0)) / ca.mtimes(G, d)
     rhs_sl, _ = add_mode(Mode.SLIDING, Fc0 + R_sl * d)
+    if law_cls.has_rolling_mode:  # OFF_EDGE: SLIDING's field under its own name
+        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction", *(DISSIPATION_TERMS if laws else ())):
+            fn[f"{name}_{Mode.OFF_EDGE.value}"] = fn[f"{name}_sliding"]
     _build_slip(fn, x, p, slip, rhs_sl, R_sl, eps)
 
     _build_zero_slip(fn, add_mode, law_cls, creep, bool(laws), x, p, Fc, T, constraint, G, g0, mu, eps)

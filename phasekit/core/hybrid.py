@@ -45,12 +45,16 @@ class Mode(str, enum.Enum):
     EDGE : Mode
         Value "edge": exact Coulomb's contact sliding on the edge of the friction cone, |F| = mu R,
         at a slip below 1e-3 whose direction the dynamics decides (:mod:`phasekit.core.cone_edge`).
+    OFF_EDGE : Mode
+        Value "off_edge": SLIDING's field after the slip has left the cone's edge, watched for its
+        return there (SLIDING itself is not, so that the runs that never reach the edge keep their
+        integrator).
 
     Examples
     --------
     >>> import phasekit as pk
     >>> [m.value for m in pk.core.Mode]
-    ['sliding', 'rolling', 'flight', 'sliding_no_pivot', 'rolling_no_pivot', 'sliding_no_roll', 'pivoting', 'edge']
+    ['sliding', 'rolling', 'flight', 'sliding_no_pivot', 'rolling_no_pivot', 'sliding_no_roll', 'pivoting', 'edge', 'off_edge']
     """
 
     SLIDING = "sliding"
@@ -61,6 +65,7 @@ class Mode(str, enum.Enum):
     SLIDING_NO_ROLL = "sliding_no_roll"
     PIVOTING = "pivoting"
     EDGE = "edge"
+    OFF_EDGE = "off_edge"
 
     @property
     def free(self) -> "Mode":

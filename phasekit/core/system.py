@@ -81,10 +81,10 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
     ) + tuple(Flow(m, f"rhs_{m.value}", monitor=("Rdot", +1), stiff=stiff and m.free is Mode.ROLLING) for m in held)
     edge = Mode.EDGE in model.modes  # exact Coulomb: sliding on the cone's edge (cone_edge)
     if edge:
-        flows += (Flow(Mode.EDGE, "rhs_edge", monitor=("Rdot", +1)),)
+        flows += (Flow(Mode.EDGE, "rhs_edge", monitor=("Rdot", +1)), Flow(Mode.OFF_EDGE, "rhs_off_edge", monitor=("Rdot", +1)))
     jump_ends = stop_at == "jump"
     contact = frozenset(f.mode for f in flows if f.contact)
-    sliding = {m for m in contact if m.free is Mode.SLIDING}
+    sliding = {m for m in contact if m.free is Mode.SLIDING or m is Mode.OFF_EDGE}
     rolling = {m for m in contact if m.free is Mode.ROLLING}
     evs = [Event("R", name="lift-off", direction=-1, modes=contact, rate="Rdot", stop=Status.JUMPED,
                  reset=None if jump_ends else LiftOff())]
@@ -96,8 +96,8 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
             evs.append(Event(f"{kind}_guard", name=f"{kind} stick", direction=-1, modes={Mode.SLIDING, Mode.ROLLING},
                              reset=Hold(kind)))
             if edge:
-                evs.append(Event(f"{kind}_guard", name=f"{kind} stick", direction=-1, modes={Mode.EDGE},
-                                 reset=OnEdge(Hold(kind))))
+                evs += [Event(f"{kind}_guard", name=f"{kind} stick", direction=-1, modes={m},
+                              reset=OnEdge(Hold(kind), like)) for m, like in ((Mode.EDGE, Mode.ROLLING), (Mode.OFF_EDGE, Mode.SLIDING))]
             evs += [Event(f"{kind}_margin_{m.value}", name=f"{kind} slip", direction=-1, modes={m}, reset=Release(kind))
                     for m in kept]
     if periodic and rolls_periodically_here(model):  # a run with a settle rule ends one period into a roll
@@ -136,13 +136,15 @@ def _stick_events(law, sliding, rolling, hold, creep: bool, edge: bool) -> list[
 
 def _edge_events(hold) -> list[Event]:
     """In and out of EDGE (:mod:`phasekit.core.cone_edge`): the slip along e* vanishes (roll), it grows
-    past EDGE_OUT (slide); a sliding slip falls below EDGE_IN near the cone's edge (onto the edge)."""
+    past EDGE_OUT (slide, OFF_EDGE); that slip falls below EDGE_IN near the cone's edge (onto the edge).
+    SLIDING does not watch the return: its integrator stays that of the runs that never reach the edge
+    (an event more changes the last bits of heyoka's Taylor coefficients, measured 1e-15)."""
     # the slip along e* falls through zero linearly (at the rate lambda < 0); it is exactly 0 on entry from
     # ROLLING, so the guard fires a little past it (-EDGE_STICK)
     return [Event("edge_stick", -EDGE_STICK, name="stick", direction=-1, modes={Mode.EDGE}, reset=hold(EdgeStick())),
             Event("edge_out", name="edge out", direction=+1, modes={Mode.EDGE},
-                  reset=SwitchMode(Mode.SLIDING, "edge out", "the slip grew past EDGE_OUT")),
-            Event("edge_in", name="edge in", direction=-1, modes={Mode.SLIDING},
+                  reset=SwitchMode(Mode.OFF_EDGE, "edge out", "the slip grew past EDGE_OUT")),
+            Event("edge_in", name="edge in", direction=-1, modes={Mode.OFF_EDGE},
                   reset=SwitchMode(Mode.EDGE, "edge in", "slip below EDGE_IN, |F_req| near mu R"))]
 
 

@@ -150,14 +150,16 @@ class EdgeStick:
 
 @dataclass(frozen=True)
 class OnEdge:
-    """An event of ROLLING watched on the cone's edge too (spin friction or rolling resistance
-    stopping its part of w): ``inner`` is applied as from ROLLING at the state with its slip (below
-    EDGE_OUT) set to zero; where it only grazes or the couple cannot hold, EDGE goes on."""
+    """An event of ROLLING and SLIDING watched on and off the cone's edge too (spin friction or
+    rolling resistance stopping its part of w): ``inner`` is applied as from ``like`` (ROLLING: at
+    the state with its slip, below EDGE_OUT, set to zero); where it only grazes or the couple cannot
+    hold, the mode goes on."""
 
     inner: object
+    like: Mode = Mode.ROLLING
 
     def __call__(self, model, event, mode, t, x) -> Transition:
-        tr = self.inner(model, event, Mode.ROLLING, t, project_no_slip(model, x))
-        if tr.stop is None and (tr.resume or tr.mode is Mode.ROLLING):
+        tr = self.inner(model, event, self.like, t, project_no_slip(model, x) if self.like is Mode.ROLLING else x)
+        if tr.stop is None and (tr.resume or tr.mode is self.like):
             return Transition(mode, t, x, resume=True)
         return tr
