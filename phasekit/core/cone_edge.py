@@ -24,11 +24,12 @@ along e*, f = O(r), so the cone holds to O(r^2); no u/|u| appears, and nothing i
 The slip grows (lambda > 0: the force needed lies beyond the cone) or vanishes (lambda < 0) at the
 slow rate lambda.
 
-Entry: from ROLLING at its slip event (u = 0 exactly, no nudge); from SLIDING when |u| falls below
-EDGE_IN while the force rolling would need is within EDGE_BAND of the cone's edge (``edge_in``). Exit:
-u.e* falls to 0 (``edge_stick``): the slip vanished, roll (u := 0); |u| rises past EDGE_OUT
-(``edge_out``): the reduction's first-order error would grow with r, slide. docs/physics.md, "Sliding
-on the edge of the friction cone", gives what was checked.
+Entry: from ROLLING at its slip event (u = 0 exactly, no nudge); from OFF_EDGE (SLIDING's field, after
+an exit) when |u| falls below EDGE_IN while the force rolling would need is within EDGE_BAND of the cone's
+edge (``edge_in``). Exit: u.e* falls to -EDGE_STICK (``edge_stick``): the slip vanished, roll (the rest
+of u taken out by a contact impulse, ``edge_landing``); |u| rises past EDGE_OUT (``edge_out``): the
+reduction's first-order error would grow with r, slide (OFF_EDGE). docs/physics.md, "Sliding on the
+edge of the friction cone (exact Coulomb's EDGE mode)", gives what was checked.
 """
 
 from __future__ import annotations
@@ -40,7 +41,7 @@ from .hybrid import Mode
 #: the slip speed (units sqrt(g b)) above which EDGE hands over to SLIDING; the reduction's error is
 #: first order in |u| (measured on the inverted tippe top: 1.7e-5 at 1e-3 against 1.5e-4 at 1e-2)
 EDGE_OUT = 1e-3
-#: the slip speed below which SLIDING enters EDGE (hysteresis: half of EDGE_OUT) ...
+#: the slip speed below which OFF_EDGE enters EDGE (hysteresis: half of EDGE_OUT) ...
 EDGE_IN = 0.5 * EDGE_OUT
 #: ... where the force rolling would need is this close to the cone's edge: |1 - |F|^2/(mu R)^2| below it
 EDGE_BAND = 0.02
