@@ -9,6 +9,8 @@ force Fc = (F_1, F_2, R). Each mode adds the equations that fix Fc:
   leaves one linear equation for R; for Coulomb friction this is (6.1);
 * ROLLING (exact Coulomb): the no-slip constraint du/dt = 0, which with (2.8) is a 3x3
   linear system for Fc (solved symbolically);
+* EDGE (exact Coulomb): sliding on the edge of the friction cone, the slip's direction slaved
+  to the dynamics (:mod:`phasekit.core.cone_edge`);
 * FLIGHT: Fc = 0, in the flight chart (the vector chart's state plus the gap), built from
   the same rigid-body equations.
 
@@ -32,6 +34,7 @@ from ..bodies.body import Body
 from ..friction.dissipation import RollingResistance, SpinFriction
 from ..friction.laws import FrictionLaw
 from .charts import FLIGHT, PAPER_NAMES, Chart
+from .cone_edge import build_edge
 from .hybrid import Mode
 
 #: slip speed (units sqrt(g b)) at which exact Coulomb sliding is taken to have stuck;
@@ -194,6 +197,8 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=(), c
     T["r_P"] = contact_point(H, laws, T["k"])
     xdot, slip = T["xdot"], T["slip"]
     modes = [Mode.SLIDING, Mode.ROLLING] if law_cls.can_stick else [Mode.SLIDING]
+    if law_cls.has_rolling_mode:  # exact Coulomb: sliding on the cone's edge, and off it (cone_edge)
+        modes += [Mode.EDGE, Mode.OFF_EDGE]
     out = CompiledModel(chart=chart, n_params=n_params, modes=(*modes, Mode.FLIGHT), key=key)
     fn = out.contact
 
@@ -222,6 +227,9 @@ def _build(body: Body, law_cls: type[FrictionLaw], chart: Chart, key, laws=(), c
     Fc0, d = ca.SX(Fc0), ca.SX(d)
     R_sl = -(g0 + ca.mtimes(G, Fc0)) / ca.mtimes(G, d)
     rhs_sl, _ = add_mode(Mode.SLIDING, Fc0 + R_sl * d)
+    if law_cls.has_rolling_mode:  # OFF_EDGE: SLIDING's field under its own name
+        for name in ("rhs", "rhs_jac", "R", "Rdot", "Fc", "friction", *(DISSIPATION_TERMS if laws else ())):
+            fn[f"{name}_{Mode.OFF_EDGE.value}"] = fn[f"{name}_sliding"]
     _build_slip(fn, x, p, slip, rhs_sl, R_sl, eps)
 
     _build_zero_slip(fn, add_mode, law_cls, creep, bool(laws), x, p, Fc, T, constraint, G, g0, mu, eps)
@@ -375,7 +383,7 @@ def _build_zero_slip(fn, add_mode, law_cls, creep, laws, x, p, Fc, T, constraint
     regularised law its own field under that name (the slip below 10 eps)."""
     xdot, slip = T["xdot"], T["slip"]
     if law_cls.has_rolling_mode:
-        _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu)
+        _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu, T["frame_rate"])
     elif creep:
         _build_creep(fn, add_mode, x, p, Fc, xdot, slip, constraint, mu, eps, T["frame_rate"])
     elif law_cls.can_stick:
@@ -383,7 +391,7 @@ def _build_zero_slip(fn, add_mode, law_cls, creep, laws, x, p, Fc, T, constraint
             fn[f"{name}_rolling"] = fn[f"{name}_sliding"]
 
 
-def _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu) -> None:
+def _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu, frame_rate) -> None:
     """ROLLING (exact Coulomb): the constraint and du/dt = 0 fix all three components of Fc."""
     rows = ca.vertcat(constraint, ca.jtimes(slip, x, xdot))
     M = ca.jacobian(rows, Fc)
@@ -400,6 +408,7 @@ def _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu) ->
     rhs_e = ca.substitute(xdot, Fc, R_e * d_e)
     fn["slip_onset"] = ca.Function("slip_onset", [x, p, phi], [ca.jtimes(slip, x, rhs_e), R_e],
                                    ["x", "p", "phi"], ["slip_acc", "R"])
+    build_edge(fn, add_mode, _function, x, p, Fc, xdot, slip, constraint, mu, Fc_roll, frame_rate)
 
 
 #: the rate (units sqrt(g/b)) at which the creep field pulls the slip onto the slow manifold u*(x):

@@ -46,12 +46,20 @@ class Mode(str, enum.Enum):
         Value "face": an edged body lying flat on its face, sliding and spinning under Coulomb
         friction over the face (:mod:`phasekit.core.face`), after its "face down" with
         ``stop_at="rest"``, or from a start lying flat with ``mode="face"``.
+    EDGE : Mode
+        Value "edge": exact Coulomb's contact sliding on the edge of the friction cone, |F| = mu R,
+        at a slip below 1e-3 whose direction the dynamics decides (:mod:`phasekit.core.cone_edge`).
+    OFF_EDGE : Mode
+        Value "off_edge": SLIDING's field after the slip has left the cone's edge, watched for its
+        return there (SLIDING itself is not, so that the runs that never reach the edge keep their
+        integrator).
 
     Examples
     --------
     >>> import phasekit as pk
     >>> [m.value for m in pk.core.Mode]
-    ['sliding', 'rolling', 'flight', 'sliding_no_pivot', 'rolling_no_pivot', 'sliding_no_roll', 'pivoting', 'face']
+    ['sliding', 'rolling', 'flight', 'sliding_no_pivot', 'rolling_no_pivot', 'sliding_no_roll', 'pivoting', 'face', 'edge',
+     'off_edge']
     """
 
     SLIDING = "sliding"
@@ -62,6 +70,8 @@ class Mode(str, enum.Enum):
     SLIDING_NO_ROLL = "sliding_no_roll"
     PIVOTING = "pivoting"
     FACE = "face"
+    EDGE = "edge"
+    OFF_EDGE = "off_edge"
 
     @property
     def free(self) -> "Mode":

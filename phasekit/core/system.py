@@ -18,6 +18,7 @@ import numpy as np
 
 from .._runtime.validate import check_choice, check_range
 from ..errors import ParameterError, Status
+from .cone_edge import EDGE_STICK
 from .face import FaceLanding, face_start_transition
 from .fields import STICK_SLIP
 from .hybrid import Event, Flow, HybridSystem, Mode, Record, Transition
@@ -42,6 +43,7 @@ from .resets import (
     hold,
 )
 from .settle import TURN, Turn, rolls_periodically_here
+from .zero_slip import EdgeOnset, EdgeStick, OnEdge
 
 #: how far a run goes: the first lift-off, the first touchdown, or the end time; "rest" goes
 #: through flights as "none" does (with dissipation laws every run ends when the body rests)
@@ -78,32 +80,25 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
         Flow(Mode.ROLLING, "rhs_rolling", monitor=("Rdot", +1), stiff=stiff and not creep),
         Flow(Mode.FLIGHT, "rhs_flight", monitor=("gap_rate", -1), engine="taylor", contact=False),
     ) + tuple(Flow(m, f"rhs_{m.value}", monitor=("Rdot", +1), stiff=stiff and m.free is Mode.ROLLING) for m in held)
+    edge = Mode.EDGE in model.modes  # exact Coulomb: sliding on the cone's edge (cone_edge)
+    if edge:
+        flows += (Flow(Mode.EDGE, "rhs_edge", monitor=("Rdot", +1)), Flow(Mode.OFF_EDGE, "rhs_off_edge", monitor=("Rdot", +1)))
     jump_ends = stop_at == "jump"
     contact = frozenset(f.mode for f in flows if f.contact)
-    sliding = {m for m in contact if m.free is Mode.SLIDING}
+    sliding = {m for m in contact if m.free is Mode.SLIDING or m is Mode.OFF_EDGE}
     rolling = {m for m in contact if m.free is Mode.ROLLING}
     evs = [Event("R", name="lift-off", direction=-1, modes=contact, rate="Rdot", stop=Status.JUMPED,
                  reset=None if jump_ends else LiftOff())]
     if law.can_stick:
-        to_roll = hold(Stick() if law.has_rolling_mode else Creep() if creep else
-                       SwitchMode(Mode.ROLLING, "stick", "slip < 10 eps (regularised)"))
-        # the Taylor method watches |u| itself; pointwise integrators the dip of |u|^2 (see model)
-        evs += [Event("stick_guard", name="stick", direction=-1, modes=sliding, reset=to_roll),
-                Event("stick_guard_sq", name="stick", direction=-1, modes=sliding, reset=to_roll,
-                      rate="slip_speed2_rate")]
-        if law.has_rolling_mode:
-            evs += [Event("margin_rolling" if m is Mode.ROLLING else f"margin_{m.value}", name="slip", direction=-1,
-                          modes={m}, reset=hold(SlipOnset())) for m in sorted(rolling, key=list(Mode).index)]
-        else:
-            to_slide = hold(SwitchMode(Mode.SLIDING, "slip", "slip > 100 eps (regularised)"))
-            evs.append(Event("unstick_guard", name="slip", direction=-1, modes=rolling, reset=to_slide))
-            if creep:  # the creep holds while the law's slow manifold attracts fast (fields._build_creep)
-                evs.append(Event("creep_margin", name="slip", direction=-1, modes={Mode.ROLLING}, reset=to_slide))
+        evs += _stick_events(law, sliding, rolling, hold, creep, edge)
     for kind in ("pivot", "roll"):  # a set-valued law stops its part of w, holds it, lets it go (resets)
         kept = [m for m in held if m in (Mode.SLIDING.held(kind), Mode.ROLLING.held(kind))]
         if kept:
             evs.append(Event(f"{kind}_guard", name=f"{kind} stick", direction=-1, modes={Mode.SLIDING, Mode.ROLLING},
                              reset=Hold(kind)))
+            if edge:
+                evs += [Event(f"{kind}_guard", name=f"{kind} stick", direction=-1, modes={m},
+                              reset=OnEdge(Hold(kind), like)) for m, like in ((Mode.EDGE, Mode.ROLLING), (Mode.OFF_EDGE, Mode.SLIDING))]
             evs += [Event(f"{kind}_margin_{m.value}", name=f"{kind} slip", direction=-1, modes={m}, reset=Release(kind))
                     for m in kept]
     if periodic and rolls_periodically_here(model):  # a run with a settle rule ends one period into a roll
@@ -119,6 +114,39 @@ def declare(model, *, stop_at: str = "jump", restitution: float = 0.0, events=()
             raise ParameterError("events", "must be phasekit Event objects, e.g. pk.Event('theta', 0.4)", ev)
         evs.append(ev)
     return HybridSystem(flows, tuple(evs), _initial(stop_at, creep, bool(held)))
+
+
+def _stick_events(law, sliding, rolling, hold, creep: bool, edge: bool) -> list[Event]:
+    """Stick and slip: exact Coulomb's (with its EDGE mode), or a regularised law's (its creep)."""
+    to_roll = hold(Stick() if law.has_rolling_mode else Creep() if creep else
+                   SwitchMode(Mode.ROLLING, "stick", "slip < 10 eps (regularised)"))
+    # the Taylor method watches |u| itself; pointwise integrators the dip of |u|^2 (see model)
+    evs = [Event("stick_guard", name="stick", direction=-1, modes=sliding, reset=to_roll),
+           Event("stick_guard_sq", name="stick", direction=-1, modes=sliding, reset=to_roll, rate="slip_speed2_rate")]
+    if law.has_rolling_mode:
+        evs += [Event("margin_rolling" if m is Mode.ROLLING else f"margin_{m.value}", name="slip", direction=-1,
+                      modes={m}, reset=hold(EdgeOnset(SlipOnset()) if m is Mode.ROLLING and edge else SlipOnset()))
+                for m in sorted(rolling, key=list(Mode).index)]
+        return evs + (_edge_events(hold) if edge else [])
+    to_slide = hold(SwitchMode(Mode.SLIDING, "slip", "slip > 100 eps (regularised)"))
+    evs.append(Event("unstick_guard", name="slip", direction=-1, modes=rolling, reset=to_slide))
+    if creep:  # the creep holds while the law's slow manifold attracts fast (fields._build_creep)
+        evs.append(Event("creep_margin", name="slip", direction=-1, modes={Mode.ROLLING}, reset=to_slide))
+    return evs
+
+
+def _edge_events(hold) -> list[Event]:
+    """In and out of EDGE (:mod:`phasekit.core.cone_edge`): the slip along e* vanishes (roll), it grows
+    past EDGE_OUT (slide, OFF_EDGE); that slip falls below EDGE_IN near the cone's edge (onto the edge).
+    SLIDING does not watch the return: its integrator stays that of the runs that never reach the edge
+    (an event more changes the last bits of heyoka's Taylor coefficients, measured 1e-15)."""
+    # the slip along e* falls through zero linearly (at the rate lambda < 0); it is exactly 0 on entry from
+    # ROLLING, so the guard fires a little past it (-EDGE_STICK)
+    return [Event("edge_stick", -EDGE_STICK, name="stick", direction=-1, modes={Mode.EDGE}, reset=hold(EdgeStick())),
+            Event("edge_out", name="edge out", direction=+1, modes={Mode.EDGE},
+                  reset=SwitchMode(Mode.OFF_EDGE, "edge out", "the slip grew past EDGE_OUT")),
+            Event("edge_in", name="edge in", direction=-1, modes={Mode.OFF_EDGE},
+                  reset=SwitchMode(Mode.EDGE, "edge in", "slip below EDGE_IN, |F_req| near mu R"))]
 
 
 def _body_events(body, contact, hold, restitution: float, bounce_stop: float, face: bool = False) -> list[Event]:

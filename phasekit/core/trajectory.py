@@ -199,7 +199,7 @@ class Trajectory:
     def Rdot_jump(self) -> float | None:
         e = self._liftoff
         return None if e is None else float(self.model._evaluate(
-            "Rdot", e.x, Mode(e.mode_before) if e.mode_before in ("sliding", "rolling") else Mode.SLIDING))
+            "Rdot", e.x, Mode(e.mode_before) if e.mode_before in ("sliding", "rolling", "edge", "off_edge") else Mode.SLIDING))
 
     def energy_budget(self) -> EnergyBudget:
         """Where the energy went, law by law, and at events (:mod:`phasekit.core.energy`)."""

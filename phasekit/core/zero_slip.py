@@ -1,13 +1,16 @@
 """States at zero slip: the projections onto a slip, the direction in which slip develops where
-rolling is infeasible, and the mode a state at zero slip continues in (used by the resets of
-:mod:`phasekit.core.resets`).
+rolling is infeasible, the mode a state at zero slip continues in (used by the resets of
+:mod:`phasekit.core.resets`), and the resets in and out of exact Coulomb's EDGE mode, the contact
+sliding on the edge of the friction cone (:mod:`phasekit.core.cone_edge`).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
-from .hybrid import Mode
+from .hybrid import Mode, Record, Transition
 
 #: slip speed given to a body that starts sliding from zero slip. The true slip grows from 0
 #: like t^2 (the friction is continuous at the onset), and while it is tiny the field is stiff
@@ -112,3 +115,51 @@ def zero_slip_start(model, x) -> tuple[Mode, np.ndarray, str] | None:
     if found is None:
         return None
     return Mode.SLIDING, set_slip(model, x0, SLIP_ONSET * found[0]), "zero slip, rolling infeasible"
+
+
+@dataclass(frozen=True)
+class EdgeOnset:
+    """ROLLING reached |F_req| = mu R: slide on the cone's edge (EDGE) from u = 0 exactly, where EDGE's
+    friction is consistent there (R > 0, finite); else ``fallback`` (the slip onset with its nudge)."""
+
+    fallback: object
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        x0 = project_no_slip(model, x)
+        R = float(np.asarray(model.function("edge_check")(x0, model.p)).ravel()[0])
+        if not (np.isfinite(R) and R > 0.0):
+            return self.fallback(model, event, mode, t, x)
+        return Transition(Mode.EDGE, t, x0, (Record("slip", mode.value, Mode.EDGE.value, x0,
+                                                    "|F_req| reached mu R: sliding on the cone's edge"),))
+
+
+@dataclass(frozen=True)
+class EdgeStick:
+    """EDGE: the slip along e* fell to zero. Roll from u = 0 (what is left of the slip, ~EDGE_STICK,
+    taken out by a contact impulse: ``edge_landing``) where static friction holds there; else the
+    guard was grazed (it starts at 0 on entry from ROLLING, and rounding can take it below), and EDGE
+    goes on."""
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        x0 = project_no_slip(model, np.asarray(model.function("edge_landing")(x, model.p)).ravel())
+        if float(model.function("margin_rolling")(x0, model.p)) < 0.0:
+            return Transition(mode, t, x, resume=True)
+        return Transition(Mode.ROLLING, t, x0, (Record("stick", mode.value, Mode.ROLLING.value, x0,
+                                                       "the slip on the cone's edge vanished"),))
+
+
+@dataclass(frozen=True)
+class OnEdge:
+    """An event of ROLLING and SLIDING watched on and off the cone's edge too (spin friction or
+    rolling resistance stopping its part of w): ``inner`` is applied as from ``like`` (ROLLING: at
+    the state with its slip, below EDGE_OUT, set to zero); where it only grazes or the couple cannot
+    hold, the mode goes on."""
+
+    inner: object
+    like: Mode = Mode.ROLLING
+
+    def __call__(self, model, event, mode, t, x) -> Transition:
+        tr = self.inner(model, event, self.like, t, project_no_slip(model, x) if self.like is Mode.ROLLING else x)
+        if tr.stop is None and (tr.resume or tr.mode is self.like):
+            return Transition(mode, t, x, resume=True)
+        return tr

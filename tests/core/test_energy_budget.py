@@ -144,11 +144,11 @@ def test_the_two_charts_agree_on_the_budget():
 @pytest.mark.timeout(600)
 def test_sliding_friction_work_equals_an_independent_quadrature():
     """The budget's sliding-friction work against scipy's adaptive quadrature of F.u along the
-    dense output of each sliding segment (rolling segments have u = 0)."""
+    dense output of each sliding segment and each on the cone's edge (rolling segments have u = 0)."""
     model, traj = _stick_slip("euler")
     work = 0.0
     for s in traj.segments:
-        if s.mode.value.startswith("sliding"):
+        if s.mode.value.startswith("sliding") or s.mode.value in ("edge", "off_edge"):  # u != 0 on and off the edge
             def power(t, s=s):
                 x = s.states(np.array([t]))[0]
                 return float(np.dot(model.evaluate("friction", x, s.mode), model.evaluate("slip", x, s.mode)))
