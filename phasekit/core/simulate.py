@@ -19,9 +19,9 @@ from .._runtime.watch import WALL_REASON, claim_start, deadline, heartbeat, prog
 from ..errors import ConvergenceError, ParameterError, Status
 from .audit import audited_options
 from .charts import FLIGHT, POLE_GUARD
+from .dense_cap import DenseCap
 from .engines import Budget, End, Propagation, engine_for
 from .engines.dense import linear_span
-from .dense_cap import DenseCap
 from .face import run_face
 from .hybrid import Event, Mode, Transition
 from .model import Model

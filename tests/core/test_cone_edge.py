@@ -4,14 +4,14 @@ force at the cone's edge once per nutation cycle from 12.1 s to 37 s."""
 
 import importlib
 
-import numpy as np
-import pytest
-
 import phasekit as pk
 import phasekit.studies as ps
 from phasekit.core import system, zero_slip
 from phasekit.core.cone_edge import EDGE_OUT
 from phasekit.core.hybrid import Mode
+
+import numpy as np
+import pytest
 
 RTOL = 1e-10
 SCALE = pk.Scale("15 mm")

@@ -8,12 +8,12 @@ from __future__ import annotations
 import time
 import tracemalloc
 
-import numpy as np
-import pytest
-
 import phasekit as pk
 from phasekit._runtime.watch import wall_deadline
 from phasekit.core.dense_cap import DenseCap, span_bytes
+
+import numpy as np
+import pytest
 
 
 def _model(drag: float = 1e-4):

@@ -16,6 +16,7 @@ STOPS = ("jump", "touchdown", "none", "rest")  # system.STOP_AT
 
 
 def _guards():
+    from phasekit.core import cone_edge as e
     from phasekit.core import fields as m
 
     return {
@@ -32,6 +33,10 @@ def _guards():
         "roll_margin_sliding_no_roll": "delta^2 R^2 - |tau|^2 = 0: the couple holding w_h = 0 reaches delta R",
         "roll_margin_pivoting": "delta^2 R^2 - |tau|^2 = 0 (pivoting in place, the rolling held)",
         "margin_pivoting": "mu^2 R^2 - |F_req|^2 = 0 (pivoting in place without slip)",
+        "edge_stick": f"u.e* = -{e.EDGE_STICK:g} (on the cone's edge, the slip along its direction e* returns to zero)",
+        "edge_out": f"|u| = {e.EDGE_OUT:g} (the slip has left the cone's edge)",
+        "edge_in": f"|u| = {e.EDGE_IN:g} with the friction rolling needs within about {e.EDGE_BAND:g} of mu R "
+                   "(the slip returns onto the cone's edge)",
     }
 
 
@@ -100,7 +105,7 @@ def _integrators(sys_, ev) -> set[str]:
     return found
 
 
-ORDER = ("lift-off", "stick", "slip", "pivot stick", "pivot slip", "roll stick", "roll slip", "rest", "touchdown",
+ORDER = ("lift-off", "stick", "slip", "edge out", "edge in", "pivot stick", "pivot slip", "roll stick", "roll slip", "rest", "touchdown",
          "a user's event")
 
 
