@@ -23,6 +23,9 @@ steps as the sweep path, docs/results/performance.md#the-default-path).
 3. A sticking (rolling) trajectory against a sliding one of the same length: goal <= 3x.
    Rolling: the paper's start (5.2), which sticks at t = 0.011 and rolls; sliding: the
    standard workload. Both to t = 40 (before the standard workload's jump), sweep path.
+4. Friction over a contact patch against the point contact, the same body and start: the standard
+   workload's sliding run to t = 40 under ``pk.Contensou(0.1, 0.005)`` (a patch of 0.1 mm on a body of
+   b = 20 mm) and under ``pk.Coulomb(0.1)``, sweep path: goal <= 3x.
 
 Timings: the median and the best of ``--repeats`` runs, the runs of the compared methods
 interleaved so that a change in machine load hits both sides alike. On a shared machine the
@@ -53,7 +56,7 @@ import _report
 import numpy as np
 
 SWEEP = dict(dense=False, track_minima=False)
-GOALS = {"scipy_bdf": 1000.0, "bare_heyoka": 1.35, "default_sweep": 2.0, "rolling_sliding": 3.0}
+GOALS = {"scipy_bdf": 1000.0, "bare_heyoka": 1.35, "default_sweep": 2.0, "rolling_sliding": 3.0, "patch_point": 3.0}
 
 
 class Timing(float):
@@ -173,6 +176,21 @@ def rolling_vs_sliding(model, y0, repeats, say) -> dict:
             "ratio_rolling_sliding_best": t["rolling"].best / t["sliding"].best}
 
 
+def patch_vs_point(body, y0, repeats, say) -> dict:
+    point, patch = pk.Model(body, pk.Coulomb(0.1)), pk.Model(body, pk.Contensou(0.1, 0.005))
+    t, r = timed({"patch": lambda: pk.simulate(patch, y0, 40.0, **SWEEP),
+                  "point": lambda: pk.simulate(point, y0, 40.0, **SWEEP)}, repeats)
+    rp, rc = r["patch"], r["point"]
+    if not (rp.t == rc.t == 40.0):
+        raise RuntimeError(f"the workloads changed: the patch run ends at {rp.t} ({rp.status}), the point at {rc.t}")
+    say("4. friction over a contact patch against the point contact, the sliding run to t = 40 (sweep path)")
+    say(f"   patch {ms(t['patch'])} ({rp.n_steps} steps); point {ms(t['point'])} ({rc.n_steps} steps); "
+        f"ratio {t['patch'] / t['point']:.2f} (best runs {t['patch'].best / t['point'].best:.2f}; "
+        f"goal <= {GOALS['patch_point']:g})")
+    return {"patch_ms": t["patch"] * 1e3, "point_ms": t["point"] * 1e3, "ratio_patch_point": t["patch"] / t["point"],
+            "ratio_patch_point_best": t["patch"].best / t["point"].best}
+
+
 def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter, allow_abbrev=False)
     ap.add_argument("--repeats", type=int, default=50, help="timed runs per method (default 50; scipy BDF: a tenth, at most 3)")
@@ -197,6 +215,7 @@ def main(argv=None) -> dict:
     out.update(scipy_vs_phasekit(model, body, y0, err, args.repeats, say))
     out.update(bare_vs_phasekit(model, y0, err, args.repeats, say))
     out.update(rolling_vs_sliding(model, y0, args.repeats, say))
+    out.update(patch_vs_point(body, y0, args.repeats, say))
     out["goals"] = GOALS
     out["load_average"] = os.getloadavg()[0]
     out["goals_met"] = goals_met(out, "")
@@ -214,7 +233,8 @@ def goals_met(out: dict, runs: str) -> dict:
     return {"scipy_bdf": out[f"ratio_scipy_bdf_sweep{runs}"] >= GOALS["scipy_bdf"],
             "bare_heyoka": out[f"ratio_sweep_bare_heyoka{runs}"] <= GOALS["bare_heyoka"],
             "default_sweep": out[f"ratio_default_sweep{runs}"] <= GOALS["default_sweep"],
-            "rolling_sliding": out[f"ratio_rolling_sliding{runs}"] <= GOALS["rolling_sliding"]}
+            "rolling_sliding": out[f"ratio_rolling_sliding{runs}"] <= GOALS["rolling_sliding"],
+            "patch_point": out[f"ratio_patch_point{runs}"] <= GOALS["patch_point"]}
 
 
 if __name__ == "__main__":

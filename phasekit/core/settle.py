@@ -42,7 +42,7 @@ from .._runtime.validate import check_range
 from .hybrid import Mode, Record, Transition
 from .observables import evaluate_function
 
-CONTACT_MODES = ("sliding", "rolling")
+CONTACT_MODES = ("sliding", "rolling", "edge", "off_edge")  # on the cone's edge the slip is not zero: a sliding stretch
 #: the name of the turn of theta while rolling (a maximum: Lambda falls through 0)
 TURN = "turn"
 #: two maxima of theta close a period when their states agree to this times the run's tolerance, in

@@ -308,8 +308,7 @@ def trajectory_dict(traj, *, events: bool = True) -> dict:
     }
     stops = [e for e in traj.events if e.mode_after == "end" and e.name not in ("lift-off", "touchdown")]
     if traj.status is Status.STOPPED and stops:
-        d["t_stop"] = stops[-1].t
-        d["stopped_by"] = stops[-1].name
+        d["t_stop"], d["stopped_by"] = stops[-1].t, stops[-1].name
     poses = _within_budget(lambda: event_poses(traj), skipped, "poses") if events else None
     if skipped:  # the wall budget's rest, after the run, ran out (the CLI's --max-wall counts this work)
         d["post_run"] = {"skipped": [s for s, _ in skipped], "reason": skipped[0][1]}

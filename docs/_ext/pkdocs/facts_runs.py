@@ -18,6 +18,7 @@ BENCH_RATIOS = [
     ("ratio_default_bare_heyoka", "phasekit's default options / bare heyoka (rtol 1e-9)", None, ""),
     ("ratio_default_sweep", "phasekit's default options / its sweep path (rtol 1e-9)", "default_sweep", "<="),
     ("ratio_rolling_sliding", "a rolling trajectory / a sliding one of the same length", "rolling_sliding", "<="),
+    ("ratio_patch_point", "friction over a contact patch / at a point, the same sliding run", "patch_point", "<="),
 ]
 
 NOT_MEASURED = "not measured"
