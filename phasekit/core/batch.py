@@ -405,7 +405,7 @@ def compile_batch(model: Model, events=(), *, lanes: int = LANES, **option_field
     >>> import phasekit as pk
     >>> from phasekit.core import batch
     >>> batch.compile_batch(pk.Model(pk.Spheroid(1.5), pk.Coulomb(0.1)), track_minima=False, dense=False)
-    4
+    2
     """
     opts = solver_options(**option_fields)
     system = declare(model, stop_at="jump", events=events)

@@ -18,9 +18,10 @@ and the spin couple never both reach their Coulomb values. The law is :class:`Co
 sliding force at the point is zero (the patch wrench carries the whole traction), so its model has
 the SLIDING and FLIGHT modes only.
 
-Approximations (named in :meth:`Contensou.describe` and docs/physics.md): the patch is a circle of a
-fixed radius (given, or Hertz's radius at the start's curvatures and the weight:
-:func:`phasekit.friction.hertz.hertz_radius`); the integrals over it are the rational approximant of
+Approximations (named in :meth:`Contensou.describe` and docs/physics.md): the patch is a circle, of a
+radius given, or (``curvature=True``) Hertz's radius under the weight following the principal radii
+at the contact, a = a1 (rho1 rho2)^(1/6) (:func:`phasekit.friction.hertz.unit_patch_radius`; Hertz's
+R^(1/3) is not followed along the run); the integrals over it are the rational approximant of
 :func:`phasekit.friction.patch.patch_friction` (worst relative error 8.2e-6 over the whole (slip, spin)
 plane, :data:`phasekit.friction.patch.APPROXIMANT_ERRORS`); at zero slip and zero spin together,
 where the exact law is set-valued, a viscous floor of 1e-9 (a speed) stands for it; impacts use the
@@ -48,9 +49,10 @@ class PatchTraction(Dissipation):
     """The wrench of Coulomb friction over the patch: the force F at the contact point P and the
     couple M about the normal, from the slip of P and the spin about the normal.
 
-    It needs the contact point (``needs_contact_point``): the simulator passes r_P, the vector from
-    G to P, to :meth:`wrench_at`. Built by :class:`Contensou`; not to be combined with other laws by
-    hand.
+    It needs the contact's geometry (``needs_contact_point``): the simulator passes
+    :class:`phasekit.core.fields.ContactGeometry` (r_P, the vector from G to P, and the principal
+    radii there) to :meth:`wrench_at`. Built by :class:`Contensou`; not to be combined with other
+    laws by hand.
 
     Parameters
     ----------
