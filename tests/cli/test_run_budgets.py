@@ -106,7 +106,8 @@ def test_the_work_after_a_run_counts_in_its_wall_budget():
     assert abs(d["energy_budget"]["residual"]) < 1e-8 and set(d["pose_end"]) >= {"psi", "X", "Y"}
     code, out, _ = run_cli("simulate", *air, "--t-end", 2e4, "--max-wall", 1)
     d = strict_json(out)
-    assert code == 1 and d["status"] == "failed" and "wall-time limit (1 s)" in d["reason"] and d["n_steps"] > 5000
+    # (how far 1 s takes the run depends on the machine's load: no step count is asserted)
+    assert code == 1 and d["status"] == "failed" and "wall-time limit (1 s)" in d["reason"] and d["t_end"] < 2e4
     assert d["energy_budget"] is None and "pose_end" not in d and d["post_run"]["skipped"] == ["energy budget", "poses"]
     assert d["post_run"]["reason"].startswith("--max-wall 1 s ran out after the run (") and "not computed" in d["post_run"]["reason"]
 
