@@ -68,7 +68,12 @@ def commit() -> str:
         p = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True, timeout=10)
     except (OSError, subprocess.SubprocessError):
         return "unknown"
-    return p.stdout.strip() if p.returncode == 0 and p.stdout.strip() else "unknown"
+    if p.returncode != 0 or not p.stdout.strip():
+        return "unknown"
+    # the code measured is the commit's only when the library, studies and benchmarks are unchanged
+    d = subprocess.run(["git", "diff", "--quiet", "HEAD", "--", "phasekit", "studies", "benchmarks"], cwd=ROOT,
+                       capture_output=True, timeout=10)
+    return p.stdout.strip() + (" with uncommitted changes" if d.returncode == 1 else "")
 
 
 def machine(load_start: float, load_end: float) -> str:

@@ -72,10 +72,11 @@ def build_tasks(quick: bool, engine: str, per_task: int | None = None):
     return ps.group_search_tasks(jobs, costs, per_task=per_task, study=STEM, engine=engine)
 
 
-def warm_up() -> None:
-    """Compile (or load) every integrator the sweep uses, so the pack carries them."""
+def warm_up(engine: str = "batch") -> None:
+    """Compile (or load) every integrator the sweep uses, so the pack carries them (the batch
+    ones only for the batch engine)."""
     for a in (1.5, 2 / 3):
-        BASE.prepare(a, engine="batch")
+        BASE.prepare(a, engine=engine)
 
 
 def report(rows, g, coll, dl, wall, mode, n_new) -> dict:
@@ -98,7 +99,7 @@ def main(argv=None) -> dict:
         "engine": args.engine, "jump": "R reaches 0 with dR/dt < 0 before the rise completes (theta within 0.1 of its end)"})
     keys = {k for ks in members.values() for k in ks}
     n_new = sum(k not in store for k in keys)
-    mode = str(st.run(specs, store, members=members, warm_up=warm_up, desc="thresholds (a, mu)"))
+    mode = str(st.run(specs, store, members=members, warm_up=partial(warm_up, args.engine), desc="thresholds (a, mu)"))
     rows = store.rows(keys)
     coll = ps.threshold_collapse([r for r in rows if r.d == BASE.amplitude], g["mu"], MU_REF)
     dl = ps.threshold_against_d(rows, g["d_lines"]["a"], g["d_mu"])

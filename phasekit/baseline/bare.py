@@ -4,6 +4,8 @@ phasekit" reference."""
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 
 from .._runtime.validate import check_vector
@@ -18,8 +20,10 @@ from ..core.system import declare, watched
 
 def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump", rtol: float = 1e-9, events=(),
                       track_minima: bool = True, x0=None):
-    """The compiled heyoka integrator phasekit uses for one mode, for users (and benchmarks)
-    who want to drive heyoka directly: returns (integrator, parameters). Its terminal events
+    """A copy of the compiled heyoka integrator phasekit uses for one mode, for users (and
+    benchmarks) who want to drive heyoka directly: returns (integrator, parameters). It is the
+    caller's own: simulate's runs do not touch it (they shared one object before, and a simulate
+    between two propagations left its parameters set for another segment). Its terminal events
     are the mode's guards (lift-off first, ...) with the levels of ``events`` appended, and its
     last parameters are the scales of the states: the integrator's state is the model's divided by
     them, which makes heyoka's one tolerance an error test per component
@@ -65,6 +69,7 @@ def taylor_integrator(model: Model, *, mode=Mode.SLIDING, stop_at: str = "jump",
     evs = watched(system, mode, TaylorEngine)
     cflow = model.compile_flow(tracked(system.flow(mode), track_minima), evs)
     ta, _, npar = TaylorEngine(solver_options(rtol=rtol).rtol).integrator(cflow, len(model.p))
+    ta = copy.deepcopy(ta)
     scale = np.ones(cflow.n_states) if x0 is None else initial_scales(check_vector("x0", x0, cflow.n_states))
     pars = taylor_pars(model.p, [e.level for e in evs], scale)
     ta.pars[:] = pars

@@ -58,3 +58,23 @@ def test_the_bare_taylor_integrator_stops_at_the_hybrid_loop_s_lift_off(coulomb,
     assert sweep.t_jump == pytest.approx(converged, abs=5e-10)
     assert ta.time == pytest.approx(converged, abs=3e-9)
     assert ta.state * pars[-6:] == pytest.approx(sweep.x_jump, rel=1e-7, abs=1e-9)
+
+
+def test_the_bare_integrator_is_the_caller_s_own(coulomb, standard_start):
+    """A simulate between two propagations of the bare integrator leaves it as it was: the
+    benchmark's "bare heyoka" once shared simulate's integrator, and after a simulate its runs
+    stopped at t = 1.38 (another segment's parameters), 29 steps instead of 601."""
+    ta, pars = pk.baseline.taylor_integrator(coulomb, rtol=1e-9, track_minima=False, x0=standard_start)
+    start = np.array(ta.state)
+
+    def run():
+        ta.time = 0.0
+        ta.state[:] = start
+        ta.reset_cooldowns()
+        outcome = ta.propagate_until(200.0)
+        return ta.time, outcome[3]
+
+    first = run()
+    sim = pk.simulate(coulomb, standard_start, 200.0, rtol=1e-9, dense=False, track_minima=False)
+    assert run() == first
+    assert first[0] == pytest.approx(sim.t_jump, abs=3e-9)  # the same lift-off, not an early stop

@@ -28,6 +28,7 @@ BENCHMARKS = {"bench_performance.json": ("bench_performance.py", facts_runs.benc
               "bench_threshold_sweep.json": ("bench_threshold_sweep.py", facts_runs.bench_sweep),
               "bench_steady_structure.json": ("bench_steady_structure.py", facts_runs.bench_structure),
               "bench_first_run.json": ("bench_first_run.py", facts_runs.bench_first_run),
+              "bench_cold_cache.json": ("bench_cold_cache.py", facts_runs.bench_cold_cache),
               "bench_memory.json": ("bench_memory.py", facts_runs.bench_memory)}
 
 PERFORMANCE = {"repeats": 50, "phasekit_rtol": 1e-8, "sweep_ms": 0.75, "default_ms": 1.4, "scipy_bdf_ms": 900.0,
@@ -51,6 +52,12 @@ FIRST_RUN = {"bodies": {"egg": {"command": "phasekit simulate --body egg", "firs
                         "cone": {"command": "phasekit simulate --body cone", "first_s": 1.83, "second_s": 0.98, "notices": 0,
                                  "longest_noticed_compile_s": 0.0}},
              "worst_first_s": 3.45, "goals": {"first_s": 5.0}, "goals_met": {"first_s": True}}
+
+COLD = {"cold_s": 152.3, "warm_s": 128.1, "cold_over_warm": 152.3 / 128.1, "integrators": 51, "builds": 51,
+        "most_builds_of_one_integrator": 1, "builds_by_kind": {"the Taylor integrator of the sliding mode": 22,
+                                                              "the Taylor integrator of the rolling mode": 29},
+        "builds_when_warm": 0, "goals": {"cold_over_warm": 1.3, "builds_per_integrator": 1},
+        "goals_met": {"cold_over_warm": True, "builds_per_integrator": True}}
 
 MEMORY = {"standard": {"steps": 715, "traced_peak_kb": 2175.0, "held_kb": 560.0, "peak_rss_mb": 160.2},
           "per_step": {"dense_mb_per_million_steps": 752.0, "tally_mb_per_million_steps": 17.5, "dense_wall_s": 2.0,
@@ -82,7 +89,10 @@ def test_a_report_is_the_result_with_its_command_date_commit_and_machine(tmp_pat
     assert b["command"] == "python benchmarks/bench_threshold_sweep.py --quick --per-task 2"  # without --report
     assert b["measured"] in {before.isoformat(), datetime.datetime.now(datetime.UTC).date().isoformat()}
     git = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True)
-    assert b["commit"] == (git.stdout.strip() if git.returncode == 0 else "unknown")
+    changed = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "phasekit", "studies", "benchmarks"],
+                             cwd=ROOT, capture_output=True, text=True).stdout.strip()
+    assert b["commit"] == (git.stdout.strip() + (" with uncommitted changes" if changed else "") if git.returncode == 0
+                           else "unknown")
     assert re.fullmatch(r"\d+ cores, load average \d+\.\d at the start, \d+\.\d at the end", b["machine"])
     assert [p.name for p in tmp_path.iterdir()] == ["bench_threshold_sweep.json"]  # no temporary file left
 
@@ -110,6 +120,7 @@ def test_a_report_into_a_missing_directory_is_refused_before_the_run(tmp_path, c
 def test_the_page_shows_each_report_with_its_goals(tmp_path):
     for name, result in (("bench_performance.json", PERFORMANCE), ("bench_threshold_sweep.json", SWEEP),
                          ("bench_steady_structure.json", STRUCTURE), ("bench_first_run.json", FIRST_RUN),
+                         ("bench_cold_cache.json", COLD),
                          ("bench_memory.json", MEMORY)):
         _write(tmp_path, name, result)
     src = Sources(data=tmp_path)
@@ -126,12 +137,16 @@ def test_the_page_shows_each_report_with_its_goals(tmp_path):
     first = facts.lookup(src, "performance.first_run_report")
     assert "| egg: `phasekit simulate --body egg` | 3.5 s | 1.6 s | 1 |  |" in first
     assert re.search(r"\| the slowest first run \| 3\.5 s \|  \|  \| <= 5 s: yes \|", first)
+    cold = facts.lookup(src, "performance.cold_cache_report")
+    assert "| main study `--fresh`, empty compile cache | 152.3 s |" in cold and "(51 integrators: rolling mode 29, sliding mode 22)" in cold
+    assert re.search(r"\| empty / warm \| 1\.19 \| <= 1\.3 \| yes \|", cold)
+    assert re.search(r"\| most builds of one integrator \| 1 \| <= 1 \| yes \|", cold)
     memory = facts.lookup(src, "performance.memory_report")
     assert "| dense output held per million Taylor steps (no cap) | 752 MB |" in memory
     assert re.search(r"a long run of 10000000 steps .*energy residual 7\.6e-8\): peak resident \| 1380 MB \| <= 2000 MB \| yes \|",
                      memory)
     assert re.search(r"\| 0\.96 \| <= 1\.5 \| yes \|", memory) and re.search(r"\| 0\.08 \| <= 0\.1 \| \*\*no\*\* \|", memory)
-    assert "not measured" not in (bench + sweep + structure + first + memory).lower()
+    assert "not measured" not in (bench + sweep + structure + first + cold + memory).lower()
 
 
 def test_a_missing_report_is_not_measured_and_an_older_one_gets_its_ratio_from_its_times(tmp_path):
@@ -141,7 +156,8 @@ def test_a_missing_report_is_not_measured_and_an_older_one_gets_its_ratio_from_i
     src = Sources(data=tmp_path)
     assert re.search(r"its sweep path \(rtol 1e-9\) \| 1\.90 \|  \|  \|", facts.lookup(src, "performance.bench_report"))
     for key, name in (("sweep", "bench_threshold_sweep.json"), ("structure", "bench_steady_structure.json"),
-                      ("first_run", "bench_first_run.json"), ("memory", "bench_memory.json")):
+                      ("first_run", "bench_first_run.json"), ("cold_cache", "bench_cold_cache.json"),
+                      ("memory", "bench_memory.json")):
         block = facts.lookup(src, f"performance.{key}_report")
         assert block.startswith("Not measured") and name in block and "|" not in block
 

@@ -252,8 +252,10 @@ def _built(build, disk, label, path: Path | None):
     """``build()``, announced, and written to ``path`` (whole, under a temporary name)."""
     if disk is not None:
         _place_heyoka_cache()
+    start = time.perf_counter()
     entry = _announced(build, disk, label)
     if path is not None:
+        _tally(path, time.perf_counter() - start, label or _WHAT.get(disk, disk))
         try:
             tmp = path.with_suffix(f".{os.getpid()}.tmp")
             with open(tmp, "wb") as fh:
@@ -263,6 +265,21 @@ def _built(build, disk, label, path: Path | None):
         except Exception:
             pass
     return entry
+
+
+#: one line per build in the disk cache's folder (file, pid, seconds, what): how often each
+#: integrator was compiled, read by benchmarks/bench_cold_cache.py
+BUILD_LOG = "builds.log"
+
+
+def _tally(path: Path, seconds: float, what: str | None) -> None:
+    """Append this build to the cache's :data:`BUILD_LOG` (one short write in append mode: the
+    processes sharing the cache never interleave within a line)."""
+    try:
+        with open(path.parent / BUILD_LOG, "a") as fh:
+            fh.write(f"{path.stem}\t{os.getpid()}\t{seconds:.2f}\t{what}\n")
+    except OSError:
+        pass
 
 
 def _trim(cache: Path, keep: Path) -> None:
@@ -323,7 +340,7 @@ def clear_disk() -> dict:
     before = disk_usage()
     if before["directory"] is not None:
         cache = Path(before["directory"])
-        for q in [*cache.glob("*.pkl"), *cache.glob("*.tmp"), *cache.glob("*.lock")]:
+        for q in [*cache.glob("*.pkl"), *cache.glob("*.tmp"), *cache.glob("*.lock"), cache / BUILD_LOG]:
             q.unlink(missing_ok=True)
         hy, objects = sys.modules.get("heyoka"), cache / "heyoka"
         if hy is not None and hy.llvm_state.get_diskcache_path() == str(objects):

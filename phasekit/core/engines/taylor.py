@@ -116,6 +116,7 @@ class TaylorEngine:
         if not resume:
             _start(ta, n, t0, x0, taylor_pars(p, levels, initial_scales(x0)))
         scale = np.array(ta.pars[first:first + n])
+        views = ta.state[:n], ta.pars[first:first + n]  # heyoka's buffers, for the renewals
         if recorder is not None:
             recorder.points = []
         prop = Propagation(t=float(ta.time), x=ta.state[:n] * scale, outcome=End.TIME)
@@ -138,9 +139,9 @@ class TaylorEngine:
                 if len(record.coefs) >= RECORD_STEPS:  # kept as it goes: the wall budget sees the cost
                     _keep(record, prop, flow, dense, zeros, budget.keep)
                     record = TaylorSteps(float(ta.time), tc, np.concatenate([scale, extra]))
-            end, event = taylor_end(hy, res[0])
+            end, event = (End.TIME, None) if res[0] == hy.taylor_outcome.time_limit else taylor_end(hy, res[0])
             if end is End.TIME and stop < t_end:  # a grid time: renew the scales
-                scale = _rescale(ta, n, first, scale)
+                scale = _rescale(*views, scale)
                 if record is not None:
                     record.rescale(np.concatenate([scale, extra]))
                 end = None
@@ -171,12 +172,13 @@ def _start(ta, n: int, t0: float, x0, pars) -> None:
     ta.reset_cooldowns()
 
 
-def _rescale(ta, n: int, first: int, scale) -> np.ndarray:
-    """New scales at a grid time (:func:`.scaling.next_scales`), the state rescaled to them."""
-    x = ta.state[:n] * scale
+def _rescale(state, scales, scale) -> np.ndarray:
+    """New scales at a grid time (:func:`.scaling.next_scales`), the state rescaled to them;
+    ``state`` and ``scales`` are views on the integrator's state and on its scale parameters."""
+    x = state * scale
     new = next_scales(x, scale)
-    ta.pars[first:first + n] = new
-    ta.state[:n] = x / new
+    scales[:] = new
+    np.divide(x, new, out=state)
     return new
 
 
