@@ -51,11 +51,11 @@ import sys
 import threading
 import time
 
-import heyoka as hy
 import phasekit as pk
 from phasekit.core.engines.scaling import next_rescale, next_scales
 
 import _report
+import heyoka as hy
 import numpy as np
 
 SWEEP = dict(dense=False, track_minima=False)
