@@ -328,8 +328,10 @@ def disk_usage() -> dict:
     if cache is None:
         return {"directory": None, "integrators": {"files": 0, "bytes": 0}, "heyoka": {"files": 0, "bytes": 0}}
     pickles = [q for q in cache.glob("*.pkl") if q.is_file()]
+    log = cache / BUILD_LOG  # their build log counted with them (bytes, not files)
     return {"directory": str(cache), "heyoka_limit_bytes": HEYOKA_CACHE_LIMIT, "integrators_limit_bytes": INTEGRATOR_CACHE_LIMIT,
-            "integrators": {"files": len(pickles), "bytes": sum(q.stat().st_size for q in pickles)},
+            "integrators": {"files": len(pickles),
+                            "bytes": sum(q.stat().st_size for q in pickles) + (log.stat().st_size if log.is_file() else 0)},
             "heyoka": _files(cache / "heyoka")}
 
 
