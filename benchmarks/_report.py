@@ -35,6 +35,12 @@ class Report:
         self.command = shlex.join(["python", f"benchmarks/{Path(script).name}", *_without_report(argv)])
         self.load_start = os.getloadavg()[0]
 
+    def finish(self, result: dict, as_json: bool) -> None:
+        """Write the report, and with ``as_json`` print ``result`` on stdout as strict JSON."""
+        self.write(result)
+        if as_json:
+            print(json.dumps(result, allow_nan=False))
+
     def write(self, result: dict) -> None:
         if self.path is None:
             return

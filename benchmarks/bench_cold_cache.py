@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import argparse
 import collections
-import json
 import os
 import subprocess
 import sys
@@ -77,9 +76,7 @@ def main(argv: list[str] | None = None) -> int:
           f"{result['most_builds_of_one_integrator']}); with the cache warm: {len(warm_builds)}", file=stream)
     for what, k in sorted(kinds.items()):
         print(f"  {k:3d}  {what}", file=stream)
-    report.write(result)
-    if args.json:
-        print(json.dumps(result, allow_nan=False))
+    report.finish(result, args.json)
     return 0
 
 

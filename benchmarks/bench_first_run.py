@@ -17,7 +17,6 @@ writes it wrapped with the command, date, commit and machine
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import re
 import shlex
@@ -75,9 +74,7 @@ def main(argv: list[str] | None = None) -> int:
     result = {"bodies": bodies, "worst_first_s": worst, "goals": GOALS, "goals_met": {"first_s": worst <= GOALS["first_s"]}}
     print(f"slowest first run {worst:.2f} s (goal <= {GOALS['first_s']:g} s: {'met' if worst <= GOALS['first_s'] else 'NOT met'})",
           file=stream, flush=True)
-    report.write(result)
-    if args.json:
-        print(json.dumps(result, allow_nan=False))
+    report.finish(result, args.json)
     return 0
 
 

@@ -44,7 +44,6 @@ With ``--json`` the report goes to stderr and stdout holds one JSON object with 
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import statistics
 import sys
@@ -174,6 +173,15 @@ def bare_vs_phasekit(model, y0, err, repeats, say) -> dict:
             "cvodes_bdf_ms": cv["cvodes"] * 1e3, "cvodes_adams_ms": cv["cvodes-adams"] * 1e3}
 
 
+def paired(t: dict, r: dict, a: str, b: str, goal: str, title: str, say, keys: tuple[str, str, str, str]) -> dict:
+    """One section's report: the runs ``a`` and ``b`` timed side by side and their ratio (goal
+    ``goal``), as ``keys``: a's and b's times (ms), the median ratio and the best runs' ratio."""
+    say(title)
+    say(f"   {a} {ms(t[a])} ({r[a].n_steps} steps); {b} {ms(t[b])} ({r[b].n_steps} steps); "
+        f"ratio {t[a] / t[b]:.2f} (best runs {t[a].best / t[b].best:.2f}; goal <= {GOALS[goal]:g})")
+    return dict(zip(keys, (t[a] * 1e3, t[b] * 1e3, t[a] / t[b], t[a].best / t[b].best)))
+
+
 def rolling_vs_sliding(model, y0, repeats, say) -> dict:
     y52 = np.array([7e-5, 2e-6, 10.5, -1e-4, np.pi / 2 - 1e-3, 2e-2])
     t, r = timed({"rolling": lambda: pk.simulate(model, y52, 40.0, **SWEEP),
@@ -181,12 +189,8 @@ def rolling_vs_sliding(model, y0, repeats, say) -> dict:
     rr, rs = r["rolling"], r["sliding"]
     if not (rr.mode == "rolling" and rr.stuck and rs.mode == "sliding" and not rs.stuck):
         raise RuntimeError(f"the workloads changed: rolling run ends {rr.mode} (stuck {rr.stuck}), sliding run ends {rs.mode}")
-    say("3. sticking (rolling) against sliding, both to t = 40 (sweep path)")
-    say(f"   rolling {ms(t['rolling'])} ({rr.n_steps} steps); sliding {ms(t['sliding'])} ({rs.n_steps} steps); "
-        f"ratio {t['rolling'] / t['sliding']:.2f} (best runs {t['rolling'].best / t['sliding'].best:.2f}; "
-        f"goal <= {GOALS['rolling_sliding']:g})")
-    return {"rolling_ms": t["rolling"] * 1e3, "sliding_ms": t["sliding"] * 1e3, "ratio_rolling_sliding": t["rolling"] / t["sliding"],
-            "ratio_rolling_sliding_best": t["rolling"].best / t["sliding"].best}
+    return paired(t, r, "rolling", "sliding", "rolling_sliding", "3. sticking (rolling) against sliding, both to t = 40 (sweep path)",
+                  say, ("rolling_ms", "sliding_ms", "ratio_rolling_sliding", "ratio_rolling_sliding_best"))
 
 
 def patch_vs_point(body, y0, repeats, say) -> dict:
@@ -196,12 +200,9 @@ def patch_vs_point(body, y0, repeats, say) -> dict:
     rp, rc = r["patch"], r["point"]
     if not (rp.t == rc.t == 40.0):
         raise RuntimeError(f"the workloads changed: the patch run ends at {rp.t} ({rp.status}), the point at {rc.t}")
-    say("4. friction over a contact patch against the point contact, the sliding run to t = 40 (sweep path)")
-    say(f"   patch {ms(t['patch'])} ({rp.n_steps} steps); point {ms(t['point'])} ({rc.n_steps} steps); "
-        f"ratio {t['patch'] / t['point']:.2f} (best runs {t['patch'].best / t['point'].best:.2f}; "
-        f"goal <= {GOALS['patch_point']:g})")
-    return {"patch_ms": t["patch"] * 1e3, "point_ms": t["point"] * 1e3, "ratio_patch_point": t["patch"] / t["point"],
-            "ratio_patch_point_best": t["patch"].best / t["point"].best}
+    return paired(t, r, "patch", "point", "patch_point",
+                  "4. friction over a contact patch against the point contact, the sliding run to t = 40 (sweep path)", say,
+                  ("patch_ms", "point_ms", "ratio_patch_point", "ratio_patch_point_best"))
 
 
 def main(argv=None) -> dict:
@@ -235,9 +236,7 @@ def main(argv=None) -> dict:
     out["goals_met_best_runs"] = goals_met(out, "_best")
     say("goals met (median): " + ", ".join(f"{k} {'yes' if v else 'NO'}" for k, v in out["goals_met"].items())
         + "; on the best runs: " + ", ".join(f"{k} {'yes' if v else 'NO'}" for k, v in out["goals_met_best_runs"].items()))
-    if args.json:
-        print(json.dumps(out))
-    report.write(out)
+    report.finish(out, args.json)
     return out
 
 

@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import json
 import os
 import sys
 import time
@@ -160,9 +159,7 @@ def main(argv=None) -> dict:
     log = sys.stderr if args.json else sys.stdout
     with contextlib.redirect_stdout(log):
         out = measure(args.quick, log)
-    if args.json:
-        print(json.dumps(out))
-    report.write(out)
+    report.finish(out, args.json)
     return out
 
 

@@ -36,7 +36,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import json
 import os
 import sys
 import time
@@ -109,9 +108,7 @@ def main(argv=None) -> dict:
     log = sys.stderr if args.json else sys.stdout
     with contextlib.redirect_stdout(log):
         out = measure(args.quick, log, args.per_task)
-    if args.json:
-        print(json.dumps(out))
-    report.write(out)
+    report.finish(out, args.json)
     return out
 
 

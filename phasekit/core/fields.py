@@ -389,7 +389,7 @@ def _build_zero_slip(fn, add_mode, law_cls, creep, laws, x, p, Fc, T, constraint
     regularised law its own field under that name (the slip below 10 eps)."""
     xdot, slip = T["xdot"], T["slip"]
     if law_cls.has_rolling_mode:
-        _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu, T["frame_rate"], laws)
+        _build_rolling(fn, add_mode, x, p, Fc, xdot, slip, constraint, G, g0, mu, T["frame_rate"], bool(laws))
     elif creep:
         _build_creep(fn, add_mode, x, p, Fc, xdot, slip, constraint, mu, eps, T["frame_rate"])
     elif law_cls.can_stick:
